@@ -1,0 +1,3 @@
+//! `karman`: the command-line interface of the karman rocket flight simulator.
+
+fn main() {}
