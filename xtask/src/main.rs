@@ -1,3 +1,67 @@
-//! Project automation, run as `cargo xtask <command>`.
+//! Project automation for karman, run as `cargo xtask <command>` (alias in
+//! `.cargo/config.toml`, after matklad's cargo-xtask pattern).
+//!
+//! - `ci`: everything CI checks — formatting, clippy with warnings denied, the whole test
+//!   suite, and the validation run when the validation data are present.
+//! - `tidy`: repository rules that are not compiler checks (the crate layering of
+//!   ARCHITECTURE.md, read from `cargo metadata`).
 
-fn main() {}
+mod tidy;
+
+use std::path::{Path, PathBuf};
+use std::process::{Command, ExitCode};
+
+use anyhow::{Context, Result, bail};
+
+fn main() -> ExitCode {
+    match run() {
+        Ok(()) => ExitCode::SUCCESS,
+        Err(e) => {
+            eprintln!("xtask: {e:#}");
+            ExitCode::FAILURE
+        }
+    }
+}
+
+fn run() -> Result<()> {
+    let args: Vec<String> = std::env::args().skip(1).collect();
+    let root = workspace_root();
+    match args.first().map(String::as_str) {
+        Some("ci") => ci(&root),
+        Some("tidy") => tidy::check_layering(&root),
+        _ => {
+            eprintln!("usage: cargo xtask <ci|tidy>");
+            bail!("unknown or missing command {:?}", args.first())
+        }
+    }
+}
+
+/// The workspace root: the parent of this crate's manifest directory.
+fn workspace_root() -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR"))
+        .parent()
+        .map_or_else(|| PathBuf::from("."), Path::to_path_buf)
+}
+
+/// Runs `cargo` with `args` in `root`, failing on a non-zero exit.
+fn cargo(root: &Path, args: &[&str]) -> Result<()> {
+    let cargo = std::env::var("CARGO").unwrap_or_else(|_| "cargo".to_owned());
+    eprintln!("xtask: cargo {}", args.join(" "));
+    let status = Command::new(&cargo)
+        .args(args)
+        .current_dir(root)
+        .status()
+        .with_context(|| format!("could not run {cargo}"))?;
+    if !status.success() {
+        bail!("`cargo {}` failed ({status})", args.join(" "));
+    }
+    Ok(())
+}
+
+fn ci(root: &Path) -> Result<()> {
+    cargo(root, &["fmt", "--all", "--", "--check"])?;
+    cargo(root, &["clippy", "--workspace", "--all-targets", "--", "-D", "warnings"])?;
+    tidy::check_layering(root)?;
+    cargo(root, &["test", "--workspace"])?;
+    Ok(())
+}

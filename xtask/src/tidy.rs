@@ -1,0 +1,122 @@
+//! Repository rules: the crate layering of ARCHITECTURE.md, checked on `cargo metadata`.
+
+use std::collections::BTreeSet;
+use std::path::Path;
+use std::process::Command;
+
+use anyhow::{Context, Result, bail};
+
+/// The dependency edges allowed between workspace packages (ARCHITECTURE.md, "Layers").
+/// Each package may depend on the listed workspace packages and on no other.
+pub const ALLOWED: &[(&str, &[&str])] = &[
+    ("karman-math", &[]),
+    ("karman-atmos", &["karman-math"]),
+    ("karman-propulsion", &["karman-math"]),
+    ("karman-airframe", &["karman-math"]),
+    ("karman-dynamics", &["karman-math", "karman-atmos", "karman-propulsion", "karman-airframe"]),
+    ("karman-dispersion", &["karman-math", "karman-dynamics"]),
+    (
+        "karman-mission",
+        &[
+            "karman-math",
+            "karman-atmos",
+            "karman-propulsion",
+            "karman-airframe",
+            "karman-dynamics",
+            "karman-dispersion",
+        ],
+    ),
+    ("karman", &["karman-mission"]),
+    ("xtask", &["karman-mission", "karman-dispersion"]),
+];
+
+/// Every workspace-internal dependency edge `(from, to)` found in `cargo metadata` JSON.
+pub fn workspace_edges(metadata: &serde_json::Value) -> Result<BTreeSet<(String, String)>> {
+    let packages = metadata["packages"].as_array().context("metadata has no packages")?;
+    let names: BTreeSet<&str> = packages.iter().filter_map(|p| p["name"].as_str()).collect();
+    let mut edges = BTreeSet::new();
+    for p in packages {
+        let from = p["name"].as_str().context("package without a name")?;
+        for d in p["dependencies"].as_array().into_iter().flatten() {
+            let to = d["name"].as_str().context("dependency without a name")?;
+            if names.contains(to) {
+                edges.insert((from.to_owned(), to.to_owned()));
+            }
+        }
+    }
+    Ok(edges)
+}
+
+/// The edges of `edges` that ALLOWED does not permit, and packages it does not know.
+pub fn violations(edges: &BTreeSet<(String, String)>) -> Vec<String> {
+    let mut out = Vec::new();
+    for (from, to) in edges {
+        match ALLOWED.iter().find(|(p, _)| p == from) {
+            None => out.push(format!("{from} is not a known crate of ARCHITECTURE.md")),
+            Some((_, allowed)) if !allowed.contains(&to.as_str()) => {
+                out.push(format!("{from} must not depend on {to}"));
+            }
+            Some(_) => {}
+        }
+    }
+    out
+}
+
+/// Runs `cargo metadata` in `root` and fails on any edge outside the layering.
+pub fn check_layering(root: &Path) -> Result<()> {
+    let cargo = std::env::var("CARGO").unwrap_or_else(|_| "cargo".to_owned());
+    let out = Command::new(cargo)
+        .args(["metadata", "--format-version", "1", "--no-deps", "--offline"])
+        .current_dir(root)
+        .output()
+        .context("could not run cargo metadata")?;
+    if !out.status.success() {
+        bail!("cargo metadata failed: {}", String::from_utf8_lossy(&out.stderr));
+    }
+    let metadata: serde_json::Value = serde_json::from_slice(&out.stdout)?;
+    let bad = violations(&workspace_edges(&metadata)?);
+    if !bad.is_empty() {
+        bail!("crate layering violated (see ARCHITECTURE.md):\n  {}", bad.join("\n  "));
+    }
+    Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn workspace_follows_the_layering() {
+        let root = Path::new(env!("CARGO_MANIFEST_DIR")).parent().expect("workspace root");
+        check_layering(root).expect("layering");
+    }
+
+    #[test]
+    fn every_crate_of_the_workspace_is_listed() {
+        let root = Path::new(env!("CARGO_MANIFEST_DIR")).parent().expect("workspace root");
+        let out = Command::new(std::env::var("CARGO").unwrap_or_else(|_| "cargo".into()))
+            .args(["metadata", "--format-version", "1", "--no-deps", "--offline"])
+            .current_dir(root)
+            .output()
+            .expect("cargo metadata");
+        let metadata: serde_json::Value = serde_json::from_slice(&out.stdout).expect("json");
+        for p in metadata["packages"].as_array().expect("packages") {
+            let name = p["name"].as_str().expect("name");
+            assert!(ALLOWED.iter().any(|(n, _)| *n == name), "{name} missing from ALLOWED");
+        }
+    }
+
+    #[test]
+    fn a_forbidden_edge_is_reported() {
+        let edges: BTreeSet<(String, String)> = [
+            ("karman-atmos".to_owned(), "karman-math".to_owned()),
+            ("karman-math".to_owned(), "karman-dynamics".to_owned()),
+            ("karman-airframe".to_owned(), "karman-propulsion".to_owned()),
+        ]
+        .into();
+        let bad = violations(&edges);
+        assert_eq!(bad.len(), 2, "{bad:?}");
+        assert!(bad.iter().any(|m| m.contains("karman-math must not depend on karman-dynamics")));
+        assert!(bad.iter().any(|m| m.contains("airframe must not depend on karman-propulsion")));
+    }
+}
