@@ -31,7 +31,12 @@ pub struct Units {
 
 impl Units {
     /// The SI unit system (every factor 1).
-    pub const SI: Units = Units { length: 1.0, mass: 1.0, time: 1.0, temperature: 1.0 };
+    pub const SI: Units = Units {
+        length: 1.0,
+        mass: 1.0,
+        time: 1.0,
+        temperature: 1.0,
+    };
 
     /// Factor converting an SI value of dimension `L^l M^m T^t Θ^k` into this system.
     #[must_use]
@@ -107,10 +112,22 @@ pub struct PhysicalConstants {
     pub wgs84_eccentricity_squared: f64,
     /// Earth's rotation rate Ω = 2π / sidereal day (rad/s).
     pub earth_rotation_rate: f64,
+    /// SAD69 (South American Datum 1969) semi-major axis a (m); NIMA TR8350.2 appendix A.
+    pub sad69_semi_major_axis: f64,
+    /// SAD69 flattening f (dimensionless); NIMA TR8350.2 appendix A.
+    pub sad69_flattening: f64,
+    /// NAD83 (GRS 80 ellipsoid) flattening f (dimensionless); Moritz (1980). Its semi-major
+    /// axis equals WGS-84's.
+    pub nad83_flattening: f64,
 }
 
 const fn layer(h: f64, t: f64, beta: f64, p: f64) -> AtmosphereLayer {
-    AtmosphereLayer { base_height: h, base_temperature: t, lapse_rate: beta, base_pressure: p }
+    AtmosphereLayer {
+        base_height: h,
+        base_temperature: t,
+        lapse_rate: beta,
+        base_pressure: p,
+    }
 }
 
 impl PhysicalConstants {
@@ -141,6 +158,9 @@ impl PhysicalConstants {
         wgs84_somigliana_k: 1.931_852_652_458e-3,
         wgs84_eccentricity_squared: 6.694_379_990_141e-3,
         earth_rotation_rate: 2.0 * std::f64::consts::PI / 86_164.1,
+        sad69_semi_major_axis: 6_378_160.0,
+        sad69_flattening: 1.0 / 298.25,
+        nad83_flattening: 1.0 / 298.257_024_899,
     };
 
     /// The same constants expressed in the unit system `u`.
@@ -171,6 +191,9 @@ impl PhysicalConstants {
             wgs84_somigliana_k: self.wgs84_somigliana_k,
             wgs84_eccentricity_squared: self.wgs84_eccentricity_squared,
             earth_rotation_rate: self.earth_rotation_rate / u.time,
+            sad69_semi_major_axis: self.sad69_semi_major_axis * len,
+            sad69_flattening: self.sad69_flattening,
+            nad83_flattening: self.nad83_flattening,
         }
     }
 }
@@ -187,12 +210,20 @@ mod tests {
 
     #[test]
     fn si_is_identity() {
-        assert_eq!(PhysicalConstants::SI.in_units(&Units::SI), PhysicalConstants::SI);
+        assert_eq!(
+            PhysicalConstants::SI.in_units(&Units::SI),
+            PhysicalConstants::SI
+        );
     }
 
     #[test]
     fn scaling_keeps_dimensionless_groups() {
-        let u = Units { length: 3.7, mass: 0.21, time: 11.0, temperature: 0.5 };
+        let u = Units {
+            length: 3.7,
+            mass: 0.21,
+            time: 11.0,
+            temperature: 0.5,
+        };
         let si = PhysicalConstants::SI;
         let sc = si.in_units(&u);
         // g0 / (R T) has dimension 1/L; multiply by a length to get a pure number.

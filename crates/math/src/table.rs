@@ -1,10 +1,28 @@
 //! Tabulated functions of one variable.
 //!
-//! A [`Table1`] stores its samples and, for every interval `[x_i, x_{i+1}]`, the cubic
-//! `y = a + b·d + c·d² + e·d³` with `d = x − x_i`. Linear interpolation is the special case
-//! `c = e = 0`; the natural cubic spline (second derivative zero at both ends) follows
-//! de Boor, *A Practical Guide to Splines* (1978), ch. IV, solved with the tridiagonal
-//! (Thomas) algorithm. Evaluation is a binary search plus a Horner step: no allocation.
+//! A [`Table1`] stores its samples and an interpolant built once:
+//!
+//! - piecewise cubics `y = a + b·d + c·d² + e·d³` with `d = x − x_i` on every interval
+//!   `[x_i, x_{i+1}]` for [`Interpolation::Linear`] (`c = e = 0`), [`Interpolation::Spline`]
+//!   (natural cubic spline, second derivative zero at both ends: de Boor, *A Practical Guide to
+//!   Splines* (1978), ch. IV, solved with the tridiagonal Thomas algorithm — the same spline as
+//!   RocketPy's `Function.__interpolate_spline__`), [`Interpolation::Akima`] (Akima 1970,
+//!   *J. ACM* 17(4), 589–602) and [`Interpolation::RocketPyAkima`] (the cubic Hermite that
+//!   RocketPy 1.13 calls `"akima"`, see its docs);
+//! - one polynomial through every sample for [`Interpolation::Polynomial`], in the scaled
+//!   variable `t = (x − x_mid)/h ∈ [−1, 1]`; its coefficients solve the Vandermonde system by
+//!   LU decomposition with partial pivoting (nalgebra), which is far better conditioned than
+//!   RocketPy's Vandermonde system in raw `x` and agrees with it to rounding.
+//!
+//! Evaluation follows RocketPy's interval choice (Python `bisect_left`): `x` uses the interval
+//! `[x_{i−1}, x_i]` with `i` the first index where `x_i ≥ x` (the first interval for
+//! `x ≤ x_0`). For a continuous interpolant this is invisible; it fixes the value at a repeated
+//! abscissa of a [`Table1::linear_stepwise`] table and the one-sided slope at a node.
+//! Evaluation finds the interval through a bucket index (O(1) for evenly spread samples, a
+//! binary search of one bucket otherwise) or a [`Cursor`] hunt, then takes a Horner step: no
+//! allocation.
+
+use nalgebra::{DMatrix, DVector};
 
 use crate::MathError;
 
@@ -14,8 +32,21 @@ pub enum Interpolation {
     /// Straight lines between samples.
     #[default]
     Linear,
-    /// Natural cubic spline (zero second derivative at both ends).
+    /// Natural cubic spline (zero second derivative at both ends), C².
     Spline,
+    /// Akima (1970) piecewise cubic: node slopes weighted by the changes of the neighbouring
+    /// secant slopes, two extra secants extrapolated at each end as in Akima's paper. C¹ and
+    /// free of the overshoot of splines near steps. Needs no special case below 3 points (then
+    /// it is linear).
+    Akima,
+    /// RocketPy 1.13's `"akima"` interpolation (`Function.__interpolate_akima__`), which is not
+    /// Akima's method: a cubic Hermite whose slope at an interior node is the interval-length
+    /// weighted mean of the two adjacent secant slopes,
+    /// `d_i = (h_{i−1} m_i + h_i m_{i−1}) / (h_{i−1} + h_i)`, and the end secant at the ends.
+    /// Use it to reproduce a RocketPy model that asked for `"akima"`.
+    RocketPyAkima,
+    /// The single polynomial of degree `n − 1` through all `n` samples.
+    Polynomial,
 }
 
 /// How a table behaves outside `[x_first, x_last]`.
@@ -24,10 +55,133 @@ pub enum Extrapolation {
     /// Hold the end values.
     #[default]
     Constant,
-    /// Continue the end piece (line or cubic).
+    /// Continue the end piece (line, cubic or the polynomial).
     Natural,
     /// Zero outside the samples.
     Zero,
+}
+
+/// How [`Table1::from_points`] treats the order of its points.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum PointOrder {
+    /// Sort the points stably by x. Repeated x are then kept for linear tables (with the
+    /// semantics of [`Table1::linear_stepwise`]) and rejected for the others.
+    SortStably,
+    /// The points must already be strictly increasing in x; the first row that is not is an
+    /// error naming it.
+    StrictlyIncreasing,
+}
+
+/// A remembered interval for evaluating a table along a monotone sequence of abscissae
+/// (integration steps, output grids): [`Table1::eval_with`] first tries the interval of the
+/// previous call and its neighbours before falling back to a binary search. Any cursor works
+/// with any table; a stale one only costs the search.
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
+pub struct Cursor(usize);
+
+/// The single interpolating polynomial, in the scaled variable `t = (x − center)/half_width`.
+#[derive(Debug, Clone, PartialEq)]
+struct Polynomial {
+    center: f64,
+    half_width: f64,
+    /// Coefficients of `t⁰, t¹, …`.
+    coeffs: Vec<f64>,
+}
+
+impl Polynomial {
+    fn t(&self, x: f64) -> f64 {
+        (x - self.center) / self.half_width
+    }
+
+    fn eval(&self, x: f64) -> f64 {
+        let t = self.t(x);
+        self.coeffs.iter().rev().fold(0.0, |acc, &c| acc * t + c)
+    }
+
+    fn derivative(&self, x: f64) -> f64 {
+        let t = self.t(x);
+        let dp = self
+            .coeffs
+            .iter()
+            .enumerate()
+            .skip(1)
+            .rev()
+            .fold(0.0, |acc, (k, &c)| acc * t + k as f64 * c);
+        dp / self.half_width
+    }
+
+    fn second_derivative(&self, x: f64) -> f64 {
+        let t = self.t(x);
+        let d2p = self
+            .coeffs
+            .iter()
+            .enumerate()
+            .skip(2)
+            .rev()
+            .fold(0.0, |acc, (k, &c)| acc * t + (k * (k - 1)) as f64 * c);
+        d2p / (self.half_width * self.half_width)
+    }
+
+    /// `∫_a^b p dx`.
+    fn integral(&self, a: f64, b: f64) -> f64 {
+        let antiderivative = |x: f64| {
+            let t = self.t(x);
+            t * self
+                .coeffs
+                .iter()
+                .enumerate()
+                .rev()
+                .fold(0.0, |acc, (k, &c)| acc * t + c / (k + 1) as f64)
+        };
+        self.half_width * (antiderivative(b) - antiderivative(a))
+    }
+}
+
+/// A bucket index over the abscissae, so that finding the interval of `x` costs O(1) for
+/// evenly spread samples instead of a full binary search. The domain is cut into `m = n − 1`
+/// equal buckets; `key(x) = ⌊(x − x_0)·m/(x_last − x_0)⌋` clamped to `[0, m − 1]` is a
+/// monotone function of `x` (correctly rounded subtraction and multiplication are monotone),
+/// so with `start[b] = #{i : key(x_i) < b}` the count of samples below `x` lies in
+/// `[start[key(x)], start[key(x) + 1]]` exactly, and a search of that (short) range finds it.
+#[derive(Debug, Clone, PartialEq)]
+struct Guide {
+    start: Vec<usize>,
+    scale: f64,
+}
+
+impl Guide {
+    fn new(xs: &[f64]) -> Self {
+        let n = xs.len();
+        let buckets = n.max(2) - 1;
+        let scale = buckets as f64 / (xs[n - 1] - xs[0]);
+        let mut guide = Guide {
+            start: vec![0; buckets + 1],
+            scale,
+        };
+        for &x in xs {
+            let k = guide.key(xs[0], x);
+            guide.start[k + 1] += 1;
+        }
+        for b in 1..=buckets {
+            guide.start[b] += guide.start[b - 1];
+        }
+        guide
+    }
+
+    #[inline]
+    fn key(&self, x0: f64, x: f64) -> usize {
+        // `as usize` saturates (negative and NaN give 0), which keeps the key monotone.
+        (((x - x0) * self.scale) as usize).min(self.start.len() - 2)
+    }
+}
+
+/// The interpolant between the samples.
+#[derive(Debug, Clone, PartialEq)]
+enum Pieces {
+    /// Per-interval cubic coefficients `[a, b, c, e]` in `d = x − x_i`.
+    Cubic(Vec<[f64; 4]>),
+    /// One polynomial through all samples.
+    Polynomial(Polynomial),
 }
 
 /// A tabulated function of one variable with allocation-free evaluation.
@@ -35,45 +189,80 @@ pub enum Extrapolation {
 pub struct Table1 {
     xs: Vec<f64>,
     ys: Vec<f64>,
-    /// Per-interval cubic coefficients `[a, b, c, e]` in `d = x − x_i`.
-    coeffs: Vec<[f64; 4]>,
+    pieces: Pieces,
+    guide: Guide,
     interpolation: Interpolation,
     extrapolation: Extrapolation,
+}
+
+/// Checks lengths and finiteness; `strict` demands strictly increasing x, otherwise
+/// non-decreasing x.
+fn validate(xs: &[f64], ys: &[f64], strict: bool) -> Result<(), MathError> {
+    if xs.len() != ys.len() {
+        return Err(MathError::LengthMismatch {
+            x: xs.len(),
+            y: ys.len(),
+        });
+    }
+    if xs.is_empty() {
+        return Err(MathError::TooFewPoints { needed: 1, got: 0 });
+    }
+    for (index, (&x, &y)) in xs.iter().zip(ys).enumerate() {
+        for value in [x, y] {
+            if !value.is_finite() {
+                return Err(MathError::NotFinite { index, value });
+            }
+        }
+        if index > 0 {
+            let previous = xs[index - 1];
+            if x < previous || (strict && x <= previous) {
+                return Err(MathError::NotIncreasing { index, x, previous });
+            }
+        }
+    }
+    Ok(())
 }
 
 impl Table1 {
     /// Builds a table from strictly increasing, finite `xs` and finite `ys`.
     ///
     /// # Errors
-    /// [`MathError`] when the columns differ in length, hold fewer than one point, contain a
-    /// non-finite value or `xs` does not strictly increase.
+    /// [`MathError`] when the columns differ in length, hold no point, contain a non-finite
+    /// value, `xs` does not strictly increase, or (polynomial) the Vandermonde system is
+    /// singular to working precision.
     pub fn new(
         xs: Vec<f64>,
         ys: Vec<f64>,
         interpolation: Interpolation,
         extrapolation: Extrapolation,
     ) -> Result<Self, MathError> {
-        if xs.len() != ys.len() {
-            return Err(MathError::LengthMismatch { x: xs.len(), y: ys.len() });
-        }
-        if xs.is_empty() {
-            return Err(MathError::TooFewPoints { needed: 1, got: 0 });
-        }
-        for (index, (&x, &y)) in xs.iter().zip(&ys).enumerate() {
-            for value in [x, y] {
-                if !value.is_finite() {
-                    return Err(MathError::NotFinite { index, value });
+        validate(&xs, &ys, true)?;
+        let pieces = match interpolation {
+            Interpolation::Linear => Pieces::Cubic(linear_coeffs(&xs, &ys)),
+            Interpolation::Spline => Pieces::Cubic(natural_spline_coeffs(&xs, &ys)),
+            Interpolation::Akima => {
+                Pieces::Cubic(hermite_coeffs(&xs, &ys, &akima_slopes(&xs, &ys)))
+            }
+            Interpolation::RocketPyAkima => {
+                Pieces::Cubic(hermite_coeffs(&xs, &ys, &weighted_mean_slopes(&xs, &ys)))
+            }
+            Interpolation::Polynomial => {
+                if xs.len() == 1 {
+                    Pieces::Cubic(Vec::new())
+                } else {
+                    Pieces::Polynomial(polynomial(&xs, &ys)?)
                 }
             }
-            if index > 0 && x <= xs[index - 1] {
-                return Err(MathError::NotIncreasing { index, x, previous: xs[index - 1] });
-            }
-        }
-        let coeffs = match interpolation {
-            Interpolation::Linear => linear_coeffs(&xs, &ys),
-            Interpolation::Spline => natural_spline_coeffs(&xs, &ys),
         };
-        Ok(Table1 { xs, ys, coeffs, interpolation, extrapolation })
+        let guide = Guide::new(&xs);
+        Ok(Table1 {
+            xs,
+            ys,
+            pieces,
+            guide,
+            interpolation,
+            extrapolation,
+        })
     }
 
     /// A linear table with constant extrapolation (the mission format's default curve).
@@ -84,7 +273,76 @@ impl Table1 {
         Self::new(xs, ys, Interpolation::Linear, Extrapolation::Constant)
     }
 
-    /// Samples `f` at `n ≥ 2` equally spaced points of `[a, b]` (`numpy.linspace`).
+    /// A linear table whose abscissae may repeat (non-decreasing `xs`), as RocketPy accepts for
+    /// drag curves sorted by Mach. At an abscissa `v` repeated at indices `k..=l` the value is
+    /// `y_k` (the first duplicate); strictly to the right of `v` the line starts from `y_l`
+    /// (the last duplicate) — exactly RocketPy's `bisect_left` linear interpolation. Constant
+    /// extrapolation holds `y_first` and `y_last`. Between distinct abscissae it is an ordinary
+    /// linear table.
+    ///
+    /// # Errors
+    /// As [`Table1::new`], except that only a decreasing x is [`MathError::NotIncreasing`].
+    pub fn linear_stepwise(
+        xs: Vec<f64>,
+        ys: Vec<f64>,
+        extrapolation: Extrapolation,
+    ) -> Result<Self, MathError> {
+        validate(&xs, &ys, false)?;
+        let pieces = Pieces::Cubic(linear_coeffs(&xs, &ys));
+        let guide = Guide::new(&xs);
+        Ok(Table1 {
+            xs,
+            ys,
+            pieces,
+            guide,
+            interpolation: Interpolation::Linear,
+            extrapolation,
+        })
+    }
+
+    /// Builds a table from `[x, y]` points (a curve read from a file or written inline).
+    /// With [`PointOrder::SortStably`] the points are sorted stably by x first; a linear table
+    /// then keeps repeated x ([`Table1::linear_stepwise`]). Errors name the index of the
+    /// offending point in `points` (not in the sorted order).
+    ///
+    /// # Errors
+    /// As [`Table1::new`]; [`MathError::NotIncreasing`] for a repeated or decreasing x that the
+    /// order or interpolation does not allow.
+    pub fn from_points(
+        points: &[[f64; 2]],
+        interpolation: Interpolation,
+        extrapolation: Extrapolation,
+        order: PointOrder,
+    ) -> Result<Self, MathError> {
+        for (index, point) in points.iter().enumerate() {
+            for &value in point {
+                if !value.is_finite() {
+                    return Err(MathError::NotFinite { index, value });
+                }
+            }
+        }
+        let mut perm: Vec<usize> = (0..points.len()).collect();
+        if order == PointOrder::SortStably {
+            perm.sort_by(|&i, &j| points[i][0].total_cmp(&points[j][0]));
+        }
+        let xs: Vec<f64> = perm.iter().map(|&i| points[i][0]).collect();
+        let ys: Vec<f64> = perm.iter().map(|&i| points[i][1]).collect();
+        let built = if order == PointOrder::SortStably && interpolation == Interpolation::Linear {
+            Self::linear_stepwise(xs, ys, extrapolation)
+        } else {
+            Self::new(xs, ys, interpolation, extrapolation)
+        };
+        built.map_err(|err| match err {
+            MathError::NotIncreasing { index, x, previous } => MathError::NotIncreasing {
+                index: perm.get(index).copied().unwrap_or(index),
+                x,
+                previous,
+            },
+            other => other,
+        })
+    }
+
+    /// Samples `f` at `n ≥ 1` equally spaced points of `[a, b]` (`numpy.linspace`).
     ///
     /// # Errors
     /// As [`Table1::new`] (e.g. when `f` returns NaN).
@@ -127,56 +385,190 @@ impl Table1 {
         (self.xs[0], self.xs[self.xs.len() - 1])
     }
 
-    /// Index of the interval used for `x` (clamped to the first/last interval).
+    /// Interval used for `x` (RocketPy's `bisect_left` choice, clamped to the end
+    /// intervals). Needs at least two samples.
     #[inline]
     fn interval(&self, x: f64) -> usize {
-        let n = self.coeffs.len();
-        self.xs.partition_point(|&v| v <= x).saturating_sub(1).min(n.saturating_sub(1))
+        let n = self.xs.len();
+        let k = self.guide.key(self.xs[0], x);
+        let (lo, hi) = (self.guide.start[k], self.guide.start[k + 1]);
+        let below = lo + self.xs[lo..hi].partition_point(|&v| v < x);
+        below.clamp(1, n - 1) - 1
+    }
+
+    /// Interval to the right of `x` (`bisect_right`): at a node, the one that starts there.
+    /// The bucket bounds hold for `#{x_i ≤ x}` as for `#{x_i < x}` (see [`Guide`]).
+    #[inline]
+    fn interval_right(&self, x: f64) -> usize {
+        let n = self.xs.len();
+        let k = self.guide.key(self.xs[0], x);
+        let (lo, hi) = (self.guide.start[k], self.guide.start[k + 1]);
+        let upto = lo + self.xs[lo..hi].partition_point(|&v| v <= x);
+        upto.clamp(1, n - 1) - 1
+    }
+
+    /// Whether interval `j` is the one [`Table1::interval`] would choose for `x`.
+    #[inline]
+    fn interval_holds(&self, j: usize, x: f64) -> bool {
+        let last = self.xs.len() - 2;
+        (j == 0 || self.xs[j] < x) && (j == last || x <= self.xs[j + 1])
+    }
+
+    /// Constant/zero extrapolation value when `x` is outside and extrapolation is not natural.
+    #[inline]
+    fn outside(&self, x: f64) -> Option<f64> {
+        let n = self.xs.len();
+        if x < self.xs[0] || x > self.xs[n - 1] {
+            match self.extrapolation {
+                Extrapolation::Constant => Some(if x < self.xs[0] {
+                    self.ys[0]
+                } else {
+                    self.ys[n - 1]
+                }),
+                Extrapolation::Zero => Some(0.0),
+                Extrapolation::Natural => None,
+            }
+        } else {
+            None
+        }
+    }
+
+    /// The interpolant on interval `i` (or the polynomial) at `x`.
+    #[inline]
+    fn piece_value(&self, i: usize, x: f64) -> f64 {
+        match &self.pieces {
+            Pieces::Cubic(coeffs) => {
+                let [a, b, c, e] = coeffs[i];
+                let d = x - self.xs[i];
+                a + d * (b + d * (c + d * e))
+            }
+            Pieces::Polynomial(p) => p.eval(x),
+        }
     }
 
     /// Value at `x`.
     #[inline]
     #[must_use]
     pub fn eval(&self, x: f64) -> f64 {
-        let n = self.xs.len();
-        if n == 1 {
-            return if self.extrapolation == Extrapolation::Zero && x != self.xs[0] {
-                0.0
-            } else {
-                self.ys[0]
-            };
+        if let Some(v) = self.outside(x) {
+            return v;
         }
-        if x < self.xs[0] || x > self.xs[n - 1] {
-            match self.extrapolation {
-                Extrapolation::Constant => {
-                    return if x < self.xs[0] { self.ys[0] } else { self.ys[n - 1] };
-                }
-                Extrapolation::Zero => return 0.0,
-                Extrapolation::Natural => {}
-            }
+        if self.xs.len() == 1 {
+            return self.ys[0];
         }
-        let i = self.interval(x);
-        let [a, b, c, e] = self.coeffs[i];
-        let d = x - self.xs[i];
-        a + d * (b + d * (c + d * e))
+        self.piece_value(self.interval(x), x)
     }
 
-    /// First derivative at `x` (exact for the interpolant; zero where extrapolation is
-    /// constant or zero).
+    /// Value at `x`, starting the interval search from `cursor` (and updating it). Same result
+    /// as [`Table1::eval`]; faster when successive `x` are close.
+    #[inline]
     #[must_use]
-    pub fn derivative(&self, x: f64) -> f64 {
+    pub fn eval_with(&self, x: f64, cursor: &mut Cursor) -> f64 {
+        if let Some(v) = self.outside(x) {
+            return v;
+        }
         let n = self.xs.len();
         if n == 1 {
+            return self.ys[0];
+        }
+        let j = cursor.0.min(n - 2);
+        let i = if self.interval_holds(j, x) {
+            j
+        } else if j + 2 < n && self.interval_holds(j + 1, x) {
+            j + 1
+        } else if j > 0 && self.interval_holds(j - 1, x) {
+            j - 1
+        } else {
+            self.interval(x)
+        };
+        cursor.0 = i;
+        self.piece_value(i, x)
+    }
+
+    /// Evaluates at every `xs[k]` into `out[k]`, hunting intervals with a [`Cursor`] (fast for
+    /// sorted `xs`). No allocation.
+    ///
+    /// # Panics
+    /// When `xs` and `out` differ in length (a programming error).
+    pub fn eval_into(&self, xs: &[f64], out: &mut [f64]) {
+        assert_eq!(
+            xs.len(),
+            out.len(),
+            "eval_into: input and output lengths differ"
+        );
+        let mut cursor = Cursor::default();
+        for (o, &x) in out.iter_mut().zip(xs) {
+            *o = self.eval_with(x, &mut cursor);
+        }
+    }
+
+    /// First derivative at `x`: exact for the interpolant (the left interval's slope at an
+    /// interior node, RocketPy's `bisect_left` choice; [`Table1::derivative_right`] gives the
+    /// right-hand slope); zero where extrapolation is constant or zero.
+    #[must_use]
+    pub fn derivative(&self, x: f64) -> f64 {
+        if self.xs.len() == 1 || self.outside(x).is_some() {
             return 0.0;
         }
-        if (x < self.xs[0] || x > self.xs[n - 1]) && self.extrapolation != Extrapolation::Natural
-        {
+        self.piece_derivative(self.interval(x), x)
+    }
+
+    /// First derivative from the right at `x` (the slope of the piece starting at a node; zero
+    /// at and beyond the last sample unless extrapolation is natural). This is what RocketPy's
+    /// complex-step differentiation (`Function.differentiate_complex_step`, used for the
+    /// centre-of-mass velocity) returns for a table: numpy orders complex numbers
+    /// lexicographically, so `x + i·h` sorts just after `x`.
+    #[must_use]
+    pub fn derivative_right(&self, x: f64) -> f64 {
+        let n = self.xs.len();
+        let natural = self.extrapolation == Extrapolation::Natural;
+        if n == 1 || (!natural && (x < self.xs[0] || x >= self.xs[n - 1])) {
             return 0.0;
         }
-        let i = self.interval(x);
-        let [_, b, c, e] = self.coeffs[i];
-        let d = x - self.xs[i];
-        b + d * (2.0 * c + 3.0 * d * e)
+        self.piece_derivative(self.interval_right(x), x)
+    }
+
+    /// Derivative of piece `i` (or of the polynomial) at `x`.
+    #[inline]
+    fn piece_derivative(&self, i: usize, x: f64) -> f64 {
+        match &self.pieces {
+            Pieces::Cubic(coeffs) => {
+                let [_, b, c, e] = coeffs[i];
+                let d = x - self.xs[i];
+                b + d * (2.0 * c + 3.0 * d * e)
+            }
+            Pieces::Polynomial(p) => p.derivative(x),
+        }
+    }
+
+    /// Second derivative at `x`: exact for the interpolant (zero for linear tables, as
+    /// RocketPy returns for them); zero where extrapolation is constant or zero.
+    #[must_use]
+    pub fn second_derivative(&self, x: f64) -> f64 {
+        if self.xs.len() == 1 || self.outside(x).is_some() {
+            return 0.0;
+        }
+        match &self.pieces {
+            Pieces::Cubic(coeffs) => {
+                let i = self.interval(x);
+                let [_, _, c, e] = coeffs[i];
+                2.0 * c + 6.0 * e * (x - self.xs[i])
+            }
+            Pieces::Polynomial(p) => p.second_derivative(x),
+        }
+    }
+
+    /// `∫` of the natural continuation from `s` to `e` (both on one side of the samples).
+    fn natural_integral(&self, left: bool, s: f64, e: f64) -> f64 {
+        let n = self.xs.len();
+        match &self.pieces {
+            Pieces::Cubic(coeffs) if n > 1 => {
+                let i = if left { 0 } else { n - 2 };
+                piece_integral(coeffs[i], s - self.xs[i], e - self.xs[i])
+            }
+            Pieces::Polynomial(p) => p.integral(s, e),
+            Pieces::Cubic(_) => self.ys[0] * (e - s),
+        }
     }
 
     /// Exact definite integral of the interpolant (with its extrapolation) from `a` to `b`.
@@ -188,46 +580,167 @@ impl Table1 {
         let n = self.xs.len();
         let (x0, x1) = self.domain();
         let mut total = 0.0;
-        // Left of the samples.
         if a < x0 {
             let hi = b.min(x0);
             total += match self.extrapolation {
                 Extrapolation::Constant => self.ys[0] * (hi - a),
                 Extrapolation::Zero => 0.0,
-                Extrapolation::Natural if n > 1 => {
-                    piece_integral(self.coeffs[0], a - x0, hi - x0)
-                }
-                Extrapolation::Natural => self.ys[0] * (hi - a),
+                Extrapolation::Natural => self.natural_integral(true, a, hi),
             };
         }
-        // Right of the samples.
         if b > x1 {
             let lo = a.max(x1);
             total += match self.extrapolation {
                 Extrapolation::Constant => self.ys[n - 1] * (b - lo),
                 Extrapolation::Zero => 0.0,
-                Extrapolation::Natural if n > 1 => {
-                    let xi = self.xs[n - 2];
-                    piece_integral(self.coeffs[n - 2], lo - xi, b - xi)
-                }
-                Extrapolation::Natural => self.ys[0] * (b - lo),
+                Extrapolation::Natural => self.natural_integral(false, lo, b),
             };
         }
-        // Inside.
         let lo = a.max(x0);
         let hi = b.min(x1);
         if n > 1 && hi > lo {
-            let first = self.interval(lo);
-            let last = self.interval(hi);
-            for i in first..=last {
-                let s = lo.max(self.xs[i]);
-                let e = hi.min(self.xs[i + 1]);
-                if e > s {
-                    total += piece_integral(self.coeffs[i], s - self.xs[i], e - self.xs[i]);
+            match &self.pieces {
+                Pieces::Cubic(coeffs) => {
+                    let (first, last) = (self.interval(lo), self.interval(hi));
+                    for (i, &piece) in coeffs.iter().enumerate().take(last + 1).skip(first) {
+                        let s = lo.max(self.xs[i]);
+                        let e = hi.min(self.xs[i + 1]);
+                        if e > s {
+                            total += piece_integral(piece, s - self.xs[i], e - self.xs[i]);
+                        }
+                    }
                 }
+                Pieces::Polynomial(p) => total += p.integral(lo, hi),
             }
         }
         total
+    }
+
+    /// The inverse function of a table with strictly monotone values: the samples with x and
+    /// y swapped (reversed when decreasing), with this table's interpolation and
+    /// extrapolation. Exact for linear tables; for the others it interpolates the swapped
+    /// samples.
+    ///
+    /// # Errors
+    /// [`MathError::NotMonotone`] naming the first value that breaks strict monotonicity;
+    /// [`MathError::TooFewPoints`] for fewer than two samples.
+    pub fn inverse(&self) -> Result<Table1, MathError> {
+        let n = self.ys.len();
+        if n < 2 {
+            return Err(MathError::TooFewPoints { needed: 2, got: n });
+        }
+        let increasing = self.ys[1] > self.ys[0];
+        for index in 1..n {
+            let (previous, y) = (self.ys[index - 1], self.ys[index]);
+            if (increasing && y <= previous) || (!increasing && y >= previous) {
+                return Err(MathError::NotMonotone { index, y, previous });
+            }
+        }
+        let (mut xs, mut ys) = (self.ys.clone(), self.xs.clone());
+        if !increasing {
+            xs.reverse();
+            ys.reverse();
+        }
+        Table1::new(xs, ys, self.interpolation, self.extrapolation)
+    }
+
+    /// The table of `scale · f + offset` (exact for every interpolation: each is affine in the
+    /// sample values).
+    pub(crate) fn map_affine(&self, scale: f64, offset: f64) -> Table1 {
+        let pieces = match &self.pieces {
+            Pieces::Cubic(coeffs) => Pieces::Cubic(
+                coeffs
+                    .iter()
+                    .map(|&[a, b, c, e]| [scale * a + offset, scale * b, scale * c, scale * e])
+                    .collect(),
+            ),
+            Pieces::Polynomial(p) => Pieces::Polynomial(Polynomial {
+                center: p.center,
+                half_width: p.half_width,
+                coeffs: p
+                    .coeffs
+                    .iter()
+                    .enumerate()
+                    .map(|(k, &c)| {
+                        if k == 0 {
+                            scale * c + offset
+                        } else {
+                            scale * c
+                        }
+                    })
+                    .collect(),
+            }),
+        };
+        Table1 {
+            xs: self.xs.clone(),
+            ys: self.ys.iter().map(|&y| scale * y + offset).collect(),
+            pieces,
+            guide: self.guide.clone(),
+            interpolation: self.interpolation,
+            extrapolation: self.extrapolation,
+        }
+    }
+
+    /// Calls `visit` with every abscissa in `[a, b]` where the extremum of this table over
+    /// `[a, b]` may lie: `a`, `b`, the samples inside and the stationary points of each cubic
+    /// piece (also of the naturally extrapolated end pieces). Returns `false` (visiting
+    /// nothing) for a polynomial table, whose extrema must be searched numerically.
+    pub(crate) fn extremum_candidates(&self, a: f64, b: f64, mut visit: impl FnMut(f64)) -> bool {
+        let Pieces::Cubic(coeffs) = &self.pieces else {
+            return false;
+        };
+        visit(a);
+        visit(b);
+        let n = self.xs.len();
+        for (i, &[_, slope, c, e]) in coeffs.iter().enumerate() {
+            let natural = self.extrapolation == Extrapolation::Natural;
+            let lo = if i == 0 && natural {
+                a
+            } else {
+                self.xs[i].max(a)
+            };
+            let hi = if i + 2 == n && natural {
+                b
+            } else {
+                self.xs[i + 1].min(b)
+            };
+            if lo > hi {
+                continue;
+            }
+            if self.xs[i] > a && self.xs[i] < b {
+                visit(self.xs[i]);
+            }
+            for d in stationary_points(slope, c, e).into_iter().flatten() {
+                let x = self.xs[i] + d;
+                if x >= lo && x <= hi {
+                    visit(x);
+                }
+            }
+        }
+        if n > 1 && self.xs[n - 1] > a && self.xs[n - 1] < b {
+            visit(self.xs[n - 1]);
+        }
+        true
+    }
+}
+
+/// Real roots `d` of `b + 2c·d + 3e·d² = 0` (numerically stable quadratic formula).
+fn stationary_points(b: f64, c: f64, e: f64) -> [Option<f64>; 2] {
+    if e.abs() > 0.0 {
+        let disc = c * c - 3.0 * e * b;
+        if disc < 0.0 {
+            return [None, None];
+        }
+        let q = -(c + c.signum() * disc.sqrt());
+        if q.abs() > 0.0 {
+            [Some(q / (3.0 * e)), Some(b / q)]
+        } else {
+            [Some(0.0), None]
+        }
+    } else if c.abs() > 0.0 {
+        [Some(-b / (2.0 * c)), None]
+    } else {
+        [None, None]
     }
 }
 
@@ -252,10 +765,24 @@ pub fn linspace(a: f64, b: f64, n: usize) -> Vec<f64> {
     }
 }
 
+/// Linear pieces. A zero-width interval (repeated x) is never used inside the samples; it holds
+/// its left value, except the last interval, whose value is the last sample so that natural
+/// extrapolation to the right continues from it.
 fn linear_coeffs(xs: &[f64], ys: &[f64]) -> Vec<[f64; 4]> {
+    let last = xs.len().saturating_sub(2);
     xs.windows(2)
         .zip(ys.windows(2))
-        .map(|(x, y)| [y[0], (y[1] - y[0]) / (x[1] - x[0]), 0.0, 0.0])
+        .enumerate()
+        .map(|(i, (x, y))| {
+            let h = x[1] - x[0];
+            if h > 0.0 {
+                [y[0], (y[1] - y[0]) / h, 0.0, 0.0]
+            } else if i == last {
+                [y[1], 0.0, 0.0, 0.0]
+            } else {
+                [y[0], 0.0, 0.0, 0.0]
+            }
+        })
         .collect()
 }
 
@@ -292,9 +819,116 @@ fn natural_spline_coeffs(xs: &[f64], ys: &[f64]) -> Vec<[f64; 4]> {
         .map(|i| {
             let hi = h[i];
             let b = (ys[i + 1] - ys[i]) / hi - hi * (2.0 * second[i] + second[i + 1]) / 6.0;
-            [ys[i], b, second[i] / 2.0, (second[i + 1] - second[i]) / (6.0 * hi)]
+            [
+                ys[i],
+                b,
+                second[i] / 2.0,
+                (second[i + 1] - second[i]) / (6.0 * hi),
+            ]
         })
         .collect()
+}
+
+/// Cubic Hermite pieces with node slopes `t` (C¹ by construction).
+fn hermite_coeffs(xs: &[f64], ys: &[f64], t: &[f64]) -> Vec<[f64; 4]> {
+    (0..xs.len() - 1)
+        .map(|i| {
+            let h = xs[i + 1] - xs[i];
+            let m = (ys[i + 1] - ys[i]) / h;
+            [
+                ys[i],
+                t[i],
+                (3.0 * m - 2.0 * t[i] - t[i + 1]) / h,
+                (t[i] + t[i + 1] - 2.0 * m) / (h * h),
+            ]
+        })
+        .collect()
+}
+
+/// Secant slopes `m_i` of the intervals.
+fn secants(xs: &[f64], ys: &[f64]) -> Vec<f64> {
+    xs.windows(2)
+        .zip(ys.windows(2))
+        .map(|(x, y)| (y[1] - y[0]) / (x[1] - x[0]))
+        .collect()
+}
+
+/// Akima (1970) node slopes. The secants are extended by two on each side with Akima's
+/// end rule `m_{−1} = 2m_0 − m_1`, `m_{−2} = 2m_{−1} − m_0` (eqs. 8–10 of the paper); at
+/// node `i`, with `w_1 = |m_{i+1} − m_i|`, `w_2 = |m_{i−1} − m_{i−2}|`, the slope is
+/// `(w_1 m_{i−1} + w_2 m_i)/(w_1 + w_2)`, or the mean of `m_{i−1}`, `m_i` when both weights
+/// vanish (eq. 1).
+fn akima_slopes(xs: &[f64], ys: &[f64]) -> Vec<f64> {
+    let n = xs.len();
+    let m = secants(xs, ys);
+    if n < 3 {
+        return vec![m.first().copied().unwrap_or(0.0); n];
+    }
+    // ext[k + 2] = m_k for k = −2 ..= n.
+    let mut ext = vec![0.0; n + 3];
+    ext[2..n + 1].copy_from_slice(&m);
+    ext[1] = 2.0 * ext[2] - ext[3];
+    ext[0] = 2.0 * ext[1] - ext[2];
+    ext[n + 1] = 2.0 * ext[n] - ext[n - 1];
+    ext[n + 2] = 2.0 * ext[n + 1] - ext[n];
+    (0..n)
+        .map(|i| {
+            let (m_l2, m_l1, m_r1, m_r2) = (ext[i], ext[i + 1], ext[i + 2], ext[i + 3]);
+            let w1 = (m_r2 - m_r1).abs();
+            let w2 = (m_l1 - m_l2).abs();
+            if w1 + w2 > 0.0 {
+                (w1 * m_l1 + w2 * m_r1) / (w1 + w2)
+            } else {
+                0.5 * (m_l1 + m_r1)
+            }
+        })
+        .collect()
+}
+
+/// RocketPy's `"akima"` node slopes: interval-weighted mean of the adjacent secants inside,
+/// the end secants at the ends.
+fn weighted_mean_slopes(xs: &[f64], ys: &[f64]) -> Vec<f64> {
+    let n = xs.len();
+    let m = secants(xs, ys);
+    if n < 2 {
+        return vec![0.0; n];
+    }
+    (0..n)
+        .map(|i| {
+            if i == 0 {
+                m[0]
+            } else if i == n - 1 {
+                m[n - 2]
+            } else {
+                let (w1, w2) = (xs[i] - xs[i - 1], xs[i + 1] - xs[i]);
+                (w1 * m[i] + w2 * m[i - 1]) / (w1 + w2)
+            }
+        })
+        .collect()
+}
+
+/// The interpolating polynomial through all (≥ 2) samples, solved by LU with partial
+/// pivoting on the Vandermonde matrix of `t = (x − center)/half_width ∈ [−1, 1]`.
+fn polynomial(xs: &[f64], ys: &[f64]) -> Result<Polynomial, MathError> {
+    let n = xs.len();
+    let (first, last) = (xs[0], xs[n - 1]);
+    let center = 0.5 * (first + last);
+    let half_width = 0.5 * (last - first);
+    let t: Vec<f64> = xs.iter().map(|&x| (x - center) / half_width).collect();
+    let matrix = DMatrix::from_fn(n, n, |r, c| t[r].powi(c as i32));
+    let rhs = DVector::from_column_slice(ys);
+    let solution = matrix
+        .lu()
+        .solve(&rhs)
+        .ok_or(MathError::Singular { size: n })?;
+    if solution.iter().any(|c| !c.is_finite()) {
+        return Err(MathError::Singular { size: n });
+    }
+    Ok(Polynomial {
+        center,
+        half_width,
+        coeffs: solution.iter().copied().collect(),
+    })
 }
 
 #[cfg(test)]
@@ -313,6 +947,15 @@ mod tests {
         assert!(close(t.eval(-1.0), 0.0, 1e-15));
         assert!(close(t.eval(10.0), 0.0, 1e-15));
         assert!(close(t.integral(0.0, 3.0), 3.0, 1e-14));
+        // bisect_left: the slope at an interior node is the left interval's.
+        assert!(close(t.derivative(1.0), 2.0, 1e-15));
+        assert!(close(t.derivative(1.0 + 1e-9), -1.0, 1e-15));
+        // RocketPy's complex step sees the right interval; at the last node, the constant
+        // extrapolation.
+        assert!(close(t.derivative_right(1.0), -1.0, 1e-15));
+        assert!(close(t.derivative_right(0.0), 2.0, 1e-15));
+        assert!(close(t.derivative_right(3.0), 0.0, 1e-15));
+        assert!(close(t.derivative_right(-1.0), 0.0, 1e-15));
     }
 
     #[test]
@@ -323,7 +966,153 @@ mod tests {
         for x in [-2.0, 0.3, 1.7, 3.99, 6.0] {
             assert!(close(t.eval(x), 3.0 * x - 1.0, 1e-12));
             assert!(close(t.derivative(x), 3.0, 1e-12));
+            assert!(close(t.second_derivative(x), 0.0, 1e-12));
         }
+    }
+
+    #[test]
+    fn akima_reproduces_lines_and_keeps_steps_flat() {
+        // Akima's method is exact for straight lines (all secants equal).
+        let xs = vec![0.0, 0.5, 2.0, 3.0, 5.0];
+        let ys: Vec<f64> = xs.iter().map(|x| 2.0 - 0.5 * x).collect();
+        let t = Table1::new(xs, ys, Interpolation::Akima, Extrapolation::Natural).unwrap();
+        for x in [-1.0, 0.2, 1.1, 2.5, 4.9, 7.0] {
+            assert!(close(t.eval(x), 2.0 - 0.5 * x, 1e-14));
+        }
+        // A step: Akima does not overshoot on the flat parts (weights vanish there).
+        let xs = vec![0.0, 1.0, 2.0, 3.0, 4.0, 5.0];
+        let ys = vec![0.0, 0.0, 0.0, 1.0, 1.0, 1.0];
+        let t = Table1::new(xs, ys, Interpolation::Akima, Extrapolation::Constant).unwrap();
+        for k in 0..=20 {
+            let x = 0.1 * f64::from(k);
+            assert!(t.eval(x).abs() < 1e-15, "x = {x}: {}", t.eval(x));
+        }
+    }
+
+    #[test]
+    fn rocketpy_akima_slopes_match_the_weighted_mean() {
+        // Node 1 of (0,0), (1,1), (3,2): secants 1 and 0.5, widths 1 and 2, so
+        // d_1 = (1·0.5 + 2·1)/3 = 5/6 (RocketPy function.py, __interpolate_akima__).
+        let t = Table1::new(
+            vec![0.0, 1.0, 3.0],
+            vec![0.0, 1.0, 2.0],
+            Interpolation::RocketPyAkima,
+            Extrapolation::Natural,
+        )
+        .unwrap();
+        assert!(close(t.derivative(1.0), 5.0 / 6.0, 1e-14));
+        assert!(close(t.derivative(0.0), 1.0, 1e-14));
+        assert!(close(t.derivative(3.0), 0.5, 1e-14));
+    }
+
+    #[test]
+    fn polynomial_is_the_interpolating_polynomial() {
+        let f = |x: f64| 1.0 - 2.0 * x + 0.5 * x.powi(3) - 0.1 * x.powi(4);
+        let t = Table1::sample(
+            f,
+            -1.0,
+            4.0,
+            5,
+            Interpolation::Polynomial,
+            Extrapolation::Natural,
+        )
+        .unwrap();
+        for x in [-3.0, -0.3, 1.234, 3.9, 6.0] {
+            assert!(close(t.eval(x), f(x), 1e-11), "{x}");
+            let df = -2.0 + 1.5 * x * x - 0.4 * x.powi(3);
+            assert!(close(t.derivative(x), df, 1e-11));
+            assert!(close(t.second_derivative(x), 3.0 * x - 1.2 * x * x, 1e-11));
+        }
+        let antiderivative = |x: f64| x - x * x + 0.125 * x.powi(4) - 0.02 * x.powi(5);
+        assert!(close(
+            t.integral(-2.0, 5.0),
+            antiderivative(5.0) - antiderivative(-2.0),
+            1e-11
+        ));
+    }
+
+    #[test]
+    fn stepwise_follows_bisect_left() {
+        let t = Table1::linear_stepwise(
+            vec![0.0, 1.0, 1.0, 1.0, 2.0],
+            vec![0.0, 1.0, 5.0, 3.0, 4.0],
+            Extrapolation::Constant,
+        )
+        .unwrap();
+        assert!(
+            close(t.eval(1.0), 1.0, 1e-15),
+            "first duplicate at the repeated x"
+        );
+        assert!(
+            close(t.eval(1.5), 3.5, 1e-15),
+            "last duplicate to its right"
+        );
+        assert!(close(t.eval(0.5), 0.5, 1e-15));
+        assert!(close(t.integral(0.0, 2.0), 0.5 + 3.5, 1e-15));
+        let mut cursor = Cursor::default();
+        for x in [0.5, 1.0, 1.0 + 1e-12, 1.5, 2.0, 1.0, 0.0] {
+            assert!(close(t.eval_with(x, &mut cursor), t.eval(x), 1e-15));
+        }
+        assert!(matches!(
+            Table1::new(
+                vec![0.0, 1.0, 1.0],
+                vec![0.0; 3],
+                Interpolation::Spline,
+                Extrapolation::Zero
+            ),
+            Err(MathError::NotIncreasing { index: 2, .. })
+        ));
+        assert!(matches!(
+            Table1::linear_stepwise(vec![0.0, 1.0, 0.5], vec![0.0; 3], Extrapolation::Zero),
+            Err(MathError::NotIncreasing { index: 2, .. })
+        ));
+    }
+
+    #[test]
+    fn from_points_sorts_stably_and_names_original_rows() {
+        let points = [[2.0, 20.0], [1.0, 10.0], [2.0, 21.0], [0.0, 0.0]];
+        let t = Table1::from_points(
+            &points,
+            Interpolation::Linear,
+            Extrapolation::Constant,
+            PointOrder::SortStably,
+        )
+        .unwrap();
+        assert_eq!(t.xs(), &[0.0, 1.0, 2.0, 2.0]);
+        assert_eq!(t.ys(), &[0.0, 10.0, 20.0, 21.0]);
+        let err = Table1::from_points(
+            &points,
+            Interpolation::Spline,
+            Extrapolation::Constant,
+            PointOrder::SortStably,
+        );
+        assert!(
+            matches!(err, Err(MathError::NotIncreasing { index: 2, .. })),
+            "{err:?}"
+        );
+        let err = Table1::from_points(
+            &points,
+            Interpolation::Linear,
+            Extrapolation::Constant,
+            PointOrder::StrictlyIncreasing,
+        );
+        assert!(
+            matches!(err, Err(MathError::NotIncreasing { index: 1, .. })),
+            "{err:?}"
+        );
+    }
+
+    #[test]
+    fn inverse_swaps_and_orders() {
+        let t = Table1::linear(vec![0.0, 1.0, 2.0], vec![4.0, 2.0, 1.0]).unwrap();
+        let inv = t.inverse().unwrap();
+        assert_eq!(inv.xs(), &[1.0, 2.0, 4.0]);
+        assert!(close(inv.eval(3.0), 0.5, 1e-15));
+        let flat = Table1::linear(vec![0.0, 1.0, 2.0], vec![0.0, 1.0, 1.0]).unwrap();
+        assert!(matches!(
+            flat.inverse(),
+            Err(MathError::NotMonotone { index: 2, .. })
+        ));
     }
 
     #[test]
@@ -336,6 +1125,31 @@ mod tests {
             Table1::linear(vec![0.0, 1.0], vec![1.0, f64::NAN]),
             Err(MathError::NotFinite { index: 1, .. })
         ));
-        assert!(matches!(Table1::linear(vec![], vec![]), Err(MathError::TooFewPoints { .. })));
+        assert!(matches!(
+            Table1::linear(vec![], vec![]),
+            Err(MathError::TooFewPoints { .. })
+        ));
+    }
+
+    #[test]
+    fn single_point_tables() {
+        let t = Table1::new(
+            vec![1.0],
+            vec![3.0],
+            Interpolation::Polynomial,
+            Extrapolation::Zero,
+        )
+        .unwrap();
+        assert!(close(t.eval(1.0), 3.0, 1e-15));
+        assert!(close(t.eval(2.0), 0.0, 1e-15));
+        let t = Table1::new(
+            vec![1.0],
+            vec![3.0],
+            Interpolation::Akima,
+            Extrapolation::Natural,
+        )
+        .unwrap();
+        assert!(close(t.eval(-5.0), 3.0, 1e-15));
+        assert!(close(t.integral(0.0, 2.0), 6.0, 1e-15));
     }
 }

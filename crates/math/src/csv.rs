@@ -1,0 +1,250 @@
+//! Numeric columns from text files (thrust curves, drag curves, profiles).
+//!
+//! Format: one row per line; fields separated by commas (a line containing a comma) or else
+//! by whitespace, each field trimmed; blank lines and lines starting with `#` are skipped; the
+//! first remaining line is a header, and skipped, when one of its fields is not a number. Every
+//! other field must be a finite number (Rust's `f64` syntax: `1`, `-2.5`, `3e-4`, `.5`), and
+//! every data row must have as many fields as the first. A UTF-8 byte-order mark is ignored
+//! and bytes that are not UTF-8 are replaced (and then reported as non-numeric). Errors name
+//! the file, the 1-based line and column, and the offending text.
+
+use std::path::{Path, PathBuf};
+
+use crate::CsvError;
+
+/// Longest offending text quoted in an error.
+const QUOTE_CHARS: usize = 60;
+
+/// Reads a file of numeric columns; returns one `Vec` per column.
+///
+/// # Errors
+/// [`CsvError`] when the file cannot be read or breaks the format of the module docs.
+pub fn read_columns(path: impl AsRef<Path>) -> Result<Vec<Vec<f64>>, CsvError> {
+    let path = path.as_ref();
+    let text = read_text(path)?;
+    parse_columns(&text, path)
+}
+
+/// Reads a two-column file as `[x, y]` points, in file order.
+///
+/// # Errors
+/// As [`read_columns`]; [`CsvError::WrongColumnCount`] for a row without exactly two fields.
+pub fn read_curve(path: impl AsRef<Path>) -> Result<Vec<[f64; 2]>, CsvError> {
+    let path = path.as_ref();
+    let text = read_text(path)?;
+    parse_curve(&text, path)
+}
+
+/// Parses text in the format of the module docs into columns; `origin` names the source in
+/// errors.
+///
+/// # Errors
+/// As [`read_columns`].
+pub fn parse_columns(text: &str, origin: &Path) -> Result<Vec<Vec<f64>>, CsvError> {
+    let rows = parse_rows(text, origin, None)?;
+    let width = rows.first().map_or(0, Vec::len);
+    let mut columns = vec![Vec::with_capacity(rows.len()); width];
+    for row in rows {
+        for (column, value) in columns.iter_mut().zip(row) {
+            column.push(value);
+        }
+    }
+    Ok(columns)
+}
+
+/// Parses two-column text into `[x, y]` points; `origin` names the source in errors.
+///
+/// # Errors
+/// As [`read_curve`].
+pub fn parse_curve(text: &str, origin: &Path) -> Result<Vec<[f64; 2]>, CsvError> {
+    let rows = parse_rows(text, origin, Some(2))?;
+    Ok(rows.into_iter().map(|r| [r[0], r[1]]).collect())
+}
+
+fn read_text(path: &Path) -> Result<String, CsvError> {
+    let bytes = std::fs::read(path).map_err(|e| CsvError::Io {
+        path: path.to_path_buf(),
+        message: e.to_string(),
+    })?;
+    Ok(String::from_utf8_lossy(&bytes).into_owned())
+}
+
+/// The fields of a line: comma-separated if it has a comma, else whitespace-separated.
+fn fields(line: &str) -> Vec<&str> {
+    if line.contains(',') {
+        line.split(',').map(str::trim).collect()
+    } else {
+        line.split_whitespace().collect()
+    }
+}
+
+fn quote(text: &str) -> String {
+    text.chars().take(QUOTE_CHARS).collect()
+}
+
+/// Rows of numbers; `width` fixes the number of fields (else the first data row does).
+fn parse_rows(text: &str, origin: &Path, width: Option<usize>) -> Result<Vec<Vec<f64>>, CsvError> {
+    let path = || -> PathBuf { origin.to_path_buf() };
+    let text = text.strip_prefix('\u{feff}').unwrap_or(text);
+    let mut rows: Vec<Vec<f64>> = Vec::new();
+    let mut expected = width;
+    let mut header_allowed = true;
+    for (index, raw) in text.lines().enumerate() {
+        let line_no = index + 1;
+        let line = raw.trim();
+        if line.is_empty() || line.starts_with('#') {
+            continue;
+        }
+        let fields = fields(line);
+        let first_row = std::mem::replace(&mut header_allowed, false);
+        if first_row && fields.iter().any(|f| f.parse::<f64>().is_err()) {
+            continue;
+        }
+        let mut row = Vec::with_capacity(fields.len());
+        for (k, field) in fields.iter().enumerate() {
+            let column = k + 1;
+            if field.is_empty() {
+                return Err(CsvError::EmptyField {
+                    path: path(),
+                    line: line_no,
+                    column,
+                });
+            }
+            let value: f64 = field.parse().map_err(|_| CsvError::NotNumeric {
+                path: path(),
+                line: line_no,
+                column,
+                text: quote(field),
+            })?;
+            if !value.is_finite() {
+                return Err(CsvError::NotFinite {
+                    path: path(),
+                    line: line_no,
+                    column,
+                    text: quote(field),
+                });
+            }
+            row.push(value);
+        }
+        let want = *expected.get_or_insert(row.len());
+        if row.len() != want {
+            return Err(CsvError::WrongColumnCount {
+                path: path(),
+                line: line_no,
+                expected: want,
+                found: row.len(),
+            });
+        }
+        rows.push(row);
+    }
+    if rows.is_empty() {
+        return Err(CsvError::NoData { path: path() });
+    }
+    Ok(rows)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn p() -> &'static Path {
+        Path::new("curve.csv")
+    }
+
+    #[test]
+    fn header_comments_and_separators() {
+        let text = "\u{feff}# thrust\nTime (s), Thrust (N)\n\n0, 1\n0.5 , 2e1\n# end\n";
+        let pts = parse_curve(text, p()).unwrap();
+        assert_eq!(pts, vec![[0.0, 1.0], [0.5, 20.0]]);
+        let cols = parse_columns("1 2 3\n4\t5  6\n", p()).unwrap();
+        assert_eq!(cols, vec![vec![1.0, 4.0], vec![2.0, 5.0], vec![3.0, 6.0]]);
+    }
+
+    #[test]
+    fn errors_name_line_column_and_text() {
+        let e = parse_curve("x,y\n0,1\n1,abc\n", p()).unwrap_err();
+        assert_eq!(
+            e,
+            CsvError::NotNumeric {
+                path: p().into(),
+                line: 3,
+                column: 2,
+                text: "abc".into()
+            }
+        );
+        assert!(
+            e.to_string().contains("curve.csv:3: column 2: 'abc'"),
+            "{e}"
+        );
+        let e = parse_curve("0,1\n1,\n", p()).unwrap_err();
+        assert!(
+            matches!(
+                e,
+                CsvError::EmptyField {
+                    line: 2,
+                    column: 2,
+                    ..
+                }
+            ),
+            "{e:?}"
+        );
+        let e = parse_curve("0,1\n1,inf\n", p()).unwrap_err();
+        assert!(
+            matches!(
+                e,
+                CsvError::NotFinite {
+                    line: 2,
+                    column: 2,
+                    ..
+                }
+            ),
+            "{e:?}"
+        );
+        let e = parse_curve("0,nan\n", p()).unwrap_err();
+        assert!(
+            matches!(
+                e,
+                CsvError::NotFinite {
+                    line: 1,
+                    column: 2,
+                    ..
+                }
+            ),
+            "{e:?}"
+        );
+        let e = parse_columns("0,1\n1,2,3\n", p()).unwrap_err();
+        assert!(matches!(
+            e,
+            CsvError::WrongColumnCount {
+                line: 2,
+                expected: 2,
+                found: 3,
+                ..
+            }
+        ));
+        let e = parse_curve("0 1 2\n", p()).unwrap_err();
+        assert!(matches!(
+            e,
+            CsvError::WrongColumnCount {
+                line: 1,
+                expected: 2,
+                found: 3,
+                ..
+            }
+        ));
+        let e = parse_curve("time,thrust\n# nothing\n", p()).unwrap_err();
+        assert!(matches!(e, CsvError::NoData { .. }));
+        // Only the first line may be a header.
+        let e = parse_curve("0,1\nt,F\n", p()).unwrap_err();
+        assert!(matches!(
+            e,
+            CsvError::NotNumeric {
+                line: 2,
+                column: 1,
+                ..
+            }
+        ));
+        let e = read_curve("/nonexistent/karman/curve.csv").unwrap_err();
+        assert!(matches!(e, CsvError::Io { .. }));
+    }
+}

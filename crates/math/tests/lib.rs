@@ -1,0 +1,9 @@
+//! Integration tests of karman-math, one binary with a module per topic.
+
+mod allocation;
+mod csv_reader;
+mod functions;
+mod grids;
+mod interpolation;
+mod quadrature;
+mod validate;
