@@ -1,4 +1,138 @@
 //! # karman-mission
 //!
-//! The TOML mission format: parsing with located errors, validation, and building the
-//! physical model from a mission.
+//! The TOML mission format (`docs/mission-format.md`): parsing with located errors, `--set`
+//! overrides, validation, and building the physical model from a mission.
+//!
+//! ```no_run
+//! use karman_mission::{load, Override};
+//! use std::path::Path;
+//!
+//! let tilt: Override = "flight.inclination=84".parse()?;
+//! let mission = load(Path::new("mission.toml"), &[tilt])?;
+//! println!("{:?}", mission.spec.flight.inclination_deg);
+//! # Ok::<(), Box<dyn std::error::Error>>(())
+//! ```
+//!
+//! - [`schema`]: the typed file format ([`schema::MissionSpec`]).
+//! - [`load`] / [`parse`]: read, override, deserialize, validate; every error is a
+//!   [`MissionError`] naming the file, line, column and key.
+//! - [`paths`]: the numeric inputs of a mission by dotted path (overrides, dispersion).
+//! - [`build`]: mission → physics models; [`report`]: outputs.
+//!
+//! The lower crates are re-exported ([`math`], [`atmos`], [`propulsion`], [`airframe`],
+//! [`dynamics`], [`dispersion`]) so the command-line interface depends on this crate only.
+
+pub mod build;
+mod curves;
+mod document;
+mod error;
+mod overrides;
+pub mod paths;
+pub mod report;
+pub mod schema;
+mod validate;
+
+pub use error::{CurveError, Location, MissionError, OverrideError, Problem, ProblemKind};
+pub use overrides::Override;
+
+pub use karman_airframe as airframe;
+pub use karman_atmos as atmos;
+pub use karman_dispersion as dispersion;
+pub use karman_dynamics as dynamics;
+pub use karman_math as math;
+pub use karman_propulsion as propulsion;
+
+use document::Document;
+use std::path::{Path, PathBuf};
+
+/// A loaded, validated mission.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Mission {
+    /// The mission file, as given.
+    pub path: PathBuf,
+    /// The directory relative data paths are resolved against.
+    pub dir: PathBuf,
+    /// The mission's content, overrides applied.
+    pub spec: schema::MissionSpec,
+}
+
+impl Mission {
+    /// A data path of the mission resolved against its directory (absolute paths unchanged).
+    pub fn resolve(&self, relative: &Path) -> PathBuf {
+        self.dir.join(relative)
+    }
+}
+
+/// Reads, overrides, deserializes and validates the mission file at `path`.
+pub fn load(path: &Path, overrides: &[Override]) -> Result<Mission, MissionError> {
+    let bytes = std::fs::read(path).map_err(|source| MissionError::Read {
+        file: path.to_owned(),
+        source,
+    })?;
+    let text = match std::str::from_utf8(&bytes) {
+        Ok(text) => text,
+        Err(error) => {
+            let valid = bytes.get(..error.valid_up_to()).unwrap_or_default();
+            let prefix = std::str::from_utf8(valid).unwrap_or_default();
+            let (line, column) = document::line_column(prefix, prefix.len());
+            return Err(MissionError::NotText {
+                file: path.to_owned(),
+                line,
+                column,
+            });
+        }
+    };
+    parse(text, path, overrides)
+}
+
+/// Parses, overrides, deserializes and validates mission `text`; `path` names the file in
+/// messages and its directory resolves relative data paths.
+pub fn parse(text: &str, path: &Path, overrides: &[Override]) -> Result<Mission, MissionError> {
+    let mut doc = Document::parse(text).map_err(|e| MissionError::Syntax {
+        file: path.to_owned(),
+        line: e.line,
+        column: e.column,
+        message: e.message,
+    })?;
+    let dir = match path.parent() {
+        Some(parent) if !parent.as_os_str().is_empty() => parent.to_owned(),
+        _ => PathBuf::from("."),
+    };
+    let invalid = |problems| MissionError::Invalid {
+        file: path.to_owned(),
+        problems,
+    };
+    let mut problems = Vec::new();
+    for item in overrides {
+        if let Err(problem) = doc.apply(item) {
+            problems.push(problem);
+        }
+    }
+    problems.extend(doc.non_finite(validate::ALLOW_INFINITE));
+    let spec = match doc.deserialize() {
+        Ok(spec) => {
+            problems.extend(validate::validate(&spec, &doc, &dir));
+            Some(spec)
+        }
+        Err(schema) => {
+            problems.extend(schema);
+            None
+        }
+    };
+    match spec {
+        Some(spec) if problems.is_empty() => Ok(Mission {
+            path: path.to_owned(),
+            dir,
+            spec,
+        }),
+        _ => {
+            // `--set` problems first, then in file order (a stable sort keeps the order of
+            // problems at one place).
+            problems.sort_by_key(|p| match p.location {
+                Location::Override { .. } => (0, 0),
+                Location::File { line, column } => (line, column),
+            });
+            Err(invalid(problems))
+        }
+    }
+}

@@ -1,0 +1,40 @@
+//! The subcommands, one file each, and the arguments they share.
+
+mod check;
+
+use clap::{Args, Subcommand};
+use karman_mission::Override;
+use std::path::PathBuf;
+
+/// The subcommands of `karman`.
+#[derive(Debug, Subcommand)]
+pub enum Command {
+    /// Load and validate a mission file; print "ok" or every problem with its location.
+    Check(check::CheckArgs),
+}
+
+/// The mission file and its `--set` overrides, shared by every command that reads a mission.
+#[derive(Debug, Args)]
+pub struct MissionArgs {
+    /// The mission file (TOML).
+    #[arg(value_name = "MISSION")]
+    pub mission: PathBuf,
+    /// Override one input before validation: a dotted path and a TOML value, e.g.
+    /// `--set flight.inclination=84` or `--set environment.atmosphere.model='"standard"'`.
+    #[arg(long = "set", value_name = "PATH=VALUE")]
+    pub overrides: Vec<Override>,
+}
+
+impl MissionArgs {
+    /// Loads and validates the mission with its overrides.
+    pub fn load(&self) -> Result<karman_mission::Mission, karman_mission::MissionError> {
+        karman_mission::load(&self.mission, &self.overrides)
+    }
+}
+
+/// Runs one command.
+pub fn run(command: Command) -> anyhow::Result<()> {
+    match command {
+        Command::Check(args) => check::run(&args),
+    }
+}

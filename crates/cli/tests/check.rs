@@ -1,0 +1,163 @@
+//! `karman check`: exit 0 and "ok" on valid missions; exit 1 and every problem with its
+//! location on invalid ones; never a panic.
+
+use std::path::{Path, PathBuf};
+use std::process::{Command, Output};
+
+fn karman(args: &[&str]) -> Output {
+    Command::new(env!("CARGO_BIN_EXE_karman"))
+        .args(args)
+        .output()
+        .expect("the karman binary runs")
+}
+
+fn stderr(output: &Output) -> String {
+    String::from_utf8_lossy(&output.stderr).into_owned()
+}
+
+/// Asserts a failed run: exit code 1, no panic, and returns stderr.
+fn failure(args: &[&str]) -> String {
+    let output = karman(args);
+    let text = stderr(&output);
+    assert!(!text.contains("panicked at"), "panic: {text}");
+    assert_eq!(output.status.code(), Some(1), "stderr: {text}");
+    text
+}
+
+fn validation_dir() -> Option<PathBuf> {
+    let dir = match std::env::var_os("KARMAN_VALIDATION_DATA") {
+        Some(dir) => PathBuf::from(dir),
+        None => PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../../../shared/validation"),
+    };
+    dir.is_dir().then_some(dir)
+}
+
+/// The repository's example mission (fixtures/example.toml).
+fn example() -> PathBuf {
+    PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../../fixtures/example.toml")
+}
+
+/// Writes `bytes` to a file named `name` in this test binary's scratch folder.
+fn scratch(name: &str, bytes: &[u8]) -> PathBuf {
+    let path = Path::new(env!("CARGO_TARGET_TMPDIR"))
+        .join("karman-check")
+        .join(name);
+    if let Some(dir) = path.parent() {
+        std::fs::create_dir_all(dir).expect("scratch folder");
+    }
+    std::fs::write(&path, bytes).expect("scratch file");
+    path
+}
+
+fn redact(text: &str, path: &Path) -> String {
+    text.replace(&path.display().to_string(), "[mission]")
+}
+
+#[test]
+fn validate_check_accepts_every_validation_mission() {
+    let Some(dir) = validation_dir() else {
+        println!("skipped: validation data folder not found");
+        return;
+    };
+    let mut count = 0;
+    for entry in std::fs::read_dir(dir).expect("readable folder") {
+        let mission = entry.expect("folder entry").path().join("mission.toml");
+        if !mission.is_file() {
+            continue;
+        }
+        let output = karman(&["check", mission.to_str().expect("UTF-8 path")]);
+        assert_eq!(
+            output.status.code(),
+            Some(0),
+            "{}: {}",
+            mission.display(),
+            stderr(&output)
+        );
+        assert_eq!(String::from_utf8_lossy(&output.stdout), "ok\n");
+        count += 1;
+    }
+    assert!(count >= 8, "found {count} missions");
+}
+
+#[test]
+fn check_accepts_the_example_with_overrides() {
+    let example = example();
+    let output = karman(&[
+        "check",
+        example.to_str().expect("UTF-8 path"),
+        "--set",
+        "flight.inclination=84",
+        "--set",
+        "rocket.parachutes.main.noise=[0,0,0]",
+    ]);
+    assert_eq!(output.status.code(), Some(0), "{}", stderr(&output));
+}
+
+#[test]
+fn broken_toml_is_located() {
+    let path = scratch("broken.toml", b"[rocket]\nradius = = 0.04\n");
+    let text = failure(&["check", path.to_str().expect("UTF-8 path")]);
+    insta::assert_snapshot!("broken_toml", redact(&text, &path));
+}
+
+#[test]
+fn unknown_key_is_located() {
+    let example = std::fs::read_to_string(example()).expect("example readable");
+    let text = example.replacen("[flight]\n", "[flight]\nlaunch_angle = 85\n", 1);
+    // The schema error is found before any data file is looked for, so the example's
+    // relative data paths need not resolve from the scratch folder.
+    let path = scratch("unknown_key.toml", text.as_bytes());
+    let stderr = failure(&["check", path.to_str().expect("UTF-8 path")]);
+    assert!(stderr.contains("`flight.launch_angle`"), "{stderr}");
+    insta::assert_snapshot!("unknown_key", redact(&stderr, &path));
+}
+
+#[test]
+fn missing_file_fails() {
+    let text = failure(&["check", "/nonexistent/karman/mission.toml"]);
+    insta::assert_snapshot!("missing_file", text);
+}
+
+#[test]
+fn binary_file_fails() {
+    // Deterministic pseudo-random bytes (xorshift64), most of them not UTF-8.
+    let mut state: u64 = 0x9E37_79B9_7F4A_7C15;
+    let bytes: Vec<u8> = (0..4096)
+        .map(|_| {
+            state ^= state << 13;
+            state ^= state >> 7;
+            state ^= state << 17;
+            state.to_le_bytes()[0]
+        })
+        .collect();
+    let path = scratch("random.bin", &bytes);
+    let text = failure(&["check", path.to_str().expect("UTF-8 path")]);
+    assert!(text.contains("not a UTF-8 text file"), "{text}");
+}
+
+#[test]
+fn bad_set_path_fails() {
+    let example = example();
+    let text = failure(&[
+        "check",
+        example.to_str().expect("UTF-8 path"),
+        "--set",
+        "flight.tilt=3",
+    ]);
+    insta::assert_snapshot!("bad_set_path", redact(&text, &example));
+}
+
+#[test]
+fn malformed_set_is_a_usage_error() {
+    let example = example();
+    let output = karman(&[
+        "check",
+        example.to_str().expect("UTF-8 path"),
+        "--set",
+        "flight",
+    ]);
+    let text = stderr(&output);
+    assert!(!text.contains("panicked at"), "{text}");
+    assert_eq!(output.status.code(), Some(2), "{text}");
+    assert!(text.contains("expected PATH=VALUE"), "{text}");
+}

@@ -1,0 +1,3 @@
+//! Integration tests of the `karman` binary (one binary; one module per command).
+
+mod check;

@@ -1,0 +1,5 @@
+//! Building the physics models (environment, motor, rocket) from a validated mission.
+pub mod environment;
+pub mod flight;
+pub mod motor;
+pub mod rocket;

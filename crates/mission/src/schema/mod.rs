@@ -1,0 +1,390 @@
+//! The typed mission file: one serde struct per TOML table of
+//! `docs/mission-format.md`, every table `deny_unknown_fields`.
+//!
+//! These structs are the *file format*, not runtime models: the `build` module turns them into
+//! the physics crates' types. Angles are in degrees here (field names end in `_deg`, the TOML
+//! keys do not); everything else is SI. Defaults that RocketPy 1.13 applies to an omitted
+//! argument (physics.md §1) are filled in by serde where they are plain values, and left as
+//! `Option` where "absent" selects a different model (e.g. `gravity`: Somigliana).
+//!
+//! Named tables (`[rocket.surfaces.*]`, `[rocket.parachutes.*]`, `[dispersion.vary]`) are
+//! [`IndexMap`]s: they keep the file order, which RocketPy's results depend on (surfaces and
+//! parachutes are added in that order).
+
+pub mod names;
+pub(crate) mod surfaces;
+pub mod values;
+
+use indexmap::IndexMap;
+use serde::{Deserialize, Serialize};
+use std::path::PathBuf;
+
+pub use names::{
+    AngleUnit, AtmosphereModel, Datum, InterpolationKind, MotorCoordinateSystem, MotorKind,
+    NoseKind, RocketCoordinateSystem, SoundingFormat, SurfaceType,
+};
+pub use surfaces::{
+    AirfoilSpec, EllipticalFinsSpec, FreeFormFinsSpec, NoseSpec, SurfaceSpec, Sweep, TailSpec,
+    TrapezoidalFinsSpec,
+};
+pub use toml::value::Datetime;
+pub use values::{Atol, BurnTime, Curve, Inertia, STATE_SIZE, Trigger};
+
+/// A whole mission file.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct MissionSpec {
+    /// Name shown in reports.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub name: Option<String>,
+    /// Free description.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub description: Option<String>,
+    /// `[environment]`: where and when.
+    pub environment: EnvironmentSpec,
+    /// `[motor]`: the one motor.
+    pub motor: MotorSpec,
+    /// `[rocket]`: the airframe without motor.
+    pub rocket: RocketSpec,
+    /// `[flight]`: launch and integration settings.
+    pub flight: FlightSpec,
+    /// `[dispersion]`: Monte Carlo settings, optional.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub dispersion: Option<DispersionSpec>,
+}
+
+/// `[environment]` (RocketPy `Environment`).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct EnvironmentSpec {
+    /// Launch latitude, deg (north positive); RocketPy default 0.
+    #[serde(rename = "latitude", default)]
+    pub latitude_deg: f64,
+    /// Launch longitude, deg (east positive); RocketPy default 0.
+    #[serde(rename = "longitude", default)]
+    pub longitude_deg: f64,
+    /// Launch elevation above sea level, m; RocketPy default 0.
+    #[serde(default)]
+    pub elevation: f64,
+    /// Launch date and time; must carry an offset or `Z` (weather files need it).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub date: Option<Datetime>,
+    /// Constant gravity, m/s²; absent: WGS-84 Somigliana gravity with height (physics.md §4.3).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub gravity: Option<f64>,
+    /// Geodetic datum; absent: RocketPy's default SIRGAS2000.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub datum: Option<Datum>,
+    /// Highest altitude the tables must cover, m ASL; RocketPy default 80 000 m.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub max_expected_height: Option<f64>,
+    /// `[environment.atmosphere]`; absent: the standard atmosphere.
+    #[serde(default)]
+    pub atmosphere: AtmosphereSpec,
+}
+
+/// `[environment.atmosphere]`: which model, and that model's inputs. Which keys a model needs
+/// or accepts is checked by validation (mission-format.md "Per model").
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct AtmosphereSpec {
+    /// The model.
+    pub model: AtmosphereModel,
+    /// Data file (`sounding`, `reanalysis`, `forecast`, `ensemble`), relative to the mission.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub file: Option<PathBuf>,
+    /// Sounding file format (`sounding` only).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub format: Option<SoundingFormat>,
+    /// Variable-name mapping of a weather grid (`"ECMWF"`, `"ECMWF_v0"`, `"NOAA"`, `"GFS"`,
+    /// ...); absent: detected from the file's variable names.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub dictionary: Option<String>,
+    /// Ensemble member index (`ensemble` only).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub member: Option<u32>,
+    /// Pressure of height ASL, Pa (`custom`); absent: standard atmosphere.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub pressure: Option<Curve>,
+    /// Temperature of height ASL, K (`custom`); absent: standard atmosphere.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub temperature: Option<Curve>,
+    /// Eastward wind of height ASL, m/s (`custom`); absent: 0.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub wind_u: Option<Curve>,
+    /// Northward wind of height ASL, m/s (`custom`); absent: 0.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub wind_v: Option<Curve>,
+}
+
+impl Default for AtmosphereSpec {
+    fn default() -> Self {
+        AtmosphereSpec {
+            model: AtmosphereModel::Standard,
+            file: None,
+            format: None,
+            dictionary: None,
+            member: None,
+            pressure: None,
+            temperature: None,
+            wind_u: None,
+            wind_v: None,
+        }
+    }
+}
+
+fn default_nozzle_to_chamber() -> MotorCoordinateSystem {
+    MotorCoordinateSystem::NozzleToCombustionChamber
+}
+
+fn default_linear() -> InterpolationKind {
+    InterpolationKind::Linear
+}
+
+/// `[motor]` (RocketPy `SolidMotor` / `GenericMotor`). Keys of the other kind are rejected
+/// by validation; required keys per kind are checked there too.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct MotorSpec {
+    /// Motor model.
+    pub kind: MotorKind,
+    /// Thrust of time, N (file: `.eng`, `.rse`, `.csv`, `.txt`).
+    pub thrust: Curve,
+    /// Burn interval, s; absent: the thrust curve's time span.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub burn_time: Option<BurnTime>,
+    /// `[burn_time, total_impulse]`: stretch the curve in time and scale it to this impulse
+    /// (RocketPy `reshape_thrust_curve`, physics.md §6.1).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub reshape_thrust_curve: Option<[f64; 2]>,
+    /// Interpolation of the thrust curve; RocketPy default linear.
+    #[serde(default = "default_linear")]
+    pub interpolation: InterpolationKind,
+    /// Mass of the motor without propellant, kg.
+    pub dry_mass: f64,
+    /// Dry inertia about the motor's dry CM, kg·m²; RocketPy default zero.
+    #[serde(default)]
+    pub dry_inertia: Inertia,
+    /// Motor's dry CM, motor coordinates, m (generic motor default: `chamber_position`).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub center_of_dry_mass_position: Option<f64>,
+    /// Nozzle exit position, motor coordinates, m; RocketPy default 0.
+    #[serde(default)]
+    pub nozzle_position: f64,
+    /// Nozzle exit radius, m.
+    pub nozzle_radius: f64,
+    /// Nozzle throat radius, m (solid motors; RocketPy default 0.01 m).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub throat_radius: Option<f64>,
+    /// Direction of the motor coordinate; RocketPy default nozzle to combustion chamber.
+    #[serde(default = "default_nozzle_to_chamber")]
+    pub coordinate_system: MotorCoordinateSystem,
+    /// Nozzle design ambient pressure, Pa, for the pressure thrust term (physics.md §6.3);
+    /// absent: no pressure correction.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub reference_pressure: Option<f64>,
+    /// Number of BATES grains (solid).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub grain_number: Option<u32>,
+    /// Gap between grains, m (solid).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub grain_separation: Option<f64>,
+    /// Propellant density, kg/m³ (solid).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub grain_density: Option<f64>,
+    /// Grain outer radius, m (solid).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub grain_outer_radius: Option<f64>,
+    /// Initial grain bore radius, m (solid).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub grain_initial_inner_radius: Option<f64>,
+    /// Initial height of one grain, m (solid).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub grain_initial_height: Option<f64>,
+    /// Centre of the grain stack, motor coordinates, m (solid).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub grains_center_of_mass_position: Option<f64>,
+    /// Initial propellant mass, kg (generic).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub propellant_initial_mass: Option<f64>,
+    /// Radius of the propellant cylinder, m (generic).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub chamber_radius: Option<f64>,
+    /// Height of the propellant cylinder, m (generic).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub chamber_height: Option<f64>,
+    /// Centre of the propellant cylinder, motor coordinates, m (generic).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub chamber_position: Option<f64>,
+}
+
+fn default_tail_to_nose() -> RocketCoordinateSystem {
+    RocketCoordinateSystem::TailToNose
+}
+
+/// `[rocket]` (RocketPy `Rocket`), without its motor.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct RocketSpec {
+    /// Body radius, m (the reference radius).
+    pub radius: f64,
+    /// Mass without motor, kg.
+    pub mass: f64,
+    /// Inertia without motor about its own CM, kg·m².
+    pub inertia: Inertia,
+    /// CM without motor, rocket coordinates, m.
+    pub center_of_mass_without_motor: f64,
+    /// Direction of the rocket coordinate; RocketPy default tail to nose.
+    #[serde(default = "default_tail_to_nose")]
+    pub coordinate_system: RocketCoordinateSystem,
+    /// Drag coefficient of Mach, motor off.
+    pub power_off_drag: Curve,
+    /// Drag coefficient of Mach, motor burning.
+    pub power_on_drag: Curve,
+    /// Position of the motor's coordinate origin, rocket coordinates, m.
+    pub motor_position: f64,
+    /// `[rocket.rail_buttons]`, optional.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub rail_buttons: Option<RailButtonsSpec>,
+    /// `[rocket.surfaces.<name>]`, in file order.
+    #[serde(default, skip_serializing_if = "IndexMap::is_empty")]
+    pub surfaces: IndexMap<String, SurfaceSpec>,
+    /// `[rocket.parachutes.<name>]`, in file order.
+    #[serde(default, skip_serializing_if = "IndexMap::is_empty")]
+    pub parachutes: IndexMap<String, ParachuteSpec>,
+}
+
+fn default_button_angle() -> f64 {
+    45.0
+}
+
+/// `[rocket.rail_buttons]`.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct RailButtonsSpec {
+    /// Position of the upper (nose-side) button, rocket coordinates, m.
+    pub upper_position: f64,
+    /// Position of the lower button, rocket coordinates, m.
+    pub lower_position: f64,
+    /// Angular position of the buttons, deg; RocketPy default 45.
+    #[serde(rename = "angular_position", default = "default_button_angle")]
+    pub angular_position_deg: f64,
+}
+
+fn default_sampling_rate() -> f64 {
+    100.0
+}
+
+/// `[rocket.parachutes.<name>]` (RocketPy `Parachute`; defaults of physics.md §1).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct ParachuteSpec {
+    /// Drag coefficient times reference area, m².
+    pub cd_s: f64,
+    /// When to eject.
+    pub trigger: Trigger,
+    /// Pressure-signal sampling rate of the trigger, Hz; RocketPy default 100.
+    #[serde(default = "default_sampling_rate")]
+    pub sampling_rate: f64,
+    /// Delay between trigger and full inflation, s; RocketPy default 0.
+    #[serde(default)]
+    pub lag: f64,
+    /// Pressure-signal noise: mean (Pa), standard deviation (Pa), time correlation;
+    /// RocketPy default (0, 0, 0).
+    #[serde(default)]
+    pub noise: [f64; 3],
+    /// Canopy radius, m (added mass, physics.md §8.4); absent: RocketPy's default.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub radius: Option<f64>,
+    /// Canopy height, m; absent: RocketPy's default.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub height: Option<f64>,
+    /// Canopy porosity; absent: RocketPy's default 0.0432.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub porosity: Option<f64>,
+}
+
+fn default_inclination() -> f64 {
+    80.0
+}
+
+fn default_heading() -> f64 {
+    90.0
+}
+
+fn default_max_time() -> f64 {
+    600.0
+}
+
+fn default_rtol() -> f64 {
+    1e-6
+}
+
+fn default_max_time_step() -> f64 {
+    f64::INFINITY
+}
+
+/// `[flight]` (RocketPy `Flight`; defaults of physics.md §1).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct FlightSpec {
+    /// Launch rail length, m.
+    pub rail_length: f64,
+    /// Rail inclination from horizontal, deg; RocketPy default 80.
+    #[serde(rename = "inclination", default = "default_inclination")]
+    pub inclination_deg: f64,
+    /// Rail heading from north, clockwise, deg; RocketPy default 90.
+    #[serde(rename = "heading", default = "default_heading")]
+    pub heading_deg: f64,
+    /// Simulation time limit, s; RocketPy default 600.
+    #[serde(default = "default_max_time")]
+    pub max_time: f64,
+    /// Stop at apogee; RocketPy default false.
+    #[serde(default)]
+    pub terminate_on_apogee: bool,
+    /// Relative tolerance of the integrator; RocketPy default 1e-6.
+    #[serde(default = "default_rtol")]
+    pub rtol: f64,
+    /// Absolute tolerance; absent: RocketPy's per-state default (physics.md §10.1).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub atol: Option<Atol>,
+    /// Largest integrator step, s; RocketPy default +∞ (`inf` in TOML).
+    #[serde(default = "default_max_time_step")]
+    pub max_time_step: f64,
+}
+
+/// `[dispersion]`: Monte Carlo run settings and the inputs that vary.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct DispersionSpec {
+    /// Number of sampled flights.
+    pub samples: u32,
+    /// Seed of the random streams (sample `i` draws from a stream derived from (seed, i)).
+    pub seed: u64,
+    /// `[dispersion.vary]`: dotted input path → distribution, in file order.
+    #[serde(default)]
+    pub vary: IndexMap<String, Distribution>,
+}
+
+/// A distribution of `[dispersion.vary]` (mission-format.md "Distributions"; NumPy
+/// `Generator` parameter conventions, physics.md §12.1).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(rename_all = "lowercase")]
+pub enum Distribution {
+    /// Normal around the nominal value with this standard deviation.
+    Std(f64),
+    /// Normal `[mean, std]`.
+    Normal([f64; 2]),
+    /// Uniform `[low, high]`.
+    Uniform([f64; 2]),
+    /// Triangular `[low, mode, high]`.
+    Triangular([f64; 3]),
+    /// Log-normal `[mu, sigma]` of the underlying normal.
+    Lognormal([f64; 2]),
+    /// Uniform choice among these values.
+    Choice(Vec<f64>),
+    /// Multiply the nominal value (number or curve) by a draw of this distribution.
+    Factor(Box<Distribution>),
+    /// Add a draw of this distribution to the nominal value (number or curve).
+    Offset(Box<Distribution>),
+}

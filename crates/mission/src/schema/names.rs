@@ -1,0 +1,271 @@
+//! Enumerated string values of the mission format (atmosphere model, motor kind, nose kind,
+//! coordinate systems, ...).
+//!
+//! RocketPy accepts several spellings of some values (`"von karman"`, `"Von Karman"`,
+//! `"vonKarman"`); mission-format.md asks for all of them, so every enumeration here is read
+//! case- and separator-insensitively: the text is lower-cased and spaces, `_` and `-` are
+//! dropped before it is compared with the accepted spellings.
+
+use serde::de::{self, Deserializer, Visitor};
+use serde::{Deserialize, Serialize, Serializer};
+use std::fmt;
+
+/// Lower-cases `text` and drops spaces, underscores and hyphens, the comparison key of every
+/// enumeration (`"Von Karman"`, `"von_karman"` and `"vonKarman"` all give `"vonkarman"`).
+pub fn normalize(text: &str) -> String {
+    text.chars()
+        .filter(|c| !matches!(c, ' ' | '_' | '-'))
+        .flat_map(char::to_lowercase)
+        .collect()
+}
+
+/// Defines a string enumeration read with [`normalize`]; the first spelling of each variant
+/// is its canonical name (written back by `Serialize` and shown in error messages).
+macro_rules! names {
+    (
+        $(#[$meta:meta])*
+        pub enum $name:ident ($what:literal) {
+            $( $(#[$vmeta:meta])* $variant:ident => [$canonical:literal $(, $alias:literal)* $(,)?] ),+ $(,)?
+        }
+    ) => {
+        $(#[$meta])*
+        #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+        pub enum $name {
+            $( $(#[$vmeta])* $variant, )+
+        }
+
+        impl $name {
+            /// Every variant, in declaration order.
+            pub const ALL: &'static [$name] = &[$($name::$variant),+];
+
+            /// The canonical spelling of this value in a mission file.
+            pub fn as_str(self) -> &'static str {
+                match self {
+                    $( $name::$variant => $canonical, )+
+                }
+            }
+
+            /// Reads a value, case- and separator-insensitively; `None` if it names nothing.
+            pub fn parse(text: &str) -> Option<Self> {
+                let key = normalize(text);
+                $(
+                    if key == normalize($canonical) $(|| key == normalize($alias))* {
+                        return Some($name::$variant);
+                    }
+                )+
+                None
+            }
+
+            /// The accepted canonical spellings, for error messages.
+            pub fn expected() -> String {
+                Self::ALL
+                    .iter()
+                    .map(|v| format!("\"{}\"", v.as_str()))
+                    .collect::<Vec<_>>()
+                    .join(", ")
+            }
+        }
+
+        impl fmt::Display for $name {
+            fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+                f.write_str(self.as_str())
+            }
+        }
+
+        impl Serialize for $name {
+            fn serialize<S: Serializer>(&self, serializer: S) -> Result<S::Ok, S::Error> {
+                serializer.serialize_str(self.as_str())
+            }
+        }
+
+        impl<'de> Deserialize<'de> for $name {
+            fn deserialize<D: Deserializer<'de>>(deserializer: D) -> Result<Self, D::Error> {
+                struct NameVisitor;
+                impl Visitor<'_> for NameVisitor {
+                    type Value = $name;
+                    fn expecting(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+                        write!(f, "{} ({})", $what, $name::expected())
+                    }
+                    fn visit_str<E: de::Error>(self, v: &str) -> Result<$name, E> {
+                        $name::parse(v).ok_or_else(|| {
+                            E::custom(format!(
+                                "unknown {} \"{}\", expected one of {}",
+                                $what,
+                                v,
+                                $name::expected()
+                            ))
+                        })
+                    }
+                }
+                deserializer.deserialize_str(NameVisitor)
+            }
+        }
+    };
+}
+
+names! {
+    /// `environment.atmosphere.model`.
+    pub enum AtmosphereModel ("atmosphere model") {
+        /// International Standard Atmosphere (ISO 2533), no wind.
+        Standard => ["standard", "standard atmosphere", "isa"],
+        /// Pressure, temperature and wind given as curves of height.
+        Custom => ["custom", "custom atmosphere"],
+        /// A radiosonde sounding file.
+        Sounding => ["sounding"],
+        /// A reanalysis grid (netCDF), e.g. ERA5.
+        Reanalysis => ["reanalysis"],
+        /// A forecast grid (netCDF), e.g. GFS.
+        Forecast => ["forecast"],
+        /// One member of an ensemble forecast grid (netCDF).
+        Ensemble => ["ensemble"],
+    }
+}
+
+names! {
+    /// `environment.atmosphere.format` of a sounding file.
+    pub enum SoundingFormat ("sounding format") {
+        /// University of Wyoming TEXT:LIST page.
+        Wyoming => ["wyoming"],
+        /// NOAA RUC sounding.
+        NoaaRuc => ["noaa_ruc", "noaa"],
+    }
+}
+
+names! {
+    /// `environment.datum`: the geodetic datum (all share the WGS-84 ellipsoid in RocketPy
+    /// except SAD69 and NAD83's own; see physics.md §4.6).
+    pub enum Datum ("datum") {
+        /// SIRGAS 2000, RocketPy's default.
+        Sirgas2000 => ["SIRGAS2000"],
+        /// South American Datum 1969.
+        Sad69 => ["SAD69"],
+        /// North American Datum 1983.
+        Nad83 => ["NAD83"],
+        /// World Geodetic System 1984.
+        Wgs84 => ["WGS84"],
+    }
+}
+
+names! {
+    /// `motor.kind`.
+    pub enum MotorKind ("motor kind") {
+        /// A solid motor with BATES grains (RocketPy `SolidMotor`).
+        Solid => ["solid", "solid motor"],
+        /// A generic motor: a cylindrical propellant mass (RocketPy `GenericMotor`).
+        Generic => ["generic", "generic motor"],
+    }
+}
+
+names! {
+    /// `motor.coordinate_system`: the direction of the motor's axial coordinate.
+    pub enum MotorCoordinateSystem ("motor coordinate system") {
+        /// Positions grow from the nozzle toward the combustion chamber (RocketPy default).
+        NozzleToCombustionChamber => ["nozzle_to_combustion_chamber"],
+        /// Positions grow from the combustion chamber toward the nozzle.
+        CombustionChamberToNozzle => ["combustion_chamber_to_nozzle"],
+    }
+}
+
+names! {
+    /// `rocket.coordinate_system`: the direction of the rocket's axial coordinate.
+    pub enum RocketCoordinateSystem ("rocket coordinate system") {
+        /// Positions grow from the tail toward the nose (RocketPy default).
+        TailToNose => ["tail_to_nose"],
+        /// Positions grow from the nose toward the tail.
+        NoseToTail => ["nose_to_tail"],
+    }
+}
+
+names! {
+    /// `motor.interpolation`: how the thrust curve is interpolated.
+    pub enum InterpolationKind ("interpolation") {
+        /// Piecewise linear (RocketPy default).
+        Linear => ["linear"],
+        /// Natural cubic spline.
+        Spline => ["spline"],
+        /// Akima spline.
+        Akima => ["akima"],
+        /// One polynomial through every point.
+        Polynomial => ["polynomial"],
+    }
+}
+
+names! {
+    /// `type` of an aerodynamic surface.
+    pub enum SurfaceType ("surface type") {
+        /// Nose cone (RocketPy `NoseCone`).
+        Nose => ["nose", "nose cone", "nosecone"],
+        /// Trapezoidal fin set.
+        TrapezoidalFins => ["trapezoidal_fins"],
+        /// Elliptical fin set.
+        EllipticalFins => ["elliptical_fins"],
+        /// Fin set given by its planform points.
+        FreeFormFins => ["free_form_fins"],
+        /// Conical transition or boattail (RocketPy `Tail`).
+        Tail => ["tail", "transition", "boattail"],
+    }
+}
+
+names! {
+    /// `kind` of a nose cone (RocketPy `NoseCone.kind`).
+    pub enum NoseKind ("nose kind") {
+        /// Cone.
+        Conical => ["conical", "cone"],
+        /// Secant ogive.
+        Ogive => ["ogive"],
+        /// Tangent ogive.
+        Tangent => ["tangent", "tangent ogive"],
+        /// Von Kármán (LD-Haack) ogive.
+        VonKarman => ["von karman", "vonkarman", "ldhaack"],
+        /// LV-Haack series.
+        LvHaack => ["lvhaack"],
+        /// Parabolic series.
+        Parabolic => ["parabolic"],
+        /// Elliptical.
+        Elliptical => ["elliptical"],
+        /// Power series; needs `power`.
+        PowerSeries => ["powerseries"],
+    }
+}
+
+names! {
+    /// `unit` of an airfoil lift curve's angle of attack.
+    pub enum AngleUnit ("angle unit") {
+        /// Radians.
+        Radians => ["radians", "radian", "rad"],
+        /// Degrees.
+        Degrees => ["degrees", "degree", "deg"],
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn spellings_of_von_karman_are_one_kind() {
+        for text in [
+            "von karman",
+            "Von Karman",
+            "vonKarman",
+            "VON_KARMAN",
+            "von-karman",
+        ] {
+            assert_eq!(NoseKind::parse(text), Some(NoseKind::VonKarman), "{text}");
+        }
+        for text in ["lvhaack", "LV-Haack", "LV Haack"] {
+            assert_eq!(NoseKind::parse(text), Some(NoseKind::LvHaack), "{text}");
+        }
+        assert_eq!(NoseKind::parse("karman"), None);
+    }
+
+    #[test]
+    fn canonical_names_parse_back() {
+        for kind in NoseKind::ALL {
+            assert_eq!(NoseKind::parse(kind.as_str()), Some(*kind));
+        }
+        for model in AtmosphereModel::ALL {
+            assert_eq!(AtmosphereModel::parse(model.as_str()), Some(*model));
+        }
+    }
+}

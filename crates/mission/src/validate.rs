@@ -1,0 +1,512 @@
+//! Validation of a deserialized mission, without physics: required keys per model and kind,
+//! keys that a model does not use, ranges of plain inputs, data files that must exist (and
+//! curve files that must parse), dates, and the `[dispersion]` table. Every problem found is
+//! returned, each located at its key.
+
+use crate::document::Document;
+use crate::error::{Problem, ProblemKind};
+use crate::paths;
+use crate::schema::{AtmosphereModel, Curve, MissionSpec, MotorKind, SurfaceSpec, Sweep, Trigger};
+use std::path::Path;
+
+/// Keys where `inf` is a valid value.
+pub(crate) const ALLOW_INFINITE: &[&str] = &["flight.max_time_step"];
+
+/// Extensions a thrust curve file may have (parsing them is the propulsion crate's job).
+const THRUST_EXTENSIONS: &[&str] = &["eng", "rse", "csv", "txt"];
+
+/// Extensions of a netCDF weather grid.
+const GRID_EXTENSIONS: &[&str] = &["nc", "nc4", "netcdf"];
+
+struct Checker<'a, 'd> {
+    doc: &'a Document<'d>,
+    dir: &'a Path,
+    problems: Vec<Problem>,
+}
+
+impl Checker<'_, '_> {
+    fn report(&mut self, key: &str, kind: ProblemKind) {
+        self.problems.push(self.doc.problem(key, kind));
+    }
+
+    /// `value` must satisfy `ok`, described by `expected`.
+    fn range(&mut self, key: &str, value: f64, ok: bool, expected: &'static str) {
+        if !ok && value.is_finite() {
+            self.report(key, ProblemKind::OutOfRange { value, expected });
+        }
+    }
+
+    fn positive(&mut self, key: &str, value: f64) {
+        self.range(key, value, value > 0.0, "must be > 0");
+    }
+
+    fn non_negative(&mut self, key: &str, value: f64) {
+        self.range(key, value, value >= 0.0, "must be >= 0");
+    }
+
+    fn required<T>(&mut self, key: &str, name: &'static str, value: Option<&T>, needed_by: &str) {
+        if value.is_none() {
+            self.report(
+                key,
+                ProblemKind::MissingKey {
+                    key: name,
+                    needed_by: needed_by.to_owned(),
+                },
+            );
+        }
+    }
+
+    fn unused<T>(&mut self, key: &str, value: Option<&T>, model: &str) {
+        if value.is_some() {
+            self.report(
+                key,
+                ProblemKind::NotApplicable {
+                    model: model.to_owned(),
+                },
+            );
+        }
+    }
+
+    /// A data file must exist and have one of `extensions` (any, if empty).
+    fn file(&mut self, key: &str, path: &Path, extensions: &'static [&'static str]) {
+        let resolved = self.dir.join(path);
+        if let Err(source) = std::fs::metadata(&resolved) {
+            self.report(
+                key,
+                ProblemKind::File {
+                    path: resolved,
+                    source,
+                },
+            );
+            return;
+        }
+        let extension = resolved
+            .extension()
+            .and_then(|e| e.to_str())
+            .map(str::to_ascii_lowercase);
+        if !extensions.is_empty() && !extension.is_some_and(|e| extensions.contains(&e.as_str())) {
+            self.report(
+                key,
+                ProblemKind::FileExtension {
+                    path: resolved,
+                    expected: extensions,
+                },
+            );
+        }
+    }
+
+    /// A curve: its file must exist and parse; inline points must make a table.
+    fn curve(&mut self, key: &str, curve: &Curve) {
+        match crate::curves::check(curve, self.dir) {
+            Ok(()) => {}
+            Err(kind) => self.report(key, kind),
+        }
+    }
+}
+
+/// Checks everything that can be checked without building models.
+pub(crate) fn validate(spec: &MissionSpec, doc: &Document<'_>, dir: &Path) -> Vec<Problem> {
+    let mut c = Checker {
+        doc,
+        dir,
+        problems: Vec::new(),
+    };
+    environment(&mut c, spec);
+    motor(&mut c, spec);
+    rocket(&mut c, spec);
+    flight(&mut c, spec);
+    dispersion(&mut c, spec);
+    c.problems
+}
+
+fn environment(c: &mut Checker<'_, '_>, spec: &MissionSpec) {
+    let env = &spec.environment;
+    c.range(
+        "environment.latitude",
+        env.latitude_deg,
+        (-90.0..=90.0).contains(&env.latitude_deg),
+        "must be within [-90, 90] deg",
+    );
+    c.range(
+        "environment.longitude",
+        env.longitude_deg,
+        (-180.0..=360.0).contains(&env.longitude_deg),
+        "must be within [-180, 360] deg",
+    );
+    if let Some(date) = &env.date {
+        if date.date.is_none() || date.time.is_none() || date.offset.is_none() {
+            c.report(
+                "environment.date",
+                ProblemKind::Date {
+                    date: date.to_string(),
+                },
+            );
+        }
+    }
+    if let Some(g) = env.gravity {
+        c.positive("environment.gravity", g);
+    }
+    if let Some(h) = env.max_expected_height {
+        c.range(
+            "environment.max_expected_height",
+            h,
+            h > env.elevation,
+            "must be above the launch elevation",
+        );
+    }
+    let atm = &env.atmosphere;
+    let model = atm.model;
+    let what = format!("the {model} atmosphere");
+    let grid = matches!(
+        model,
+        AtmosphereModel::Reanalysis | AtmosphereModel::Forecast | AtmosphereModel::Ensemble
+    );
+    let custom = model == AtmosphereModel::Custom;
+    if matches!(model, AtmosphereModel::Standard | AtmosphereModel::Custom) {
+        c.unused("environment.atmosphere.file", atm.file.as_ref(), &what);
+    } else {
+        c.required(
+            "environment.atmosphere.file",
+            "file",
+            atm.file.as_ref(),
+            &what,
+        );
+        if let Some(file) = &atm.file {
+            let extensions = if grid { GRID_EXTENSIONS } else { &[] };
+            c.file("environment.atmosphere.file", file, extensions);
+        }
+        c.required("environment.date", "date", env.date.as_ref(), &what);
+    }
+    if model == AtmosphereModel::Sounding {
+        c.required(
+            "environment.atmosphere.format",
+            "format",
+            atm.format.as_ref(),
+            &what,
+        );
+    } else {
+        c.unused("environment.atmosphere.format", atm.format.as_ref(), &what);
+    }
+    if !grid {
+        c.unused(
+            "environment.atmosphere.dictionary",
+            atm.dictionary.as_ref(),
+            &what,
+        );
+    }
+    if model != AtmosphereModel::Ensemble {
+        c.unused("environment.atmosphere.member", atm.member.as_ref(), &what);
+    }
+    let curves = [
+        ("pressure", &atm.pressure),
+        ("temperature", &atm.temperature),
+        ("wind_u", &atm.wind_u),
+        ("wind_v", &atm.wind_v),
+    ];
+    for (name, curve) in curves {
+        let key = format!("environment.atmosphere.{name}");
+        match curve {
+            Some(curve) if custom => c.curve(&key, curve),
+            _ => c.unused(&key, curve.as_ref(), &what),
+        }
+    }
+}
+
+fn motor(c: &mut Checker<'_, '_>, spec: &MissionSpec) {
+    let m = &spec.motor;
+    let what = format!("a {} motor", m.kind);
+    match &m.thrust {
+        Curve::File(path) => c.file("motor.thrust", path, THRUST_EXTENSIONS),
+        Curve::Constant(value) => {
+            c.non_negative("motor.thrust", *value);
+            if m.burn_time.is_none() && m.reshape_thrust_curve.is_none() {
+                c.required(
+                    "motor.burn_time",
+                    "burn_time",
+                    m.burn_time.as_ref(),
+                    "a constant thrust",
+                );
+            }
+        }
+        points @ Curve::Points(_) => c.curve("motor.thrust", points),
+    }
+    if let Some(burn) = m.burn_time {
+        c.range(
+            "motor.burn_time",
+            burn.end,
+            burn.start >= 0.0 && burn.end > burn.start,
+            "needs 0 <= start < end",
+        );
+    }
+    if let Some([time, impulse]) = m.reshape_thrust_curve {
+        c.positive("motor.reshape_thrust_curve", time);
+        c.positive("motor.reshape_thrust_curve", impulse);
+    }
+    c.non_negative("motor.dry_mass", m.dry_mass);
+    c.positive("motor.nozzle_radius", m.nozzle_radius);
+    if let Some(p) = m.reference_pressure {
+        c.positive("motor.reference_pressure", p);
+    }
+    let solid = [
+        (
+            "motor.grain_number",
+            "grain_number",
+            m.grain_number.map(f64::from),
+        ),
+        (
+            "motor.grain_separation",
+            "grain_separation",
+            m.grain_separation,
+        ),
+        ("motor.grain_density", "grain_density", m.grain_density),
+        (
+            "motor.grain_outer_radius",
+            "grain_outer_radius",
+            m.grain_outer_radius,
+        ),
+        (
+            "motor.grain_initial_inner_radius",
+            "grain_initial_inner_radius",
+            m.grain_initial_inner_radius,
+        ),
+        (
+            "motor.grain_initial_height",
+            "grain_initial_height",
+            m.grain_initial_height,
+        ),
+        (
+            "motor.grains_center_of_mass_position",
+            "grains_center_of_mass_position",
+            m.grains_center_of_mass_position,
+        ),
+    ];
+    let generic = [
+        (
+            "motor.propellant_initial_mass",
+            "propellant_initial_mass",
+            m.propellant_initial_mass,
+        ),
+        ("motor.chamber_radius", "chamber_radius", m.chamber_radius),
+        ("motor.chamber_height", "chamber_height", m.chamber_height),
+        (
+            "motor.chamber_position",
+            "chamber_position",
+            m.chamber_position,
+        ),
+    ];
+    let (needed, foreign) = match m.kind {
+        MotorKind::Solid => (&solid[..], &generic[..]),
+        MotorKind::Generic => (&generic[..], &solid[..]),
+    };
+    for (key, name, value) in needed {
+        c.required(key, name, value.as_ref(), &what);
+    }
+    for (key, _, value) in foreign {
+        c.unused(key, value.as_ref(), &what);
+    }
+    match m.kind {
+        MotorKind::Solid => {
+            c.required(
+                "motor.center_of_dry_mass_position",
+                "center_of_dry_mass_position",
+                m.center_of_dry_mass_position.as_ref(),
+                &what,
+            );
+            if let Some(n) = m.grain_number {
+                c.range(
+                    "motor.grain_number",
+                    f64::from(n),
+                    n >= 1,
+                    "needs at least 1 grain",
+                );
+            }
+            let positives = [
+                ("motor.grain_density", m.grain_density),
+                ("motor.grain_outer_radius", m.grain_outer_radius),
+                ("motor.grain_initial_height", m.grain_initial_height),
+                ("motor.throat_radius", m.throat_radius),
+            ];
+            for (key, value) in positives {
+                if let Some(value) = value {
+                    c.positive(key, value);
+                }
+            }
+            if let Some(gap) = m.grain_separation {
+                c.non_negative("motor.grain_separation", gap);
+            }
+            if let (Some(inner), Some(outer)) = (m.grain_initial_inner_radius, m.grain_outer_radius)
+            {
+                c.range(
+                    "motor.grain_initial_inner_radius",
+                    inner,
+                    (0.0..outer).contains(&inner),
+                    "must be >= 0 and below grain_outer_radius",
+                );
+            }
+        }
+        MotorKind::Generic => {
+            c.unused("motor.throat_radius", m.throat_radius.as_ref(), &what);
+            let positives = [
+                ("motor.propellant_initial_mass", m.propellant_initial_mass),
+                ("motor.chamber_radius", m.chamber_radius),
+                ("motor.chamber_height", m.chamber_height),
+            ];
+            for (key, value) in positives {
+                if let Some(value) = value {
+                    c.positive(key, value);
+                }
+            }
+        }
+    }
+}
+
+fn rocket(c: &mut Checker<'_, '_>, spec: &MissionSpec) {
+    let r = &spec.rocket;
+    c.positive("rocket.radius", r.radius);
+    c.positive("rocket.mass", r.mass);
+    c.curve("rocket.power_off_drag", &r.power_off_drag);
+    c.curve("rocket.power_on_drag", &r.power_on_drag);
+    for (name, surface) in &r.surfaces {
+        let key = |k: &str| format!("rocket.surfaces.{name}.{k}");
+        match surface {
+            SurfaceSpec::Nose(s) => {
+                c.positive(&key("length"), s.length);
+                if let Some(b) = s.bluffness {
+                    c.range(
+                        &key("bluffness"),
+                        b,
+                        (0.0..1.0).contains(&b),
+                        "must be in [0, 1)",
+                    );
+                }
+                if let Some(p) = s.power {
+                    c.range(&key("power"), p, p > 0.0 && p <= 1.0, "must be in (0, 1]");
+                }
+                if let Some(radius) = s.base_radius {
+                    c.positive(&key("base_radius"), radius);
+                }
+            }
+            SurfaceSpec::TrapezoidalFins(s) => {
+                c.range(&key("n"), f64::from(s.n), s.n >= 1, "needs at least 1 fin");
+                c.positive(&key("span"), s.span);
+                c.positive(&key("root_chord"), s.root_chord);
+                c.non_negative(&key("tip_chord"), s.tip_chord);
+                if let Some(Sweep::AngleDeg(angle)) = s.sweep {
+                    c.range(
+                        &key("sweep_angle"),
+                        angle,
+                        angle.abs() < 90.0,
+                        "must be within (-90, 90) deg",
+                    );
+                }
+                if let Some(radius) = s.radius {
+                    c.positive(&key("radius"), radius);
+                }
+            }
+            SurfaceSpec::EllipticalFins(s) => {
+                c.range(&key("n"), f64::from(s.n), s.n >= 1, "needs at least 1 fin");
+                c.positive(&key("span"), s.span);
+                c.positive(&key("root_chord"), s.root_chord);
+                if let Some(radius) = s.radius {
+                    c.positive(&key("radius"), radius);
+                }
+            }
+            SurfaceSpec::FreeFormFins(s) => {
+                c.range(&key("n"), f64::from(s.n), s.n >= 1, "needs at least 1 fin");
+                if s.shape_points.len() < 3 {
+                    c.report(
+                        &key("shape_points"),
+                        ProblemKind::OutOfRange {
+                            value: s.shape_points.len() as f64,
+                            expected: "a fin planform needs at least 3 points",
+                        },
+                    );
+                }
+                if let Some(radius) = s.radius {
+                    c.positive(&key("radius"), radius);
+                }
+            }
+            SurfaceSpec::Tail(s) => {
+                c.positive(&key("top_radius"), s.top_radius);
+                c.positive(&key("bottom_radius"), s.bottom_radius);
+                c.positive(&key("length"), s.length);
+            }
+        }
+        if let Some(airfoil) = surface.airfoil() {
+            c.curve(&key("airfoil"), &airfoil.lift);
+        }
+    }
+    for (name, chute) in &r.parachutes {
+        let key = |k: &str| format!("rocket.parachutes.{name}.{k}");
+        c.positive(&key("cd_s"), chute.cd_s);
+        if let Trigger::HeightAboveGround(h) = chute.trigger {
+            c.non_negative(&key("trigger"), h);
+        }
+        c.positive(&key("sampling_rate"), chute.sampling_rate);
+        c.non_negative(&key("lag"), chute.lag);
+        c.non_negative(&key("noise"), chute.noise[1]);
+        for (k, v) in [("radius", chute.radius), ("height", chute.height)] {
+            if let Some(v) = v {
+                c.positive(&key(k), v);
+            }
+        }
+        if let Some(p) = chute.porosity {
+            c.range(
+                &key("porosity"),
+                p,
+                (0.0..=1.0).contains(&p),
+                "must be in [0, 1]",
+            );
+        }
+    }
+}
+
+fn flight(c: &mut Checker<'_, '_>, spec: &MissionSpec) {
+    let f = &spec.flight;
+    c.positive("flight.rail_length", f.rail_length);
+    c.range(
+        "flight.inclination",
+        f.inclination_deg,
+        f.inclination_deg > 0.0 && f.inclination_deg <= 90.0,
+        "must be in (0, 90] deg",
+    );
+    c.positive("flight.max_time", f.max_time);
+    c.positive("flight.rtol", f.rtol);
+    if let Some(atol) = f.atol {
+        for value in atol.per_state() {
+            c.positive("flight.atol", value);
+        }
+    }
+    c.positive("flight.max_time_step", f.max_time_step);
+}
+
+fn dispersion(c: &mut Checker<'_, '_>, spec: &MissionSpec) {
+    let Some(d) = &spec.dispersion else { return };
+    c.range(
+        "dispersion.samples",
+        f64::from(d.samples),
+        d.samples >= 1,
+        "needs at least 1 sample",
+    );
+    for (path, distribution) in &d.vary {
+        let key = format!("dispersion.vary.{path}");
+        let problem = match paths::resolve(spec, path) {
+            Ok(input) => paths::check_distribution(&input, distribution).err(),
+            Err(error) => Some(error.to_string()),
+        };
+        if let Some(reason) = problem {
+            c.problems.push(vary_problem(c.doc, &key, path, reason));
+        }
+    }
+}
+
+/// A problem of a `[dispersion.vary]` entry, located at its key (whose name has dots, so
+/// the located path is `dispersion.vary` plus the whole quoted key).
+fn vary_problem(doc: &Document<'_>, key: &str, path: &str, reason: String) -> Problem {
+    let span = doc.span_of(&["dispersion", "vary", path]);
+    Problem {
+        location: doc.location(span.start),
+        key: key.to_owned(),
+        kind: ProblemKind::Distribution { reason },
+    }
+}

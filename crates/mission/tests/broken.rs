@@ -1,0 +1,266 @@
+//! Broken missions give located errors: the file, line, column and key of every problem.
+//! The text people read is snapshotted (insta); absolute paths are redacted.
+
+use crate::common::fixture;
+use karman_mission::{Location, MissionError, Override, ProblemKind, load, parse};
+use std::path::Path;
+
+/// The minimal fixture with `edits` (`from` → `to`, each `from` must occur) applied.
+fn edited(edits: &[(&str, &str)]) -> String {
+    let mut text = std::fs::read_to_string(fixture("minimal.toml")).expect("fixture readable");
+    for (from, to) in edits {
+        assert!(text.contains(from), "fixture has no {from:?}");
+        text = text.replacen(from, to, 1);
+    }
+    text
+}
+
+/// Loads `text` as if it were `tests/fixtures/broken.toml` and returns the error text with
+/// the fixture folder redacted.
+fn error_text(text: &str, overrides: &[&str]) -> String {
+    let overrides: Vec<Override> = overrides
+        .iter()
+        .map(|o| o.parse().expect("well-formed override"))
+        .collect();
+    let path = fixture("broken.toml");
+    match parse(text, &path, &overrides) {
+        Ok(_) => panic!("the broken mission loaded"),
+        Err(error) => redact(&error.to_string()),
+    }
+}
+
+fn redact(text: &str) -> String {
+    let dir = fixture("");
+    text.replace(&dir.display().to_string(), "[fixtures]/")
+        .replace("[fixtures]//", "[fixtures]/")
+}
+
+fn problems(text: &str, overrides: &[Override]) -> Vec<karman_mission::Problem> {
+    match parse(text, &fixture("broken.toml"), overrides) {
+        Err(MissionError::Invalid { problems, .. }) => problems,
+        other => panic!("expected an invalid mission, got {other:?}"),
+    }
+}
+
+#[test]
+fn the_fixture_is_valid() {
+    let mission = load(&fixture("minimal.toml"), &[]).unwrap_or_else(|e| panic!("{e}"));
+    assert_eq!(mission.spec.rocket.surfaces.len(), 2);
+}
+
+#[test]
+fn unknown_key_names_key_and_line() {
+    let text = edited(&[("tip_chord = 0.05\n", "tip_chord = 0.05\nspam = 3\n")]);
+    let found = problems(&text, &[]);
+    assert_eq!(found.len(), 1);
+    assert_eq!(found[0].key, "rocket.surfaces.fins.spam");
+    assert_eq!(
+        found[0].location,
+        Location::File {
+            line: 50,
+            column: 1
+        }
+    );
+    insta::assert_snapshot!("unknown_key", error_text(&text, &[]));
+}
+
+#[test]
+fn wrong_type_is_located() {
+    let text = edited(&[("mass = 3.0", "mass = \"heavy\"")]);
+    let found = problems(&text, &[]);
+    assert_eq!(found[0].key, "rocket.mass");
+    assert_eq!(
+        found[0].location,
+        Location::File {
+            line: 31,
+            column: 8
+        }
+    );
+    insta::assert_snapshot!("wrong_type", error_text(&text, &[]));
+}
+
+#[test]
+fn every_schema_error_is_collected() {
+    let text = edited(&[
+        ("elevation = 1400", "elevation = 1400\naltitude = 3"),
+        ("kind = \"ogive\"", "kind = \"ogival\""),
+        ("lag = 0.5", "lag = \"late\""),
+        ("heading = 10", "heading = 10\nwind = 3"),
+    ]);
+    let keys: Vec<String> = problems(&text, &[]).into_iter().map(|p| p.key).collect();
+    assert_eq!(
+        keys,
+        [
+            "environment.altitude",
+            "rocket.surfaces.nose.kind",
+            "rocket.parachutes.main.lag",
+            "flight.wind"
+        ]
+    );
+    insta::assert_snapshot!("several_errors", error_text(&text, &[]));
+}
+
+#[test]
+fn missing_key_is_reported() {
+    let text = edited(&[("rail_length = 2.0\n", "")]);
+    let found = problems(&text, &[]);
+    assert_eq!(found.len(), 1);
+    assert!(
+        matches!(&found[0].kind, ProblemKind::Schema { message } if message.contains("rail_length"))
+    );
+    insta::assert_snapshot!("missing_key", error_text(&text, &[]));
+}
+
+#[test]
+fn missing_table_concerns_no_key() {
+    // Without the leading comments the file starts with `name = ...` at offset 0.
+    let text = edited(&[("[flight]", "[flight_plan]")]);
+    let text: Vec<&str> = text.lines().skip_while(|l| l.starts_with('#')).collect();
+    let text = text.join("\n");
+    let found = problems(&text, &[]);
+    let summary: Vec<(&str, String)> = found
+        .iter()
+        .map(|p| (p.key.as_str(), p.kind.to_string()))
+        .collect();
+    assert_eq!(
+        summary,
+        [
+            // The whole-document error sorts first (line 1, column 1).
+            ("", "missing field `flight`".to_owned()),
+            (
+                "flight_plan",
+                "unknown field `flight_plan`, expected one of `name`, `description`, \
+                 `environment`, `motor`, `rocket`, `flight`, `dispersion`"
+                    .to_owned()
+            ),
+        ]
+    );
+}
+
+#[test]
+fn missing_curve_file_is_located() {
+    let text = edited(&[(
+        "power_on_drag = \"drag.csv\"",
+        "power_on_drag = \"nope.csv\"",
+    )]);
+    let found = problems(&text, &[]);
+    assert_eq!(found[0].key, "rocket.power_on_drag");
+    assert_eq!(
+        found[0].location,
+        Location::File {
+            line: 35,
+            column: 17
+        }
+    );
+    assert!(matches!(found[0].kind, ProblemKind::File { .. }));
+    insta::assert_snapshot!("missing_curve_file", error_text(&text, &[]));
+}
+
+#[test]
+fn bad_curve_file_names_its_line() {
+    let text = edited(&[(
+        "power_on_drag = \"drag.csv\"",
+        "power_on_drag = \"bad_drag.csv\"",
+    )]);
+    let found = problems(&text, &[]);
+    assert_eq!(found[0].key, "rocket.power_on_drag");
+    assert!(matches!(found[0].kind, ProblemKind::Curve { .. }));
+    insta::assert_snapshot!("bad_curve_file", error_text(&text, &[]));
+}
+
+#[test]
+fn bad_trigger_is_located() {
+    let text = edited(&[("trigger = 200", "trigger = \"apogeee\"")]);
+    let found = problems(&text, &[]);
+    assert_eq!(found[0].key, "rocket.parachutes.main.trigger");
+    insta::assert_snapshot!("bad_trigger", error_text(&text, &[]));
+}
+
+#[test]
+fn surface_keys_follow_the_type() {
+    let text = edited(&[("kind = \"ogive\"", "kind = \"ogive\"\nspan = 0.1")]);
+    let found = problems(&text, &[]);
+    assert_eq!(found[0].key, "rocket.surfaces.nose");
+    insta::assert_snapshot!("surface_foreign_key", error_text(&text, &[]));
+}
+
+#[test]
+fn kinds_need_their_keys() {
+    let text = edited(&[
+        ("kind = \"solid\"", "kind = \"generic\""),
+        (
+            "[environment.atmosphere]\nmodel = \"standard\"",
+            "[environment.atmosphere]\nmodel = \"Reanalysis\"",
+        ),
+    ]);
+    insta::assert_snapshot!("kind_keys", error_text(&text, &[]));
+}
+
+#[test]
+fn non_finite_numbers_are_rejected() {
+    let text = edited(&[
+        ("mass = 3.0", "mass = nan"),
+        ("heading = 10", "heading = inf"),
+    ]);
+    let keys: Vec<String> = problems(&text, &[]).into_iter().map(|p| p.key).collect();
+    assert_eq!(keys, ["rocket.mass", "flight.heading"]);
+    let text = edited(&[("heading = 10", "heading = 10\nmax_time_step = inf")]);
+    assert!(
+        parse(&text, &fixture("ok.toml"), &[]).is_ok(),
+        "inf is a valid max_time_step"
+    );
+}
+
+#[test]
+fn syntax_error_is_located() {
+    let text = edited(&[("n = 3", "n = = 3")]);
+    match parse(&text, Path::new("broken.toml"), &[]) {
+        Err(MissionError::Syntax { line, column, .. }) => assert_eq!((line, column), (46, 5)),
+        other => panic!("expected a syntax error, got {other:?}"),
+    }
+    insta::assert_snapshot!("syntax_error", error_text(&text, &[]));
+}
+
+#[test]
+fn binary_file_is_not_text() {
+    match load(&fixture("binary.toml"), &[]) {
+        Err(MissionError::NotText { line, column, .. }) => assert_eq!((line, column), (2, 2)),
+        other => panic!("expected a not-text error, got {other:?}"),
+    }
+}
+
+#[test]
+fn missing_mission_file() {
+    let error = load(&fixture("absent.toml"), &[]).expect_err("no such file");
+    assert!(matches!(error, MissionError::Read { .. }));
+}
+
+#[test]
+fn bad_override_path_names_the_path() {
+    let text = edited(&[]);
+    insta::assert_snapshot!(
+        "bad_override_paths",
+        error_text(
+            &text,
+            &[
+                "rocket.parachutes.mian.lag=3",
+                "flight.inclination.x=1",
+                "flight.spin=3",
+                "flight.heading=\"north\""
+            ]
+        )
+    );
+}
+
+#[test]
+fn validation_problem_in_override_names_the_override() {
+    let text = edited(&[]);
+    let o: Override = "rocket.mass=-1".parse().expect("well-formed");
+    let found = problems(&text, &[o]);
+    assert_eq!(
+        found[0].location,
+        Location::Override {
+            text: "rocket.mass=-1".to_owned()
+        }
+    );
+}

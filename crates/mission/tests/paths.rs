@@ -1,0 +1,200 @@
+//! Dotted input paths shared by `--set` and `[dispersion.vary]`.
+
+use crate::common::{fixture, validation_missions};
+use karman_mission::paths::{self, DerivedKnob, Input, PathError};
+use karman_mission::schema::Distribution;
+use karman_mission::{MissionError, load};
+
+#[test]
+fn numeric_inputs_include_defaults_in_file_order() {
+    let mission = load(&fixture("minimal.toml"), &[]).unwrap_or_else(|e| panic!("{e}"));
+    let inputs = paths::numeric_inputs(&mission.spec);
+    let names: Vec<&str> = inputs.iter().map(|(p, _)| p.as_str()).collect();
+    for expected in [
+        "environment.latitude",
+        "motor.grain_number",
+        "rocket.mass",
+        "rocket.power_off_drag",
+        "rocket.surfaces.fins.span",
+        "rocket.parachutes.main.lag",
+        "rocket.parachutes.main.sampling_rate",
+        "flight.inclination",
+    ] {
+        assert!(
+            names.contains(&expected),
+            "{expected} missing from {names:?}"
+        );
+    }
+    let position = |name: &str| names.iter().position(|n| *n == name);
+    assert!(position("rocket.surfaces.nose.length") < position("rocket.surfaces.fins.span"));
+    assert!(
+        !names.contains(&"rocket.power_on_drag"),
+        "a file curve is not a number"
+    );
+}
+
+#[test]
+fn resolve_numbers_curves_and_knobs() {
+    let mission = load(&fixture("minimal.toml"), &[]).unwrap_or_else(|e| panic!("{e}"));
+    let spec = &mission.spec;
+    assert_eq!(
+        paths::resolve(spec, "rocket.mass"),
+        Ok(Input::Number {
+            value: 3.0,
+            integer: false
+        })
+    );
+    assert_eq!(
+        paths::resolve(spec, "motor.grain_number"),
+        Ok(Input::Number {
+            value: 2.0,
+            integer: true
+        })
+    );
+    assert!(matches!(
+        paths::resolve(spec, "rocket.power_on_drag"),
+        Ok(Input::Curve(_))
+    ));
+    assert_eq!(
+        paths::resolve(spec, "environment.wind_factor"),
+        Ok(Input::Knob(DerivedKnob::WindFactor))
+    );
+    assert!(matches!(
+        paths::resolve(spec, "rocket.surfaces.nose.kind"),
+        Err(PathError::NotNumeric { .. })
+    ));
+    assert!(matches!(
+        paths::resolve(spec, "rocket.parachutes.drogue.lag"),
+        Err(PathError::Unknown { .. })
+    ));
+}
+
+#[test]
+fn set_number_changes_one_input() {
+    let mut spec = load(&fixture("minimal.toml"), &[])
+        .unwrap_or_else(|e| panic!("{e}"))
+        .spec;
+    paths::set_number(&mut spec, "rocket.surfaces.fins.span", 0.1).expect("settable");
+    paths::set_number(&mut spec, "rocket.power_off_drag", 0.5).expect("constant curve");
+    paths::set_number(&mut spec, "motor.grain_number", 4.0).expect("integral");
+    assert_eq!(
+        paths::resolve(&spec, "rocket.surfaces.fins.span"),
+        Ok(Input::Number {
+            value: 0.1,
+            integer: false
+        })
+    );
+    assert_eq!(spec.motor.grain_number, Some(4));
+    assert!(matches!(
+        paths::set_number(&mut spec, "motor.grain_number", 2.5),
+        Err(PathError::NotInteger { .. })
+    ));
+}
+
+#[test]
+fn distributions_must_fit_their_target() {
+    let number = Input::Number {
+        value: 1.0,
+        integer: false,
+    };
+    let integer = Input::Number {
+        value: 1.0,
+        integer: true,
+    };
+    let factor = |d| Distribution::Factor(Box::new(d));
+    assert!(paths::check_distribution(&number, &Distribution::Std(0.1)).is_ok());
+    assert!(paths::check_distribution(&number, &Distribution::Std(-0.1)).is_err());
+    assert!(paths::check_distribution(&number, &Distribution::Uniform([2.0, 1.0])).is_err());
+    assert!(
+        paths::check_distribution(&number, &Distribution::Triangular([0.0, 2.0, 1.0])).is_err()
+    );
+    assert!(paths::check_distribution(&integer, &Distribution::Std(1.0)).is_err());
+    assert!(paths::check_distribution(&integer, &Distribution::Choice(vec![0.0, 1.0])).is_ok());
+    assert!(paths::check_distribution(&integer, &Distribution::Choice(vec![0.5])).is_err());
+    let curve = karman_mission::schema::Curve::File("drag.csv".into());
+    let curve = Input::Curve(&curve);
+    assert!(paths::check_distribution(&curve, &Distribution::Std(0.1)).is_err());
+    assert!(paths::check_distribution(&curve, &factor(Distribution::Normal([1.0, 0.05]))).is_ok());
+    assert!(paths::check_distribution(&number, &factor(factor(Distribution::Std(0.1)))).is_err());
+}
+
+#[test]
+fn validation_vary_paths_all_resolve() {
+    let Some(missions) = validation_missions() else {
+        println!("skipped: validation data folder not found");
+        return;
+    };
+    let mut checked = 0;
+    for path in missions {
+        let mission = load(&path, &[]).unwrap_or_else(|e| panic!("{e}"));
+        for (key, distribution) in mission.spec.dispersion.iter().flat_map(|d| &d.vary) {
+            let input = paths::resolve(&mission.spec, key).unwrap_or_else(|e| panic!("{e}"));
+            paths::check_distribution(&input, distribution)
+                .unwrap_or_else(|e| panic!("{key}: {e}"));
+            checked += 1;
+        }
+    }
+    assert!(checked > 50, "only {checked} vary entries found");
+}
+
+#[test]
+fn bad_vary_entries_are_located() {
+    let mut text = std::fs::read_to_string(fixture("minimal.toml")).expect("fixture readable");
+    text.push_str(
+        "\n[dispersion]\nsamples = 10\nseed = 1\n\n[dispersion.vary]\n\
+         \"rocket.mass\" = { std = 0.1 }\n\
+         \"rocket.spin\" = { std = 0.1 }\n\
+         \"rocket.power_on_drag\" = { std = 0.1 }\n",
+    );
+    match karman_mission::parse(&text, &fixture("vary.toml"), &[]) {
+        Err(MissionError::Invalid { problems, .. }) => {
+            let keys: Vec<&str> = problems.iter().map(|p| p.key.as_str()).collect();
+            assert_eq!(
+                keys,
+                [
+                    "dispersion.vary.rocket.spin",
+                    "dispersion.vary.rocket.power_on_drag"
+                ]
+            );
+            let lines: Vec<_> = problems.iter().map(|p| p.location.clone()).collect();
+            assert_eq!(
+                lines,
+                [
+                    karman_mission::Location::File {
+                        line: 68,
+                        column: 1
+                    },
+                    karman_mission::Location::File {
+                        line: 69,
+                        column: 1
+                    }
+                ]
+            );
+        }
+        other => panic!("expected an invalid mission, got {other:?}"),
+    }
+}
+
+#[test]
+fn validate_set_number_round_trips_every_mission() {
+    let Some(missions) = validation_missions() else {
+        println!("skipped: validation data folder not found");
+        return;
+    };
+    for path in missions {
+        let original = load(&path, &[]).unwrap_or_else(|e| panic!("{e}")).spec;
+        let Ok(Input::Number { value, .. }) = paths::resolve(&original, "rocket.mass") else {
+            panic!("{}: rocket.mass is not a number", path.display());
+        };
+        let mut spec = original.clone();
+        paths::set_number(&mut spec, "rocket.mass", value).expect("settable");
+        assert_eq!(
+            spec,
+            original,
+            "{}: set_number changed more than one value",
+            path.display()
+        );
+        paths::set_number(&mut spec, "rocket.mass", value + 1.0).expect("settable");
+        assert_ne!(spec, original);
+    }
+}
