@@ -1,0 +1,134 @@
+//! Motor report: the `motor` figures of `reference.json` ([`MotorReport`]) — thrust-curve
+//! figures and, at chosen times, thrust, masses, centre of mass (motor coordinates) and
+//! inertia about the motor's centre of mass.
+
+use std::fmt;
+
+use karman_math::linspace;
+use karman_propulsion::Motor;
+use serde::Serialize;
+
+/// Number of intervals the burn is split into by the default report times.
+const BURN_DIVISIONS: usize = 10;
+
+/// The motor's figures, keyed as `motor` of `reference.json`.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct MotorReport {
+    /// Total impulse, N·s.
+    pub total_impulse_ns: f64,
+    /// Initial propellant mass, kg.
+    pub propellant_initial_mass_kg: f64,
+    /// Burn start, s.
+    pub burn_start_s: f64,
+    /// Burn out, s.
+    pub burn_out_s: f64,
+    /// Average thrust over the burn, N.
+    pub average_thrust_n: f64,
+    /// Largest thrust sample, N.
+    pub max_thrust_n: f64,
+    /// Average exhaust velocity `I_tot / m_p0`, m/s.
+    pub exhaust_velocity_mps: f64,
+    /// Sample times, s.
+    pub times_s: Vec<f64>,
+    /// Thrust at each time, N.
+    pub thrust_n: Vec<f64>,
+    /// Motor mass (dry + propellant), kg.
+    pub total_mass_kg: Vec<f64>,
+    /// Propellant mass, kg.
+    pub propellant_mass_kg: Vec<f64>,
+    /// Motor centre of mass, m, motor coordinates.
+    pub center_of_mass_m: Vec<f64>,
+    /// Transverse inertia about the motor's centre of mass, kg·m².
+    #[serde(rename = "I11_kgm2")]
+    pub i11_kgm2: Vec<f64>,
+    /// Axial inertia about the motor's centre of mass, kg·m².
+    #[serde(rename = "I33_kgm2")]
+    pub i33_kgm2: Vec<f64>,
+}
+
+/// The reference's sample times: burn start + k/10 of the burn (k = 0..10), then burn-out
+/// + 1 s.
+#[must_use]
+pub fn default_times(motor: &Motor) -> Vec<f64> {
+    let mut times = linspace(motor.burn_start(), motor.burn_out(), BURN_DIVISIONS + 1);
+    times.push(motor.burn_out() + 1.0);
+    times
+}
+
+impl MotorReport {
+    /// The report at [`default_times`].
+    #[must_use]
+    pub fn new(motor: &Motor) -> Self {
+        Self::at_times(motor, &default_times(motor))
+    }
+
+    /// The report at the given times, s.
+    #[must_use]
+    pub fn at_times(motor: &Motor, times: &[f64]) -> Self {
+        let column = |f: &dyn Fn(f64) -> f64| times.iter().map(|&t| f(t)).collect::<Vec<_>>();
+        MotorReport {
+            total_impulse_ns: motor.total_impulse(),
+            propellant_initial_mass_kg: motor.propellant_initial_mass(),
+            burn_start_s: motor.burn_start(),
+            burn_out_s: motor.burn_out(),
+            average_thrust_n: motor.average_thrust(),
+            max_thrust_n: motor.max_thrust(),
+            exhaust_velocity_mps: motor.exhaust_velocity(),
+            times_s: times.to_vec(),
+            thrust_n: column(&|t| motor.thrust(t)),
+            total_mass_kg: column(&|t| motor.total_mass(t)),
+            propellant_mass_kg: column(&|t| motor.propellant_mass().eval(t)),
+            center_of_mass_m: column(&|t| motor.center_of_mass(t)),
+            i11_kgm2: column(&|t| motor.inertia(t).0),
+            i33_kgm2: column(&|t| motor.inertia(t).1),
+        }
+    }
+}
+
+impl fmt::Display for MotorReport {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        let rows = [
+            ("total impulse", self.total_impulse_ns, "N·s"),
+            (
+                "propellant initial mass",
+                self.propellant_initial_mass_kg,
+                "kg",
+            ),
+            ("burn start", self.burn_start_s, "s"),
+            ("burn out", self.burn_out_s, "s"),
+            ("average thrust", self.average_thrust_n, "N"),
+            ("maximum thrust", self.max_thrust_n, "N"),
+            ("exhaust velocity", self.exhaust_velocity_mps, "m/s"),
+        ];
+        writeln!(f, "Motor")?;
+        for (label, value, unit) in rows {
+            writeln!(f, "  {label:<26} {value:>14.6} {unit}")?;
+        }
+        writeln!(f)?;
+        writeln!(
+            f,
+            "  {:>9} {:>12} {:>12} {:>12} {:>12} {:>12} {:>12}",
+            "t [s]",
+            "thrust [N]",
+            "mass [kg]",
+            "prop. [kg]",
+            "CM [m]",
+            "I11 [kg·m²]",
+            "I33 [kg·m²]"
+        )?;
+        for (i, t) in self.times_s.iter().enumerate() {
+            let cell = |v: &[f64]| v.get(i).copied().unwrap_or(f64::NAN);
+            writeln!(
+                f,
+                "  {t:>9.4} {:>12.3} {:>12.6} {:>12.6} {:>12.6} {:>12.6e} {:>12.6e}",
+                cell(&self.thrust_n),
+                cell(&self.total_mass_kg),
+                cell(&self.propellant_mass_kg),
+                cell(&self.center_of_mass_m),
+                cell(&self.i11_kgm2),
+                cell(&self.i33_kgm2),
+            )?;
+        }
+        Ok(())
+    }
+}

@@ -1,0 +1,9 @@
+//! Fuzz target: the rse thrust-file reader must never panic on arbitrary bytes.
+#![no_main]
+
+use libfuzzer_sys::fuzz_target;
+
+fuzz_target!(|data: &[u8]| {
+    let text = String::from_utf8_lossy(data);
+    let _ = karman_propulsion::rse::parse(&text, "fuzz.rse");
+});

@@ -1,0 +1,388 @@
+//! Solid motor with BATES grains (physics.md §6.4; RocketPy `SolidMotor`,
+//! rocketpy/motors/solid_motor.py).
+//!
+//! `N` identical cylindrical grains (outer radius `R_o`, bore `r`, height `h`, density `ρ_g`)
+//! burn on the bore and both ends at the same rate. With the volume rate of one grain
+//! `V̇ = ṁ / (N ρ_g)` and burning area `A_b = 2π(R_o² − r² + r h)`, RocketPy integrates
+//! `ṙ = −V̇/A_b`, `ḣ = −2ṙ` (LSODA). Here the same solution is obtained in closed form:
+//! `ḣ = −2ṙ` gives `h = h_0 − 2(r − r_0)`, and the grain volume is known exactly from the thrust
+//! curve, `V(t) = (m_p0 − ∫ T dt / v̄_e)/(N ρ_g)`, so `r` is the root of the cubic
+//! `π(R_o² − r²)(h_0 − 2(r − r_0)) = V`, monotone on `[r_0, min(R_o, r_0 + h_0/2)]` (with
+//! `only_radial_burn`, `h = h_0` and `r = √(R_o² − V/(π h_0))`). As in RocketPy, the burn stops
+//! when the grain is consumed (`(R_o − r)h = 0`, which a thrust curve with negative tail values
+//! reaches before its end) and the geometry is held after that.
+//!
+//! The tables are sampled on the thrust-curve nodes with every interval split into pieces of at
+//! most [`GRID_STEP`] (longer for burns beyond 250 s) and interpolated linearly (RocketPy samples at the LSODA output times; the
+//! two agree to ~1e-4 relative, the error of RocketPy's linear interpolation between its steps).
+//! Inertia of the grain stack about its centre (grain centres fixed, spaced `h_0 + s_g`):
+//! `I11_p = N m_g [(R_o² + r²)/4 + h²/12] + m_g Σ d_i²`, `d_i = (i − (N−1)/2)(h_0 + s_g)`;
+//! `I33_p = ½ m_p (R_o² + r²)`.
+
+use karman_math::{Extrapolation, Interpolation, Table1};
+
+use crate::propellant::{finite, non_negative, positive};
+use crate::{PropellantModel, PropellantTables, PropulsionError, ThrustCurve};
+
+/// Largest spacing of the propellant tables of a solid motor, s.
+pub const GRID_STEP: f64 = 0.005;
+
+/// Bound on the table size for very long burns: the spacing grows beyond [`GRID_STEP`] so
+/// that the grid holds at most about this many points besides the thrust nodes.
+const MAX_GRID_POINTS: f64 = 50_000.0;
+
+/// BATES grain geometry and material (RocketPy `SolidMotor` grain arguments).
+#[derive(Debug, Clone, PartialEq)]
+pub struct BatesGrains {
+    /// Number of grains `N`.
+    pub number: u32,
+    /// Grain density `ρ_g`, kg/m³.
+    pub density: f64,
+    /// Outer radius `R_o`, m.
+    pub outer_radius: f64,
+    /// Initial bore radius `r_0`, m.
+    pub initial_inner_radius: f64,
+    /// Initial grain height `h_0`, m.
+    pub initial_height: f64,
+    /// Axial gap between grains `s_g`, m.
+    pub separation: f64,
+    /// Centre of mass of the grain stack, m, motor coordinates (constant).
+    pub center_of_mass_position: f64,
+    /// Nozzle throat radius, m (RocketPy default 0.01; used only for `Kn`).
+    pub throat_radius: f64,
+    /// Burn only on the bore (heights constant), RocketPy `only_radial_burn`.
+    pub only_radial_burn: bool,
+}
+
+/// Bore radius and height of every grain at one instant.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct GrainState {
+    /// Bore radius `r`, m.
+    pub inner_radius: f64,
+    /// Grain height `h`, m.
+    pub height: f64,
+}
+
+impl BatesGrains {
+    /// Volume of one grain in the state `s`, m³.
+    #[must_use]
+    pub fn grain_volume(&self, s: GrainState) -> f64 {
+        std::f64::consts::PI * (self.outer_radius.powi(2) - s.inner_radius.powi(2)) * s.height
+    }
+
+    /// Total burning area of the `N` grains, m² (`2πrh` per grain with `only_radial_burn`).
+    #[must_use]
+    pub fn burn_area(&self, s: GrainState) -> f64 {
+        let per_grain = if self.only_radial_burn {
+            s.inner_radius * s.height
+        } else {
+            self.outer_radius.powi(2) - s.inner_radius.powi(2) + s.inner_radius * s.height
+        };
+        2.0 * std::f64::consts::PI * per_grain * f64::from(self.number)
+    }
+
+    /// Klemmung `Kn = A_b / A_t` (burning area over throat area).
+    #[must_use]
+    pub fn kn(&self, s: GrainState) -> f64 {
+        self.burn_area(s) / (std::f64::consts::PI * self.throat_radius.powi(2))
+    }
+
+    /// The grain state holding `propellant_mass` kg of propellant (inverse of the regression;
+    /// masses above the initial one give the initial state, zero or less the burnt-out one).
+    #[must_use]
+    pub fn state_for_mass(&self, propellant_mass: f64) -> GrainState {
+        let (ro, r0, h0) = (
+            self.outer_radius,
+            self.initial_inner_radius,
+            self.initial_height,
+        );
+        let volume = propellant_mass / (f64::from(self.number) * self.density);
+        let initial = GrainState {
+            inner_radius: r0,
+            height: h0,
+        };
+        if volume >= self.grain_volume(initial) {
+            return initial;
+        }
+        if self.only_radial_burn {
+            let r = (ro * ro - volume.max(0.0) / (std::f64::consts::PI * h0))
+                .max(0.0)
+                .sqrt();
+            return GrainState {
+                inner_radius: r.min(ro),
+                height: h0,
+            };
+        }
+        let state = |r: f64| GrainState {
+            inner_radius: r,
+            height: h0 - 2.0 * (r - r0),
+        };
+        let r_end = ro.min(r0 + h0 / 2.0);
+        if volume <= 0.0 {
+            return state(r_end);
+        }
+        // Bisection on the decreasing cubic V(r): robust and exact to the last bit.
+        let (mut lo, mut hi) = (r0, r_end);
+        for _ in 0..200 {
+            let mid = 0.5 * (lo + hi);
+            if mid <= lo || mid >= hi {
+                break;
+            }
+            if self.grain_volume(state(mid)) > volume {
+                lo = mid;
+            } else {
+                hi = mid;
+            }
+        }
+        state(0.5 * (lo + hi))
+    }
+
+    /// Propellant inertia `(I11_p, I33_p)` about the grain-stack centre, kg·m², for the state
+    /// `s` holding `propellant_mass` kg.
+    #[must_use]
+    pub fn inertia(&self, s: GrainState, propellant_mass: f64) -> (f64, f64) {
+        let n = f64::from(self.number);
+        let grain_mass = propellant_mass / n;
+        let (ro2, r2) = (self.outer_radius.powi(2), s.inner_radius.powi(2));
+        let one_grain = grain_mass * ((ro2 + r2) / 4.0 + s.height.powi(2) / 12.0);
+        let pitch = self.initial_height + self.separation;
+        let half = (n - 1.0) / 2.0;
+        let spread: f64 = (0..self.number)
+            .map(|i| ((f64::from(i) - half) * pitch).powi(2))
+            .sum();
+        (
+            n * one_grain + grain_mass * spread,
+            0.5 * propellant_mass * (ro2 + r2),
+        )
+    }
+}
+
+impl PropellantModel for BatesGrains {
+    fn initial_mass(&self) -> f64 {
+        let initial = GrainState {
+            inner_radius: self.initial_inner_radius,
+            height: self.initial_height,
+        };
+        f64::from(self.number) * self.density * self.grain_volume(initial)
+    }
+
+    fn validate(&self) -> Result<(), PropulsionError> {
+        if self.number == 0 {
+            return Err(PropulsionError::InvalidParameter {
+                name: "grain_number",
+                value: 0.0,
+                reason: "must be at least 1",
+            });
+        }
+        positive("grain_density", self.density)?;
+        positive("grain_outer_radius", self.outer_radius)?;
+        non_negative("grain_initial_inner_radius", self.initial_inner_radius)?;
+        if self.initial_inner_radius >= self.outer_radius {
+            return Err(PropulsionError::InvalidParameter {
+                name: "grain_initial_inner_radius",
+                value: self.initial_inner_radius,
+                reason: "must be smaller than grain_outer_radius",
+            });
+        }
+        positive("grain_initial_height", self.initial_height)?;
+        non_negative("grain_separation", self.separation)?;
+        finite(
+            "grains_center_of_mass_position",
+            self.center_of_mass_position,
+        )?;
+        positive("throat_radius", self.throat_radius)
+    }
+
+    fn tables(
+        &self,
+        thrust: &ThrustCurve,
+        exhaust_velocity: f64,
+    ) -> Result<PropellantTables, PropulsionError> {
+        let m0 = self.initial_mass();
+        let curve = thrust.table();
+        let mass_at = |t_prev: f64, m_prev: f64, t: f64| {
+            m_prev - curve.integral(t_prev, t) / exhaust_velocity
+        };
+        let mut times = Vec::new();
+        let mut masses = Vec::new();
+        let nodes = curve.xs();
+        let (start, end) = curve.domain();
+        let step = GRID_STEP.max((end - start) / MAX_GRID_POINTS);
+        times.push(nodes[0]);
+        masses.push(m0);
+        'nodes: for pair in nodes.windows(2) {
+            let (a, b) = (pair[0], pair[1]);
+            let pieces = ((b - a) / step).ceil().max(1.0) as usize;
+            for k in 1..=pieces {
+                let t = if k == pieces {
+                    b
+                } else {
+                    a + (b - a) * k as f64 / pieces as f64
+                };
+                let (t_prev, m_prev) = (times[times.len() - 1], masses[masses.len() - 1]);
+                let m = mass_at(t_prev, m_prev, t);
+                if m > 0.0 {
+                    times.push(t);
+                    masses.push(m);
+                    continue;
+                }
+                // Grain consumed inside (t_prev, t]: find the instant and stop there.
+                let (mut lo, mut hi) = (t_prev, t);
+                for _ in 0..200 {
+                    let mid = 0.5 * (lo + hi);
+                    if mid <= lo || mid >= hi {
+                        break;
+                    }
+                    if mass_at(t_prev, m_prev, mid) > 0.0 {
+                        lo = mid;
+                    } else {
+                        hi = mid;
+                    }
+                }
+                times.push(hi);
+                masses.push(0.0);
+                break 'nodes;
+            }
+        }
+        let mut i11 = Vec::with_capacity(times.len());
+        let mut i33 = Vec::with_capacity(times.len());
+        for &m in &masses {
+            let (a, c) = self.inertia(self.state_for_mass(m), m);
+            i11.push(a);
+            i33.push(c);
+        }
+        let com = vec![self.center_of_mass_position; times.len()];
+        let table = |what, ys| {
+            Table1::new(
+                times.clone(),
+                ys,
+                Interpolation::Linear,
+                Extrapolation::Constant,
+            )
+            .map_err(PropulsionError::table(what))
+        };
+        Ok(PropellantTables {
+            mass: table("propellant mass", masses)?,
+            center_of_mass: table("propellant centre of mass", com)?,
+            i11: table("propellant I11", i11)?,
+            i33: table("propellant I33", i33)?,
+        })
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn calisto() -> BatesGrains {
+        BatesGrains {
+            number: 5,
+            density: 1815.0,
+            outer_radius: 0.033,
+            initial_inner_radius: 0.015,
+            initial_height: 0.12,
+            separation: 0.005,
+            center_of_mass_position: 0.397,
+            throat_radius: 0.011,
+            only_radial_burn: false,
+        }
+    }
+
+    #[test]
+    fn regression_inverts_volume_exactly() {
+        let g = calisto();
+        let m0 = g.initial_mass();
+        // physics.md §6.4: Calisto m_p0 = 2.955912 kg.
+        assert!((m0 - 2.955_912).abs() < 5e-7, "{m0}");
+        for frac in [1.0, 0.8, 0.5, 0.1, 1e-6] {
+            let s = g.state_for_mass(frac * m0);
+            let back = 5.0 * 1815.0 * g.grain_volume(s);
+            assert!((back - frac * m0).abs() <= 1e-12 * m0, "{frac}: {back}");
+            // ḣ = −2ṙ ⇒ h − h0 = −2 (r − r0)
+            assert!(((s.height - 0.12) + 2.0 * (s.inner_radius - 0.015)).abs() < 1e-15);
+        }
+        let radial = BatesGrains {
+            only_radial_burn: true,
+            ..calisto()
+        };
+        let s = radial.state_for_mass(0.5 * m0);
+        assert!((s.height - 0.12).abs() < 1e-15);
+        assert!((5.0 * 1815.0 * radial.grain_volume(s) - 0.5 * m0).abs() < 1e-12);
+    }
+
+    #[test]
+    fn inertia_matches_hand_formula_for_one_grain() {
+        let g = BatesGrains {
+            number: 1,
+            ..calisto()
+        };
+        let s = GrainState {
+            inner_radius: 0.02,
+            height: 0.1,
+        };
+        let (i11, i33) = g.inertia(s, 2.0);
+        let r2 = 0.033f64.powi(2) + 0.02f64.powi(2);
+        assert!((i11 - 2.0 * (r2 / 4.0 + 0.01 / 12.0)).abs() < 1e-15);
+        assert!((i33 - r2).abs() < 1e-15);
+    }
+
+    #[test]
+    fn tables_follow_the_impulse_and_stop_when_the_grain_is_gone() {
+        use crate::{ThrustData, ThrustFormat, ThrustOptions, ThrustSource};
+        // 95 N·s in total, with a negative tail: the grain is consumed when ∫T dt = 95 N·s,
+        // at t = 1 + u with 50u² − 100u + 45 = 0, u = 1 − √0.1.
+        let data = ThrustData {
+            source_name: "test".into(),
+            format: ThrustFormat::Inline,
+            times: vec![0.0, 1.0, 2.0, 2.5],
+            thrusts: vec![0.0, 100.0, 0.0, -20.0],
+            header: None,
+        };
+        let curve = ThrustCurve::new(
+            &ThrustSource::Data(Box::new(data)),
+            &ThrustOptions::default(),
+        )
+        .unwrap();
+        let g = calisto();
+        let m0 = g.initial_mass();
+        let ve = curve.total_impulse() / m0;
+        let tables = g.tables(&curve, ve).unwrap();
+        let (_, end) = tables.mass.domain();
+        assert!(
+            (end - (2.0 - 0.1f64.sqrt())).abs() < 1e-12,
+            "burn-out at {end}"
+        );
+        assert!(tables.mass.eval(end).abs() < 1e-300 && tables.mass.eval(2.4).abs() < 1e-300);
+        assert!(
+            tables
+                .mass
+                .xs()
+                .windows(2)
+                .all(|w| w[1] - w[0] <= GRID_STEP + 1e-12)
+        );
+        // m_p(0.5) = m0 − (½·0.5·50 N·s)/v̄_e, exact at a grid node.
+        assert!((tables.mass.eval(0.5) - (m0 - 12.5 / ve)).abs() < 1e-12 * m0);
+        assert!(tables.mass.ys().windows(2).all(|w| w[1] <= w[0]));
+    }
+
+    #[test]
+    fn rejects_bad_geometry() {
+        let g = BatesGrains {
+            initial_inner_radius: 0.04,
+            ..calisto()
+        };
+        assert!(matches!(
+            g.validate(),
+            Err(PropulsionError::InvalidParameter {
+                name: "grain_initial_inner_radius",
+                ..
+            })
+        ));
+        let g = BatesGrains {
+            density: f64::NAN,
+            ..calisto()
+        };
+        assert!(g.validate().is_err());
+        assert!(calisto().validate().is_ok());
+    }
+}

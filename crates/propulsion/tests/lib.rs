@@ -1,0 +1,6 @@
+//! Integration tests of karman-propulsion (one binary, one module per topic).
+
+mod motors;
+mod parsers;
+mod thrust_files;
+mod validate_calisto;
