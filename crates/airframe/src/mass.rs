@@ -1,0 +1,294 @@
+//! Time-dependent mass properties of the rocket with its motor (physics.md §5.3–§5.5).
+//!
+//! RocketPy forms these quantities with `Function` arithmetic (RocketPy `Rocket.evaluate_*`):
+//! when every operand is a table on the SAME abscissae, the result is a new table of the
+//! node-wise values with the first operand's interpolation; otherwise it is a pointwise
+//! formula of the operands. Solid motors give tables on one common time grid (so the
+//! CM-offset `c(t)`, which is a ratio, is interpolated linearly between exact node values),
+//! generic motors mix grids (so everything is pointwise). [`MassModel`] reproduces both.
+//!
+//! Derivatives are those of RocketPy 1.13's complex-step differentiation
+//! (`Function.differentiate_complex_step`): its evaluator picks the interval from the REAL
+//! part of `x + i·h` with `bisect_left`, so at a node the slope is that of the interval to the
+//! left, at the first node that of the first interval, at the last node that of the last
+//! interval, and 0 outside under constant or zero extrapolation — exactly
+//! [`Table1::derivative`]. Second derivatives (`Function.differentiate(order=2)`) are the
+//! table's own for a table and a central difference with step 1e-6 for a pointwise formula.
+
+use karman_math::Table1;
+
+use crate::error::AirframeError;
+use crate::motor::MotorProperties;
+
+/// Mass properties of rocket + motor as functions of time, allocation-free to evaluate.
+#[derive(Debug, Clone, PartialEq)]
+pub(crate) struct MassModel {
+    /// csys_r.
+    csys: f64,
+    /// csys_r · csys_m.
+    s: f64,
+    motor_position: f64,
+    /// Rocket mass without motor.
+    rocket_mass: f64,
+    /// m_r z_r + m_md z_mdc (user coordinates).
+    dry_moment: f64,
+    /// m_dry = m_r + m_md.
+    pub dry_mass: f64,
+    /// z_CDM, user coordinates.
+    pub cdm: f64,
+    /// Dry inertia about the CDM, `(I11, I22, I33, I12, I13, I23)`.
+    pub dry_inertia: [f64; 6],
+    motor: MotorProperties,
+    /// `1 / v̄_e`, 0 when the motor has no valid exhaust velocity.
+    inverse_exhaust_velocity: f64,
+    /// Node-wise tables (common grid of the propellant tables), if RocketPy builds them so.
+    nodal_offset: Option<Table1>,
+    nodal_center_of_mass: Option<Table1>,
+    nodal_i11: Option<Table1>,
+}
+
+/// Whether two tables share their abscissae exactly, strictly increasing (RocketPy's
+/// node-wise arithmetic; a table with a repeated abscissa is evaluated pointwise instead).
+fn same_grid(a: &Table1, b: &Table1) -> bool {
+    a.xs().windows(2).all(|w| w[0] < w[1])
+        && a.xs().len() == b.xs().len()
+        && a.xs()
+            .iter()
+            .zip(b.xs())
+            .all(|(x, y)| x.to_bits() == y.to_bits())
+}
+
+impl MassModel {
+    /// Builds the model (physics.md §5.3, §5.5).
+    pub(crate) fn new(
+        csys: f64,
+        rocket_mass: f64,
+        rocket_com: f64,
+        rocket_inertia: [f64; 6],
+        motor_position: f64,
+        motor: MotorProperties,
+        warnings: &mut Vec<String>,
+    ) -> Result<Self, AirframeError> {
+        let s = csys * motor.coordinate_system_sign;
+        let m_md = motor.dry_mass;
+        let z_mdc = motor_position + s * motor.center_of_dry_mass;
+        let dry_mass = rocket_mass + m_md;
+        let dry_moment = rocket_mass * rocket_com + m_md * z_mdc;
+        let cdm = dry_moment / dry_mass;
+        let mi = motor.dry_inertia;
+        let ri = rocket_inertia;
+        let (dr, dm) = (rocket_com - cdm, z_mdc - cdm);
+        let dry_inertia = [
+            ri[0] + rocket_mass * dr * dr + mi[0] + m_md * dm * dm,
+            ri[1] + rocket_mass * dr * dr + mi[1] + m_md * dm * dm,
+            ri[2] + mi[2],
+            ri[3] + mi[3],
+            ri[4] + mi[4],
+            ri[5] + mi[5],
+        ];
+        let ve = motor.exhaust_velocity;
+        let inverse_exhaust_velocity = if ve.is_finite() && ve > 0.0 {
+            1.0 / ve
+        } else {
+            if motor.thrust.ys().iter().any(|&t| t != 0.0) {
+                warnings.push(format!(
+                    "motor: exhaust velocity {ve} m/s is not positive; the mass flow rate is \
+                     taken as zero"
+                ));
+            }
+            0.0
+        };
+        let mut model = MassModel {
+            csys,
+            s,
+            motor_position,
+            rocket_mass,
+            dry_moment,
+            dry_mass,
+            cdm,
+            dry_inertia,
+            motor,
+            inverse_exhaust_velocity,
+            nodal_offset: None,
+            nodal_center_of_mass: None,
+            nodal_i11: None,
+        };
+        let m = &model.motor;
+        if same_grid(&m.propellant_center_of_mass, &m.propellant_mass) {
+            let cpm = &m.propellant_center_of_mass;
+            let xs = cpm.xs().to_vec();
+            let nodal = |f: &dyn Fn(f64) -> f64, quantity: &'static str| {
+                let ys = xs.iter().map(|&t| f(t)).collect();
+                Table1::new(xs.clone(), ys, cpm.interpolation(), cpm.extrapolation()).map_err(
+                    |source| AirframeError::Table {
+                        component: "rocket".to_owned(),
+                        quantity,
+                        source,
+                    },
+                )
+            };
+            let offset = nodal(&|t| model.offset_pointwise(t), "com_to_cdm")?;
+            let center = nodal(&|t| model.center_of_mass_pointwise(t), "center_of_mass")?;
+            let i11 = if same_grid(&m.propellant_i11, &m.propellant_mass) {
+                let i = &m.propellant_i11;
+                let ys = i.xs().iter().map(|&t| model.i11_pointwise(t)).collect();
+                Some(
+                    Table1::new(i.xs().to_vec(), ys, i.interpolation(), i.extrapolation())
+                        .map_err(|source| AirframeError::Table {
+                            component: "rocket".to_owned(),
+                            quantity: "inertia I11",
+                            source,
+                        })?,
+                )
+            } else {
+                None
+            };
+            model.nodal_offset = Some(offset);
+            model.nodal_center_of_mass = Some(center);
+            model.nodal_i11 = i11;
+        }
+        Ok(model)
+    }
+
+    /// The motor data.
+    pub(crate) fn motor(&self) -> &MotorProperties {
+        &self.motor
+    }
+
+    /// Propellant CM in user coordinates, z_pc(t).
+    #[inline]
+    pub(crate) fn propellant_position(&self, t: f64) -> f64 {
+        self.motor_position + self.s * self.motor.propellant_center_of_mass.eval(t)
+    }
+
+    /// Motor-frame point → user coordinates.
+    #[inline]
+    pub(crate) fn motor_to_user(&self, z_motor: f64) -> f64 {
+        self.motor_position + self.s * z_motor
+    }
+
+    /// m(t).
+    #[inline]
+    pub(crate) fn total_mass(&self, t: f64) -> f64 {
+        self.dry_mass + self.motor.propellant_mass.eval(t)
+    }
+
+    /// Signed ṁ(t) = −T(t)/v̄_e.
+    #[inline]
+    pub(crate) fn mass_flow_rate(&self, t: f64) -> f64 {
+        -self.motor.thrust.eval(t) * self.inverse_exhaust_velocity
+    }
+
+    /// m̈(t): slope of ṁ (segment slope of the thrust table).
+    #[inline]
+    pub(crate) fn mass_flow_rate_derivative(&self, t: f64) -> f64 {
+        -self.motor.thrust.derivative(t) * self.inverse_exhaust_velocity
+    }
+
+    fn offset_pointwise(&self, t: f64) -> f64 {
+        let mp = self.motor.propellant_mass.eval(t);
+        -self.csys * (self.propellant_position(t) - self.cdm) * mp / (self.dry_mass + mp)
+    }
+
+    fn center_of_mass_pointwise(&self, t: f64) -> f64 {
+        let mp = self.motor.propellant_mass.eval(t);
+        (self.dry_moment + mp * self.propellant_position(t)) / (self.dry_mass + mp)
+    }
+
+    fn i11_pointwise(&self, t: f64) -> f64 {
+        let mp = self.motor.propellant_mass.eval(t);
+        let d = self.cdm - self.propellant_position(t);
+        self.dry_inertia[0] + self.motor.propellant_i11.eval(t) + mp * d * d
+    }
+
+    /// c(t), RocketPy's `com_to_cdm_function` (physics.md §5.4, RocketPy sign).
+    #[inline]
+    pub(crate) fn com_to_cdm(&self, t: f64) -> f64 {
+        match &self.nodal_offset {
+            Some(table) => table.eval(t),
+            None => self.offset_pointwise(t),
+        }
+    }
+
+    /// ċ(t), RocketPy's complex-step derivative of c.
+    #[inline]
+    pub(crate) fn com_to_cdm_rate(&self, t: f64) -> f64 {
+        if let Some(table) = &self.nodal_offset {
+            return table.derivative(t);
+        }
+        let m = &self.motor;
+        let mp = m.propellant_mass.eval(t);
+        let mp_dot = m.propellant_mass.derivative(t);
+        let zp_dot = self.s * m.propellant_center_of_mass.derivative(t);
+        let total = self.dry_mass + mp;
+        -self.csys
+            * (zp_dot * mp / total
+                + (self.propellant_position(t) - self.cdm) * mp_dot * self.dry_mass
+                    / (total * total))
+    }
+
+    /// c̈(t), RocketPy's `differentiate(t, order=2)` of c: the table's second derivative
+    /// (0 for a linear table), or a central difference with step 1e-6 of the formula.
+    #[inline]
+    pub(crate) fn com_to_cdm_accel(&self, t: f64) -> f64 {
+        const H: f64 = 1e-6;
+        match &self.nodal_offset {
+            Some(table) => table.second_derivative(t),
+            None => {
+                (self.offset_pointwise(t + H) - 2.0 * self.offset_pointwise(t)
+                    + self.offset_pointwise(t - H))
+                    / (H * H)
+            }
+        }
+    }
+
+    /// Centre of mass z_CM(t), user coordinates.
+    #[inline]
+    pub(crate) fn center_of_mass(&self, t: f64) -> f64 {
+        match &self.nodal_center_of_mass {
+            Some(table) => table.eval(t),
+            None => self.center_of_mass_pointwise(t),
+        }
+    }
+
+    /// Inertia about the CDM, `(I11, I22, I33, I12, I13, I23)` (physics.md §5.5).
+    #[inline]
+    pub(crate) fn inertia(&self, t: f64) -> [f64; 6] {
+        let i11 = match &self.nodal_i11 {
+            Some(table) => table.eval(t),
+            None => self.i11_pointwise(t),
+        };
+        let d = &self.dry_inertia;
+        [
+            i11,
+            i11 - d[0] + d[1],
+            d[2] + self.motor.propellant_i33.eval(t),
+            d[3],
+            d[4],
+            d[5],
+        ]
+    }
+
+    /// İ(t) component-wise, RocketPy's complex-step derivative.
+    #[inline]
+    pub(crate) fn inertia_rate(&self, t: f64) -> [f64; 6] {
+        let m = &self.motor;
+        let i11 = match &self.nodal_i11 {
+            Some(table) => table.derivative(t),
+            None => {
+                let mp = m.propellant_mass.eval(t);
+                let d = self.cdm - self.propellant_position(t);
+                let d_dot = -self.s * m.propellant_center_of_mass.derivative(t);
+                m.propellant_i11.derivative(t)
+                    + m.propellant_mass.derivative(t) * d * d
+                    + 2.0 * mp * d * d_dot
+            }
+        };
+        [i11, i11, m.propellant_i33.derivative(t), 0.0, 0.0, 0.0]
+    }
+
+    /// Rocket mass without motor.
+    pub(crate) fn rocket_mass(&self) -> f64 {
+        self.rocket_mass
+    }
+}

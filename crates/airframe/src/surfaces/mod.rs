@@ -1,0 +1,295 @@
+//! Aerodynamic surfaces: nose cones, fin sets and tails.
+//!
+//! Each surface is placed at a reference point of the rocket's user axis (physics.md §2.5:
+//! the nose tip, the fin root-chord leading edge, the tail's forward end); its CP lies
+//! `cp_local` aft of that point. [`Surface`] carries what the equations of motion need (CP in
+//! body axes from the CDM, reference area, Mach-dependent coefficients) plus its resolved
+//! geometry for reports and drawings.
+
+mod fins;
+mod nose;
+mod tail;
+
+use std::f64::consts::PI;
+
+pub use fins::{
+    Airfoil, AngleUnit, EllipticalFinsSpec, FinAerodynamics, FreeFormFinsSpec, Sweep,
+    TrapezoidalFinsSpec,
+};
+pub use nose::{NoseConeSpec, NoseKind};
+pub use tail::TailSpec;
+
+use crate::error::{AirframeError, finite};
+
+/// What kind of surface to build, with its dimensions.
+#[derive(Debug, Clone, PartialEq)]
+pub enum SurfaceSpec {
+    /// A nose cone (reference point: its tip).
+    Nose(NoseConeSpec),
+    /// Trapezoidal fins (reference point: the root-chord leading edge).
+    TrapezoidalFins(TrapezoidalFinsSpec),
+    /// Elliptical fins (reference point: the root-chord leading edge).
+    EllipticalFins(EllipticalFinsSpec),
+    /// Free-form fins (reference point: the root-chord leading edge).
+    FreeFormFins(FreeFormFinsSpec),
+    /// A conical tail or transition (reference point: its forward end).
+    Tail(TailSpec),
+}
+
+/// One named surface of the rocket, at `position` on the user axis.
+#[derive(Debug, Clone, PartialEq)]
+pub struct SurfaceInput {
+    /// The user's name for it (the mission table name).
+    pub name: String,
+    /// Position of its reference point in the rocket's user coordinates (m).
+    pub position: f64,
+    /// Kind and dimensions.
+    pub spec: SurfaceSpec,
+}
+
+/// The resolved shape of a surface, in its local frame (x aft of the reference point).
+#[derive(Debug, Clone, PartialEq)]
+pub enum Geometry {
+    /// A nose cone.
+    Nose {
+        /// Profile family.
+        kind: NoseKind,
+        /// Effective length (m), shortened by a bluff tip.
+        length: f64,
+        /// Base radius (m).
+        base_radius: f64,
+        /// Profile `(x aft of the tip, radius)`.
+        profile: Vec<[f64; 2]>,
+    },
+    /// A fin set.
+    Fins {
+        /// Number of fins.
+        n: u32,
+        /// Root chord (m).
+        root_chord: f64,
+        /// Span (m).
+        span: f64,
+        /// Body radius at the fins (m).
+        body_radius: f64,
+        /// One fin's outline `(x aft of the root leading edge, y outward from the root)`.
+        outline: Vec<[f64; 2]>,
+    },
+    /// A conical tail or transition.
+    Tail {
+        /// Radius at the forward end (m).
+        top_radius: f64,
+        /// Radius at the aft end (m).
+        bottom_radius: f64,
+        /// Length (m).
+        length: f64,
+    },
+}
+
+impl Geometry {
+    /// Axial extent of the surface aft of its reference point (m).
+    #[must_use]
+    pub fn length(&self) -> f64 {
+        match self {
+            Geometry::Nose { length, .. } | Geometry::Tail { length, .. } => *length,
+            Geometry::Fins { outline, .. } => {
+                let max = outline
+                    .iter()
+                    .map(|p| p[0])
+                    .fold(f64::NEG_INFINITY, f64::max);
+                let min = outline.iter().map(|p| p[0]).fold(f64::INFINITY, f64::min);
+                max - min.min(0.0)
+            }
+        }
+    }
+
+    /// The largest radius the surface reaches (m): base, bottom/top or body + span.
+    #[must_use]
+    pub fn max_radius(&self) -> f64 {
+        match self {
+            Geometry::Nose { base_radius, .. } => *base_radius,
+            Geometry::Tail {
+                top_radius,
+                bottom_radius,
+                ..
+            } => top_radius.max(*bottom_radius),
+            Geometry::Fins {
+                body_radius, span, ..
+            } => body_radius + span,
+        }
+    }
+}
+
+/// Mach dependence of a surface's coefficients.
+#[derive(Debug, Clone, PartialEq)]
+enum Aero {
+    /// Constant normal-force slope (nose, tail), no roll terms.
+    Constant(f64),
+    /// A fin set (closed forms in Mach).
+    Fins(Box<FinAerodynamics>),
+}
+
+/// One aerodynamic surface as the equations of motion use it (physics.md §7.2).
+#[derive(Debug, Clone, PartialEq)]
+pub struct Surface {
+    /// The user's name for it.
+    pub name: String,
+    /// Reference point in the rocket's user coordinates (m).
+    pub position: f64,
+    /// CP distance aft of the reference point, local frame (m).
+    pub cp_local: f64,
+    /// CP in body axes measured from the centre of dry mass, `p` of physics.md §2.5 (m).
+    pub cp_body: [f64; 3],
+    /// Reference area `π r_s²` of the coefficients (m²).
+    pub reference_area: f64,
+    /// Reference radius r_s (m): the nose base radius, the fins' body radius, or the tail's
+    /// reference radius.
+    pub radius: f64,
+    /// Resolved shape.
+    pub geometry: Geometry,
+    aero: Aero,
+}
+
+impl Surface {
+    /// Builds a surface; `cdm` is the rocket's centre of dry mass and `csys` its coordinate
+    /// system sign. Returns the surface and any warnings about its geometry.
+    ///
+    /// # Errors
+    /// [`AirframeError`] for impossible dimensions.
+    pub(crate) fn build(
+        input: &SurfaceInput,
+        rocket_radius: f64,
+        csys: f64,
+        cdm: f64,
+    ) -> Result<(Surface, Vec<String>), AirframeError> {
+        let name = input.name.as_str();
+        let position = finite(name, "position", input.position)?;
+        let (geometry, aero, cp_local, radius, warnings) = match &input.spec {
+            SurfaceSpec::Nose(spec) => {
+                let (n, w) = nose::build(name, spec, rocket_radius)?;
+                // Rocket.add_nose passes the base radius as the reference radius: CNα = 2.
+                let g = Geometry::Nose {
+                    kind: n.kind,
+                    length: n.length,
+                    base_radius: n.base_radius,
+                    profile: n.profile,
+                };
+                (g, Aero::Constant(2.0), n.cp_local, n.base_radius, w)
+            }
+            SurfaceSpec::TrapezoidalFins(spec) => {
+                fin_parts(fins::trapezoidal(name, spec, rocket_radius)?)
+            }
+            SurfaceSpec::EllipticalFins(spec) => {
+                fin_parts(fins::elliptical(name, spec, rocket_radius)?)
+            }
+            SurfaceSpec::FreeFormFins(spec) => {
+                fin_parts(fins::free_form(name, spec, rocket_radius)?)
+            }
+            SurfaceSpec::Tail(spec) => {
+                let t = tail::build(name, spec, rocket_radius)?;
+                let g = Geometry::Tail {
+                    top_radius: t.top_radius,
+                    bottom_radius: t.bottom_radius,
+                    length: t.length,
+                };
+                (
+                    g,
+                    Aero::Constant(t.cn_alpha),
+                    t.cp_local,
+                    t.reference_radius,
+                    Vec::new(),
+                )
+            }
+        };
+        let surface = Surface {
+            name: input.name.clone(),
+            position,
+            cp_local,
+            cp_body: [0.0, 0.0, csys * (position - cdm) - cp_local],
+            reference_area: PI * radius * radius,
+            radius,
+            geometry,
+            aero,
+        };
+        Ok((surface, warnings))
+    }
+
+    /// Normal-force slope CNα(Mach) per radian on [`Surface::reference_area`].
+    #[inline]
+    #[must_use]
+    pub fn cn_alpha(&self, mach: f64) -> f64 {
+        match &self.aero {
+            Aero::Constant(c) => *c,
+            Aero::Fins(f) => f.cn_alpha(mach),
+        }
+    }
+
+    /// Roll forcing coefficient `C_lf,δ(Mach) · δ` (cant folded in; 0 for non-fins), such
+    /// that the forcing moment is `½ρV² A d · roll_forcing(Mach)` (physics.md §7.6).
+    #[inline]
+    #[must_use]
+    pub fn roll_forcing(&self, mach: f64) -> f64 {
+        match &self.aero {
+            Aero::Constant(_) => 0.0,
+            Aero::Fins(f) => f.roll_forcing_derivative(mach) * f.cant_angle,
+        }
+    }
+
+    /// Roll damping coefficient derivative `C_ld,ω(Mach)` (0 for non-fins); the damping
+    /// moment is `½ρV² A d · C_ld,ω · ω3 d / (2V)` (physics.md §7.6).
+    #[inline]
+    #[must_use]
+    pub fn roll_damping(&self, mach: f64) -> f64 {
+        match &self.aero {
+            Aero::Constant(_) => 0.0,
+            Aero::Fins(f) => f.roll_damping_derivative(mach),
+        }
+    }
+
+    /// Reference length `d = 2 r_s` of the roll coefficients (m).
+    #[inline]
+    #[must_use]
+    pub fn reference_length(&self) -> f64 {
+        2.0 * self.radius
+    }
+
+    /// The CP in the rocket's user coordinates, `z_u − csys · cp_local` (physics.md §2.5).
+    #[must_use]
+    pub fn cp_user(&self, csys: f64) -> f64 {
+        self.position - csys * self.cp_local
+    }
+
+    /// The fin-set constants (K_f, K_d, G, Y_ma, ...) if this surface is a fin set.
+    #[must_use]
+    pub fn fin_aerodynamics(&self) -> Option<&FinAerodynamics> {
+        match &self.aero {
+            Aero::Fins(f) => Some(f),
+            Aero::Constant(_) => None,
+        }
+    }
+
+    /// True for fin sets.
+    #[must_use]
+    pub fn is_fin_set(&self) -> bool {
+        matches!(self.aero, Aero::Fins(_))
+    }
+}
+
+type Parts = (Geometry, Aero, f64, f64, Vec<String>);
+
+fn fin_parts((set, warnings): (fins::FinSet, Vec<String>)) -> Parts {
+    let radius = set.aero.body_radius;
+    let g = Geometry::Fins {
+        n: set.aero.n,
+        root_chord: set.root_chord,
+        span: set.span,
+        body_radius: radius,
+        outline: set.outline,
+    };
+    (
+        g,
+        Aero::Fins(Box::new(set.aero)),
+        set.cp_local,
+        radius,
+        warnings,
+    )
+}

@@ -1,0 +1,6 @@
+//! Integration tests of karman-airframe (one binary; one module per topic).
+
+mod calisto;
+mod common;
+mod robustness;
+mod rocketpy_surfaces;

@@ -1,0 +1,219 @@
+//! `[rocket]` → [`karman_airframe::Rocket`]: the airframe, its surfaces, parachutes and rail
+//! buttons, with the mission's motor converted to [`MotorProperties`] (the airframe crate
+//! may not depend on the propulsion crate).
+
+use karman_airframe::{
+    self as airframe, Airfoil, AirframeError, CoordinateSystem, MotorProperties, NoseKind,
+    Parachute, RailButtons, Rocket, RocketInputs, SurfaceInput, Trigger,
+};
+use karman_propulsion::Motor;
+
+use crate::schema::{self, AngleUnit, RocketCoordinateSystem, SurfaceSpec};
+use crate::{Mission, MissionError};
+
+/// The motor's tables and constants as the airframe needs them (contract of
+/// `karman_airframe::MotorProperties`).
+pub fn motor_properties(motor: &Motor) -> MotorProperties {
+    let (i11, i33) = motor.propellant_inertia();
+    MotorProperties {
+        thrust: motor.thrust_table().clone(),
+        burn_start: motor.burn_start(),
+        burn_out: motor.burn_out(),
+        exhaust_velocity: motor.exhaust_velocity(),
+        propellant_mass: motor.propellant_mass().clone(),
+        propellant_center_of_mass: motor.propellant_center_of_mass().clone(),
+        propellant_i11: i11.clone(),
+        propellant_i33: i33.clone(),
+        dry_mass: motor.dry_mass(),
+        center_of_dry_mass: motor.center_of_dry_mass(),
+        dry_inertia: motor.dry_inertia(),
+        nozzle_position: motor.nozzle_position(),
+        nozzle_radius: motor.nozzle_radius(),
+        coordinate_system_sign: motor.coordinate_system_sign(),
+        reference_pressure: motor.reference_pressure(),
+    }
+}
+
+/// Builds the rocket of `mission` with `motor` at `rocket.motor_position`.
+///
+/// # Errors
+/// [`MissionError::Curve`] for a drag or airfoil curve that is not a table,
+/// [`MissionError::Model`] (section `rocket`, `rocket.surfaces.<name>`,
+/// `rocket.parachutes.<name>` or `rocket.rail_buttons`) for impossible airframe inputs.
+pub fn build_rocket(mission: &Mission, motor: &Motor) -> Result<Rocket, MissionError> {
+    let spec = &mission.spec.rocket;
+    let curve = |key: String, c: &schema::Curve| {
+        c.to_linear_table(&mission.dir)
+            .map_err(|source| MissionError::Curve {
+                file: mission.path.clone(),
+                key,
+                source,
+            })
+    };
+    let model = |section: String, source: AirframeError| MissionError::Model {
+        file: mission.path.clone(),
+        section,
+        source: Box::new(source),
+    };
+
+    let mut surfaces = Vec::with_capacity(spec.surfaces.len());
+    for (name, surface) in &spec.surfaces {
+        let airfoil = match surface.airfoil() {
+            Some(a) => Some(Airfoil {
+                lift_curve: curve(format!("rocket.surfaces.{name}.airfoil"), &a.lift)?,
+                unit: match a.unit {
+                    AngleUnit::Radians => airframe::AngleUnit::Radians,
+                    AngleUnit::Degrees => airframe::AngleUnit::Degrees,
+                },
+            }),
+            None => None,
+        };
+        surfaces.push(surface_input(name, surface, airfoil));
+    }
+
+    let mut parachutes = Vec::with_capacity(spec.parachutes.len());
+    for (name, p) in &spec.parachutes {
+        let chute = Parachute::new(&airframe::ParachuteSpec {
+            name: name.clone(),
+            cd_s: p.cd_s,
+            trigger: match p.trigger {
+                schema::Trigger::Apogee => Trigger::Apogee,
+                schema::Trigger::HeightAboveGround(h) => Trigger::HeightAboveGround(h),
+            },
+            sampling_rate: Some(p.sampling_rate),
+            lag: Some(p.lag),
+            noise: Some(p.noise),
+            radius: p.radius,
+            height: p.height,
+            porosity: p.porosity,
+            drag_coefficient: None,
+        })
+        .map_err(|e| model(format!("rocket.parachutes.{name}"), e))?;
+        parachutes.push(chute);
+    }
+
+    let rail_buttons = match &spec.rail_buttons {
+        Some(b) => Some(
+            RailButtons::new(b.upper_position, b.lower_position, b.angular_position_deg)
+                .map_err(|e| model("rocket.rail_buttons".to_owned(), e))?,
+        ),
+        None => None,
+    };
+
+    let inputs = RocketInputs {
+        radius: spec.radius,
+        mass: spec.mass,
+        inertia: spec.inertia.0,
+        center_of_mass_without_motor: spec.center_of_mass_without_motor,
+        coordinate_system: match spec.coordinate_system {
+            RocketCoordinateSystem::TailToNose => CoordinateSystem::TailToNose,
+            RocketCoordinateSystem::NoseToTail => CoordinateSystem::NoseToTail,
+        },
+        power_off_drag: curve("rocket.power_off_drag".to_owned(), &spec.power_off_drag)?,
+        power_on_drag: curve("rocket.power_on_drag".to_owned(), &spec.power_on_drag)?,
+        motor_position: spec.motor_position,
+        surfaces,
+        parachutes,
+        rail_buttons,
+    };
+    Rocket::new(inputs, motor_properties(motor)).map_err(|e| {
+        let section = match &e {
+            AirframeError::NotFinite { component, .. }
+            | AirframeError::NotPositive { component, .. }
+            | AirframeError::Negative { component, .. }
+            | AirframeError::OutOfRange { component, .. }
+            | AirframeError::Geometry { component, .. }
+            | AirframeError::InertiaComponents { component, .. }
+            | AirframeError::Table { component, .. } => {
+                if spec.surfaces.contains_key(component) {
+                    format!("rocket.surfaces.{component}")
+                } else if component == "motor" {
+                    "motor".to_owned()
+                } else {
+                    "rocket".to_owned()
+                }
+            }
+        };
+        model(section, e)
+    })
+}
+
+/// The airframe's description of one mission surface.
+fn surface_input(name: &str, surface: &SurfaceSpec, airfoil: Option<Airfoil>) -> SurfaceInput {
+    let (position, spec) = match surface {
+        SurfaceSpec::Nose(s) => (
+            s.position,
+            airframe::SurfaceSpec::Nose(airframe::NoseConeSpec {
+                length: s.length,
+                kind: match s.kind {
+                    schema::NoseKind::Conical => NoseKind::Conical,
+                    // RocketPy's NoseCone treats "ogive" as a tangent ogive.
+                    schema::NoseKind::Ogive | schema::NoseKind::Tangent => NoseKind::Ogive,
+                    schema::NoseKind::VonKarman => NoseKind::VonKarman,
+                    schema::NoseKind::LvHaack => NoseKind::LvHaack,
+                    schema::NoseKind::Parabolic => NoseKind::Parabolic,
+                    schema::NoseKind::Elliptical => NoseKind::Elliptical,
+                    schema::NoseKind::PowerSeries => {
+                        // Validation guarantees `power` for this kind; a missing one becomes NaN,
+                        // which the airframe rejects with a located error.
+                        NoseKind::PowerSeries(s.power.unwrap_or(f64::NAN))
+                    }
+                },
+                base_radius: s.base_radius,
+                bluffness: s.bluffness.unwrap_or(0.0),
+            }),
+        ),
+        SurfaceSpec::TrapezoidalFins(s) => (
+            s.position,
+            airframe::SurfaceSpec::TrapezoidalFins(airframe::TrapezoidalFinsSpec {
+                n: s.n,
+                root_chord: s.root_chord,
+                tip_chord: s.tip_chord,
+                span: s.span,
+                sweep: match s.sweep {
+                    None => airframe::Sweep::Default,
+                    Some(schema::Sweep::Length(l)) => airframe::Sweep::Length(l),
+                    Some(schema::Sweep::AngleDeg(a)) => airframe::Sweep::AngleDeg(a),
+                },
+                cant_angle_deg: s.cant_angle_deg,
+                radius: s.radius,
+                airfoil,
+            }),
+        ),
+        SurfaceSpec::EllipticalFins(s) => (
+            s.position,
+            airframe::SurfaceSpec::EllipticalFins(airframe::EllipticalFinsSpec {
+                n: s.n,
+                root_chord: s.root_chord,
+                span: s.span,
+                cant_angle_deg: s.cant_angle_deg,
+                radius: s.radius,
+                airfoil,
+            }),
+        ),
+        SurfaceSpec::FreeFormFins(s) => (
+            s.position,
+            airframe::SurfaceSpec::FreeFormFins(airframe::FreeFormFinsSpec {
+                n: s.n,
+                shape_points: s.shape_points.clone(),
+                cant_angle_deg: s.cant_angle_deg,
+                radius: s.radius,
+                airfoil,
+            }),
+        ),
+        SurfaceSpec::Tail(s) => (
+            s.position,
+            airframe::SurfaceSpec::Tail(airframe::TailSpec {
+                top_radius: s.top_radius,
+                bottom_radius: s.bottom_radius,
+                length: s.length,
+                radius: None,
+            }),
+        ),
+    };
+    SurfaceInput {
+        name: name.to_owned(),
+        position,
+        spec,
+    }
+}

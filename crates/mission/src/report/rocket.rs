@@ -1,0 +1,327 @@
+//! Rocket reports: the `rocket` figures of `reference.json` ([`RocketReport`]) and a profile
+//! drawing of the rocket to scale with its CG and CP ([`draw_rocket_svg`], like RocketPy's
+//! `Rocket.draw()`).
+
+use std::fmt::{self, Write as _};
+
+use karman_airframe::{Geometry, Rocket};
+use serde::Serialize;
+
+use crate::Mission;
+
+/// One surface's normal-force slope and CP (`rocket.surfaces[]` of `reference.json`).
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct SurfaceReport {
+    /// The mission's table name of the surface.
+    pub name: String,
+    /// CNα at Mach 0 per radian, on the surface's own reference area π r_s².
+    pub cn_alpha_mach0: f64,
+    /// CP in rocket (user) coordinates, m.
+    pub cp_m: f64,
+}
+
+/// The rocket's mass and stability figures (`rocket` of `reference.json`).
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct RocketReport {
+    /// Total mass at t = 0, kg.
+    pub total_mass_t0_kg: f64,
+    /// Rocket + motor dry mass, kg.
+    pub dry_mass_kg: f64,
+    /// Centre of mass at t = 0, rocket coordinates, m.
+    pub center_of_mass_t0_m: f64,
+    /// Rocket CP at Mach 0, rocket coordinates, m.
+    pub cp_position_mach0_m: f64,
+    /// Static margin at t = 0, calibres.
+    pub static_margin_t0: f64,
+    /// Static margin at burn-out, calibres.
+    pub static_margin_burnout: f64,
+    /// Every surface, in the mission's order.
+    pub surfaces: Vec<SurfaceReport>,
+}
+
+impl RocketReport {
+    /// The figures of `rocket`.
+    #[must_use]
+    pub fn new(rocket: &Rocket) -> Self {
+        let csys = rocket.csys();
+        RocketReport {
+            total_mass_t0_kg: rocket.total_mass(0.0),
+            dry_mass_kg: rocket.dry_mass(),
+            center_of_mass_t0_m: rocket.center_of_mass(0.0),
+            cp_position_mach0_m: rocket.cp_position(0.0),
+            static_margin_t0: rocket.static_margin(0.0),
+            static_margin_burnout: rocket.static_margin(rocket.burn_out()),
+            surfaces: rocket
+                .surfaces()
+                .iter()
+                .map(|s| SurfaceReport {
+                    name: s.name.clone(),
+                    cn_alpha_mach0: s.cn_alpha(0.0),
+                    cp_m: s.cp_user(csys),
+                })
+                .collect(),
+        }
+    }
+}
+
+impl fmt::Display for RocketReport {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        let rows = [
+            ("total mass at t = 0", self.total_mass_t0_kg, "kg"),
+            ("dry mass (rocket + motor)", self.dry_mass_kg, "kg"),
+            ("centre of mass at t = 0", self.center_of_mass_t0_m, "m"),
+            ("centre of pressure, Mach 0", self.cp_position_mach0_m, "m"),
+            ("static margin at t = 0", self.static_margin_t0, "cal"),
+            (
+                "static margin at burn-out",
+                self.static_margin_burnout,
+                "cal",
+            ),
+        ];
+        writeln!(f, "Rocket")?;
+        for (label, value, unit) in rows {
+            writeln!(f, "  {label:<28} {value:>12.6} {unit}")?;
+        }
+        let width = self
+            .surfaces
+            .iter()
+            .map(|s| s.name.len())
+            .max()
+            .unwrap_or(0)
+            .max(7);
+        writeln!(
+            f,
+            "  {:<width$} {:>14} {:>12}",
+            "surface", "CNα(M=0) /rad", "CP (m)"
+        )?;
+        for s in &self.surfaces {
+            writeln!(
+                f,
+                "  {:<width$} {:>14.6} {:>12.6}",
+                s.name, s.cn_alpha_mach0, s.cp_m
+            )?;
+        }
+        Ok(())
+    }
+}
+
+/// Drawing width in px of [`draw_rocket_svg`].
+const WIDTH: f64 = 1000.0;
+/// Margin around the drawing, px.
+const MARGIN: f64 = 40.0;
+
+/// Escapes text for SVG.
+fn escape(text: &str) -> String {
+    text.replace('&', "&amp;")
+        .replace('<', "&lt;")
+        .replace('>', "&gt;")
+        .replace('"', "&quot;")
+}
+
+/// A side view of the rocket to scale, as SVG text: nose, body tubes, tails, fins (top and
+/// bottom), nozzle exit, rail buttons, the centre of mass at t = 0 (CG) and of dry mass
+/// (CDM), and the centre of pressure at Mach 0 (CP). The horizontal axis is the rocket's user
+/// axis growing to the right, as in RocketPy's `Rocket.draw()`.
+#[must_use]
+pub fn draw_rocket_svg(mission: &Mission, rocket: &Rocket) -> String {
+    let csys = rocket.csys();
+    let radius = rocket.radius();
+    // Axial extent and tallest radial extent of everything drawn, in user coordinates.
+    let mut zs = vec![
+        rocket.nozzle_position(),
+        rocket.center_of_mass(0.0),
+        rocket.cp_position(0.0),
+    ];
+    let mut tallest = radius;
+    for s in rocket.surfaces() {
+        zs.push(s.position);
+        zs.push(s.position - csys * s.geometry.length());
+        tallest = tallest.max(s.geometry.max_radius());
+    }
+    let zmin = zs.iter().copied().fold(f64::INFINITY, f64::min);
+    let zmax = zs.iter().copied().fold(f64::NEG_INFINITY, f64::max);
+    let span = (zmax - zmin).max(1e-6);
+    let scale = (WIDTH - 2.0 * MARGIN) / span;
+    let height = 2.0 * (tallest * scale + MARGIN) + 60.0;
+    let axis = height / 2.0 + 10.0;
+    let x = |z: f64| MARGIN + (z - zmin) * scale;
+    let y = |r: f64| axis - r * scale;
+
+    let mut svg = String::new();
+    let _ = writeln!(
+        svg,
+        r#"<svg xmlns="http://www.w3.org/2000/svg" width="{WIDTH}" height="{height:.1}" viewBox="0 0 {WIDTH} {height:.1}" font-family="sans-serif" font-size="12">"#
+    );
+    let title = mission
+        .spec
+        .name
+        .clone()
+        .unwrap_or_else(|| mission.path.display().to_string());
+    let _ = writeln!(
+        svg,
+        r#"<text x="{MARGIN}" y="20" font-size="14">{} — static margin {:.2} cal at t = 0</text>"#,
+        escape(&title),
+        rocket.static_margin(0.0)
+    );
+    let _ = writeln!(
+        svg,
+        r##"<line x1="{:.2}" y1="{axis:.2}" x2="{:.2}" y2="{axis:.2}" stroke="#999" stroke-dasharray="6 4"/>"##,
+        MARGIN / 2.0,
+        WIDTH - MARGIN / 2.0
+    );
+    let polygon = |svg: &mut String, points: &[(f64, f64)], fill: &str| {
+        let pts: Vec<String> = points
+            .iter()
+            .map(|(a, b)| format!("{a:.2},{b:.2}"))
+            .collect();
+        let _ = writeln!(
+            svg,
+            r##"<polygon points="{}" fill="{fill}" stroke="#222" stroke-width="1"/>"##,
+            pts.join(" ")
+        );
+    };
+
+    // Shells (nose, tails) from front to aft, to lay body tubes between them.
+    let body = |z: f64| csys * (z - rocket.center_of_dry_mass());
+    let mut shells: Vec<(f64, f64, f64, f64)> = Vec::new(); // (front z, aft z, front r, aft r)
+    let mut aft_most = rocket.nozzle_position();
+    for s in rocket.surfaces() {
+        let aft = s.position - csys * s.geometry.length();
+        if body(aft) < body(aft_most) {
+            aft_most = aft;
+        }
+        match &s.geometry {
+            Geometry::Nose {
+                profile,
+                base_radius,
+                length,
+                ..
+            } => {
+                let mut pts: Vec<(f64, f64)> = profile
+                    .iter()
+                    .map(|p| (x(s.position - csys * p[0]), y(p[1])))
+                    .collect();
+                pts.extend(
+                    profile
+                        .iter()
+                        .rev()
+                        .map(|p| (x(s.position - csys * p[0]), y(-p[1]))),
+                );
+                polygon(&mut svg, &pts, "#d9e4f5");
+                shells.push((s.position, s.position - csys * length, 0.0, *base_radius));
+            }
+            Geometry::Tail {
+                top_radius,
+                bottom_radius,
+                length,
+            } => {
+                let (z0, z1) = (s.position, s.position - csys * length);
+                let pts = [
+                    (x(z0), y(*top_radius)),
+                    (x(z1), y(*bottom_radius)),
+                    (x(z1), y(-bottom_radius)),
+                    (x(z0), y(-top_radius)),
+                ];
+                polygon(&mut svg, &pts, "#d9e4f5");
+                shells.push((z0, z1, *top_radius, *bottom_radius));
+            }
+            Geometry::Fins { .. } => {}
+        }
+    }
+    shells.sort_by(|a, b| body(b.0).total_cmp(&body(a.0)));
+    let mut tube_start: Option<(f64, f64)> = None; // (z, radius)
+    for &(front, aft, _, aft_radius) in &shells {
+        if let Some((z0, r)) = tube_start {
+            if body(z0) > body(front) {
+                let pts = [
+                    (x(z0), y(r)),
+                    (x(front), y(r)),
+                    (x(front), y(-r)),
+                    (x(z0), y(-r)),
+                ];
+                polygon(&mut svg, &pts, "#eef2f8");
+            }
+        }
+        tube_start = Some((aft, aft_radius));
+    }
+    if let Some((z0, r)) = tube_start {
+        if body(z0) > body(aft_most) {
+            let pts = [
+                (x(z0), y(r)),
+                (x(aft_most), y(r)),
+                (x(aft_most), y(-r)),
+                (x(z0), y(-r)),
+            ];
+            polygon(&mut svg, &pts, "#eef2f8");
+        }
+    }
+    // Fins on top of the tubes, one above and one below the axis.
+    for s in rocket.surfaces() {
+        if let Geometry::Fins {
+            outline,
+            body_radius,
+            ..
+        } = &s.geometry
+        {
+            for side in [1.0, -1.0] {
+                let pts: Vec<(f64, f64)> = outline
+                    .iter()
+                    .map(|p| (x(s.position - csys * p[0]), y(side * (body_radius + p[1]))))
+                    .collect();
+                polygon(&mut svg, &pts, "#b8c9e6");
+            }
+        }
+    }
+    // Nozzle exit.
+    let noz = rocket.nozzle_position();
+    let rn = rocket.motor().nozzle_radius;
+    let _ = writeln!(
+        svg,
+        r##"<line x1="{:.2}" y1="{:.2}" x2="{:.2}" y2="{:.2}" stroke="#c03" stroke-width="3"><title>nozzle exit</title></line>"##,
+        x(noz),
+        y(rn),
+        x(noz),
+        y(-rn)
+    );
+    if let Some(b) = rocket.rail_buttons() {
+        for z in [b.upper_position, b.lower_position] {
+            let _ = writeln!(
+                svg,
+                r##"<rect x="{:.2}" y="{:.2}" width="6" height="5" fill="#555"><title>rail button</title></rect>"##,
+                x(z) - 3.0,
+                y(radius) - 5.0
+            );
+        }
+    }
+    // Markers: CG (black/white quartered disc), CDM (hollow), CP (red disc with dot).
+    let marker_y = axis;
+    let cg = x(rocket.center_of_mass(0.0));
+    let _ = writeln!(
+        svg,
+        r##"<g><title>centre of mass, t = 0</title><circle cx="{cg:.2}" cy="{marker_y:.2}" r="7" fill="#fff" stroke="#000"/><path d="M{cg:.2},{marker_y:.2} h7 a7,7 0 0,0 -7,-7 z M{cg:.2},{marker_y:.2} h-7 a7,7 0 0,0 7,7 z" fill="#000"/></g>"##
+    );
+    let cdm = x(rocket.center_of_dry_mass());
+    let _ = writeln!(
+        svg,
+        r##"<circle cx="{cdm:.2}" cy="{marker_y:.2}" r="4" fill="none" stroke="#000"><title>centre of dry mass</title></circle>"##
+    );
+    let cp = x(rocket.cp_position(0.0));
+    let _ = writeln!(
+        svg,
+        r##"<g><title>centre of pressure, Mach 0</title><circle cx="{cp:.2}" cy="{marker_y:.2}" r="7" fill="#c03" fill-opacity="0.8"/><circle cx="{cp:.2}" cy="{marker_y:.2}" r="2" fill="#fff"/></g>"##
+    );
+    let label_y = height - 12.0;
+    let _ = writeln!(
+        svg,
+        r#"<text x="{cg:.2}" y="{label_y:.2}" text-anchor="middle">CG {:.3} m</text>"#,
+        rocket.center_of_mass(0.0)
+    );
+    let _ = writeln!(
+        svg,
+        r##"<text x="{cp:.2}" y="{:.2}" text-anchor="middle" fill="#c03">CP {:.3} m</text>"##,
+        label_y - 16.0,
+        rocket.cp_position(0.0)
+    );
+    svg.push_str("</svg>\n");
+    svg
+}
