@@ -1,0 +1,580 @@
+//! The launch environment the equations of motion query: every quantity is a table on
+//! height built once, so each query is a binary search and a polynomial step (no allocation).
+//!
+//! How each quantity is derived follows RocketPy 1.13's `Function` arithmetic
+//! (`Environment.calculate_density_profile`, `calculate_speed_of_sound_profile`,
+//! `calculate_dynamic_viscosity`; physics.md §4.1–§4.2):
+//! - density `ρ = P/(R T)`: node by node (then interpolated like the pressure) when pressure
+//!   and temperature are tables on the same heights, pointwise otherwise (e.g. the ISA, whose
+//!   pressure has 100 nodes and temperature 9);
+//! - speed of sound `√(γ R T)` and Sutherland viscosity `B T^1.5/(T + S)`: node by node when
+//!   the temperature is a table (the ISA and every tabulated profile), pointwise for a
+//!   constant temperature.
+
+use crate::AtmosError;
+use crate::curve::{Curve, sorted_unique};
+use crate::earth::{Datum, earth_rotation_enu, somigliana_gravity};
+use crate::isa::IsaTables;
+use crate::profile::Profiles;
+use karman_math::{Extrapolation, Interpolation, PhysicalConstants, Table1};
+
+/// The atmosphere model of an environment.
+#[derive(Debug, Clone, PartialEq, Default)]
+pub enum Atmosphere {
+    /// ISO 2533 standard atmosphere as RocketPy discretises it, no wind.
+    #[default]
+    Standard,
+    /// Tabulated profiles (custom, sounding, reanalysis, forecast, ensemble member).
+    Profiles(Profiles),
+}
+
+/// The gravity model.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub enum Gravity {
+    /// WGS-84 Somigliana normal gravity with height (physics.md §4.3), sampled at 100 points
+    /// on [0, 80 km] into a natural cubic spline with constant extrapolation.
+    #[default]
+    Somigliana,
+    /// A constant (m/s²).
+    Constant(f64),
+}
+
+/// Everything needed to build an [`Environment`].
+#[derive(Debug, Clone, PartialEq, Default)]
+pub struct EnvironmentConfig {
+    /// Launch latitude (deg, north positive).
+    pub latitude_deg: f64,
+    /// Launch longitude (deg, east positive).
+    pub longitude_deg: f64,
+    /// Launch elevation (m ASL).
+    pub elevation: f64,
+    /// Geodetic datum (sets the local Earth radius).
+    pub datum: Datum,
+    /// Gravity model.
+    pub gravity: Gravity,
+    /// Atmosphere model.
+    pub atmosphere: Atmosphere,
+}
+
+/// Every height-dependent quantity of an [`Environment`] at one height ([`Environment::sample`]).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct AtmosphereSample {
+    /// Pressure (Pa).
+    pub pressure: f64,
+    /// Temperature (K).
+    pub temperature: f64,
+    /// Density (kg/m³).
+    pub density: f64,
+    /// Speed of sound (m/s).
+    pub speed_of_sound: f64,
+    /// Dynamic viscosity (Pa·s).
+    pub dynamic_viscosity: f64,
+    /// Wind `[east, north]` (m/s).
+    pub wind: [f64; 2],
+    /// Gravity (m/s²).
+    pub gravity: f64,
+}
+
+/// A quantity derived from pressure and temperature: a table, or computed at each query.
+#[derive(Debug, Clone, PartialEq)]
+enum Derived {
+    Table(Table1),
+    Pointwise,
+}
+
+/// The launch environment (contracts.md "karman-atmos").
+#[derive(Debug, Clone, PartialEq)]
+pub struct Environment {
+    elevation: f64,
+    latitude_deg: f64,
+    longitude_deg: f64,
+    datum: Datum,
+    datum_radius: f64,
+    earth_rotation: [f64; 3],
+    pressure: Table1,
+    temperature: Table1,
+    density: Derived,
+    speed_of_sound: Derived,
+    viscosity: Derived,
+    wind_u: Table1,
+    wind_v: Table1,
+    gravity: Table1,
+    barometric_height: Table1,
+    gas_constant: f64,
+    gamma: f64,
+    sutherland_b: f64,
+    sutherland_s: f64,
+}
+
+impl Environment {
+    /// Builds the environment and all its tables.
+    ///
+    /// # Errors
+    /// Invalid site values (non-finite, latitude outside ±90°), unusable profiles (empty,
+    /// non-finite, a non-positive temperature or pressure, a custom pressure that is not
+    /// invertible).
+    pub fn new(config: &EnvironmentConfig, c: &PhysicalConstants) -> Result<Self, AtmosError> {
+        let check = |what: &str, v: f64, ok: bool, reason: &str| {
+            if v.is_finite() && ok {
+                Ok(())
+            } else {
+                Err(AtmosError::InvalidValue {
+                    what: what.into(),
+                    value: v,
+                    reason: reason.into(),
+                })
+            }
+        };
+        let lat = config.latitude_deg;
+        check(
+            "latitude",
+            lat,
+            (-90.0..=90.0).contains(&lat),
+            "must be within ±90°",
+        )?;
+        check("longitude", config.longitude_deg, true, "must be finite")?;
+        check("elevation", config.elevation, true, "must be finite")?;
+
+        let isa = IsaTables::new(c).map_err(|error| AtmosError::Table {
+            source_name: "standard atmosphere".into(),
+            quantity: "ISA".into(),
+            error,
+        })?;
+        let lin = Interpolation::Linear;
+        let hold = Extrapolation::Constant;
+
+        // Pressure, temperature, winds, barometric height; `*_nodes` are the heights of a
+        // tabulated profile (None: constant, which RocketPy holds as a callable).
+        let (pressure, p_nodes, temperature, t_nodes, wind_u, wind_v, barometric_height) =
+            match &config.atmosphere {
+                Atmosphere::Standard => {
+                    let zero = Curve::Constant(0.0).to_table("standard", "wind", lin, hold)?;
+                    let p_nodes = Some(isa.pressure.xs().to_vec());
+                    let t_nodes = Some(isa.temperature.xs().to_vec());
+                    (
+                        isa.pressure,
+                        p_nodes,
+                        isa.temperature,
+                        t_nodes,
+                        zero.clone(),
+                        zero,
+                        isa.barometric_height,
+                    )
+                }
+                Atmosphere::Profiles(p) => {
+                    let src = p.source_name.as_str();
+                    let (pressure, p_nodes) = match &p.pressure {
+                        None => {
+                            let nodes = Some(isa.pressure.xs().to_vec());
+                            (isa.pressure.clone(), nodes)
+                        }
+                        Some(curve) => {
+                            positive(curve, src, "pressure")?;
+                            (curve.to_table(src, "pressure", lin, hold)?, curve.heights())
+                        }
+                    };
+                    let (temperature, t_nodes) = match &p.temperature {
+                        None => {
+                            let nodes = Some(isa.temperature.xs().to_vec());
+                            (isa.temperature.clone(), nodes)
+                        }
+                        Some(curve) => {
+                            positive(curve, src, "temperature")?;
+                            (
+                                curve.to_table(src, "temperature", lin, hold)?,
+                                curve.heights(),
+                            )
+                        }
+                    };
+                    let wind_u = p.wind_u.to_table(src, "wind_u", lin, hold)?;
+                    let wind_v = p.wind_v.to_table(src, "wind_v", lin, hold)?;
+                    let baro = barometric(p, &pressure, &isa)?;
+                    (
+                        pressure,
+                        p_nodes,
+                        temperature,
+                        t_nodes,
+                        wind_u,
+                        wind_v,
+                        baro,
+                    )
+                }
+            };
+
+        let r = c.air_gas_constant;
+        let gamma = c.heat_capacity_ratio;
+        let (b, s) = (c.sutherland_b, c.sutherland_s);
+        let node_table = |base: &Table1, f: &dyn Fn(f64, f64) -> f64| {
+            let ys: Vec<f64> = base
+                .xs()
+                .iter()
+                .zip(base.ys())
+                .map(|(&x, &y)| f(x, y))
+                .collect();
+            Table1::new(
+                base.xs().to_vec(),
+                ys,
+                base.interpolation(),
+                base.extrapolation(),
+            )
+            .map_err(|error| AtmosError::Table {
+                source_name: "environment".into(),
+                quantity: "derived".into(),
+                error,
+            })
+        };
+        let density = match (&p_nodes, &t_nodes) {
+            (Some(a), Some(t)) if a == t => {
+                let temps = temperature.clone();
+                Derived::Table(node_table(&pressure, &|x, p| p / (r * temps.eval(x)))?)
+            }
+            _ => Derived::Pointwise,
+        };
+        let (speed_of_sound, viscosity) = if t_nodes.is_some() {
+            (
+                Derived::Table(node_table(&temperature, &|_, t| (gamma * r * t).sqrt())?),
+                Derived::Table(node_table(&temperature, &|_, t| b * t.powf(1.5) / (t + s))?),
+            )
+        } else {
+            (Derived::Pointwise, Derived::Pointwise)
+        };
+
+        let gravity = match config.gravity {
+            Gravity::Somigliana => Table1::sample(
+                |h| somigliana_gravity(lat, h, c),
+                0.0,
+                c.table_top_height,
+                100,
+                Interpolation::Spline,
+                Extrapolation::Constant,
+            ),
+            Gravity::Constant(g) => {
+                check("gravity", g, g > 0.0, "must be positive")?;
+                Table1::new(vec![0.0], vec![g], lin, hold)
+            }
+        }
+        .map_err(|error| AtmosError::Table {
+            source_name: "gravity".into(),
+            quantity: "gravity".into(),
+            error,
+        })?;
+
+        Ok(Environment {
+            elevation: config.elevation,
+            latitude_deg: lat,
+            longitude_deg: config.longitude_deg,
+            datum: config.datum,
+            datum_radius: config.datum.radius(lat, c),
+            earth_rotation: earth_rotation_enu(lat, c),
+            pressure,
+            temperature,
+            density,
+            speed_of_sound,
+            viscosity,
+            wind_u,
+            wind_v,
+            gravity,
+            barometric_height,
+            gas_constant: r,
+            gamma,
+            sutherland_b: b,
+            sutherland_s: s,
+        })
+    }
+
+    /// Launch elevation (m ASL).
+    #[inline]
+    #[must_use]
+    pub fn elevation(&self) -> f64 {
+        self.elevation
+    }
+
+    /// Launch latitude (deg).
+    #[inline]
+    #[must_use]
+    pub fn latitude_deg(&self) -> f64 {
+        self.latitude_deg
+    }
+
+    /// Launch longitude (deg).
+    #[inline]
+    #[must_use]
+    pub fn longitude_deg(&self) -> f64 {
+        self.longitude_deg
+    }
+
+    /// The geodetic datum.
+    #[inline]
+    #[must_use]
+    pub fn datum(&self) -> Datum {
+        self.datum
+    }
+
+    /// Air pressure (Pa) at height `z` (m ASL).
+    #[inline]
+    #[must_use]
+    pub fn pressure(&self, z: f64) -> f64 {
+        self.pressure.eval(z)
+    }
+
+    /// Air temperature (K) at height `z` (m ASL).
+    #[inline]
+    #[must_use]
+    pub fn temperature(&self, z: f64) -> f64 {
+        self.temperature.eval(z)
+    }
+
+    /// Air density (kg/m³) at height `z` (m ASL).
+    #[inline]
+    #[must_use]
+    pub fn density(&self, z: f64) -> f64 {
+        match &self.density {
+            Derived::Table(t) => t.eval(z),
+            Derived::Pointwise => self.pressure(z) / (self.gas_constant * self.temperature(z)),
+        }
+    }
+
+    /// Speed of sound (m/s) at height `z` (m ASL).
+    #[inline]
+    #[must_use]
+    pub fn speed_of_sound(&self, z: f64) -> f64 {
+        match &self.speed_of_sound {
+            Derived::Table(t) => t.eval(z),
+            Derived::Pointwise => (self.gamma * self.gas_constant * self.temperature(z)).sqrt(),
+        }
+    }
+
+    /// Dynamic viscosity (Pa·s) at height `z` (m ASL).
+    #[inline]
+    #[must_use]
+    pub fn dynamic_viscosity(&self, z: f64) -> f64 {
+        match &self.viscosity {
+            Derived::Table(t) => t.eval(z),
+            Derived::Pointwise => {
+                let t = self.temperature(z);
+                self.sutherland_b * t.powf(1.5) / (t + self.sutherland_s)
+            }
+        }
+    }
+
+    /// Wind velocity `[east u, north v]` (m/s) at height `z` (m ASL).
+    #[inline]
+    #[must_use]
+    pub fn wind(&self, z: f64) -> [f64; 2] {
+        [self.wind_u.eval(z), self.wind_v.eval(z)]
+    }
+
+    /// Gravity (m/s², positive down) at height `z` (m ASL).
+    #[inline]
+    #[must_use]
+    pub fn gravity(&self, z: f64) -> f64 {
+        self.gravity.eval(z)
+    }
+
+    /// Every height-dependent quantity at once (pressure and temperature looked up once and
+    /// shared by the pointwise-derived quantities); equal to the individual methods.
+    #[inline]
+    #[must_use]
+    pub fn sample(&self, z: f64) -> AtmosphereSample {
+        let pressure = self.pressure.eval(z);
+        let temperature = self.temperature.eval(z);
+        let density = match &self.density {
+            Derived::Table(t) => t.eval(z),
+            Derived::Pointwise => pressure / (self.gas_constant * temperature),
+        };
+        let speed_of_sound = match &self.speed_of_sound {
+            Derived::Table(t) => t.eval(z),
+            Derived::Pointwise => (self.gamma * self.gas_constant * temperature).sqrt(),
+        };
+        let dynamic_viscosity = match &self.viscosity {
+            Derived::Table(t) => t.eval(z),
+            Derived::Pointwise => {
+                self.sutherland_b * temperature.powf(1.5) / (temperature + self.sutherland_s)
+            }
+        };
+        AtmosphereSample {
+            pressure,
+            temperature,
+            density,
+            speed_of_sound,
+            dynamic_viscosity,
+            wind: self.wind(z),
+            gravity: self.gravity.eval(z),
+        }
+    }
+
+    /// Earth's rotation vector in the launch ENU frame, `Ω (0, cos φ, sin φ)` (rad/s).
+    #[inline]
+    #[must_use]
+    pub fn earth_rotation_enu(&self) -> [f64; 3] {
+        self.earth_rotation
+    }
+
+    /// Barometric height (m ASL) of a pressure (Pa), physics.md §4.4.
+    #[inline]
+    #[must_use]
+    pub fn barometric_height(&self, pressure: f64) -> f64 {
+        self.barometric_height.eval(pressure)
+    }
+
+    /// Local Earth radius of the datum at the launch latitude (m), physics.md §4.6.
+    #[inline]
+    #[must_use]
+    pub fn datum_radius(&self) -> f64 {
+        self.datum_radius
+    }
+}
+
+/// Rejects non-positive values of a pressure or temperature curve.
+fn positive(curve: &Curve, source_name: &str, quantity: &str) -> Result<(), AtmosError> {
+    let bad = match curve {
+        Curve::Constant(v) => (v.is_nan() || *v <= 0.0).then_some((0.0, *v)),
+        Curve::Points(p) => p
+            .iter()
+            .find(|[_, v]| v.is_nan() || *v <= 0.0)
+            .map(|[h, v]| (*h, *v)),
+    };
+    match bad {
+        Some((h, v)) => Err(AtmosError::InvalidValue {
+            what: format!("{source_name}: {quantity} at {h} m"),
+            value: v,
+            reason: "must be positive".into(),
+        }),
+        None => Ok(()),
+    }
+}
+
+/// The barometric-height table of a tabulated atmosphere (see [`Profiles::barometric_points`]).
+fn barometric(p: &Profiles, pressure: &Table1, isa: &IsaTables) -> Result<Table1, AtmosError> {
+    let src = p.source_name.as_str();
+    let table_err = |error| AtmosError::Table {
+        source_name: src.into(),
+        quantity: "barometric height".into(),
+        error,
+    };
+    if let Some(points) = &p.barometric_points {
+        let (ps, hs) = sorted_unique(points);
+        return Table1::new(ps, hs, Interpolation::Linear, Extrapolation::Natural)
+            .map_err(table_err);
+    }
+    match &p.pressure {
+        Some(Curve::Points(_)) if pressure.xs().len() > 1 => {
+            let (hs, ps) = (pressure.xs(), pressure.ys());
+            let rising = ps[1] > ps[0];
+            for k in 1..ps.len() {
+                if (ps[k] > ps[k - 1]) != rising || (ps[k] - ps[k - 1]).abs() <= 0.0 {
+                    return Err(AtmosError::NotInvertible {
+                        source_name: src.into(),
+                        height: hs[k],
+                    });
+                }
+            }
+            let mut pairs: Vec<[f64; 2]> = ps.iter().zip(hs).map(|(&p, &h)| [p, h]).collect();
+            if !rising {
+                pairs.reverse();
+            }
+            let (xs, ys): (Vec<f64>, Vec<f64>) = pairs.into_iter().map(|[a, b]| (a, b)).unzip();
+            Table1::new(xs, ys, pressure.interpolation(), pressure.extrapolation())
+                .map_err(table_err)
+        }
+        Some(Curve::Points(_)) => Err(AtmosError::NotInvertible {
+            source_name: src.into(),
+            height: pressure.xs()[0],
+        }),
+        _ => Ok(isa.barometric_height.clone()),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn isa_env() -> Environment {
+        let config = EnvironmentConfig {
+            latitude_deg: 32.990254,
+            longitude_deg: -106.974998,
+            elevation: 1400.0,
+            ..EnvironmentConfig::default()
+        };
+        Environment::new(&config, &PhysicalConstants::SI).expect("environment")
+    }
+
+    #[test]
+    fn isa_spot_values_match_rocketpy() {
+        // physics.md §4.1 spot values at 1400 m and §13 anchors at 4700 m (RocketPy 1.13).
+        let e = isa_env();
+        let rel = |a: f64, b: f64| ((a - b) / b).abs();
+        assert!(rel(e.pressure(1400.0), 85596.6788) < 1e-8);
+        assert!(rel(e.density(1400.0), 1.0685345) < 1e-7);
+        assert!(rel(e.speed_of_sound(1400.0), 334.54807) < 1e-7);
+        assert!(rel(e.dynamic_viscosity(1400.0), 1.742654e-5) < 1e-6);
+        assert!(rel(e.density(4700.0), 0.7605031) < 1e-7);
+        assert!(rel(e.speed_of_sound(4700.0), 321.00412) < 1e-7);
+        assert!(rel(e.gravity(1400.0), 9.7913331) < 2e-8);
+        assert!(rel(e.gravity(4700.0), 9.7811624) < 2e-8);
+        // Sea-level density of the docstring of calculate_density_profile.
+        assert!(rel(e.density(0.0), 1.225000018124288) < 1e-12);
+        assert!(
+            e.wind(1000.0).iter().all(|w| w.abs() < 1e-300),
+            "no wind in the ISA"
+        );
+    }
+
+    #[test]
+    fn sample_equals_the_individual_queries() {
+        let e = isa_env();
+        for z in [-500.0, 0.0, 1400.0, 9000.0, 90_000.0] {
+            let s = e.sample(z);
+            let same = |a: f64, b: f64| (a - b).abs() <= 1e-15 * b.abs();
+            assert!(same(s.pressure, e.pressure(z)) && same(s.density, e.density(z)));
+            assert!(same(s.temperature, e.temperature(z)));
+            assert!(same(s.speed_of_sound, e.speed_of_sound(z)));
+            assert!(same(s.dynamic_viscosity, e.dynamic_viscosity(z)));
+            assert!(same(s.gravity, e.gravity(z)));
+        }
+    }
+
+    #[test]
+    fn custom_tables_are_node_wise() {
+        let profiles = Profiles {
+            source_name: "inline".into(),
+            pressure: Some(Curve::Points(vec![[0.0, 100_000.0], [1000.0, 90_000.0]])),
+            temperature: Some(Curve::Points(vec![[0.0, 290.0], [1000.0, 280.0]])),
+            wind_u: Curve::Constant(5.0),
+            wind_v: Curve::Points(vec![[0.0, -2.0], [5000.0, -6.0]]),
+            barometric_points: None,
+        };
+        let config = EnvironmentConfig {
+            atmosphere: Atmosphere::Profiles(profiles),
+            ..Default::default()
+        };
+        let e = Environment::new(&config, &PhysicalConstants::SI).expect("environment");
+        let r = PhysicalConstants::SI.air_gas_constant;
+        let rho = 0.5 * (100_000.0 / (r * 290.0) + 90_000.0 / (r * 280.0));
+        assert!((e.density(500.0) - rho).abs() < 1e-12);
+        assert!((e.barometric_height(95_000.0) - 500.0).abs() < 1e-9);
+        assert!((e.wind(2500.0)[1] + 4.0).abs() < 1e-12);
+        assert!((e.wind(1e5)[0] - 5.0).abs() < 1e-12);
+    }
+
+    #[test]
+    fn bad_inputs_are_errors() {
+        let mut config = EnvironmentConfig {
+            latitude_deg: 95.0,
+            ..Default::default()
+        };
+        assert!(Environment::new(&config, &PhysicalConstants::SI).is_err());
+        config.latitude_deg = 0.0;
+        config.atmosphere = Atmosphere::Profiles(Profiles {
+            pressure: Some(Curve::Points(vec![[0.0, 1e5], [10.0, 1e5], [20.0, 9e4]])),
+            ..Profiles::wind_only("x.csv", Curve::Constant(0.0), Curve::Constant(0.0))
+        });
+        let e = Environment::new(&config, &PhysicalConstants::SI).expect_err("not invertible");
+        assert!(matches!(e, AtmosError::NotInvertible { .. }), "{e}");
+        config.atmosphere = Atmosphere::Profiles(Profiles {
+            temperature: Some(Curve::Constant(-3.0)),
+            ..Profiles::wind_only("x.csv", Curve::Constant(0.0), Curve::Constant(0.0))
+        });
+        assert!(Environment::new(&config, &PhysicalConstants::SI).is_err());
+    }
+}

@@ -1,0 +1,8 @@
+//! Integration tests of karman-atmos (one binary; one module per topic).
+
+mod common;
+#[cfg(feature = "fetch")]
+mod fetch;
+mod grids;
+mod parsers_never_panic;
+mod soundings;

@@ -1,0 +1,184 @@
+//! `[environment]` → [`karman_atmos::Environment`]: the site, the datum, gravity and the
+//! atmosphere model (standard, custom, sounding, reanalysis, forecast, ensemble) as RocketPy
+//! 1.13's `Environment` + `set_atmospheric_model` would build them.
+//!
+//! Choices documented here:
+//! - The mission's `elevation` is the launch elevation for every model. RocketPy replaces it
+//!   with a sounding's station elevation or a forecast's surface height; karman does not (the
+//!   mission states where the rocket stands).
+//! - Weather grids: the nearest time step to `date` (a tie goes to the earlier step), bilinear
+//!   in latitude/longitude (see `karman_atmos::grid`).
+//! - `max_expected_height` does not change the gravity table: RocketPy samples it on
+//!   0–80 000 m when the notebooks construct the environment (validation README caveat); it
+//!   only sets the default extent of the environment report.
+
+use crate::schema::{AtmosphereModel, Curve, Datum, SoundingFormat};
+use crate::{Mission, MissionError};
+use karman_atmos::{
+    AtmosError, Atmosphere, Environment, EnvironmentConfig, Gravity, GridDictionary, GridRequest,
+    Profiles, Sounding, WeatherGrid,
+};
+use karman_math::PhysicalConstants;
+
+/// Builds the launch environment of a mission.
+///
+/// # Errors
+/// [`MissionError::Model`] (section `environment` or `environment.atmosphere`) wrapping the
+/// [`AtmosError`]: an unreadable data file, a date or site outside a weather file, a malformed
+/// sounding or profile, ...
+pub fn build_environment(mission: &Mission) -> Result<Environment, MissionError> {
+    let constants = PhysicalConstants::SI;
+    let env = &mission.spec.environment;
+    let model_err = |section: &str, e: AtmosError| MissionError::Model {
+        file: mission.path.clone(),
+        section: section.into(),
+        source: Box::new(e),
+    };
+    let datum = match env.datum {
+        None | Some(Datum::Sirgas2000) => karman_atmos::Datum::Sirgas2000,
+        Some(Datum::Wgs84) => karman_atmos::Datum::Wgs84,
+        Some(Datum::Sad69) => karman_atmos::Datum::Sad69,
+        Some(Datum::Nad83) => karman_atmos::Datum::Nad83,
+    };
+    let gravity = env.gravity.map_or(Gravity::Somigliana, Gravity::Constant);
+    let atmosphere = build_atmosphere(mission, datum, &constants)
+        .map_err(|e| model_err("environment.atmosphere", e))?;
+    let config = EnvironmentConfig {
+        latitude_deg: env.latitude_deg,
+        longitude_deg: env.longitude_deg,
+        elevation: env.elevation,
+        datum,
+        gravity,
+        atmosphere,
+    };
+    Environment::new(&config, &constants).map_err(|e| model_err("environment", e))
+}
+
+/// Unix time (s, UTC) of the mission's date, if it has a full date-time with an offset.
+#[must_use]
+pub fn launch_unix_time(mission: &Mission) -> Option<f64> {
+    let dt = mission.spec.environment.date.as_ref()?;
+    let date = dt.date?;
+    let offset_minutes = match dt.offset? {
+        toml::value::Offset::Z => 0.0,
+        toml::value::Offset::Custom { minutes } => f64::from(minutes),
+    };
+    let (h, m, s) = dt.time.map_or((0, 0, 0.0), |t| {
+        let ns = f64::from(t.nanosecond.unwrap_or(0)) * 1e-9;
+        (
+            u32::from(t.hour),
+            u32::from(t.minute),
+            f64::from(t.second.unwrap_or(0)) + ns,
+        )
+    });
+    let local = karman_atmos::time::unix_seconds(
+        i64::from(date.year),
+        u32::from(date.month),
+        u32::from(date.day),
+        h,
+        m,
+        s,
+    );
+    Some(local - offset_minutes * 60.0)
+}
+
+fn build_atmosphere(
+    mission: &Mission,
+    datum: karman_atmos::Datum,
+    constants: &PhysicalConstants,
+) -> Result<Atmosphere, AtmosError> {
+    let env = &mission.spec.environment;
+    let spec = &env.atmosphere;
+    let radius = datum.radius(env.latitude_deg, constants);
+    let data_file = || -> Result<std::path::PathBuf, AtmosError> {
+        spec.file
+            .as_ref()
+            .map(|f| mission.resolve(f))
+            .ok_or_else(|| AtmosError::Empty {
+                source_name: mission.path.display().to_string(),
+                what: "`file` of [environment.atmosphere]".into(),
+            })
+    };
+    match spec.model {
+        AtmosphereModel::Standard => Ok(Atmosphere::Standard),
+        AtmosphereModel::Custom => {
+            let curve = |c: &Option<Curve>,
+                         what: &str|
+             -> Result<Option<karman_atmos::Curve>, AtmosError> {
+                c.as_ref()
+                    .map(|c| atmos_curve(mission, c, what))
+                    .transpose()
+            };
+            let zero = karman_atmos::Curve::Constant(0.0);
+            Ok(Atmosphere::Profiles(Profiles {
+                source_name: format!("{} [environment.atmosphere]", mission.path.display()),
+                pressure: curve(&spec.pressure, "pressure")?,
+                temperature: curve(&spec.temperature, "temperature")?,
+                wind_u: curve(&spec.wind_u, "wind_u")?.unwrap_or_else(|| zero.clone()),
+                wind_v: curve(&spec.wind_v, "wind_v")?.unwrap_or(zero),
+                barometric_points: None,
+            }))
+        }
+        AtmosphereModel::Sounding => {
+            let path = data_file()?;
+            let name = path.display().to_string();
+            let text = std::fs::read_to_string(&path).map_err(|e| AtmosError::Io {
+                file: name.clone(),
+                message: e.to_string(),
+            })?;
+            let sounding = match spec.format.unwrap_or(SoundingFormat::Wyoming) {
+                SoundingFormat::Wyoming => Sounding::parse_wyoming(&text, &name)?,
+                SoundingFormat::NoaaRuc => Sounding::parse_noaa_ruc(&text, &name)?,
+            };
+            Ok(Atmosphere::Profiles(sounding.profiles(radius)?))
+        }
+        AtmosphereModel::Reanalysis | AtmosphereModel::Forecast | AtmosphereModel::Ensemble => {
+            let path = data_file()?;
+            let name = path.display().to_string();
+            let unix_time =
+                launch_unix_time(mission).ok_or(AtmosError::DateRequired { file: name.clone() })?;
+            let dictionary = spec
+                .dictionary
+                .as_deref()
+                .map(GridDictionary::builtin)
+                .transpose()?;
+            let grid = WeatherGrid::open(&path)?;
+            let request = GridRequest {
+                dictionary,
+                unix_time,
+                latitude_deg: env.latitude_deg,
+                longitude_deg: env.longitude_deg,
+                member: spec.member.map(|m| m as usize),
+                earth_radius: radius,
+                standard_gravity: constants.standard_gravity,
+            };
+            Ok(Atmosphere::Profiles(
+                grid.profile(&request)?.profiles(&name),
+            ))
+        }
+    }
+}
+
+/// A mission curve of height as an atmosphere curve (files parsed by
+/// [`karman_atmos::parse_table`]).
+fn atmos_curve(
+    mission: &Mission,
+    curve: &Curve,
+    what: &str,
+) -> Result<karman_atmos::Curve, AtmosError> {
+    match curve {
+        Curve::Constant(v) => Ok(karman_atmos::Curve::Constant(*v)),
+        Curve::Points(p) => Ok(karman_atmos::Curve::Points(p.clone())),
+        Curve::File(f) => {
+            let path = mission.resolve(f);
+            let name = format!("{} ({what})", path.display());
+            let text = std::fs::read_to_string(&path).map_err(|e| AtmosError::Io {
+                file: name.clone(),
+                message: e.to_string(),
+            })?;
+            Ok(karman_atmos::Curve::Points(karman_atmos::parse_table(
+                &text, &name,
+            )?))
+        }
+    }
+}
