@@ -3,10 +3,15 @@
 //!
 //! - `ci`: everything CI checks — formatting, clippy with warnings denied, the whole test
 //!   suite, and the validation run when the validation data are present.
+//! - `validate [--data DIR]`: fly every validation mission in release and compare with
+//!   RocketPy 1.13 and the measured flights (see `validate.rs`).
+//! - `bench [FILTER]`: run the criterion benchmarks and print their medians.
 //! - `tidy`: repository rules that are not compiler checks (the crate layering of
 //!   ARCHITECTURE.md, read from `cargo metadata`).
 
+mod bench;
 mod tidy;
+mod validate;
 
 use std::path::{Path, PathBuf};
 use std::process::{Command, ExitCode};
@@ -29,8 +34,10 @@ fn run() -> Result<()> {
     match args.first().map(String::as_str) {
         Some("ci") => ci(&root),
         Some("tidy") => tidy::check_layering(&root),
+        Some("validate") => validate::run(&root, &args[1..]),
+        Some("bench") => bench::run(&root, &args[1..]),
         _ => {
-            eprintln!("usage: cargo xtask <ci|tidy>");
+            eprintln!("usage: cargo xtask <ci|validate [--data DIR]|bench [FILTER]|tidy>");
             bail!("unknown or missing command {:?}", args.first())
         }
     }
@@ -60,8 +67,46 @@ fn cargo(root: &Path, args: &[&str]) -> Result<()> {
 
 fn ci(root: &Path) -> Result<()> {
     cargo(root, &["fmt", "--all", "--", "--check"])?;
-    cargo(root, &["clippy", "--workspace", "--all-targets", "--", "-D", "warnings"])?;
+    cargo(
+        root,
+        &[
+            "clippy",
+            "--workspace",
+            "--all-targets",
+            "--",
+            "-D",
+            "warnings",
+        ],
+    )?;
     tidy::check_layering(root)?;
     cargo(root, &["test", "--workspace"])?;
+    // The opt-in network feature is tested against loopback servers only.
+    cargo(
+        root,
+        &[
+            "clippy",
+            "--package",
+            "karman-atmos",
+            "--all-targets",
+            "--features",
+            "fetch",
+            "--",
+            "-D",
+            "warnings",
+        ],
+    )?;
+    cargo(
+        root,
+        &["test", "--package", "karman-atmos", "--features", "fetch"],
+    )?;
+    let data = validate::data_dir(root, &[])?;
+    if data.is_dir() {
+        validate::run(root, &[])?;
+    } else {
+        eprintln!(
+            "xtask: no validation data at {}: validation skipped",
+            data.display()
+        );
+    }
     Ok(())
 }

@@ -13,7 +13,15 @@ pub const ALLOWED: &[(&str, &[&str])] = &[
     ("karman-atmos", &["karman-math"]),
     ("karman-propulsion", &["karman-math"]),
     ("karman-airframe", &["karman-math"]),
-    ("karman-dynamics", &["karman-math", "karman-atmos", "karman-propulsion", "karman-airframe"]),
+    (
+        "karman-dynamics",
+        &[
+            "karman-math",
+            "karman-atmos",
+            "karman-propulsion",
+            "karman-airframe",
+        ],
+    ),
     ("karman-dispersion", &["karman-math", "karman-dynamics"]),
     (
         "karman-mission",
@@ -32,7 +40,9 @@ pub const ALLOWED: &[(&str, &[&str])] = &[
 
 /// Every workspace-internal dependency edge `(from, to)` found in `cargo metadata` JSON.
 pub fn workspace_edges(metadata: &serde_json::Value) -> Result<BTreeSet<(String, String)>> {
-    let packages = metadata["packages"].as_array().context("metadata has no packages")?;
+    let packages = metadata["packages"]
+        .as_array()
+        .context("metadata has no packages")?;
     let names: BTreeSet<&str> = packages.iter().filter_map(|p| p["name"].as_str()).collect();
     let mut edges = BTreeSet::new();
     for p in packages {
@@ -66,17 +76,29 @@ pub fn violations(edges: &BTreeSet<(String, String)>) -> Vec<String> {
 pub fn check_layering(root: &Path) -> Result<()> {
     let cargo = std::env::var("CARGO").unwrap_or_else(|_| "cargo".to_owned());
     let out = Command::new(cargo)
-        .args(["metadata", "--format-version", "1", "--no-deps", "--offline"])
+        .args([
+            "metadata",
+            "--format-version",
+            "1",
+            "--no-deps",
+            "--offline",
+        ])
         .current_dir(root)
         .output()
         .context("could not run cargo metadata")?;
     if !out.status.success() {
-        bail!("cargo metadata failed: {}", String::from_utf8_lossy(&out.stderr));
+        bail!(
+            "cargo metadata failed: {}",
+            String::from_utf8_lossy(&out.stderr)
+        );
     }
     let metadata: serde_json::Value = serde_json::from_slice(&out.stdout)?;
     let bad = violations(&workspace_edges(&metadata)?);
     if !bad.is_empty() {
-        bail!("crate layering violated (see ARCHITECTURE.md):\n  {}", bad.join("\n  "));
+        bail!(
+            "crate layering violated (see ARCHITECTURE.md):\n  {}",
+            bad.join("\n  ")
+        );
     }
     Ok(())
 }
@@ -87,22 +109,35 @@ mod tests {
 
     #[test]
     fn workspace_follows_the_layering() {
-        let root = Path::new(env!("CARGO_MANIFEST_DIR")).parent().expect("workspace root");
+        let root = Path::new(env!("CARGO_MANIFEST_DIR"))
+            .parent()
+            .expect("workspace root");
         check_layering(root).expect("layering");
     }
 
     #[test]
     fn every_crate_of_the_workspace_is_listed() {
-        let root = Path::new(env!("CARGO_MANIFEST_DIR")).parent().expect("workspace root");
+        let root = Path::new(env!("CARGO_MANIFEST_DIR"))
+            .parent()
+            .expect("workspace root");
         let out = Command::new(std::env::var("CARGO").unwrap_or_else(|_| "cargo".into()))
-            .args(["metadata", "--format-version", "1", "--no-deps", "--offline"])
+            .args([
+                "metadata",
+                "--format-version",
+                "1",
+                "--no-deps",
+                "--offline",
+            ])
             .current_dir(root)
             .output()
             .expect("cargo metadata");
         let metadata: serde_json::Value = serde_json::from_slice(&out.stdout).expect("json");
         for p in metadata["packages"].as_array().expect("packages") {
             let name = p["name"].as_str().expect("name");
-            assert!(ALLOWED.iter().any(|(n, _)| *n == name), "{name} missing from ALLOWED");
+            assert!(
+                ALLOWED.iter().any(|(n, _)| *n == name),
+                "{name} missing from ALLOWED"
+            );
         }
     }
 
@@ -116,7 +151,13 @@ mod tests {
         .into();
         let bad = violations(&edges);
         assert_eq!(bad.len(), 2, "{bad:?}");
-        assert!(bad.iter().any(|m| m.contains("karman-math must not depend on karman-dynamics")));
-        assert!(bad.iter().any(|m| m.contains("airframe must not depend on karman-propulsion")));
+        assert!(
+            bad.iter()
+                .any(|m| m.contains("karman-math must not depend on karman-dynamics"))
+        );
+        assert!(
+            bad.iter()
+                .any(|m| m.contains("airframe must not depend on karman-propulsion"))
+        );
     }
 }

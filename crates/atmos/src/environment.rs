@@ -417,6 +417,19 @@ impl Environment {
         self.barometric_height.eval(pressure)
     }
 
+    /// Latitude and longitude (deg) of the point `east`, `north` (m) of the launch point, on
+    /// the sphere of the datum radius ([`crate::earth::destination`]).
+    #[must_use]
+    pub fn geodetic(&self, east: f64, north: f64) -> (f64, f64) {
+        crate::earth::destination(
+            self.latitude_deg,
+            self.longitude_deg,
+            east,
+            north,
+            self.datum_radius,
+        )
+    }
+
     /// Local Earth radius of the datum at the launch latitude (m), physics.md §4.6.
     #[inline]
     #[must_use]

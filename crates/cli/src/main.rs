@@ -6,6 +6,7 @@
 //! usage errors (clap's own).
 
 mod commands;
+mod plot;
 
 use clap::Parser;
 use std::process::ExitCode;

@@ -1,6 +1,8 @@
 //! The subcommands, one file each, and the arguments they share.
 
 mod check;
+mod inspect;
+mod simulate;
 
 use clap::{Args, Subcommand};
 use karman_mission::Override;
@@ -11,6 +13,11 @@ use std::path::PathBuf;
 pub enum Command {
     /// Load and validate a mission file; print "ok" or every problem with its location.
     Check(check::CheckArgs),
+    /// Build the environment, motor and rocket of a mission and show them (tables, JSON,
+    /// SVG plots, a drawing of the rocket).
+    Inspect(inspect::InspectArgs),
+    /// Fly a mission: summary (table or JSON); --out writes trajectory.csv, KML and plots.
+    Simulate(simulate::SimulateArgs),
 }
 
 /// The mission file and its `--set` overrides, shared by every command that reads a mission.
@@ -36,5 +43,7 @@ impl MissionArgs {
 pub fn run(command: Command) -> anyhow::Result<()> {
     match command {
         Command::Check(args) => check::run(&args),
+        Command::Inspect(args) => inspect::run(&args),
+        Command::Simulate(args) => simulate::run(&args),
     }
 }

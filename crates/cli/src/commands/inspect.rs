@@ -1,0 +1,131 @@
+//! `karman inspect MISSION`: the models a mission builds — environment, motor and rocket — as
+//! readable tables or, with `--json`, one object `{environment, motor, rocket}` shaped like
+//! the validation `reference.json` files. `--plot DIR` writes SVG profiles and curves,
+//! `--draw FILE.svg` a to-scale drawing of the rocket with its CG and CP.
+
+use std::io::Write;
+use std::path::{Path, PathBuf};
+
+use anyhow::{Context, Result};
+use clap::Args;
+use karman_mission::atmos::Environment;
+use karman_mission::build::{environment::build_environment, motor::build_motor, rocket::build_rocket};
+use karman_mission::math::linspace;
+use karman_mission::propulsion::Motor;
+use karman_mission::report::environment::{default_heights, environment_report};
+use karman_mission::report::motor::MotorReport;
+use karman_mission::report::rocket::{RocketReport, draw_rocket_svg};
+
+use super::MissionArgs;
+use crate::plot::{Series, line_chart};
+
+/// Arguments of `karman inspect`.
+#[derive(Debug, Args)]
+pub struct InspectArgs {
+    #[command(flatten)]
+    pub mission: MissionArgs,
+    /// Print one JSON object {environment, motor, rocket} instead of tables.
+    #[arg(long)]
+    pub json: bool,
+    /// Heights above sea level (m) for the environment, comma-separated; default: the launch
+    /// elevation + 0, 50, 100, 200 m, then every 250 m up to max_expected_height.
+    #[arg(long, value_name = "H1,H2,...", value_delimiter = ',')]
+    pub heights: Option<Vec<f64>>,
+    /// Times (s) for the motor, comma-separated; default: burn start + k/10 of the burn
+    /// (k = 0..10) and burn-out + 1 s.
+    #[arg(long, value_name = "T1,T2,...", value_delimiter = ',')]
+    pub times: Option<Vec<f64>>,
+    /// Write SVG charts of the atmosphere, wind and motor curves into this directory.
+    #[arg(long, value_name = "DIR")]
+    pub plot: Option<PathBuf>,
+    /// Write a to-scale SVG drawing of the rocket, CG and CP marked, to this file.
+    #[arg(long, value_name = "FILE.svg")]
+    pub draw: Option<PathBuf>,
+}
+
+/// Builds the models and prints or writes what was asked.
+pub fn run(args: &InspectArgs) -> Result<()> {
+    let mission = args.mission.load()?;
+    let environment = build_environment(&mission)?;
+    let motor = build_motor(&mission)?;
+    let rocket = build_rocket(&mission, &motor)?;
+    let heights = args.heights.clone().unwrap_or_else(|| {
+        default_heights(environment.elevation(), mission.spec.environment.max_expected_height)
+    });
+    let env_report = environment_report(&environment, &heights);
+    let motor_report = match &args.times {
+        Some(times) => MotorReport::at_times(&motor, times),
+        None => MotorReport::new(&motor),
+    };
+    let rocket_report = RocketReport::new(&rocket);
+    let mut out = std::io::stdout().lock();
+    if args.json {
+        let value = serde_json::json!({
+            "environment": env_report,
+            "motor": motor_report,
+            "rocket": rocket_report,
+        });
+        writeln!(out, "{}", serde_json::to_string_pretty(&value)?)?;
+    } else {
+        writeln!(out, "Environment\n{env_report}\n{motor_report}\n{rocket_report}")?;
+    }
+    for warning in rocket.warnings() {
+        eprintln!("warning: {warning}");
+    }
+    if let Some(dir) = &args.plot {
+        std::fs::create_dir_all(dir).with_context(|| format!("cannot create {}", dir.display()))?;
+        let top = heights.iter().copied().fold(environment.elevation() + 1000.0, f64::max);
+        plot_environment(&environment, top, dir)?;
+        plot_motor(&motor, dir)?;
+    }
+    if let Some(file) = &args.draw {
+        std::fs::write(file, draw_rocket_svg(&mission, &rocket))
+            .with_context(|| format!("cannot write {}", file.display()))?;
+    }
+    Ok(())
+}
+
+/// Profiles of pressure, temperature, density, speed of sound and wind from the launch
+/// elevation to `top` (m ASL), height on the vertical axis.
+fn plot_environment(env: &Environment, top: f64, dir: &Path) -> Result<()> {
+    let heights = linspace(env.elevation(), top, 400);
+    let profile = |f: &dyn Fn(f64) -> f64| heights.iter().map(|&h| (f(h), h)).collect::<Vec<_>>();
+    let charts: [(&str, &str, &str, Vec<Series<'_>>); 5] = [
+        ("pressure", "Pressure", "pressure (Pa)", vec![Series { label: "p", points: profile(&|h| env.pressure(h)) }]),
+        ("temperature", "Temperature", "temperature (K)", vec![Series { label: "T", points: profile(&|h| env.temperature(h)) }]),
+        ("density", "Density", "density (kg/m³)", vec![Series { label: "ρ", points: profile(&|h| env.density(h)) }]),
+        ("speed_of_sound", "Speed of sound", "speed of sound (m/s)", vec![Series { label: "a", points: profile(&|h| env.speed_of_sound(h)) }]),
+        (
+            "wind",
+            "Wind",
+            "wind (m/s)",
+            vec![
+                Series { label: "u (east)", points: profile(&|h| env.wind(h)[0]) },
+                Series { label: "v (north)", points: profile(&|h| env.wind(h)[1]) },
+            ],
+        ),
+    ];
+    for (file, title, x_label, series) in charts {
+        line_chart(&dir.join(format!("{file}.svg")), title, x_label, "height ASL (m)", &series)?;
+    }
+    Ok(())
+}
+
+/// Thrust, mass and inertia of the motor from ignition to burn-out + 1 s.
+fn plot_motor(motor: &Motor, dir: &Path) -> Result<()> {
+    let times = linspace(0.0_f64.min(motor.burn_start()), motor.burn_out() + 1.0, 500);
+    let curve = |f: &dyn Fn(f64) -> f64| times.iter().map(|&t| (t, f(t))).collect::<Vec<_>>();
+    line_chart(&dir.join("thrust.svg"), "Thrust", "time (s)", "thrust (N)", &[Series {
+        label: "thrust",
+        points: curve(&|t| motor.thrust(t)),
+    }])?;
+    line_chart(&dir.join("motor_mass.svg"), "Motor mass", "time (s)", "mass (kg)", &[
+        Series { label: "total", points: curve(&|t| motor.total_mass(t)) },
+        Series { label: "propellant", points: curve(&|t| motor.propellant_mass().eval(t)) },
+    ])?;
+    line_chart(&dir.join("motor_inertia.svg"), "Motor inertia about its centre of mass", "time (s)", "inertia (kg·m²)", &[
+        Series { label: "I11", points: curve(&|t| motor.inertia(t).0) },
+        Series { label: "I33", points: curve(&|t| motor.inertia(t).1) },
+    ])?;
+    Ok(())
+}

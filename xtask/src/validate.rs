@@ -1,0 +1,519 @@
+//! `cargo xtask validate [--data DIR]`: fly every validation mission with the release build of
+//! `karman` and compare (a) with RocketPy 1.13 (`reference.json` summary, parachute noise
+//! zeroed) and (b) with the measured flight (`measured.apogee_agl_m`, and `flight_data.csv`:
+//! altitude RMSE over the ascent and the time of apogee).
+//!
+//! Prints a table, writes `target/validation/report.md`, `report.json` and SVG figures, and
+//! fails when a parity tolerance or a per-flight measured band is exceeded.
+
+use std::fmt::Write as _;
+use std::path::{Path, PathBuf};
+use std::process::Command;
+
+use anyhow::{Context, Result, bail};
+use serde_json::{Value, json};
+
+/// Parity tolerances against RocketPy 1.13 (the `karman simulate` issue's acceptance list).
+const PARITY: &[(&str, f64, &str)] = &[
+    ("apogee_agl_m", 1e-3, "relative"),
+    ("apogee_time_s", 2e-3, "relative"),
+    ("out_of_rail_velocity_mps", 5e-3, "relative"),
+    ("max_speed_mps", 5e-3, "relative"),
+    ("max_mach", 5e-3, "relative"),
+];
+
+/// Impact point tolerance: a fraction of the impact distance from the pad.
+const IMPACT_FRACTION: f64 = 1e-2;
+
+/// Per-flight band on |apogee error| against the measured flight, with its reason. A model
+/// change that moves a flight outside its band must be explained, not absorbed.
+const MEASURED_BANDS: &[(&str, f64, &str)] = &[
+    (
+        "andromeda",
+        0.07,
+        "team thrust curve and a drag curve starting near Cd 0; RocketPy +5.2 %",
+    ),
+    (
+        "astra",
+        0.08,
+        "1 Hz log with a 3-row t = 0 and unsorted drag data; RocketPy −6.3 %",
+    ),
+    (
+        "bella_lui",
+        0.02,
+        "ERA5 weather, constant Cd 0.43; RocketPy +0.3 %",
+    ),
+    (
+        "juno3",
+        0.03,
+        "ISA fallback (weather file unpublished); RocketPy −1.9 %",
+    ),
+    (
+        "ndrt_2020",
+        0.03,
+        "constant Cd 0.44, log in feet; RocketPy −2.0 %",
+    ),
+    (
+        "prometheus_2022",
+        0.06,
+        "ISA fallback instead of the 2023 reanalysis; RocketPy +4.3 %",
+    ),
+    (
+        "valetudo",
+        0.07,
+        "ISA, team-reported apogee without data; RocketPy −5.2 %",
+    ),
+];
+
+struct Flight {
+    name: String,
+    summary: Value,
+    reference: Value,
+    measured_apogee: Option<f64>,
+    /// (t, altitude AGL) measured, and (t, altitude AGL) simulated.
+    measured: Vec<(f64, f64)>,
+    simulated: Vec<(f64, f64)>,
+    failures: Vec<String>,
+}
+
+/// Runs the validation; `args` are the arguments after `validate`.
+pub fn run(root: &Path, args: &[String]) -> Result<()> {
+    let data = data_dir(root, args)?;
+    crate::cargo(root, &["build", "--release", "--package", "karman"])?;
+    let exe = root.join("target/release/karman");
+    let out = root.join("target/validation");
+    std::fs::create_dir_all(&out)?;
+    let mut dirs: Vec<PathBuf> = std::fs::read_dir(&data)
+        .with_context(|| format!("cannot read {}", data.display()))?
+        .filter_map(|e| e.ok().map(|e| e.path()))
+        .filter(|p| p.join("mission.toml").is_file() && p.join("reference.json").is_file())
+        .collect();
+    dirs.sort();
+    if dirs.is_empty() {
+        bail!(
+            "no flight folders (mission.toml + reference.json) in {}",
+            data.display()
+        );
+    }
+    let mut flights = Vec::new();
+    for dir in &dirs {
+        flights.push(fly(&exe, dir, &out).with_context(|| format!("flight {}", dir.display()))?);
+    }
+    let report = report_markdown(&flights);
+    print!("{report}");
+    std::fs::write(out.join("report.md"), &report)?;
+    std::fs::write(
+        out.join("report.json"),
+        serde_json::to_string_pretty(&report_json(&flights))?,
+    )?;
+    write_figures(&flights, &out)?;
+    eprintln!(
+        "xtask: report written to {}",
+        out.join("report.md").display()
+    );
+    let failed: Vec<String> = flights
+        .iter()
+        .flat_map(|f| f.failures.iter().map(|m| format!("{}: {m}", f.name)))
+        .collect();
+    if !failed.is_empty() {
+        bail!("validation failed:\n  {}", failed.join("\n  "));
+    }
+    Ok(())
+}
+
+/// `--data DIR`, else `$KARMAN_VALIDATION_DATA`, else `../shared/validation` beside the root.
+pub fn data_dir(root: &Path, args: &[String]) -> Result<PathBuf> {
+    let mut it = args.iter();
+    while let Some(a) = it.next() {
+        if a == "--data" {
+            return it
+                .next()
+                .map(PathBuf::from)
+                .context("--data needs a directory");
+        }
+        bail!("unknown argument {a:?} (usage: cargo xtask validate [--data DIR])");
+    }
+    if let Some(dir) = std::env::var_os("KARMAN_VALIDATION_DATA") {
+        return Ok(PathBuf::from(dir));
+    }
+    Ok(root.join("../shared/validation"))
+}
+
+fn fly(exe: &Path, dir: &Path, out: &Path) -> Result<Flight> {
+    let name = dir
+        .file_name()
+        .map(|n| n.to_string_lossy().into_owned())
+        .unwrap_or_default();
+    let mission_path = dir.join("mission.toml");
+    let mission = karman_mission::load(&mission_path, &[])
+        .map_err(|e| anyhow::anyhow!("{e}"))
+        .context("mission does not load")?;
+    let flight_out = out.join(&name);
+    let mut cmd = Command::new(exe);
+    cmd.arg("simulate")
+        .arg(&mission_path)
+        .arg("--json")
+        .arg("--out")
+        .arg(&flight_out);
+    for chute in mission.spec.rocket.parachutes.keys() {
+        cmd.arg("--set")
+            .arg(format!("rocket.parachutes.{chute}.noise=[0,0,0]"));
+    }
+    let output = cmd.output().context("could not run karman")?;
+    if !output.status.success() {
+        bail!(
+            "karman simulate failed: {}",
+            String::from_utf8_lossy(&output.stderr)
+        );
+    }
+    let summary: Value = serde_json::from_slice(&output.stdout).context("summary JSON")?;
+    let reference: Value =
+        serde_json::from_str(&std::fs::read_to_string(dir.join("reference.json"))?)?;
+    let measured_apogee = reference["measured"]["apogee_agl_m"].as_f64();
+    let measured = match dir.join("flight_data.csv") {
+        p if p.is_file() => read_series(&p, "time_s", "altitude_agl_m")?,
+        _ => Vec::new(),
+    };
+    let simulated = read_series(
+        &flight_out.join("trajectory.csv"),
+        "time_s",
+        "altitude_agl_m",
+    )?;
+    let mut flight = Flight {
+        name,
+        summary,
+        reference,
+        measured_apogee,
+        measured,
+        simulated,
+        failures: vec![],
+    };
+    flight.failures = check(&flight);
+    Ok(flight)
+}
+
+/// Reads two named columns of a CSV with `#` comment lines and a header.
+pub fn read_series(path: &Path, xcol: &str, ycol: &str) -> Result<Vec<(f64, f64)>> {
+    let text =
+        std::fs::read_to_string(path).with_context(|| format!("cannot read {}", path.display()))?;
+    let mut lines = text
+        .lines()
+        .enumerate()
+        .filter(|(_, l)| !l.trim().is_empty() && !l.starts_with('#'));
+    let (_, header) = lines
+        .next()
+        .with_context(|| format!("{}: no header", path.display()))?;
+    let names: Vec<&str> = header.split(',').map(str::trim).collect();
+    let find = |c: &str| {
+        names
+            .iter()
+            .position(|n| *n == c || n.starts_with(&format!("{c} ")))
+            .with_context(|| format!("{}: no column {c}", path.display()))
+    };
+    let (ix, iy) = (find(xcol)?, find(ycol)?);
+    let mut out = Vec::new();
+    for (n, line) in lines {
+        let fields: Vec<&str> = line.split(',').map(str::trim).collect();
+        let get = |i: usize| -> Result<f64> {
+            let s = fields
+                .get(i)
+                .with_context(|| format!("{}:{}: short row", path.display(), n + 1))?;
+            s.parse()
+                .with_context(|| format!("{}:{}: bad number {s:?}", path.display(), n + 1))
+        };
+        out.push((get(ix)?, get(iy)?));
+    }
+    Ok(out)
+}
+
+fn rel(a: f64, b: f64) -> f64 {
+    (a - b).abs() / b.abs().max(f64::MIN_POSITIVE)
+}
+
+fn num(v: &Value, key: &str) -> Option<f64> {
+    v.get(key).and_then(Value::as_f64)
+}
+
+fn check(f: &Flight) -> Vec<String> {
+    let r = &f.reference["summary"];
+    let mut failures = Vec::new();
+    for &(key, tol, _) in PARITY {
+        match (num(&f.summary, key), num(r, key)) {
+            (Some(k), Some(p)) if rel(k, p) > tol => failures.push(format!(
+                "{key}: karman {k:.4} vs RocketPy {p:.4} ({:.3} % > {:.2} %)",
+                100.0 * rel(k, p),
+                100.0 * tol
+            )),
+            (None, Some(p)) => failures.push(format!("{key}: missing (RocketPy {p})")),
+            _ => {}
+        }
+    }
+    if let (Some(kx), Some(ky), Some(px), Some(py)) = (
+        num(&f.summary, "impact_x_m"),
+        num(&f.summary, "impact_y_m"),
+        num(r, "impact_x_m"),
+        num(r, "impact_y_m"),
+    ) {
+        let miss = (kx - px).hypot(ky - py);
+        let dist = px.hypot(py);
+        if miss > IMPACT_FRACTION * dist {
+            failures.push(format!(
+                "impact point {miss:.2} m from RocketPy's (> {:.0} % of {dist:.1} m)",
+                100.0 * IMPACT_FRACTION
+            ));
+        }
+    }
+    if let (Some(m), Some(k)) = (f.measured_apogee, num(&f.summary, "apogee_agl_m")) {
+        let band = MEASURED_BANDS.iter().find(|(n, _, _)| *n == f.name);
+        match band {
+            Some(&(_, b, why)) if rel(k, m) > b => failures.push(format!(
+                "apogee {k:.1} m vs measured {m:.1} m: {:.2} % outside the {:.0} % band ({why})",
+                100.0 * rel(k, m),
+                100.0 * b
+            )),
+            None => failures.push("a measured apogee but no band in MEASURED_BANDS".to_owned()),
+            _ => {}
+        }
+    }
+    failures
+}
+
+/// Linear interpolation of a time series (held at the ends).
+fn interp(series: &[(f64, f64)], t: f64) -> Option<f64> {
+    let first = series.first()?;
+    let last = series.last()?;
+    if t <= first.0 {
+        return Some(first.1);
+    }
+    if t >= last.0 {
+        return Some(last.1);
+    }
+    let i = series.partition_point(|p| p.0 <= t);
+    let (a, b) = (series[i - 1], series[i]);
+    Some(a.1 + (b.1 - a.1) * (t - a.0) / (b.0 - a.0))
+}
+
+/// Measured time of apogee (first maximum) and the RMSE of the simulated altitude at the
+/// measured times from t = 0 to that apogee.
+fn ascent_fit(f: &Flight) -> Option<(f64, f64)> {
+    let (t_apo, _) = f
+        .measured
+        .iter()
+        .copied()
+        .fold(None::<(f64, f64)>, |best, p| match best {
+            Some(b) if b.1 >= p.1 => Some(b),
+            _ => Some(p),
+        })?;
+    let ascent: Vec<f64> = f
+        .measured
+        .iter()
+        .filter(|p| p.0 >= 0.0 && p.0 <= t_apo)
+        .filter_map(|&(t, h)| interp(&f.simulated, t).map(|s| (s - h).powi(2)))
+        .collect();
+    if ascent.is_empty() {
+        return None;
+    }
+    Some((
+        t_apo,
+        (ascent.iter().sum::<f64>() / ascent.len() as f64).sqrt(),
+    ))
+}
+
+fn fmt_opt(v: Option<f64>, digits: usize) -> String {
+    v.map_or_else(|| "—".to_owned(), |x| format!("{x:.digits$}"))
+}
+
+fn report_markdown(flights: &[Flight]) -> String {
+    let mut s = String::from("# karman validation report\n\n");
+    s.push_str("| flight | karman apogee (m) | RocketPy apogee (m) | parity error | measured apogee (m) | karman vs measured | RocketPy vs measured | apogee time (s) | measured apogee time (s) | ascent RMSE (m) | rail-exit speed (m/s) | max Mach | status |\n");
+    s.push_str("|---|---|---|---|---|---|---|---|---|---|---|---|---|\n");
+    let (mut ours, mut theirs) = (Vec::new(), Vec::new());
+    for f in flights {
+        let r = &f.reference["summary"];
+        let k = num(&f.summary, "apogee_agl_m");
+        let p = num(r, "apogee_agl_m");
+        let parity = k.zip(p).map(|(k, p)| 100.0 * (k - p) / p);
+        let vs = |a: Option<f64>| a.zip(f.measured_apogee).map(|(a, m)| 100.0 * (a - m) / m);
+        if let (Some(a), Some(b)) = (vs(k), vs(p)) {
+            ours.push(a.abs());
+            theirs.push(b.abs());
+        }
+        let fit = ascent_fit(f);
+        let _ = writeln!(
+            s,
+            "| {} | {} | {} | {} % | {} | {} % | {} % | {} | {} | {} | {} | {} | {} |",
+            f.name,
+            fmt_opt(k, 2),
+            fmt_opt(p, 2),
+            fmt_opt(parity, 4),
+            fmt_opt(f.measured_apogee, 2),
+            fmt_opt(vs(k), 2),
+            fmt_opt(vs(p), 2),
+            fmt_opt(num(&f.summary, "apogee_time_s"), 3),
+            fmt_opt(fit.map(|x| x.0), 2),
+            fmt_opt(fit.map(|x| x.1), 1),
+            fmt_opt(num(&f.summary, "out_of_rail_velocity_mps"), 3),
+            fmt_opt(num(&f.summary, "max_mach"), 4),
+            if f.failures.is_empty() {
+                "ok".to_owned()
+            } else {
+                f.failures.join("; ")
+            },
+        );
+    }
+    let mean = |v: &[f64]| v.iter().sum::<f64>() / v.len().max(1) as f64;
+    let _ = writeln!(
+        s,
+        "\nMean |apogee error| against the measured flights ({} flights): karman {:.2} %, RocketPy 1.13 {:.2} %.",
+        ours.len(),
+        mean(&ours),
+        mean(&theirs)
+    );
+    s
+}
+
+fn report_json(flights: &[Flight]) -> Value {
+    Value::Array(
+        flights
+            .iter()
+            .map(|f| {
+                json!({
+                    "flight": f.name,
+                    "karman": f.summary,
+                    "rocketpy": f.reference["summary"],
+                    "measured_apogee_agl_m": f.measured_apogee,
+                    "ascent_fit": ascent_fit(f).map(|(t, rmse)| json!({"measured_apogee_time_s": t, "rmse_m": rmse})),
+                    "failures": f.failures,
+                })
+            })
+            .collect(),
+    )
+}
+
+fn write_figures(flights: &[Flight], out: &Path) -> Result<()> {
+    use plotters::prelude::*;
+    let err = |e: &dyn std::fmt::Display| anyhow::anyhow!("plot: {e}");
+    // Simulated vs measured apogee, all flights.
+    let points: Vec<(String, f64, f64)> = flights
+        .iter()
+        .filter_map(|f| {
+            Some((
+                f.name.clone(),
+                f.measured_apogee?,
+                num(&f.summary, "apogee_agl_m")?,
+            ))
+        })
+        .collect();
+    if !points.is_empty() {
+        let path = out.join("apogee_scatter.svg");
+        let root = SVGBackend::new(&path, (800, 700)).into_drawing_area();
+        root.fill(&WHITE).map_err(|e| err(&e))?;
+        let top = points.iter().map(|p| p.1.max(p.2)).fold(0.0, f64::max) * 1.1;
+        let mut chart = ChartBuilder::on(&root)
+            .caption("karman apogee vs measured apogee (AGL)", ("sans-serif", 22))
+            .margin(15)
+            .x_label_area_size(45)
+            .y_label_area_size(60)
+            .build_cartesian_2d(0.0..top, 0.0..top)
+            .map_err(|e| err(&e))?;
+        chart
+            .configure_mesh()
+            .x_desc("measured apogee (m)")
+            .y_desc("simulated apogee (m)")
+            .draw()
+            .map_err(|e| err(&e))?;
+        chart
+            .draw_series(LineSeries::new([(0.0, 0.0), (top, top)], &BLACK))
+            .map_err(|e| err(&e))?;
+        chart
+            .draw_series(points.iter().map(|(name, m, k)| {
+                EmptyElement::at((*m, *k))
+                    + Circle::new((0, 0), 5, BLUE.filled())
+                    + Text::new(name.clone(), (8, -8), ("sans-serif", 14))
+            }))
+            .map_err(|e| err(&e))?;
+        root.present().map_err(|e| err(&e))?;
+    }
+    // Per flight: simulated altitude over the measured one.
+    for f in flights
+        .iter()
+        .filter(|f| !f.measured.is_empty() && !f.simulated.is_empty())
+    {
+        let path = out.join(format!("{}_altitude.svg", f.name));
+        let root = SVGBackend::new(&path, (900, 600)).into_drawing_area();
+        root.fill(&WHITE).map_err(|e| err(&e))?;
+        let all = f.measured.iter().chain(&f.simulated);
+        let (t0, t1, h1) = all.fold((0.0_f64, 0.0_f64, 0.0_f64), |(a, b, c), p| {
+            (a.min(p.0), b.max(p.0), c.max(p.1))
+        });
+        let mut chart = ChartBuilder::on(&root)
+            .caption(format!("{}: altitude AGL", f.name), ("sans-serif", 22))
+            .margin(15)
+            .x_label_area_size(45)
+            .y_label_area_size(60)
+            .build_cartesian_2d(t0..t1, 0.0..h1 * 1.05)
+            .map_err(|e| err(&e))?;
+        chart
+            .configure_mesh()
+            .x_desc("time (s)")
+            .y_desc("altitude AGL (m)")
+            .draw()
+            .map_err(|e| err(&e))?;
+        chart
+            .draw_series(LineSeries::new(f.measured.iter().copied(), &RED))
+            .map_err(|e| err(&e))?
+            .label("measured")
+            .legend(|(x, y)| PathElement::new([(x, y), (x + 20, y)], RED));
+        chart
+            .draw_series(LineSeries::new(f.simulated.iter().copied(), &BLUE))
+            .map_err(|e| err(&e))?
+            .label("karman")
+            .legend(|(x, y)| PathElement::new([(x, y), (x + 20, y)], BLUE));
+        chart
+            .configure_series_labels()
+            .border_style(BLACK)
+            .draw()
+            .map_err(|e| err(&e))?;
+        root.present().map_err(|e| err(&e))?;
+    }
+    Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn interpolation_holds_ends_and_is_linear_inside() {
+        let s = [(0.0, 0.0), (1.0, 10.0), (3.0, 30.0)];
+        assert!((interp(&s, -1.0).unwrap_or(f64::NAN) - 0.0).abs() < 1e-12);
+        assert!((interp(&s, 2.0).unwrap_or(f64::NAN) - 20.0).abs() < 1e-12);
+        assert!((interp(&s, 9.0).unwrap_or(f64::NAN) - 30.0).abs() < 1e-12);
+        assert!(interp(&[], 1.0).is_none());
+    }
+
+    #[test]
+    fn every_measured_flight_has_a_band() {
+        let root = Path::new(env!("CARGO_MANIFEST_DIR")).join("..");
+        let Ok(data) = data_dir(&root, &[]) else {
+            return;
+        };
+        let Ok(entries) = std::fs::read_dir(&data) else {
+            eprintln!("validation data not found at {}: skipped", data.display());
+            return;
+        };
+        for e in entries.flatten() {
+            let Ok(text) = std::fs::read_to_string(e.path().join("reference.json")) else {
+                continue;
+            };
+            let v: Value = serde_json::from_str(&text).expect("reference.json is JSON");
+            if v["measured"]["apogee_agl_m"].is_f64() {
+                let name = e.file_name().to_string_lossy().into_owned();
+                assert!(
+                    MEASURED_BANDS.iter().any(|b| b.0 == name),
+                    "{name} has no band"
+                );
+            }
+        }
+    }
+}
