@@ -396,17 +396,6 @@ impl Table1 {
         below.clamp(1, n - 1) - 1
     }
 
-    /// Interval to the right of `x` (`bisect_right`): at a node, the one that starts there.
-    /// The bucket bounds hold for `#{x_i ≤ x}` as for `#{x_i < x}` (see [`Guide`]).
-    #[inline]
-    fn interval_right(&self, x: f64) -> usize {
-        let n = self.xs.len();
-        let k = self.guide.key(self.xs[0], x);
-        let (lo, hi) = (self.guide.start[k], self.guide.start[k + 1]);
-        let upto = lo + self.xs[lo..hi].partition_point(|&v| v <= x);
-        upto.clamp(1, n - 1) - 1
-    }
-
     /// Whether interval `j` is the one [`Table1::interval`] would choose for `x`.
     #[inline]
     fn interval_holds(&self, j: usize, x: f64) -> bool {
@@ -503,29 +492,15 @@ impl Table1 {
     }
 
     /// First derivative at `x`: exact for the interpolant (the left interval's slope at an
-    /// interior node, RocketPy's `bisect_left` choice; [`Table1::derivative_right`] gives the
-    /// right-hand slope); zero where extrapolation is constant or zero.
+    /// interior node, RocketPy's `bisect_left` choice, which is also what RocketPy 1.13's
+    /// complex-step derivative returns for a table); zero where extrapolation is constant or
+    /// zero.
     #[must_use]
     pub fn derivative(&self, x: f64) -> f64 {
         if self.xs.len() == 1 || self.outside(x).is_some() {
             return 0.0;
         }
         self.piece_derivative(self.interval(x), x)
-    }
-
-    /// First derivative from the right at `x` (the slope of the piece starting at a node; zero
-    /// at and beyond the last sample unless extrapolation is natural). This is what RocketPy's
-    /// complex-step differentiation (`Function.differentiate_complex_step`, used for the
-    /// centre-of-mass velocity) returns for a table: numpy orders complex numbers
-    /// lexicographically, so `x + i·h` sorts just after `x`.
-    #[must_use]
-    pub fn derivative_right(&self, x: f64) -> f64 {
-        let n = self.xs.len();
-        let natural = self.extrapolation == Extrapolation::Natural;
-        if n == 1 || (!natural && (x < self.xs[0] || x >= self.xs[n - 1])) {
-            return 0.0;
-        }
-        self.piece_derivative(self.interval_right(x), x)
     }
 
     /// Derivative of piece `i` (or of the polynomial) at `x`.
@@ -950,12 +925,6 @@ mod tests {
         // bisect_left: the slope at an interior node is the left interval's.
         assert!(close(t.derivative(1.0), 2.0, 1e-15));
         assert!(close(t.derivative(1.0 + 1e-9), -1.0, 1e-15));
-        // RocketPy's complex step sees the right interval; at the last node, the constant
-        // extrapolation.
-        assert!(close(t.derivative_right(1.0), -1.0, 1e-15));
-        assert!(close(t.derivative_right(0.0), 2.0, 1e-15));
-        assert!(close(t.derivative_right(3.0), 0.0, 1e-15));
-        assert!(close(t.derivative_right(-1.0), 0.0, 1e-15));
     }
 
     #[test]

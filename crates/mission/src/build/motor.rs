@@ -5,7 +5,7 @@
 //!   stably) or a file — `.eng` (RASP, a `(0, 0)` point prepended), `.rse` (RockSim XML), or
 //!   two numeric columns for any other extension.
 //! - `interpolation = "akima"` means RocketPy's own "akima" (a weighted-secant Hermite, see
-//!   [`Interpolation::RocketPyAkima`]), so a RocketPy script translates unchanged.
+//!   [`karman_math::Interpolation::RocketPyAkima`]), so a RocketPy script translates unchanged.
 //! - A generic motor without `center_of_dry_mass_position` takes `chamber_position`
 //!   (RocketPy's default; an explicit 0 is kept, where RocketPy's truthiness test would also
 //!   replace it); a solid motor's `throat_radius` defaults to 0.01 m.
@@ -15,13 +15,12 @@
 //! rejected there); errors here come from the thrust data (file, line and value) or from
 //! combinations the model rejects, wrapped in [`MissionError::Model`] with section `motor`.
 
-use karman_math::Interpolation;
 use karman_propulsion::{
     BatesGrains, BurnTime, CoordinateSystem, CylindricalChamber, Motor, MotorStructure,
     PropulsionError, ThrustCurve, ThrustData, ThrustOptions, ThrustSource,
 };
 
-use crate::schema::{Curve, InterpolationKind, MotorCoordinateSystem, MotorKind, MotorSpec};
+use crate::schema::{Curve, MotorCoordinateSystem, MotorKind, MotorSpec};
 use crate::{Mission, MissionError};
 
 /// RocketPy's default nozzle throat radius of a solid motor, m (`SolidMotor(throat_radius=0.01)`).
@@ -48,7 +47,7 @@ pub fn build_motor(mission: &Mission) -> Result<Motor, MissionError> {
         reshape: spec
             .reshape_thrust_curve
             .map(|[time, impulse]| (BurnTime::End(time), impulse)),
-        interpolation: interpolation(spec.interpolation),
+        interpolation: spec.interpolation.into(),
     };
     let thrust = ThrustCurve::new(&source, &options).map_err(model_err("motor"))?;
     let chamber_position = spec.chamber_position.unwrap_or(0.0);
@@ -115,12 +114,3 @@ fn thrust_source(mission: &Mission, spec: &MotorSpec) -> Result<ThrustSource, Pr
     })
 }
 
-/// The table interpolation for the mission's `interpolation` key.
-fn interpolation(kind: InterpolationKind) -> Interpolation {
-    match kind {
-        InterpolationKind::Linear => Interpolation::Linear,
-        InterpolationKind::Spline => Interpolation::Spline,
-        InterpolationKind::Akima => Interpolation::RocketPyAkima,
-        InterpolationKind::Polynomial => Interpolation::Polynomial,
-    }
-}
