@@ -98,6 +98,12 @@ pub enum ProblemKind {
         /// The date as written.
         date: String,
     },
+    /// A value the mission format names but this version of karman cannot model yet.
+    #[error("{what} is not supported yet")]
+    Unsupported {
+        /// What, e.g. `a hybrid motor`.
+        what: String,
+    },
     /// A `[dispersion.vary]` entry does not fit its target.
     #[error("{reason}")]
     Distribution {

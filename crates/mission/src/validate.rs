@@ -297,6 +297,15 @@ fn motor(c: &mut Checker<'_, '_>, spec: &MissionSpec) {
     let (needed, foreign) = match m.kind {
         MotorKind::Solid => (&solid[..], &generic[..]),
         MotorKind::Generic => (&generic[..], &solid[..]),
+        MotorKind::Hybrid | MotorKind::Liquid => {
+            c.report(
+                "motor.kind",
+                ProblemKind::Unsupported {
+                    what: format!("a {} motor", m.kind),
+                },
+            );
+            return;
+        }
     };
     for (key, name, value) in needed {
         c.required(key, name, value.as_ref(), &what);
@@ -344,6 +353,7 @@ fn motor(c: &mut Checker<'_, '_>, spec: &MissionSpec) {
                 );
             }
         }
+        MotorKind::Hybrid | MotorKind::Liquid => {}
         MotorKind::Generic => {
             c.unused("motor.throat_radius", m.throat_radius.as_ref(), &what);
             let positives = [

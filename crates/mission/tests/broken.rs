@@ -264,3 +264,17 @@ fn validation_problem_in_override_names_the_override() {
         }
     );
 }
+
+#[test]
+fn hybrid_and_liquid_motors_are_named_as_not_supported_yet() {
+    for kind in ["hybrid", "Liquid"] {
+        let text = edited(&[("kind = \"solid\"", &format!("kind = \"{kind}\""))]);
+        let found = problems(&text, &[]);
+        assert_eq!(found.len(), 1, "{found:?}");
+        assert_eq!(found[0].key, "motor.kind");
+        assert!(matches!(found[0].kind, ProblemKind::Unsupported { .. }));
+        let message = error_text(&text, &[]);
+        assert!(message.contains("motor is not supported yet"), "{message}");
+        assert!(message.contains("broken.toml:"), "{message}");
+    }
+}

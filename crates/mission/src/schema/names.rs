@@ -153,6 +153,10 @@ names! {
         Solid => ["solid", "solid motor"],
         /// A generic motor: a cylindrical propellant mass (RocketPy `GenericMotor`).
         Generic => ["generic", "generic motor"],
+        /// A hybrid motor (RocketPy `HybridMotor`): named by the format, not modelled yet.
+        Hybrid => ["hybrid", "hybrid motor"],
+        /// A liquid motor (RocketPy `LiquidMotor`): named by the format, not modelled yet.
+        Liquid => ["liquid", "liquid motor"],
     }
 }
 
