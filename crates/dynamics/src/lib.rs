@@ -1,4 +1,34 @@
 //! # karman-dynamics
 //!
 //! The 6-DOF flight engine: equations of motion for the rail, free flight and parachute
-//! phases, events, and the adaptive Runge–Kutta integrator with dense output.
+//! phases, events, and the adaptive Runge–Kutta integrator with dense output. It reproduces
+//! RocketPy 1.13's `Flight` (physics.md §2–§3, §8–§11).
+//!
+//! - [`integrator`]: Dormand–Prince 5(4) with dense output, fixed-size state, no allocation.
+//! - [`equations`]: rail, 6-DOF variable-mass and parachute right-hand sides.
+//! - [`model`]: the [`AtmosphereModel`] / [`VehicleModel`] traits the engine evaluates
+//!   (implemented for karman-atmos' `Environment` and karman-airframe's `Rocket` in
+//!   [`adapters`]).
+//! - [`flight`]: phases, time nodes and events; [`simulate`] flies a rocket.
+//! - [`output`]: post-processed samples and the [`Summary`] of the mission contract.
+
+pub mod adapters;
+pub mod equations;
+mod error;
+pub mod flight;
+pub mod integrator;
+pub mod model;
+pub mod noise;
+pub mod output;
+pub mod settings;
+pub mod state;
+
+pub use error::DynamicsError;
+pub use flight::{
+    Flight, IntegrationStats, ParachuteEvent, PhaseKind, SolutionPoint, Termination, simulate,
+};
+pub use model::{
+    AtmosphereModel, ParachuteSpec, RailButtonGeometry, SurfaceModel, TriggerKind, VehicleModel,
+};
+pub use output::{EventRecord, Sample, Summary};
+pub use settings::{DEFAULT_ATOL, FlightSettings};

@@ -1,0 +1,203 @@
+//! [`AtmosphereModel`] and [`VehicleModel`] for the karman model crates: the only place where
+//! the engine touches `karman_atmos::Environment` and `karman_airframe::Rocket`.
+
+use karman_airframe::{Rocket, Surface, Trigger};
+use karman_atmos::Environment;
+
+use crate::model::{
+    AtmosphereModel, ParachuteSpec, RailButtonGeometry, SurfaceModel, TriggerKind, VehicleModel,
+};
+
+impl AtmosphereModel for Environment {
+    #[inline]
+    fn elevation(&self) -> f64 {
+        Environment::elevation(self)
+    }
+    #[inline]
+    fn pressure(&self, z: f64) -> f64 {
+        Environment::pressure(self, z)
+    }
+    #[inline]
+    fn density(&self, z: f64) -> f64 {
+        Environment::density(self, z)
+    }
+    #[inline]
+    fn speed_of_sound(&self, z: f64) -> f64 {
+        Environment::speed_of_sound(self, z)
+    }
+    #[inline]
+    fn dynamic_viscosity(&self, z: f64) -> f64 {
+        Environment::dynamic_viscosity(self, z)
+    }
+    #[inline]
+    fn wind(&self, z: f64) -> [f64; 2] {
+        Environment::wind(self, z)
+    }
+    #[inline]
+    fn gravity(&self, z: f64) -> f64 {
+        Environment::gravity(self, z)
+    }
+    #[inline]
+    fn earth_rotation_enu(&self) -> [f64; 3] {
+        Environment::earth_rotation_enu(self)
+    }
+    #[inline]
+    fn barometric_height(&self, pressure: f64) -> f64 {
+        Environment::barometric_height(self, pressure)
+    }
+}
+
+impl SurfaceModel for Surface {
+    #[inline]
+    fn cp_body(&self) -> [f64; 3] {
+        self.cp_body
+    }
+    #[inline]
+    fn reference_area(&self) -> f64 {
+        self.reference_area
+    }
+    #[inline]
+    fn reference_length(&self) -> f64 {
+        Surface::reference_length(self)
+    }
+    #[inline]
+    fn cn_alpha(&self, mach: f64) -> f64 {
+        Surface::cn_alpha(self, mach)
+    }
+    fn rolls(&self) -> bool {
+        self.is_fin_set()
+    }
+    #[inline]
+    fn roll_forcing(&self, mach: f64) -> f64 {
+        Surface::roll_forcing(self, mach)
+    }
+    #[inline]
+    fn roll_damping(&self, mach: f64) -> f64 {
+        Surface::roll_damping(self, mach)
+    }
+}
+
+impl VehicleModel for Rocket {
+    type Surface = Surface;
+
+    #[inline]
+    fn surfaces(&self) -> &[Surface] {
+        Rocket::surfaces(self)
+    }
+    #[inline]
+    fn reference_area(&self) -> f64 {
+        Rocket::reference_area(self)
+    }
+    #[inline]
+    fn radius(&self) -> f64 {
+        Rocket::radius(self)
+    }
+    #[inline]
+    fn csys(&self) -> f64 {
+        Rocket::csys(self)
+    }
+    #[inline]
+    fn total_mass(&self, t: f64) -> f64 {
+        Rocket::total_mass(self, t)
+    }
+    #[inline]
+    fn mass_flow_rate(&self, t: f64) -> f64 {
+        Rocket::mass_flow_rate(self, t)
+    }
+    #[inline]
+    fn mass_flow_rate_derivative(&self, t: f64) -> f64 {
+        Rocket::mass_flow_rate_derivative(self, t)
+    }
+    #[inline]
+    fn com_to_cdm(&self, t: f64) -> f64 {
+        Rocket::com_to_cdm(self, t)
+    }
+    #[inline]
+    fn com_to_cdm_rate(&self, t: f64) -> f64 {
+        Rocket::com_to_cdm_rate(self, t)
+    }
+    #[inline]
+    fn com_to_cdm_accel(&self, t: f64) -> f64 {
+        Rocket::com_to_cdm_accel(self, t)
+    }
+    #[inline]
+    fn inertia(&self, t: f64) -> [f64; 6] {
+        Rocket::inertia(self, t)
+    }
+    #[inline]
+    fn inertia_rate(&self, t: f64) -> [f64; 6] {
+        Rocket::inertia_rate(self, t)
+    }
+    #[inline]
+    fn nozzle_to_cdm(&self) -> f64 {
+        Rocket::nozzle_to_cdm(self)
+    }
+    #[inline]
+    fn nozzle_gyration(&self) -> [f64; 3] {
+        Rocket::nozzle_gyration(self)
+    }
+    #[inline]
+    fn thrust(&self, t: f64) -> f64 {
+        Rocket::thrust(self, t)
+    }
+    #[inline]
+    fn net_thrust(&self, t: f64, ambient_pressure: f64) -> f64 {
+        Rocket::net_thrust(self, t, ambient_pressure)
+    }
+    fn thrust_knots(&self) -> Vec<f64> {
+        self.motor().thrust.xs().to_vec()
+    }
+    #[inline]
+    fn burn_start(&self) -> f64 {
+        Rocket::burn_start(self)
+    }
+    #[inline]
+    fn burn_out(&self) -> f64 {
+        Rocket::burn_out(self)
+    }
+    #[inline]
+    fn drag_coefficient(&self, power_on: bool, mach: f64) -> f64 {
+        Rocket::drag_coefficient(self, power_on, mach)
+    }
+    fn dry_mass(&self) -> f64 {
+        Rocket::dry_mass(self)
+    }
+    fn center_of_dry_mass(&self) -> f64 {
+        Rocket::center_of_dry_mass(self)
+    }
+    fn nozzle_position(&self) -> f64 {
+        Rocket::nozzle_position(self)
+    }
+    fn rail_buttons(&self) -> Option<RailButtonGeometry> {
+        Rocket::rail_buttons(self).map(|b| RailButtonGeometry {
+            upper_position: b.upper_position,
+            lower_position: b.lower_position,
+            angular_position_rad: b.angular_position_rad,
+        })
+    }
+    fn parachutes(&self) -> Vec<ParachuteSpec> {
+        Rocket::parachutes(self)
+            .iter()
+            .map(|p| ParachuteSpec {
+                name: p.name.clone(),
+                cd_s: p.cd_s,
+                trigger: match p.trigger {
+                    Trigger::Apogee => TriggerKind::Apogee,
+                    Trigger::HeightAboveGround(h) => TriggerKind::HeightAboveGround(h),
+                },
+                sampling_rate: p.sampling_rate,
+                lag: p.lag,
+                noise: p.noise,
+                radius: p.radius,
+                height: p.height,
+                added_mass_coefficient: p.added_mass_coefficient(),
+            })
+            .collect()
+    }
+    fn static_margin(&self, t: f64) -> f64 {
+        Rocket::static_margin(self, t)
+    }
+    fn stability_margin(&self, mach: f64, t: f64) -> f64 {
+        Rocket::stability_margin(self, mach, t)
+    }
+}

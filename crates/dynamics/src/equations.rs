@@ -1,0 +1,409 @@
+//! Right-hand sides of the three flight phases (physics.md §8): the 1-DOF rail slide (§8.1),
+//! RocketPy's variable-mass 6-DOF "standard" equations (§8.2–§8.3, after Ceotto et al. 2021,
+//! J. Aerosp. Eng. 34(6), and the RocketPy docs "Equations of Motion v1") and the 3-DOF
+//! parachute descent with added mass (§8.4).
+//!
+//! Each is a pure function of `(t, u)` and the immutable [`Equations`] context and returns the
+//! state derivative together with the loads that produced it, so the same code serves the
+//! integrator and the post-processing. Nothing here allocates.
+
+use crate::model::{AtmosphereModel, SurfaceModel, VehicleModel};
+use crate::state::{
+    Mat3, State, Vec3, add, cross, dot, inverse, mat_t_vec, mat_vec, norm, quaternion,
+    quaternion_rate, rotation, scale, sub, tensor,
+};
+
+/// State derivative and the loads behind it (body axes, about the CDM).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Derivative {
+    /// `u̇` (physics.md §3).
+    pub u_dot: State,
+    /// Aerodynamic force `(R1, R2, R3)` in body axes, N (parachute phase: drag in the
+    /// inertial frame, as RocketPy reports it).
+    pub force: Vec3,
+    /// Aerodynamic moment `(M1, M2, M3)` about the CDM in body axes, N·m.
+    pub moment: Vec3,
+    /// Net thrust, N.
+    pub net_thrust: f64,
+}
+
+/// The parachute currently inflated (physics.md §8.4: the newest one replaces the older).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct CanopyState {
+    /// Drag coefficient times area, m².
+    pub cd_s: f64,
+    /// Canopy radius, m.
+    pub radius: f64,
+    /// Canopy height, m.
+    pub height: f64,
+    /// Added-mass coefficient.
+    pub added_mass_coefficient: f64,
+}
+
+/// Immutable context of the equations of motion: the models plus constants read once.
+#[derive(Debug)]
+pub struct Equations<'a, A, V> {
+    atmosphere: &'a A,
+    vehicle: &'a V,
+    earth_rotation: Vec3,
+    burn_start: f64,
+    burn_out: f64,
+    reference_area: f64,
+    nozzle: Vec3,
+    nozzle_gyration: Mat3,
+    dry_mass: f64,
+    coast: Option<CoastMass>,
+}
+
+/// Mass properties after burn-out, when they no longer change (physics.md §8.2 remarks:
+/// `m_p = 0`, `c = ċ = 0`, `İ = 0`): read once instead of at every evaluation.
+#[derive(Debug, Clone, Copy, PartialEq)]
+struct CoastMass {
+    mass: f64,
+    com_to_cdm: f64,
+    inertia: [f64; 6],
+    inverse_cm_inertia: Mat3,
+}
+
+/// `I_CM⁻¹` with `I_CM = I − m(|r|² 𝟙 − r rᵀ)`, `r = (0, 0, c)` (physics.md §8.2); NaN when
+/// singular, so the integrator reports the failure.
+#[inline]
+fn inverse_cm_inertia(inertia: &Mat3, mass: f64, c: f64) -> Mat3 {
+    let r = [0.0, 0.0, c];
+    let r2 = c * c;
+    let mut i_cm = *inertia;
+    for (i, row) in i_cm.iter_mut().enumerate() {
+        for (j, x) in row.iter_mut().enumerate() {
+            let delta = if i == j { r2 } else { 0.0 };
+            *x -= mass * (delta - r[i] * r[j]);
+        }
+    }
+    inverse(&i_cm).unwrap_or([[f64::NAN; 3]; 3])
+}
+
+/// The vehicle's mass properties at `t`, `(m, c, I)`.
+fn mass_properties<V: VehicleModel>(vehicle: &V, t: f64) -> (f64, f64, [f64; 6]) {
+    (
+        vehicle.total_mass(t),
+        vehicle.com_to_cdm(t),
+        vehicle.inertia(t),
+    )
+}
+
+/// [`CoastMass`] when the mass tables are constant after burn-out (checked at two times far
+/// apart, to 1e-12 relative); `None` otherwise.
+fn coast_mass<V: VehicleModel>(vehicle: &V) -> Option<CoastMass> {
+    let b1 = vehicle.burn_out();
+    let (m1, c1, i1) = mass_properties(vehicle, b1 + 1.0);
+    let (m2, c2, i2) = mass_properties(vehicle, b1 + 1e4);
+    let same = |a: f64, b: f64| (a - b).abs() <= 1e-12 * a.abs().max(b.abs());
+    let rates = vehicle.inertia_rate(b1 + 1.0);
+    let constant = same(m1, m2)
+        && same(c1, c2)
+        && i1.iter().zip(&i2).all(|(a, b)| same(*a, *b))
+        && rates.iter().all(|r| r.abs() <= f64::MIN_POSITIVE)
+        && vehicle.com_to_cdm_rate(b1 + 1.0).abs() <= f64::MIN_POSITIVE;
+    constant.then(|| CoastMass {
+        mass: m1,
+        com_to_cdm: c1,
+        inertia: i1,
+        inverse_cm_inertia: inverse_cm_inertia(&tensor(i1), m1, c1),
+    })
+}
+
+impl<'a, A: AtmosphereModel, V: VehicleModel> Equations<'a, A, V> {
+    /// Reads the constant model quantities once.
+    pub fn new(atmosphere: &'a A, vehicle: &'a V) -> Self {
+        let s = vehicle.nozzle_gyration();
+        Self {
+            atmosphere,
+            vehicle,
+            earth_rotation: atmosphere.earth_rotation_enu(),
+            burn_start: vehicle.burn_start(),
+            burn_out: vehicle.burn_out(),
+            reference_area: vehicle.reference_area(),
+            nozzle: [0.0, 0.0, vehicle.nozzle_to_cdm()],
+            nozzle_gyration: [[s[0], 0.0, 0.0], [0.0, s[1], 0.0], [0.0, 0.0, s[2]]],
+            dry_mass: vehicle.dry_mass(),
+            coast: coast_mass(vehicle),
+        }
+    }
+
+    /// The atmosphere model.
+    #[must_use]
+    pub fn atmosphere(&self) -> &'a A {
+        self.atmosphere
+    }
+
+    /// The vehicle model.
+    #[must_use]
+    pub fn vehicle(&self) -> &'a V {
+        self.vehicle
+    }
+
+    /// Whether the motor is burning at `t` (strict `t_b0 < t < t_b1`, physics.md §6.3).
+    #[inline]
+    #[must_use]
+    pub fn powered(&self, t: f64) -> bool {
+        self.burn_start < t && t < self.burn_out
+    }
+
+    /// Rail phase (physics.md §8.1): 1-DOF slide along the rocket axis, power-on drag,
+    /// gravity times `K33`, acceleration clipped at zero, attitude frozen, no Coriolis.
+    #[inline]
+    #[must_use]
+    pub fn rail(&self, t: f64, u: &State) -> Derivative {
+        let (e0, e1, e2, e3) = (u[6], u[7], u[8], u[9]);
+        let z = u[2];
+        let atm = self.atmosphere;
+        let veh = self.vehicle;
+        let wind = atm.wind(z);
+        let free = [wind[0] - u[3], wind[1] - u[4], -u[5]];
+        let speed = norm(free);
+        let mach = speed / atm.speed_of_sound(z);
+        let rho = atm.density(z);
+        let cd = veh.drag_coefficient(true, mach);
+        let net_thrust = veh.net_thrust(t, atm.pressure(z));
+        let r3 = -0.5 * rho * speed * speed * self.reference_area * cd;
+        let a3 = (r3 + net_thrust) / veh.total_mass(t)
+            - (e0 * e0 - e1 * e1 - e2 * e2 + e3 * e3) * atm.gravity(z);
+        let (ax, ay, az) = if a3 > 0.0 {
+            (
+                2.0 * (e1 * e3 + e0 * e2) * a3,
+                2.0 * (e2 * e3 - e0 * e1) * a3,
+                (1.0 - 2.0 * (e1 * e1 + e2 * e2)) * a3,
+            )
+        } else if a3.is_nan() {
+            // A NaN must reach the integrator (and fail the flight), not be clipped to rest.
+            (f64::NAN, f64::NAN, f64::NAN)
+        } else {
+            (0.0, 0.0, 0.0)
+        };
+        Derivative {
+            u_dot: [
+                u[3], u[4], u[5], ax, ay, az, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0,
+            ],
+            force: [0.0, 0.0, r3],
+            moment: [0.0; 3],
+            net_thrust,
+        }
+    }
+
+    /// Aerodynamic force and moment in body axes about the CDM, plus the net thrust
+    /// (physics.md §7.1, §7.2, §7.6, §8.3 steps 1–5).
+    #[inline]
+    fn loads(&self, t: f64, u: &State, k: &Mat3) -> (Vec3, Vec3, f64) {
+        let atm = self.atmosphere;
+        let veh = self.vehicle;
+        let z = u[2];
+        let v = [u[3], u[4], u[5]];
+        let w = [u[10], u[11], u[12]];
+        let rho = atm.density(z);
+        let wind = atm.wind(z);
+        let a = atm.speed_of_sound(z);
+        let free = [wind[0] - v[0], wind[1] - v[1], -v[2]];
+        let speed = norm(free);
+        let mach = speed / a;
+        let powered = self.powered(t);
+        let net_thrust = if powered {
+            veh.net_thrust(t, atm.pressure(z))
+        } else {
+            0.0
+        };
+        let cd = veh.drag_coefficient(powered, mach);
+        let mut r = [
+            0.0,
+            0.0,
+            -0.5 * rho * speed * speed * self.reference_area * cd,
+        ];
+        let mut m = [0.0; 3];
+        let v_body = mat_t_vec(k, v);
+        for surface in veh.surfaces() {
+            let cp = surface.cp_body();
+            let vb = add(v_body, cross(w, cp));
+            let zc = z + dot(k[2], cp);
+            let wc = atm.wind(zc);
+            let wb = mat_t_vec(k, [wc[0], wc[1], 0.0]);
+            let s = sub(wb, vb);
+            let sp = norm(s);
+            let smach = sp / a;
+            let area = surface.reference_area();
+            let transverse2 = s[0] * s[0] + s[1] * s[1];
+            if transverse2 > 0.0 {
+                let vzn = s[2] / sp;
+                if -vzn < 1.0 {
+                    let alpha = (-vzn).acos();
+                    let lift = 0.5 * rho * sp * sp * area * surface.cn_alpha(smach) * alpha;
+                    let inv = 1.0 / transverse2.sqrt();
+                    let fx = lift * s[0] * inv;
+                    let fy = lift * s[1] * inv;
+                    r[0] += fx;
+                    r[1] += fy;
+                    m[0] -= cp[2] * fy;
+                    m[1] += cp[2] * fx;
+                }
+            }
+            if surface.rolls() {
+                let forcing = surface.roll_forcing(smach);
+                let damping = surface.roll_damping(smach);
+                let d = surface.reference_length();
+                m[2] += 0.5 * rho * sp * sp * area * d * forcing
+                    - 0.5 * rho * sp * area * d * d * damping * w[2] / 2.0;
+            }
+        }
+        (r, m, net_thrust)
+    }
+
+    /// Rail-phase loads for post-processing: the 6-DOF aerodynamic loads at the rail state
+    /// (RocketPy's `udot_rail1(post_processing=True)` reports those).
+    #[must_use]
+    pub fn rail_loads(&self, t: f64, u: &State) -> (Vec3, Vec3, f64) {
+        let k = rotation(quaternion(u));
+        self.loads(t, u, &k)
+    }
+
+    /// 6-DOF variable-mass flight (physics.md §8.2, RocketPy's `u_dot_generalized`), with the
+    /// RocketPy sign of the CM offset (§5.4) and nozzle terms (§5.6), Coriolis (§4.5).
+    #[inline]
+    #[must_use]
+    pub fn six_dof(&self, t: f64, u: &State) -> Derivative {
+        let atm = self.atmosphere;
+        let veh = self.vehicle;
+        let z = u[2];
+        let v = [u[3], u[4], u[5]];
+        let e = quaternion(u);
+        let w = [u[10], u[11], u[12]];
+        let k = rotation(e);
+
+        // ṁ = −T/v̄_e vanishes outside the burn (zero-extrapolated thrust); gating it with the
+        // thrust makes the burn-out instant itself, where integration steps stop, the
+        // unpowered limit instead of a mix (thrust off but the last segment's m̈ on).
+        let (mdot, mddot) = if self.powered(t) {
+            (veh.mass_flow_rate(t), veh.mass_flow_rate_derivative(t))
+        } else {
+            (0.0, 0.0)
+        };
+        // After burn-out c ≡ 0 and nothing changes; a finite-difference c̈ of a spline table
+        // (RocketPy's, §5.4) straddling the burn-out kink would otherwise spike within 1e-6 s
+        // of it, exactly where steps stop.
+        let (mass, c, c_dot, c_ddot, inertia, inertia_dot, i_cm_inv) = match self.coast {
+            Some(k) if t >= self.burn_out => (
+                k.mass,
+                k.com_to_cdm,
+                0.0,
+                0.0,
+                tensor(k.inertia),
+                [[0.0; 3]; 3],
+                k.inverse_cm_inertia,
+            ),
+            _ => {
+                let (mass, c) = (veh.total_mass(t), veh.com_to_cdm(t));
+                let inertia = tensor(veh.inertia(t));
+                let c_ddot = if t < self.burn_out {
+                    veh.com_to_cdm_accel(t)
+                } else {
+                    0.0
+                };
+                (
+                    mass,
+                    c,
+                    veh.com_to_cdm_rate(t),
+                    c_ddot,
+                    inertia,
+                    tensor(veh.inertia_rate(t)),
+                    inverse_cm_inertia(&inertia, mass, c),
+                )
+            }
+        };
+        let r_cm = [0.0, 0.0, c];
+        let r_cm_dot = [0.0, 0.0, c_dot];
+        let r_cm_ddot = [0.0, 0.0, c_ddot];
+
+        let (force, moment, net_thrust) = self.loads(t, u, &k);
+        let weight = mat_t_vec(&k, [0.0, 0.0, -mass * atm.gravity(z)]);
+
+        let noz_minus_r = sub(self.nozzle, r_cm);
+        let t00 = scale(mass, r_cm);
+        let t03 = sub(scale(2.0 * mdot, noz_minus_r), scale(2.0 * mass, r_cm_dot));
+        let t04 = add(
+            sub(
+                sub([0.0, 0.0, net_thrust], scale(mass, r_cm_ddot)),
+                scale(2.0 * mdot, r_cm_dot),
+            ),
+            scale(mddot, noz_minus_r),
+        );
+        let mut t05 = inertia_dot;
+        for (i, row) in t05.iter_mut().enumerate() {
+            for (j, x) in row.iter_mut().enumerate() {
+                *x = mdot * self.nozzle_gyration[i][j] - *x;
+            }
+        }
+        let t20 = add(
+            add(
+                add(cross(cross(w, t00), w), cross(w, t03)),
+                add(t04, weight),
+            ),
+            force,
+        );
+        let t21 = add(
+            add(cross(mat_vec(&inertia, w), w), mat_vec(&t05, w)),
+            sub(moment, cross(weight, r_cm)),
+        );
+        let rhs = add(t21, cross(t20, r_cm));
+        let w_dot = mat_vec(&i_cm_inv, rhs);
+        let e_dot = quaternion_rate(e, w);
+        let body_acc = sub(scale(1.0 / mass, t20), cross(r_cm, w_dot));
+        let v_dot = sub(
+            mat_vec(&k, body_acc),
+            scale(2.0, cross(self.earth_rotation, v)),
+        );
+        Derivative {
+            u_dot: [
+                v[0], v[1], v[2], v_dot[0], v_dot[1], v_dot[2], e_dot[0], e_dot[1], e_dot[2],
+                e_dot[3], w_dot[0], w_dot[1], w_dot[2],
+            ],
+            force,
+            moment,
+            net_thrust,
+        }
+    }
+
+    /// Parachute descent (physics.md §8.4): point mass at the dry mass, quadratic drag of the
+    /// newest canopy relative to the wind, hemispheroid added mass dividing drag and weight,
+    /// Coriolis; attitude frozen.
+    #[inline]
+    #[must_use]
+    pub fn parachute(&self, _t: f64, u: &State, canopy: &CanopyState) -> Derivative {
+        let atm = self.atmosphere;
+        let z = u[2];
+        let v = [u[3], u[4], u[5]];
+        let rho = atm.density(z);
+        let wind = atm.wind(z);
+        let mass = self.dry_mass;
+        let added = canopy.added_mass_coefficient
+            * rho
+            * (2.0 / 3.0)
+            * std::f64::consts::PI
+            * canopy.radius
+            * canopy.radius
+            * canopy.height;
+        let rel = [v[0] - wind[0], v[1] - wind[1], v[2]];
+        let pseudo = -0.5 * rho * canopy.cd_s * norm(rel);
+        let drag = scale(pseudo, rel);
+        let total = mass + added;
+        let coriolis = scale(2.0, cross(self.earth_rotation, v));
+        let a = [
+            drag[0] / total - coriolis[0],
+            drag[1] / total - coriolis[1],
+            (drag[2] - mass * atm.gravity(z)) / total - coriolis[2],
+        ];
+        Derivative {
+            u_dot: [
+                v[0], v[1], v[2], a[0], a[1], a[2], 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0,
+            ],
+            force: drag,
+            moment: [0.0; 3],
+            net_thrust: 0.0,
+        }
+    }
+}

@@ -1,0 +1,818 @@
+//! Flight phases, time nodes and events (physics.md §9), RocketPy's `Flight.__simulate`.
+//!
+//! A flight is an ordered list of phases, each integrated by a fresh
+//! `DormandPrince` from its start to the next phase's start (a hard time node). After every
+//! accepted step the engine stores the point and checks, in RocketPy's order, (a) rail exit
+//! (§9.2, Hermite root of `|Δr|² − L₁²`), (b) apogee (§9.3, linear root of `v_z`), (c) impact
+//! (§9.5, Hermite root of `z − elevation`), then (d) the parachute sampling instants that fell
+//! inside the step (overshootable nodes evaluated on the dense output, §9.4). Events that
+//! create phases insert them after the current one and roll the last point back to the event.
+//!
+//! Within a phase, steps also end on every thrust-curve knot of the burn and at burn-out
+//! ([`FlightSettings::stop_at_thrust_knots`]): without those stops a Dormand–Prince step at
+//! the default tolerances straddles the kinks of a jagged thrust curve and the apogee drifts by
+//! up to ~0.1 % (Valetudo), with them every validation apogee is within 0.02 % of RocketPy's.
+//! Noise-free parachutes skip the sampling instants of steps in which they provably cannot
+//! fire (`v_z > 0`, or well above a height trigger's threshold height).
+//!
+//! Deviations from RocketPy (none changes a validation flight):
+//! - a rocket still at rest on the rail after burn-out can never leave it (the rail
+//!   acceleration is clipped at zero), so the flight ends there with
+//!   [`Termination::StuckOnRail`] instead of integrating a motionless state to `max_time`;
+//! - parachute sampling and the impact check start at rail exit: on the rail `v_z ≥ 0` and
+//!   `z ≥ elevation` hold up to round-off, which must not fire an apogee trigger or an impact;
+//! - the impact check also runs on the step that detects apogee (see `after_step`).
+
+use crate::DynamicsError;
+use crate::equations::{CanopyState, Derivative, Equations};
+use crate::integrator::{DormandPrince, StepStatus, Tolerances};
+use crate::model::{AtmosphereModel, ParachuteSpec, TriggerKind, VehicleModel};
+use crate::noise::NoiseStream;
+use crate::settings::FlightSettings;
+use crate::state::{State, euler313_to_quaternion};
+
+/// Which equations of motion a phase integrates.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum PhaseKind {
+    /// 1-DOF slide along the rail (physics.md §8.1).
+    Rail,
+    /// 6-DOF variable-mass flight (§8.2).
+    SixDof,
+    /// 3-DOF descent under the given canopy (§8.4).
+    Parachute(CanopyState),
+}
+
+/// A flight phase: start time, equations, and whether sampling instants at its start are
+/// skipped (RocketPy's `clear`).
+#[derive(Debug, Clone, Copy, PartialEq)]
+struct Phase {
+    t: f64,
+    kind: Option<PhaseKind>,
+    clear: bool,
+}
+
+/// One stored solution point.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct SolutionPoint {
+    /// Time, s.
+    pub t: f64,
+    /// State (physics.md §3).
+    pub state: State,
+    /// Equations in force for this point (RocketPy assigns a point to the phase with
+    /// `t_start < t ≤ t_end`).
+    pub phase: PhaseKind,
+}
+
+/// How the flight ended.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, serde::Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Termination {
+    /// Ground impact.
+    Impact,
+    /// Stopped at apogee (`terminate_on_apogee`).
+    Apogee,
+    /// Reached `max_time` in the air.
+    MaxTime,
+    /// Still at rest on the rail after burn-out: the motor cannot lift the rocket.
+    StuckOnRail,
+}
+
+/// A parachute trigger.
+#[derive(Debug, Clone, PartialEq)]
+pub struct ParachuteEvent {
+    /// Parachute name.
+    pub name: String,
+    /// Trigger (ejection) time, s, before the lag.
+    pub trigger_time: f64,
+    /// Full-inflation time `trigger_time + lag`, s.
+    pub inflation_time: f64,
+}
+
+/// Integration work of one flight.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, serde::Serialize)]
+pub struct IntegrationStats {
+    /// Accepted steps.
+    pub steps: usize,
+    /// Rejected steps.
+    pub rejected_steps: usize,
+    /// Right-hand-side evaluations (integration only, not post-processing).
+    pub evaluations: usize,
+    /// Flight phases integrated.
+    pub phases: usize,
+}
+
+impl IntegrationStats {
+    /// Adds the counters of one finished integrator.
+    fn add(&mut self, integ: &DormandPrince<13>) {
+        self.steps += integ.steps();
+        self.rejected_steps += integ.rejected_steps();
+        self.evaluations += integ.evaluations();
+    }
+}
+
+/// The raw result of a flight: stored points, events and counters. Derived outputs come from
+/// [`crate::output`].
+#[derive(Debug, Clone, PartialEq)]
+pub struct Flight {
+    /// Stored solution points in time order.
+    pub points: Vec<SolutionPoint>,
+    /// Rail exit `(t, state)`.
+    pub rail_exit: Option<(f64, State)>,
+    /// Apogee `(t, state)`.
+    pub apogee: Option<(f64, State)>,
+    /// Impact `(t, state)`.
+    pub impact: Option<(f64, State)>,
+    /// Parachute triggers in time order.
+    pub parachute_events: Vec<ParachuteEvent>,
+    /// How the flight ended.
+    pub termination: Termination,
+    /// Final time, s.
+    pub t_final: f64,
+    /// Motor burn-out time, s.
+    pub burn_out: f64,
+    /// Launch elevation, m ASL.
+    pub elevation: f64,
+    /// Seed of the parachute noise streams.
+    pub noise_seed: u64,
+    /// Integration counters.
+    pub stats: IntegrationStats,
+}
+
+/// Evaluates the equations of a phase.
+#[inline]
+pub(crate) fn evaluate<A: AtmosphereModel, V: VehicleModel>(
+    eq: &Equations<'_, A, V>,
+    kind: &PhaseKind,
+    t: f64,
+    u: &State,
+) -> Derivative {
+    match kind {
+        PhaseKind::Rail => eq.rail(t, u),
+        PhaseKind::SixDof => eq.six_dof(t, u),
+        PhaseKind::Parachute(canopy) => eq.parachute(t, u, canopy),
+    }
+}
+
+/// Real root in `(0, h)` of the cubic Hermite interpolant with values `y0, y1` and slopes
+/// `yp0, yp1` at `0, h` (physics.md §9.2, §9.5), by bisection on the cubic (the end values
+/// bracket a sign change by construction of the events).
+fn hermite_root(h: f64, y0: f64, yp0: f64, y1: f64, yp1: f64) -> Option<f64> {
+    let bracketed = h > 0.0 && y0 * y1 <= 0.0; // false for NaN too
+    if !bracketed {
+        return None;
+    }
+    // p(τ) = a τ³ + b τ² + c τ + d.
+    let d = y0;
+    let c = yp0;
+    let b = (3.0 * (y1 - y0) / h - 2.0 * yp0 - yp1) / h;
+    let a = (yp0 + yp1 - 2.0 * (y1 - y0) / h) / (h * h);
+    let p = |x: f64| ((a * x + b) * x + c) * x + d;
+    let (mut lo, mut hi) = (0.0, h);
+    let mut plo = p(lo);
+    for _ in 0..200 {
+        let mid = 0.5 * (lo + hi);
+        if mid <= lo || mid >= hi {
+            break;
+        }
+        let pm = p(mid);
+        if (pm <= 0.0) == (plo <= 0.0) && pm != 0.0 {
+            lo = mid;
+            plo = pm;
+        } else {
+            hi = mid;
+        }
+    }
+    Some(0.5 * (lo + hi))
+}
+
+/// Inserts a phase before index `index` keeping start times strictly increasing; ties are
+/// shifted by 1e-7 s as RocketPy's `FlightPhases.add` does. A phase at or after the final
+/// bound is dropped (the flight ends first).
+fn insert_phase(phases: &mut Vec<Phase>, mut index: usize, mut phase: Phase) {
+    let Some(end) = phases.last().map(|p| p.t) else {
+        return;
+    };
+    loop {
+        if phase.t >= end {
+            return;
+        }
+        if index == 0 {
+            index = 1;
+        }
+        if index >= phases.len() {
+            index = phases.len() - 1;
+        }
+        let prev = phases[index - 1].t;
+        let next = phases[index].t;
+        if prev < phase.t && phase.t < next {
+            phases.insert(index, phase);
+            return;
+        }
+        let tie = (phase.t - prev).abs() < f64::MIN_POSITIVE
+            || (phase.t - next).abs() < f64::MIN_POSITIVE;
+        let new_index = if phase.t < prev {
+            index - 1
+        } else if phase.t > next {
+            index + 1
+        } else {
+            index
+        };
+        if tie {
+            phase.t += 1e-7;
+        }
+        index = new_index;
+    }
+}
+
+/// Key of a sampling instant rounded to 1e-7 s (RocketPy's `TimeNodes.merge`).
+#[inline]
+fn node_key(t: f64) -> i64 {
+    // Flight times are far below 2^63 · 1e-7 s; the cast saturates otherwise.
+    (t * 1e7).round() as i64
+}
+
+/// Mutable bookkeeping of a flight in progress.
+struct Run {
+    points: Vec<SolutionPoint>,
+    phases: Vec<Phase>,
+    rail_exit: Option<(f64, State)>,
+    apogee: Option<(f64, State)>,
+    impact: Option<(f64, State)>,
+    parachute_events: Vec<ParachuteEvent>,
+    termination: Termination,
+    pending: Vec<usize>,
+    streams: Vec<NoiseStream>,
+    nodes: Vec<(f64, usize)>,
+    /// Per parachute: the ASL height below which a noise-free height trigger fires.
+    thresholds: Vec<Option<f64>>,
+    stats: IntegrationStats,
+}
+
+/// Half-width of the band around a height threshold inside which the trigger is evaluated
+/// exactly (barometric height of the pressure), m.
+const THRESHOLD_BAND: f64 = 1.0;
+
+/// The ASL height `z` where a noise-free height trigger switches, `h_baro(P(z)) − elevation =
+/// height_agl`, by bisection (both functions are monotone); `None` if not bracketed.
+fn trigger_height<A: AtmosphereModel>(atm: &A, elevation: f64, height_agl: f64) -> Option<f64> {
+    let g = |z: f64| atm.barometric_height(atm.pressure(z)) - elevation - height_agl;
+    let guess = elevation + height_agl;
+    let (mut lo, mut hi) = (guess - 1000.0, guess + 1000.0);
+    let (g_lo, g_hi) = (g(lo), g(hi));
+    let bracketed = g_lo < 0.0 && g_hi > 0.0;
+    if !bracketed {
+        return None;
+    }
+    for _ in 0..80 {
+        let mid = 0.5 * (lo + hi);
+        if g(mid) < 0.0 { lo = mid } else { hi = mid }
+    }
+    Some(0.5 * (lo + hi))
+}
+
+/// Flies a rocket from the rail to the ground (or apogee / `max_time`).
+///
+/// # Errors
+/// [`DynamicsError::InvalidSetting`] for bad settings or a rail shorter than the
+/// nozzle-to-upper-button distance; integrator failures ([`DynamicsError::NonFinite`],
+/// [`DynamicsError::StepTooSmall`], [`DynamicsError::TooManySteps`]) for unflyable models.
+pub fn simulate<A: AtmosphereModel, V: VehicleModel>(
+    atmosphere: &A,
+    vehicle: &V,
+    settings: &FlightSettings,
+) -> Result<Flight, DynamicsError> {
+    settings.validate()?;
+    let eq = Equations::new(atmosphere, vehicle);
+    let elevation = atmosphere.elevation();
+    let csys = vehicle.csys();
+    let buttons = vehicle.rail_buttons();
+
+    // Initial attitude (physics.md §2.4).
+    let phi = buttons.map_or(0.0, |b| {
+        if csys > 0.0 {
+            b.angular_position_rad
+        } else {
+            2.0 * std::f64::consts::PI - b.angular_position_rad
+        }
+    });
+    let theta = (settings.inclination_deg - 90.0).to_radians();
+    let psi = (-settings.heading_deg).to_radians();
+    let e = euler313_to_quaternion(phi, theta, psi);
+    let u0: State = [
+        0.0, 0.0, elevation, 0.0, 0.0, 0.0, e[0], e[1], e[2], e[3], 0.0, 0.0, 0.0,
+    ];
+
+    // Effective rail length to the upper button (physics.md §8.1, RocketPy `effective_1rl`).
+    let nozzle = vehicle.nozzle_position();
+    let upper = buttons.map_or(nozzle, |b| {
+        b.lower_position + csys * (b.upper_position - b.lower_position).abs()
+    });
+    let rail_travel = settings.rail_length - (nozzle - upper).abs();
+    let positive_travel = rail_travel > 0.0; // false for NaN too
+    if !positive_travel {
+        return Err(DynamicsError::InvalidSetting {
+            name: "rail_length",
+            value: settings.rail_length,
+            reason: "must exceed the nozzle-to-upper-rail-button distance",
+        });
+    }
+
+    let specs = vehicle.parachutes();
+    let streams = specs
+        .iter()
+        .enumerate()
+        .map(|(i, p)| NoiseStream::new(p.noise, settings.noise_seed, i as u64))
+        .collect();
+    let mut run = Run {
+        points: vec![SolutionPoint {
+            t: 0.0,
+            state: u0,
+            phase: PhaseKind::Rail,
+        }],
+        phases: vec![
+            Phase {
+                t: 0.0,
+                kind: Some(PhaseKind::Rail),
+                clear: false,
+            },
+            Phase {
+                t: settings.max_time,
+                kind: None,
+                clear: true,
+            },
+        ],
+        rail_exit: None,
+        apogee: None,
+        impact: None,
+        parachute_events: Vec::new(),
+        termination: Termination::MaxTime,
+        pending: (0..specs.len())
+            .filter(|&i| specs[i].sampling_rate > 0.0)
+            .collect(),
+        streams,
+        nodes: Vec::new(),
+        thresholds: specs
+            .iter()
+            .map(|p| match p.trigger {
+                TriggerKind::Apogee => None,
+                TriggerKind::HeightAboveGround(h) => trigger_height(atmosphere, elevation, h),
+            })
+            .collect(),
+        stats: IntegrationStats::default(),
+    };
+
+    // Steps end on the knots of the thrust curve during the burn and at burn-out: the
+    // right-hand side has a kink at every knot (linear interpolation) and a jump at burn-out
+    // (thrust and power-on drag stop). An embedded Runge–Kutta error estimate resolves those
+    // poorly (RocketPy's LSODA, with its max-norm and many short steps, absorbs them); with
+    // the steps stopped there the default tolerances give converged apogees.
+    let knots: Vec<f64> = if settings.stop_at_thrust_knots {
+        let (b0, b1) = (vehicle.burn_start(), vehicle.burn_out());
+        let mut k: Vec<f64> = vehicle
+            .thrust_knots()
+            .into_iter()
+            .filter(|&x| b0 < x && x < b1)
+            .collect();
+        k.push(b1);
+        k
+    } else {
+        Vec::new()
+    };
+    let mut t = 0.0;
+    let mut y = u0;
+    let mut index = 0;
+    while index + 1 < run.phases.len() {
+        let phase = run.phases[index];
+        let Some(kind) = phase.kind else { break };
+        let t_bound = run.phases[index + 1].t;
+        let max_step = if kind == PhaseKind::Rail {
+            settings.max_time_step.min(settings.rail_max_time_step)
+        } else {
+            settings.max_time_step
+        };
+        let tol = Tolerances {
+            rtol: settings.rtol,
+            atol: settings.atol,
+            max_step,
+            min_step: settings.min_time_step,
+            max_steps: settings.max_steps_per_phase,
+        };
+        let mut rhs = |tt: f64, uu: &State| evaluate(&eq, &kind, tt, uu).u_dot;
+        let mut integ = DormandPrince::new(&mut rhs, t, y, t_bound, tol)?;
+        run.stats.phases += 1;
+        loop {
+            integ.set_stop(
+                knots
+                    .iter()
+                    .copied()
+                    .find(|&k| k > t)
+                    .unwrap_or(f64::INFINITY),
+            );
+            let status = integ.step(&mut rhs)?;
+            t = integ.t();
+            y = *integ.y();
+            run.points.push(SolutionPoint {
+                t,
+                state: y,
+                phase: kind,
+            });
+            let outcome = run.after_step(
+                &integ,
+                &eq,
+                &specs,
+                index,
+                phase,
+                kind,
+                settings,
+                rail_travel,
+                elevation,
+            )?;
+            if let Some((t_event, y_event)) = outcome {
+                t = t_event;
+                y = y_event;
+                break;
+            }
+            if status == StepStatus::Finished {
+                break;
+            }
+        }
+        run.stats.add(&integ);
+        index += 1;
+    }
+
+    Ok(Flight {
+        points: run.points,
+        rail_exit: run.rail_exit,
+        apogee: run.apogee,
+        impact: run.impact,
+        parachute_events: run.parachute_events,
+        termination: run.termination,
+        t_final: t,
+        burn_out: vehicle.burn_out(),
+        elevation,
+        noise_seed: settings.noise_seed,
+        stats: run.stats,
+    })
+}
+
+impl Run {
+    /// Ends the flight at the current phase: every later phase is replaced by a final bound
+    /// at `t`.
+    fn end_flight(&mut self, index: usize, t: f64, termination: Termination) {
+        self.phases.truncate(index + 1);
+        self.phases.push(Phase {
+            t,
+            kind: None,
+            clear: true,
+        });
+        self.termination = termination;
+    }
+
+    /// Event checks after an accepted step (physics.md §9.1 step 4). Returns the state the
+    /// next phase starts from when the current phase ends here.
+    #[allow(clippy::too_many_arguments)]
+    fn after_step<A: AtmosphereModel, V: VehicleModel>(
+        &mut self,
+        integ: &DormandPrince<13>,
+        eq: &Equations<'_, A, V>,
+        specs: &[ParachuteSpec],
+        index: usize,
+        phase: Phase,
+        kind: PhaseKind,
+        settings: &FlightSettings,
+        rail_travel: f64,
+        elevation: f64,
+    ) -> Result<Option<(f64, State)>, DynamicsError> {
+        let n = self.points.len();
+        let prev = self.points[n - 2];
+        let last = self.points[n - 1];
+        let (t0, y0) = (prev.t, prev.state);
+        let (t1, y1) = (last.t, last.state);
+
+        // (a) Rail exit.
+        if self.rail_exit.is_none() {
+            let dr = |u: &State| [u[0], u[1], u[2] - elevation];
+            let f = |u: &State| {
+                let d = dr(u);
+                d[0] * d[0] + d[1] * d[1] + d[2] * d[2] - rail_travel * rail_travel
+            };
+            let fp = |u: &State| {
+                let d = dr(u);
+                2.0 * (d[0] * u[3] + d[1] * u[4] + d[2] * u[5])
+            };
+            if f(&y1) >= 0.0 {
+                let h = t1 - t0;
+                let tau = hermite_root(h, f(&y0), fp(&y0), f(&y1), fp(&y1)).ok_or(
+                    DynamicsError::EventRoot {
+                        event: "rail exit",
+                        t0,
+                        t1,
+                    },
+                )?;
+                let t_exit = t0 + tau;
+                let y_exit = integ.dense(t_exit);
+                self.points[n - 1] = SolutionPoint {
+                    t: t_exit,
+                    state: y_exit,
+                    phase: kind,
+                };
+                self.rail_exit = Some((t_exit, y_exit));
+                insert_phase(
+                    &mut self.phases,
+                    index + 1,
+                    Phase {
+                        t: t_exit,
+                        kind: Some(PhaseKind::SixDof),
+                        clear: true,
+                    },
+                );
+                return Ok(Some((t_exit, y_exit)));
+            }
+            // A rocket at rest on the rail after burn-out never leaves it.
+            let burn_out = eq.vehicle().burn_out();
+            if kind == PhaseKind::Rail && t1 > burn_out && y1[3..6].iter().all(|v| v.abs() == 0.0) {
+                self.end_flight(index, t1, Termination::StuckOnRail);
+                return Ok(Some((t1, y1)));
+            }
+        }
+        // (b) Apogee.
+        if self.apogee.is_none() && self.rail_exit.is_some() && y1[5] < 0.0 {
+            let (vz0, vz1) = (y0[5], y1[5]);
+            let t_apogee = t0 - vz0 * (t1 - t0) / (vz1 - vz0);
+            let y_apogee = integ.dense(t_apogee);
+            self.apogee = Some((t_apogee, y_apogee));
+            if settings.terminate_on_apogee {
+                self.points[n - 1] = SolutionPoint {
+                    t: t_apogee,
+                    state: y_apogee,
+                    phase: kind,
+                };
+                self.end_flight(index, t_apogee, Termination::Apogee);
+                return Ok(Some((t_apogee, y_apogee)));
+            }
+            if n > 2 {
+                self.points.insert(
+                    n - 1,
+                    SolutionPoint {
+                        t: t_apogee,
+                        state: y_apogee,
+                        phase: kind,
+                    },
+                );
+            }
+        }
+        // RocketPy skips the impact check on the apogee step; a step that spans both (a
+        // ballistic arc in vacuum) would then never find the ground, so it is checked here.
+        // On the rail the height cannot fall below the pad; only round-off (the fifth-order
+        // weights include a negative one) could make it, so the check starts at rail exit.
+        if self.rail_exit.is_some() && y1[2] < elevation {
+            // (c) Impact.
+            let h = t1 - t0;
+            let tau = hermite_root(h, y0[2] - elevation, y0[5], y1[2] - elevation, y1[5]).ok_or(
+                DynamicsError::EventRoot {
+                    event: "impact",
+                    t0,
+                    t1,
+                },
+            )?;
+            let t_impact = t0 + tau;
+            let y_impact = integ.dense(t_impact);
+            let last_index = self.points.len() - 1;
+            self.points[last_index] = SolutionPoint {
+                t: t_impact,
+                state: y_impact,
+                phase: kind,
+            };
+            self.impact = Some((t_impact, y_impact));
+            self.end_flight(index, t_impact, Termination::Impact);
+            return Ok(Some((t_impact, y_impact)));
+        }
+        // (d) Parachute sampling instants inside the step.
+        Ok(self.sample_parachutes(integ, eq, specs, index, phase, kind, elevation))
+    }
+
+    /// Whether a silent (noise-free) parachute certainly cannot fire inside the last step, so
+    /// its sampling instants need no evaluation: both triggers need `v_z < 0`, a height
+    /// trigger also `z` below its threshold. The bounds are the end values less a generous
+    /// allowance (`h · max|derivative|`) for the dense output between them.
+    fn cannot_fire(&self, p: usize, integ: &DormandPrince<13>) -> bool {
+        if !self.streams[p].is_silent() {
+            return false;
+        }
+        let (y0, y1) = (integ.y_old(), integ.y());
+        let (f0, f1) = (integ.f_old(), integ.f());
+        let h = integ.last_step();
+        let vz_low = y0[5].min(y1[5]) - h * f0[5].abs().max(f1[5].abs());
+        if vz_low > 0.0 {
+            return true;
+        }
+        match self.thresholds[p] {
+            Some(z_threshold) => {
+                let z_low = y0[2].min(y1[2]) - h * y0[5].abs().max(y1[5].abs());
+                z_low > z_threshold + THRESHOLD_BAND
+            }
+            None => false,
+        }
+    }
+
+    /// Overshootable parachute nodes of the last step (physics.md §9.4, RocketPy's
+    /// `__process_overshootable_nodes`).
+    #[allow(clippy::too_many_arguments)]
+    fn sample_parachutes<A: AtmosphereModel, V: VehicleModel>(
+        &mut self,
+        integ: &DormandPrince<13>,
+        eq: &Equations<'_, A, V>,
+        specs: &[ParachuteSpec],
+        index: usize,
+        phase: Phase,
+        kind: PhaseKind,
+        elevation: f64,
+    ) -> Option<(f64, State)> {
+        // A rocket on the rail has not flown: its vertical speed is ≥ 0 up to round-off
+        // (which could otherwise fire an apogee trigger), so sampling starts at rail exit.
+        if self.pending.is_empty() || kind == PhaseKind::Rail {
+            return None;
+        }
+        let n = self.points.len();
+        let t_start = self.points[n - 2].t;
+        let t_end = self.points[n - 1].t;
+        self.nodes.clear();
+        for i in 0..self.pending.len() {
+            let p = self.pending[i];
+            if self.cannot_fire(p, integ) {
+                continue;
+            }
+            let interval = 1.0 / specs[p].sampling_rate;
+            let j0 = (t_start / interval).ceil() as i64;
+            let j1 = (t_end / interval).floor() as i64;
+            for j in j0..=j1 {
+                self.nodes.push((j as f64 * interval, p));
+            }
+        }
+        if self.nodes.is_empty() {
+            return None;
+        }
+        self.nodes.sort_by(|a, b| a.0.total_cmp(&b.0));
+        let end_key = node_key(t_end);
+        let first_key = node_key(self.nodes[0].0);
+        // The first group is cleared when it sits on the start of a `clear` phase.
+        let skip_first = phase.clear && (self.nodes[0].0 - phase.t).abs() < 1e-9;
+        let atm = eq.atmosphere();
+        let mut i = 0;
+        while i < self.nodes.len() {
+            let key = node_key(self.nodes[i].0);
+            if key == end_key {
+                break; // the node at the step end is evaluated with the next step
+            }
+            let t_node = self.nodes[i].0;
+            let group_end = self.nodes[i..]
+                .iter()
+                .position(|n| node_key(n.0) != key)
+                .map_or(self.nodes.len(), |k| i + k);
+            if skip_first && key == first_key {
+                i = group_end;
+                continue;
+            }
+            let z = integ.dense_component(t_node, 2);
+            let vz = integ.dense_component(t_node, 5);
+            let mut pressure = None;
+            for g in i..group_end {
+                let p = self.nodes[g].1;
+                let noise = self.streams[p].next_value();
+                let fired = vz < 0.0
+                    && match specs[p].trigger {
+                        TriggerKind::Apogee => true,
+                        TriggerKind::HeightAboveGround(h) => match self.thresholds[p] {
+                            // Noise-free: compare heights directly, away from the threshold.
+                            Some(zt) if noise == 0.0 && (z - zt).abs() > THRESHOLD_BAND => z < zt,
+                            _ => {
+                                let p_clean = *pressure.get_or_insert_with(|| atm.pressure(z));
+                                atm.barometric_height(p_clean + noise) - elevation < h
+                            }
+                        },
+                    };
+                if !fired {
+                    continue;
+                }
+                let y_node = integ.dense(t_node);
+                self.deploy(&specs[p], p, index, kind, t_node);
+                self.points[n - 1] = SolutionPoint {
+                    t: t_node,
+                    state: y_node,
+                    phase: kind,
+                };
+                return Some((t_node, y_node));
+            }
+            i = group_end;
+        }
+        None
+    }
+
+    /// Schedules a triggered parachute: an optional lag phase with the current equations,
+    /// then the parachute phase (physics.md §9.4).
+    fn deploy(
+        &mut self,
+        spec: &ParachuteSpec,
+        p: usize,
+        index: usize,
+        kind: PhaseKind,
+        t_node: f64,
+    ) {
+        self.pending.retain(|&q| q != p);
+        let mut at = index + 1;
+        if spec.lag != 0.0 {
+            insert_phase(
+                &mut self.phases,
+                at,
+                Phase {
+                    t: t_node,
+                    kind: Some(kind),
+                    clear: true,
+                },
+            );
+            at += 1;
+        }
+        let canopy = CanopyState {
+            cd_s: spec.cd_s,
+            radius: spec.radius,
+            height: spec.height,
+            added_mass_coefficient: spec.added_mass_coefficient,
+        };
+        insert_phase(
+            &mut self.phases,
+            at,
+            Phase {
+                t: t_node + spec.lag,
+                kind: Some(PhaseKind::Parachute(canopy)),
+                clear: false,
+            },
+        );
+        // Without lag the parachute phase starts right at the node: it must follow the current
+        // phase, which the insertion above guarantees.
+        self.parachute_events.push(ParachuteEvent {
+            name: spec.name.clone(),
+            trigger_time: t_node,
+            inflation_time: t_node + spec.lag,
+        });
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn hermite_root_of_a_cubic() {
+        // p(τ) = τ³ − 0.5 on [0, 1]: root 0.5^(1/3).
+        let r = hermite_root(1.0, -0.5, 0.0, 0.5, 3.0).unwrap();
+        assert!((r - 0.5f64.cbrt()).abs() < 1e-12);
+        assert!(hermite_root(1.0, 1.0, 0.0, 2.0, 0.0).is_none());
+    }
+
+    #[test]
+    fn phases_stay_sorted_and_ties_shift() {
+        let mut phases = vec![
+            Phase {
+                t: 0.0,
+                kind: Some(PhaseKind::Rail),
+                clear: false,
+            },
+            Phase {
+                t: 600.0,
+                kind: None,
+                clear: true,
+            },
+        ];
+        insert_phase(
+            &mut phases,
+            1,
+            Phase {
+                t: 0.4,
+                kind: Some(PhaseKind::SixDof),
+                clear: true,
+            },
+        );
+        insert_phase(
+            &mut phases,
+            2,
+            Phase {
+                t: 0.4,
+                kind: Some(PhaseKind::SixDof),
+                clear: true,
+            },
+        );
+        insert_phase(
+            &mut phases,
+            1,
+            Phase {
+                t: 700.0,
+                kind: Some(PhaseKind::SixDof),
+                clear: true,
+            },
+        );
+        let ts: Vec<f64> = phases.iter().map(|p| p.t).collect();
+        assert_eq!(ts.len(), 4);
+        assert!(ts.windows(2).all(|w| w[0] < w[1]), "{ts:?}");
+        assert!((ts[2] - 0.4 - 1e-7).abs() < 1e-12);
+    }
+}

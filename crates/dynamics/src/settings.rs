@@ -1,0 +1,167 @@
+//! Flight settings (RocketPy's `Flight` arguments, defaults of physics.md §1 and §10).
+
+use crate::DynamicsError;
+
+/// RocketPy's default absolute tolerances: positions, velocities 1e-3; quaternion 1e-6;
+/// angular rates 1e-3 (physics.md §1, §10.1).
+pub const DEFAULT_ATOL: [f64; 13] = [
+    1e-3, 1e-3, 1e-3, 1e-3, 1e-3, 1e-3, 1e-6, 1e-6, 1e-6, 1e-6, 1e-3, 1e-3, 1e-3,
+];
+
+/// Launch and integration settings of one flight.
+#[derive(Debug, Clone, PartialEq)]
+pub struct FlightSettings {
+    /// Rail length, m.
+    pub rail_length: f64,
+    /// Rail inclination from the horizontal, degrees (default 80).
+    pub inclination_deg: f64,
+    /// Rail heading, degrees clockwise from north (default 90).
+    pub heading_deg: f64,
+    /// Simulation end time, s (default 600).
+    pub max_time: f64,
+    /// Stop at apogee (default false).
+    pub terminate_on_apogee: bool,
+    /// Relative tolerance (default 1e-6).
+    pub rtol: f64,
+    /// Absolute tolerance per state (default [`DEFAULT_ATOL`]).
+    pub atol: [f64; 13],
+    /// Largest integration step, s (default ∞).
+    pub max_time_step: f64,
+    /// Largest step while on the rail, s (default 0.01): the rail derivative is zero until
+    /// thrust exceeds weight, so the controller would otherwise grow the step without bound
+    /// and skip the burn (physics.md §10.4).
+    pub rail_max_time_step: f64,
+    /// Smallest step before the flight fails, s (default 1e-12).
+    pub min_time_step: f64,
+    /// Step budget per flight phase (default 200 000).
+    pub max_steps_per_phase: usize,
+    /// Seed of the parachute trigger-noise streams (recorded with the flight).
+    pub noise_seed: u64,
+    /// End integration steps on every thrust-curve knot during the burn and at burn-out
+    /// (default true): the right-hand side has a kink at each knot and a jump at burn-out.
+    /// RocketPy has no nodes there (its LSODA absorbs them in many short max-norm-controlled
+    /// steps); without them a Dormand–Prince step at the default tolerances can straddle a
+    /// kink and the apogee of a rocket with a jagged thrust curve drifts by ~0.1 %.
+    pub stop_at_thrust_knots: bool,
+}
+
+impl FlightSettings {
+    /// Settings with RocketPy's defaults for a rail of the given length.
+    #[must_use]
+    pub fn new(rail_length: f64) -> Self {
+        Self {
+            rail_length,
+            inclination_deg: 80.0,
+            heading_deg: 90.0,
+            max_time: 600.0,
+            terminate_on_apogee: false,
+            rtol: 1e-6,
+            atol: DEFAULT_ATOL,
+            max_time_step: f64::INFINITY,
+            rail_max_time_step: 0.01,
+            min_time_step: 1e-12,
+            max_steps_per_phase: 200_000,
+            noise_seed: 0,
+            stop_at_thrust_knots: true,
+        }
+    }
+
+    /// Checks every setting's range.
+    ///
+    /// # Errors
+    /// [`DynamicsError::InvalidSetting`] naming the first bad setting.
+    pub fn validate(&self) -> Result<(), DynamicsError> {
+        let check = |name: &'static str, value: f64, ok: bool, reason: &'static str| {
+            if ok {
+                Ok(())
+            } else {
+                Err(DynamicsError::InvalidSetting {
+                    name,
+                    value,
+                    reason,
+                })
+            }
+        };
+        let r = self.rail_length;
+        check(
+            "rail_length",
+            r,
+            r.is_finite() && r > 0.0,
+            "must be a positive length",
+        )?;
+        let i = self.inclination_deg;
+        check(
+            "inclination",
+            i,
+            i.is_finite() && i > 0.0 && i <= 90.0,
+            "must be in (0, 90] deg",
+        )?;
+        let h = self.heading_deg;
+        check("heading", h, h.is_finite(), "must be finite")?;
+        let m = self.max_time;
+        check(
+            "max_time",
+            m,
+            m.is_finite() && m > 0.0,
+            "must be a positive time",
+        )?;
+        let rt = self.rtol;
+        check("rtol", rt, rt.is_finite() && rt > 0.0, "must be positive")?;
+        for &a in &self.atol {
+            check(
+                "atol",
+                a,
+                a.is_finite() && a > 0.0,
+                "every component must be positive",
+            )?;
+        }
+        let s = self.max_time_step;
+        check("max_time_step", s, s > 0.0, "must be positive")?;
+        let s = self.rail_max_time_step;
+        check("rail_max_time_step", s, s > 0.0, "must be positive")?;
+        let s = self.min_time_step;
+        check(
+            "min_time_step",
+            s,
+            s.is_finite() && s >= 0.0,
+            "must be non-negative",
+        )?;
+        Ok(())
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn defaults_are_rocketpy_defaults_and_valid() {
+        let s = FlightSettings::new(5.2);
+        assert!(s.validate().is_ok());
+        assert!((s.inclination_deg - 80.0).abs() < 1e-12 && (s.heading_deg - 90.0).abs() < 1e-12);
+        assert!((s.max_time - 600.0).abs() < 1e-12 && !s.terminate_on_apogee);
+    }
+
+    #[test]
+    fn bad_settings_are_named() {
+        let mut s = FlightSettings::new(5.2);
+        s.inclination_deg = 120.0;
+        let err = s.validate().unwrap_err();
+        assert!(matches!(
+            err,
+            DynamicsError::InvalidSetting {
+                name: "inclination",
+                ..
+            }
+        ));
+        let mut s = FlightSettings::new(f64::NAN);
+        s.rtol = 0.0;
+        assert!(matches!(
+            s.validate().unwrap_err(),
+            DynamicsError::InvalidSetting {
+                name: "rail_length",
+                ..
+            }
+        ));
+    }
+}

@@ -1,0 +1,5 @@
+//! Integration tests of karman-dynamics (one binary, one module per topic).
+
+mod mock;
+mod robustness;
+mod toy_flights;

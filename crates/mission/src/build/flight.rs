@@ -1,0 +1,97 @@
+//! `[flight]` → [`karman_dynamics::FlightSettings`], and [`simulate`]: a whole mission flown
+//! (environment, motor and rocket built, then the flight integrated).
+//!
+//! Defaults are RocketPy 1.13's `Flight` defaults (physics.md §1): inclination 80°, heading
+//! 90°, `max_time` 600 s, `rtol` 1e-6, per-state `atol` (1e-3 for positions, velocities and
+//! rates, 1e-6 for the quaternion), unbounded step. The schema already applies them; an
+//! absent `atol` means the per-state default.
+
+use karman_airframe::Rocket;
+use karman_atmos::Environment;
+use karman_dynamics::{DEFAULT_ATOL, Flight, FlightSettings, Sample, Summary};
+use karman_propulsion::Motor;
+
+use super::environment::build_environment;
+use super::motor::build_motor;
+use super::rocket::build_rocket;
+use crate::{Mission, MissionError};
+
+/// The flight settings of a mission, with the trigger-noise `seed` of its parachutes.
+#[must_use]
+pub fn flight_settings(mission: &Mission, seed: u64) -> FlightSettings {
+    let spec = &mission.spec.flight;
+    let mut settings = FlightSettings::new(spec.rail_length);
+    settings.inclination_deg = spec.inclination_deg;
+    settings.heading_deg = spec.heading_deg;
+    settings.max_time = spec.max_time;
+    settings.terminate_on_apogee = spec.terminate_on_apogee;
+    settings.rtol = spec.rtol;
+    settings.atol = spec.atol.map_or(DEFAULT_ATOL, |a| a.per_state());
+    settings.max_time_step = spec.max_time_step;
+    settings.noise_seed = seed;
+    settings
+}
+
+/// A flown mission: the models it was built into, the settings, and the raw flight.
+#[derive(Debug, Clone)]
+pub struct FlightRun {
+    /// The launch environment.
+    pub environment: Environment,
+    /// The motor.
+    pub motor: Motor,
+    /// The rocket with its motor.
+    pub rocket: Rocket,
+    /// The flight settings used.
+    pub settings: FlightSettings,
+    /// Stored points, events and integration counters.
+    pub flight: Flight,
+}
+
+impl FlightRun {
+    /// The flight summary of the mission contract.
+    #[must_use]
+    pub fn summary(&self) -> Summary {
+        self.flight.summary(&self.environment, &self.rocket)
+    }
+
+    /// Post-processed quantities at every stored point.
+    #[must_use]
+    pub fn samples(&self) -> Vec<Sample> {
+        self.flight.samples(&self.environment, &self.rocket)
+    }
+}
+
+/// Builds the models of `mission` and flies it, with parachute trigger noise seeded by
+/// `seed` (recorded in the flight).
+///
+/// # Errors
+/// The builders' [`MissionError`]s, and [`MissionError::Model`] with section `flight` when the
+/// flight cannot be integrated (bad settings, a non-finite state, a stiff or unstable model).
+pub fn simulate_with_seed(mission: &Mission, seed: u64) -> Result<FlightRun, MissionError> {
+    let environment = build_environment(mission)?;
+    let motor = build_motor(mission)?;
+    let rocket = build_rocket(mission, &motor)?;
+    let settings = flight_settings(mission, seed);
+    let flight = karman_dynamics::simulate(&environment, &rocket, &settings).map_err(|e| {
+        MissionError::Model {
+            file: mission.path.clone(),
+            section: "flight".into(),
+            source: Box::new(e),
+        }
+    })?;
+    Ok(FlightRun {
+        environment,
+        motor,
+        rocket,
+        settings,
+        flight,
+    })
+}
+
+/// [`simulate_with_seed`] with seed 0.
+///
+/// # Errors
+/// As [`simulate_with_seed`].
+pub fn simulate(mission: &Mission) -> Result<FlightRun, MissionError> {
+    simulate_with_seed(mission, 0)
+}

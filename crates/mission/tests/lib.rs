@@ -1,0 +1,12 @@
+//! Integration tests of karman-mission (one binary; one module per topic).
+
+mod broken;
+mod common;
+mod fuzz;
+mod load;
+mod overrides;
+mod paths;
+mod validate_environment;
+mod validate_flight;
+mod validate_motor;
+mod validate_rocket;

@@ -1,0 +1,307 @@
+//! Every validation mission flown with parachute noise zeroed, against RocketPy 1.13's
+//! `reference.json` `summary` — the acceptance of the dynamics issue: apogee within 0.1 %,
+//! apogee time within 0.2 %, rail-exit velocity, max speed and max Mach within 0.5 %, impact
+//! point within 1 % of the impact distance; plus the same events in the same order, parachute
+//! triggers within 0.1 % of their time.
+
+use crate::common::validation_missions;
+use karman_mission::Override;
+use karman_mission::build::flight::simulate;
+use karman_mission::report::flight::{SummaryComparison, flight_summary};
+use serde_json::Value;
+
+/// Relative tolerances of the acceptance (dynamics issue).
+const CHECKS: [(&str, f64); 5] = [
+    ("apogee_agl_m", 1e-3),
+    ("apogee_time_s", 2e-3),
+    ("out_of_rail_velocity_mps", 5e-3),
+    ("max_speed_mps", 5e-3),
+    ("max_mach", 5e-3),
+];
+
+/// Impact-point tolerance as a fraction of the reference impact distance from the pad.
+const IMPACT_TOLERANCE: f64 = 1e-2;
+
+#[test]
+fn validate_flight() {
+    let Some(missions) = validation_missions() else {
+        println!("validate_flight: skipped, the validation folder is absent");
+        return;
+    };
+    assert!(!missions.is_empty(), "no validation mission found");
+    let mut failures = Vec::new();
+    for path in missions {
+        let name = path.parent().and_then(|p| p.file_name()).map_or_else(
+            || path.display().to_string(),
+            |n| n.to_string_lossy().into_owned(),
+        );
+        let nominal = karman_mission::load(&path, &[]).expect("mission loads");
+        let quiet: Vec<Override> = nominal
+            .spec
+            .rocket
+            .parachutes
+            .keys()
+            .map(|p| Override::new(&format!("rocket.parachutes.{p}.noise"), "[0, 0, 0]"))
+            .collect::<Result<_, _>>()
+            .expect("noise override parses");
+        let mission = karman_mission::load(&path, &quiet).expect("mission loads with overrides");
+        let run = simulate(&mission).expect("mission flies");
+        let summary = flight_summary(&run);
+        let text =
+            std::fs::read_to_string(path.with_file_name("reference.json")).expect("reference.json");
+        let reference: Value = serde_json::from_str(&text).expect("reference.json parses");
+        let reference = &reference["summary"];
+        let comparison = SummaryComparison::new(&summary, |k| reference.get(k)?.as_f64());
+        println!(
+            "== {name}: {} steps, {} evaluations\n{comparison}",
+            run.flight.stats.steps, run.flight.stats.evaluations
+        );
+        let mut line = format!("{name:>16}:");
+        for (key, tolerance) in CHECKS {
+            let error = comparison
+                .get(key)
+                .and_then(|v| v.relative_error)
+                .unwrap_or(f64::INFINITY);
+            line += &format!(" {key} {:.4} %", 100.0 * error);
+            let within = error <= tolerance; // false for NaN
+            if !within {
+                failures.push(format!(
+                    "{name}: {key} off by {:.4} % (limit {} %)",
+                    100.0 * error,
+                    100.0 * tolerance
+                ));
+            }
+        }
+        let impact = |s: &str| reference.get(s).and_then(Value::as_f64);
+        if let (Some(rx), Some(ry)) = (impact("impact_x_m"), impact("impact_y_m")) {
+            let (x, y) = (
+                summary.impact_x_m.unwrap_or(f64::NAN),
+                summary.impact_y_m.unwrap_or(f64::NAN),
+            );
+            let miss = (x - rx).hypot(y - ry);
+            let distance = rx.hypot(ry);
+            line += &format!(
+                " impact miss {miss:.2} m ({:.3} % of {distance:.1} m)",
+                100.0 * miss / distance
+            );
+            let within = miss <= IMPACT_TOLERANCE * distance; // false for NaN
+            if !within {
+                failures.push(format!(
+                    "{name}: impact point {miss:.2} m from the reference ({distance:.1} m away)"
+                ));
+            }
+        }
+        // Events: same names in the same order; parachute triggers within 0.1 % of their time
+        // (a trigger sits on a 1/f_s sampling instant, so it moves with the descent
+        // trajectory: 0.1 % of 158 s is 16 instants at 105 Hz).
+        let theirs: Vec<(String, f64)> = reference["events"]
+            .as_array()
+            .map(|a| {
+                a.iter()
+                    .filter_map(|e| Some((e["name"].as_str()?.to_owned(), e["time_s"].as_f64()?)))
+                    .collect()
+            })
+            .unwrap_or_default();
+        let ours: Vec<(String, f64)> = summary
+            .events
+            .iter()
+            .map(|e| (e.name.clone(), e.time_s))
+            .collect();
+        let names = |v: &[(String, f64)]| v.iter().map(|e| e.0.clone()).collect::<Vec<_>>();
+        if names(&ours) != names(&theirs) {
+            failures.push(format!(
+                "{name}: events {:?} vs reference {:?}",
+                names(&ours),
+                names(&theirs)
+            ));
+        }
+        for ((event, t), (_, t_ref)) in ours.iter().zip(&theirs) {
+            line += &format!(" {event} {:+.4} s", t - t_ref);
+            if event.starts_with("parachute:") && (t - t_ref).abs() > 1e-3 * t_ref {
+                failures.push(format!(
+                    "{name}: {event} at {t:.4} s, reference {t_ref:.4} s"
+                ));
+            }
+        }
+        println!("{line}");
+    }
+    assert!(
+        failures.is_empty(),
+        "flight validation failures:\n{}",
+        failures.join("\n")
+    );
+}
+
+/// The right-hand sides at the derivative test vectors of physics.md §13, measured in
+/// RocketPy 1.13 on Calisto with plain (no airfoil) fins: the validation Calisto mission with
+/// its `airfoil` line removed.
+#[test]
+fn validate_equations_of_motion_vectors() {
+    use karman_dynamics::equations::{CanopyState, Equations};
+    let Some(dir) = crate::common::validation_dir() else {
+        println!("validate_equations_of_motion_vectors: skipped, the validation folder is absent");
+        return;
+    };
+    let path = dir.join("calisto/mission.toml");
+    let text = std::fs::read_to_string(&path).expect("calisto mission");
+    let plain: String = text
+        .lines()
+        .filter(|l| !l.trim_start().starts_with("airfoil"))
+        .map(|l| format!("{l}\n"))
+        .collect();
+    assert_ne!(
+        plain.len(),
+        text.len(),
+        "the Calisto mission has an airfoil line to remove"
+    );
+    let mission = karman_mission::parse(&plain, &path, &[]).expect("plain-fin Calisto parses");
+    let env = karman_mission::build::environment::build_environment(&mission).expect("env");
+    let motor = karman_mission::build::motor::build_motor(&mission).expect("motor");
+    let rocket = karman_mission::build::rocket::build_rocket(&mission, &motor).expect("rocket");
+    let eq = Equations::new(&env, &rocket);
+
+    let e = [0.9230002039, -0.0402990592, 0.0166924169, 0.3823192025];
+    let rail_state = [
+        0.0, 0.0, 1400.0, 0.0, 0.0, 0.0, e[0], e[1], e[2], e[3], 0.0, 0.0, 0.0,
+    ];
+    let state = [
+        1.0, 50.0, 1900.0, 3.0, 40.0, 150.0, e[0], e[1], e[2], e[3], 0.1, -0.2, 3.0,
+    ];
+    // Relative tolerance 1e-4 of the largest component: the vectors are RocketPy's, and the
+    // model tables (ISA spline, motor regression, fin slopes) agree with RocketPy's to ~1e-6,
+    // which the derivatives amplify (ω̇ divides by the small I33).
+    let check = |what: &str, ours: &[f64], theirs: &[f64]| {
+        let scale = theirs.iter().fold(0.0f64, |m, v| m.max(v.abs()));
+        let worst = ours
+            .iter()
+            .zip(theirs)
+            .fold(0.0f64, |m, (a, b)| m.max((a - b).abs()));
+        println!(
+            "{what}: ours {ours:?}\n{:>w$}theirs {theirs:?}, worst |diff| / max {:.2e}",
+            "",
+            worst / scale,
+            w = what.len() + 2
+        );
+        assert!(worst <= 1e-4 * scale, "{what}: {ours:?} vs {theirs:?}");
+    };
+
+    let rail = eq.rail(0.2, &rail_state).u_dot;
+    check(
+        "rail t=0.2 acceleration",
+        &rail[3..6],
+        &[0.0, 7.3748643, 84.29508468],
+    );
+    assert!(
+        rail[6..].iter().all(|v| v.abs() < f64::MIN_POSITIVE),
+        "attitude frozen on the rail"
+    );
+
+    let d2 = eq.six_dof(2.0, &state).u_dot;
+    check(
+        "6-DOF t=2 acceleration",
+        &d2[3..6],
+        &[-1.32671843, -1.80766570, 96.9709188],
+    );
+    check(
+        "6-DOF t=2 quaternion rate",
+        &d2[6..10],
+        &[-0.569794609, 0.109420556, -0.0127354715, 1.38769559],
+    );
+    check(
+        "6-DOF t=2 angular acceleration",
+        &d2[10..13],
+        &[-7.62683550, 8.57087767, 26.7949713],
+    );
+
+    let d10 = eq.six_dof(10.0, &state).u_dot;
+    check(
+        "6-DOF t=10 acceleration",
+        &d10[3..6],
+        &[-1.41997172, -12.7260578, -12.3242761],
+    );
+    check(
+        "6-DOF t=10 angular acceleration",
+        &d10[10..13],
+        &[-7.41447692, 8.31163979, 27.5081482],
+    );
+
+    let canopy = CanopyState {
+        cd_s: 1.0,
+        radius: 0.4768272,
+        height: 0.4768272,
+        added_mass_coefficient: 0.99999941,
+    };
+    let dp = eq.parachute(30.0, &state, &canopy).u_dot;
+    check(
+        "parachute t=30 acceleration",
+        &dp[3..6],
+        &[-14.39058946, -191.67246242, -728.42306466],
+    );
+}
+
+/// The Calisto validation mission with `--set` overrides, or `None` when the validation folder
+/// is absent.
+fn calisto_with(overrides: &[(&str, &str)]) -> Option<karman_mission::Mission> {
+    let path = crate::common::validation_dir()?.join("calisto/mission.toml");
+    let items: Vec<Override> = overrides
+        .iter()
+        .map(|(p, v)| Override::new(p, v).expect("override parses"))
+        .collect();
+    Some(karman_mission::load(&path, &items).expect("Calisto loads with overrides"))
+}
+
+#[test]
+fn too_heavy_to_leave_the_rail_is_flagged() {
+    use karman_mission::dynamics::Termination;
+    // 400 kg: the M1670's ~2000 N peak thrust cannot lift it.
+    let Some(mission) = calisto_with(&[("rocket.mass", "400")]) else {
+        println!("too_heavy_to_leave_the_rail_is_flagged: skipped, no validation folder");
+        return;
+    };
+    let start = std::time::Instant::now();
+    let run = simulate(&mission).expect("the flight ends cleanly");
+    assert!(start.elapsed() < std::time::Duration::from_secs(30));
+    assert_eq!(run.flight.termination, Termination::StuckOnRail);
+    let summary = flight_summary(&run);
+    assert!(summary.out_of_rail_time_s.is_none() && summary.apogee_agl_m.is_none());
+    assert!(summary.impact_time_s.is_none());
+}
+
+#[test]
+fn max_time_reached_is_flagged() {
+    use karman_mission::dynamics::Termination;
+    let Some(mission) = calisto_with(&[("flight.max_time", "10")]) else {
+        println!("max_time_reached_is_flagged: skipped, no validation folder");
+        return;
+    };
+    let run = simulate(&mission).expect("flies");
+    assert_eq!(run.flight.termination, Termination::MaxTime);
+    let summary = flight_summary(&run);
+    assert!(summary.apogee_agl_m.is_none() && summary.impact_time_s.is_none());
+    assert!(summary.out_of_rail_time_s.is_some());
+    assert!(summary.events.iter().all(|e| e.time_s <= 10.0));
+}
+
+#[test]
+fn negative_margin_rocket_ends_in_bounded_time() {
+    // Fins moved to the nose: the centre of pressure ends up ahead of the centre of mass.
+    let Some(mission) = calisto_with(&[("rocket.surfaces.fins.position", "1.0")]) else {
+        println!("negative_margin_rocket_ends_in_bounded_time: skipped, no validation folder");
+        return;
+    };
+    let start = std::time::Instant::now();
+    let result = simulate(&mission);
+    assert!(start.elapsed() < std::time::Duration::from_secs(60));
+    match result {
+        Ok(run) => {
+            let summary = flight_summary(&run);
+            assert!(
+                summary.initial_static_margin < 0.0,
+                "{}",
+                summary.initial_static_margin
+            );
+            assert!(summary.max_speed_mps.is_finite() && summary.max_acceleration_mps2.is_finite());
+        }
+        Err(e) => assert!(e.to_string().contains("flight"), "a flight error: {e}"),
+    }
+}
