@@ -1,53 +1,8 @@
 //! `karman check`: exit 0 and "ok" on valid missions; exit 1 and every problem with its
 //! location on invalid ones; never a panic.
 
-use std::path::{Path, PathBuf};
-use std::process::{Command, Output};
-
-fn karman(args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_karman"))
-        .args(args)
-        .output()
-        .expect("the karman binary runs")
-}
-
-fn stderr(output: &Output) -> String {
-    String::from_utf8_lossy(&output.stderr).into_owned()
-}
-
-/// Asserts a failed run: exit code 1, no panic, and returns stderr.
-fn failure(args: &[&str]) -> String {
-    let output = karman(args);
-    let text = stderr(&output);
-    assert!(!text.contains("panicked at"), "panic: {text}");
-    assert_eq!(output.status.code(), Some(1), "stderr: {text}");
-    text
-}
-
-fn validation_dir() -> Option<PathBuf> {
-    let dir = match std::env::var_os("KARMAN_VALIDATION_DATA") {
-        Some(dir) => PathBuf::from(dir),
-        None => PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../../../shared/validation"),
-    };
-    dir.is_dir().then_some(dir)
-}
-
-/// The repository's example mission (fixtures/example.toml).
-fn example() -> PathBuf {
-    PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../../fixtures/example.toml")
-}
-
-/// Writes `bytes` to a file named `name` in this test binary's scratch folder.
-fn scratch(name: &str, bytes: &[u8]) -> PathBuf {
-    let path = Path::new(env!("CARGO_TARGET_TMPDIR"))
-        .join("karman-check")
-        .join(name);
-    if let Some(dir) = path.parent() {
-        std::fs::create_dir_all(dir).expect("scratch folder");
-    }
-    std::fs::write(&path, bytes).expect("scratch file");
-    path
-}
+use crate::common::{example, failure, karman, scratch, stderr, validation_dir};
+use std::path::Path;
 
 fn redact(text: &str, path: &Path) -> String {
     text.replace(&path.display().to_string(), "[mission]")

@@ -1,3 +1,6 @@
 //! Integration tests of the `karman` binary (one binary; one module per command).
 
 mod check;
+mod common;
+mod inspect;
+mod simulate;

@@ -65,7 +65,9 @@ pub struct Summary {
     pub impact_velocity_mps: Option<f64>,
     /// Events in time order.
     pub events: Vec<EventRecord>,
-    /// How the flight ended (`impact`, `apogee`, `max_time`, `stuck_on_rail`).
+    /// How the flight ended (`impact`, `apogee`, `max_time`, `stuck_on_rail`). Not one of
+    /// the contract's summary keys, so it is not serialized with them; callers report it.
+    #[serde(skip)]
     pub termination: Termination,
 }
 

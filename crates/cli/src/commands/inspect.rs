@@ -9,7 +9,9 @@ use std::path::{Path, PathBuf};
 use anyhow::{Context, Result};
 use clap::Args;
 use karman_mission::atmos::Environment;
-use karman_mission::build::{environment::build_environment, motor::build_motor, rocket::build_rocket};
+use karman_mission::build::{
+    environment::build_environment, motor::build_motor, rocket::build_rocket,
+};
 use karman_mission::math::linspace;
 use karman_mission::propulsion::Motor;
 use karman_mission::report::environment::{default_heights, environment_report};
@@ -50,7 +52,10 @@ pub fn run(args: &InspectArgs) -> Result<()> {
     let motor = build_motor(&mission)?;
     let rocket = build_rocket(&mission, &motor)?;
     let heights = args.heights.clone().unwrap_or_else(|| {
-        default_heights(environment.elevation(), mission.spec.environment.max_expected_height)
+        default_heights(
+            environment.elevation(),
+            mission.spec.environment.max_expected_height,
+        )
     });
     let env_report = environment_report(&environment, &heights);
     let motor_report = match &args.times {
@@ -67,14 +72,20 @@ pub fn run(args: &InspectArgs) -> Result<()> {
         });
         writeln!(out, "{}", serde_json::to_string_pretty(&value)?)?;
     } else {
-        writeln!(out, "Environment\n{env_report}\n{motor_report}\n{rocket_report}")?;
+        writeln!(
+            out,
+            "Environment\n{env_report}\n{motor_report}\n{rocket_report}"
+        )?;
     }
     for warning in rocket.warnings() {
         eprintln!("warning: {warning}");
     }
     if let Some(dir) = &args.plot {
         std::fs::create_dir_all(dir).with_context(|| format!("cannot create {}", dir.display()))?;
-        let top = heights.iter().copied().fold(environment.elevation() + 1000.0, f64::max);
+        let top = heights
+            .iter()
+            .copied()
+            .fold(environment.elevation() + 1000.0, f64::max);
         plot_environment(&environment, top, dir)?;
         plot_motor(&motor, dir)?;
     }
@@ -91,22 +102,66 @@ fn plot_environment(env: &Environment, top: f64, dir: &Path) -> Result<()> {
     let heights = linspace(env.elevation(), top, 400);
     let profile = |f: &dyn Fn(f64) -> f64| heights.iter().map(|&h| (f(h), h)).collect::<Vec<_>>();
     let charts: [(&str, &str, &str, Vec<Series<'_>>); 5] = [
-        ("pressure", "Pressure", "pressure (Pa)", vec![Series { label: "p", points: profile(&|h| env.pressure(h)) }]),
-        ("temperature", "Temperature", "temperature (K)", vec![Series { label: "T", points: profile(&|h| env.temperature(h)) }]),
-        ("density", "Density", "density (kg/m³)", vec![Series { label: "ρ", points: profile(&|h| env.density(h)) }]),
-        ("speed_of_sound", "Speed of sound", "speed of sound (m/s)", vec![Series { label: "a", points: profile(&|h| env.speed_of_sound(h)) }]),
+        (
+            "pressure",
+            "Pressure",
+            "pressure (Pa)",
+            vec![Series {
+                label: "p",
+                points: profile(&|h| env.pressure(h)),
+            }],
+        ),
+        (
+            "temperature",
+            "Temperature",
+            "temperature (K)",
+            vec![Series {
+                label: "T",
+                points: profile(&|h| env.temperature(h)),
+            }],
+        ),
+        (
+            "density",
+            "Density",
+            "density (kg/m³)",
+            vec![Series {
+                label: "ρ",
+                points: profile(&|h| env.density(h)),
+            }],
+        ),
+        (
+            "speed_of_sound",
+            "Speed of sound",
+            "speed of sound (m/s)",
+            vec![Series {
+                label: "a",
+                points: profile(&|h| env.speed_of_sound(h)),
+            }],
+        ),
         (
             "wind",
             "Wind",
             "wind (m/s)",
             vec![
-                Series { label: "u (east)", points: profile(&|h| env.wind(h)[0]) },
-                Series { label: "v (north)", points: profile(&|h| env.wind(h)[1]) },
+                Series {
+                    label: "u (east)",
+                    points: profile(&|h| env.wind(h)[0]),
+                },
+                Series {
+                    label: "v (north)",
+                    points: profile(&|h| env.wind(h)[1]),
+                },
             ],
         ),
     ];
     for (file, title, x_label, series) in charts {
-        line_chart(&dir.join(format!("{file}.svg")), title, x_label, "height ASL (m)", &series)?;
+        line_chart(
+            &dir.join(format!("{file}.svg")),
+            title,
+            x_label,
+            "height ASL (m)",
+            &series,
+        )?;
     }
     Ok(())
 }
@@ -115,17 +170,47 @@ fn plot_environment(env: &Environment, top: f64, dir: &Path) -> Result<()> {
 fn plot_motor(motor: &Motor, dir: &Path) -> Result<()> {
     let times = linspace(0.0_f64.min(motor.burn_start()), motor.burn_out() + 1.0, 500);
     let curve = |f: &dyn Fn(f64) -> f64| times.iter().map(|&t| (t, f(t))).collect::<Vec<_>>();
-    line_chart(&dir.join("thrust.svg"), "Thrust", "time (s)", "thrust (N)", &[Series {
-        label: "thrust",
-        points: curve(&|t| motor.thrust(t)),
-    }])?;
-    line_chart(&dir.join("motor_mass.svg"), "Motor mass", "time (s)", "mass (kg)", &[
-        Series { label: "total", points: curve(&|t| motor.total_mass(t)) },
-        Series { label: "propellant", points: curve(&|t| motor.propellant_mass().eval(t)) },
-    ])?;
-    line_chart(&dir.join("motor_inertia.svg"), "Motor inertia about its centre of mass", "time (s)", "inertia (kg·m²)", &[
-        Series { label: "I11", points: curve(&|t| motor.inertia(t).0) },
-        Series { label: "I33", points: curve(&|t| motor.inertia(t).1) },
-    ])?;
+    line_chart(
+        &dir.join("thrust.svg"),
+        "Thrust",
+        "time (s)",
+        "thrust (N)",
+        &[Series {
+            label: "thrust",
+            points: curve(&|t| motor.thrust(t)),
+        }],
+    )?;
+    line_chart(
+        &dir.join("motor_mass.svg"),
+        "Motor mass",
+        "time (s)",
+        "mass (kg)",
+        &[
+            Series {
+                label: "total",
+                points: curve(&|t| motor.total_mass(t)),
+            },
+            Series {
+                label: "propellant",
+                points: curve(&|t| motor.propellant_mass().eval(t)),
+            },
+        ],
+    )?;
+    line_chart(
+        &dir.join("motor_inertia.svg"),
+        "Motor inertia about its centre of mass",
+        "time (s)",
+        "inertia (kg·m²)",
+        &[
+            Series {
+                label: "I11",
+                points: curve(&|t| motor.inertia(t).0),
+            },
+            Series {
+                label: "I33",
+                points: curve(&|t| motor.inertia(t).1),
+            },
+        ],
+    )?;
     Ok(())
 }

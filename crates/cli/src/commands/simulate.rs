@@ -51,7 +51,12 @@ pub fn run(args: &SimulateArgs) -> Result<()> {
         )?;
     }
     if let Some(dir) = &args.out {
-        write_outputs(&run, mission.spec.name.as_deref().unwrap_or("karman flight"), args.seed, dir)?;
+        write_outputs(
+            &run,
+            mission.spec.name.as_deref().unwrap_or("karman flight"),
+            args.seed,
+            dir,
+        )?;
     }
     match summary.termination {
         Termination::Impact | Termination::Apogee => Ok(()),
@@ -69,9 +74,13 @@ fn write_outputs(run: &FlightRun, name: &str, seed: u64, dir: &Path) -> Result<(
     std::fs::create_dir_all(dir).with_context(|| format!("cannot create {}", dir.display()))?;
     let summary = run.summary();
     let mut json = serde_json::to_value(&summary)?;
+    json["termination"] = serde_json::to_value(summary.termination)?;
     json["seed"] = seed.into();
     json["integration"] = serde_json::to_value(run.flight.stats)?;
-    std::fs::write(dir.join("summary.json"), serde_json::to_string_pretty(&json)?)?;
+    std::fs::write(
+        dir.join("summary.json"),
+        serde_json::to_string_pretty(&json)?,
+    )?;
     let samples = run.samples();
     std::fs::write(dir.join("trajectory.csv"), trajectory_csv(run, &samples))?;
     std::fs::write(dir.join("flight.kml"), kml(run, name, &samples))?;
@@ -131,7 +140,10 @@ fn trajectory_csv(run: &FlightRun, samples: &[Sample]) -> String {
     let mut csv = COLUMNS.iter().map(|c| c.0).collect::<Vec<_>>().join(",");
     csv.push('\n');
     for s in samples {
-        let row: Vec<String> = COLUMNS.iter().map(|c| format!("{}", (c.1)(run, s))).collect();
+        let row: Vec<String> = COLUMNS
+            .iter()
+            .map(|c| format!("{}", (c.1)(run, s)))
+            .collect();
         csv.push_str(&row.join(","));
         csv.push('\n');
     }
@@ -140,7 +152,9 @@ fn trajectory_csv(run: &FlightRun, samples: &[Sample]) -> String {
 
 /// Escapes text for XML.
 fn xml_escape(text: &str) -> String {
-    text.replace('&', "&amp;").replace('<', "&lt;").replace('>', "&gt;")
+    text.replace('&', "&amp;")
+        .replace('<', "&lt;")
+        .replace('>', "&gt;")
 }
 
 /// The flight path as a KML LineString with absolute altitudes.
@@ -174,35 +188,86 @@ fn kml(run: &FlightRun, name: &str, samples: &[Sample]) -> String {
 
 fn plots(run: &FlightRun, samples: &[Sample], dir: &Path) -> Result<()> {
     let pick = |f: fn(&Sample) -> f64| samples.iter().map(|s| (s.t, f(s))).collect::<Vec<_>>();
-    line_chart(&dir.join("altitude.svg"), "Altitude", "time (s)", "altitude AGL (m)", &[Series {
-        label: "altitude",
-        points: pick(|s| s.altitude_agl),
-    }])?;
+    line_chart(
+        &dir.join("altitude.svg"),
+        "Altitude",
+        "time (s)",
+        "altitude AGL (m)",
+        &[Series {
+            label: "altitude",
+            points: pick(|s| s.altitude_agl),
+        }],
+    )?;
     line_chart(
         &dir.join("ground_track.svg"),
         "Ground track",
         "east of the pad (m)",
         "north of the pad (m)",
-        &[Series { label: "track", points: samples.iter().map(|s| (s.x, s.y)).collect() }],
+        &[Series {
+            label: "track",
+            points: samples.iter().map(|s| (s.x, s.y)).collect(),
+        }],
     )?;
-    line_chart(&dir.join("speed_mach.svg"), "Speed and Mach", "time (s)", "speed (m/s), Mach × 100", &[
-        Series { label: "speed (m/s)", points: pick(|s| s.speed) },
-        Series { label: "Mach × 100", points: pick(|s| 100.0 * s.mach) },
-    ])?;
+    line_chart(
+        &dir.join("speed_mach.svg"),
+        "Speed and Mach",
+        "time (s)",
+        "speed (m/s), Mach × 100",
+        &[
+            Series {
+                label: "speed (m/s)",
+                points: pick(|s| s.speed),
+            },
+            Series {
+                label: "Mach × 100",
+                points: pick(|s| 100.0 * s.mach),
+            },
+        ],
+    )?;
     // Attitude and angle of attack are meaningful while the rocket flies on its own.
     let powered_end = run.summary().apogee_time_s.unwrap_or(f64::INFINITY);
     let ascent: Vec<&Sample> = samples.iter().filter(|s| s.t <= powered_end).collect();
     let pick_ascent =
         |f: fn(&Sample) -> f64| ascent.iter().map(|s| (s.t, f(s))).collect::<Vec<_>>();
-    line_chart(&dir.join("attitude.svg"), "Attitude and angle of attack (ascent)", "time (s)", "angle (deg)", &[
-        Series { label: "attitude angle", points: pick_ascent(|s| s.attitude_angle_deg) },
-        Series { label: "path angle", points: pick_ascent(|s| s.path_angle_deg) },
-        Series { label: "angle of attack", points: pick_ascent(|s| s.angle_of_attack_deg) },
-    ])?;
-    let margins = ascent.iter().map(|s| (s.t, run.rocket.static_margin(s.t))).collect();
-    line_chart(&dir.join("stability.svg"), "Static and stability margin (ascent)", "time (s)", "margin (calibres)", &[
-        Series { label: "static margin", points: margins },
-        Series { label: "stability margin", points: pick_ascent(|s| s.stability_margin) },
-    ])?;
+    line_chart(
+        &dir.join("attitude.svg"),
+        "Attitude and angle of attack (ascent)",
+        "time (s)",
+        "angle (deg)",
+        &[
+            Series {
+                label: "attitude angle",
+                points: pick_ascent(|s| s.attitude_angle_deg),
+            },
+            Series {
+                label: "path angle",
+                points: pick_ascent(|s| s.path_angle_deg),
+            },
+            Series {
+                label: "angle of attack",
+                points: pick_ascent(|s| s.angle_of_attack_deg),
+            },
+        ],
+    )?;
+    let margins = ascent
+        .iter()
+        .map(|s| (s.t, run.rocket.static_margin(s.t)))
+        .collect();
+    line_chart(
+        &dir.join("stability.svg"),
+        "Static and stability margin (ascent)",
+        "time (s)",
+        "margin (calibres)",
+        &[
+            Series {
+                label: "static margin",
+                points: margins,
+            },
+            Series {
+                label: "stability margin",
+                points: pick_ascent(|s| s.stability_margin),
+            },
+        ],
+    )?;
     Ok(())
 }

@@ -4,7 +4,6 @@
 
 use std::fmt;
 
-use karman_math::linspace;
 use karman_propulsion::Motor;
 use serde::Serialize;
 
@@ -50,7 +49,13 @@ pub struct MotorReport {
 /// + 1 s.
 #[must_use]
 pub fn default_times(motor: &Motor) -> Vec<f64> {
-    let mut times = linspace(motor.burn_start(), motor.burn_out(), BURN_DIVISIONS + 1);
+    // `start + k·burn/10` for k < 10, then burn-out itself, computed as the references were
+    // (not `linspace`, whose `start + k·step` rounds differently, e.g. 1.9500000000000002).
+    let burn = motor.burn_out() - motor.burn_start();
+    let mut times: Vec<f64> = (0..BURN_DIVISIONS)
+        .map(|k| motor.burn_start() + k as f64 * burn / BURN_DIVISIONS as f64)
+        .collect();
+    times.push(motor.burn_out());
     times.push(motor.burn_out() + 1.0);
     times
 }

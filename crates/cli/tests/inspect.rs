@@ -1,0 +1,140 @@
+//! `karman inspect`: the environment, motor and rocket objects shaped like the validation
+//! references, readable tables (snapshotted), plots and the rocket drawing.
+
+use crate::common::{example, karman, stderr, validation_dir};
+use std::path::Path;
+
+fn keys(v: &serde_json::Value) -> Vec<String> {
+    let mut k: Vec<String> = v.as_object().expect("object").keys().cloned().collect();
+    k.sort_unstable();
+    k
+}
+
+#[test]
+fn validate_json_objects_have_the_reference_shape() {
+    let Some(dir) = validation_dir() else {
+        println!("skipped: validation data folder not found");
+        return;
+    };
+    let mut count = 0;
+    for entry in std::fs::read_dir(&dir).expect("readable folder") {
+        let flight = entry.expect("entry").path();
+        if !flight.join("reference.json").is_file() {
+            continue;
+        }
+        let mission = flight.join("mission.toml");
+        let output = karman(&["inspect", mission.to_str().expect("UTF-8"), "--json"]);
+        assert_eq!(output.status.code(), Some(0), "{}", stderr(&output));
+        let ours: serde_json::Value = serde_json::from_slice(&output.stdout).expect("JSON");
+        let reference: serde_json::Value = serde_json::from_str(
+            &std::fs::read_to_string(flight.join("reference.json")).expect("reference"),
+        )
+        .expect("reference JSON");
+        for object in ["environment", "motor", "rocket"] {
+            assert_eq!(keys(&ours[object]), keys(&reference[object]), "{object}");
+        }
+        let surfaces = |v: &serde_json::Value| -> Vec<String> {
+            v["rocket"]["surfaces"]
+                .as_array()
+                .expect("surfaces")
+                .iter()
+                .map(|s| s["name"].as_str().expect("name").to_owned())
+                .collect()
+        };
+        assert_eq!(
+            surfaces(&ours),
+            surfaces(&reference),
+            "{}",
+            flight.display()
+        );
+        // Default motor times are the reference's times, to the last bit.
+        assert_eq!(
+            ours["motor"]["times_s"],
+            reference["motor"]["times_s"],
+            "{}",
+            flight.display()
+        );
+        count += 1;
+    }
+    assert!(count >= 8, "found {count} flights");
+}
+
+#[test]
+fn heights_and_times_are_honoured() {
+    let output = karman(&[
+        "inspect",
+        example().to_str().expect("UTF-8"),
+        "--json",
+        "--heights",
+        "1200,1500,2500",
+        "--times",
+        "0,1",
+    ]);
+    assert_eq!(output.status.code(), Some(0), "{}", stderr(&output));
+    let v: serde_json::Value = serde_json::from_slice(&output.stdout).expect("JSON");
+    assert_eq!(
+        v["environment"]["heights_asl_m"],
+        serde_json::json!([1200.0, 1500.0, 2500.0])
+    );
+    assert_eq!(
+        v["environment"]["pressure_pa"].as_array().map(Vec::len),
+        Some(3)
+    );
+    assert_eq!(v["motor"]["times_s"], serde_json::json!([0.0, 1.0]));
+}
+
+#[test]
+fn readable_tables() {
+    let output = karman(&["inspect", example().to_str().expect("UTF-8")]);
+    assert_eq!(output.status.code(), Some(0), "{}", stderr(&output));
+    insta::assert_snapshot!(String::from_utf8_lossy(&output.stdout));
+}
+
+#[test]
+fn plots_and_drawing_are_svg() {
+    let dir = Path::new(env!("CARGO_TARGET_TMPDIR")).join("karman-cli/inspect-plots");
+    let _ = std::fs::remove_dir_all(&dir);
+    let drawing = dir.join("rocket.svg");
+    let output = karman(&[
+        "inspect",
+        example().to_str().expect("UTF-8"),
+        "--plot",
+        dir.to_str().expect("UTF-8"),
+        "--draw",
+        drawing.to_str().expect("UTF-8"),
+    ]);
+    assert_eq!(output.status.code(), Some(0), "{}", stderr(&output));
+    for name in [
+        "pressure",
+        "temperature",
+        "density",
+        "speed_of_sound",
+        "wind",
+        "thrust",
+        "motor_mass",
+        "motor_inertia",
+        "rocket",
+    ] {
+        let svg = std::fs::read_to_string(dir.join(format!("{name}.svg"))).expect("svg file");
+        assert!(svg.contains("<svg"), "{name}.svg");
+    }
+    let svg = std::fs::read_to_string(&drawing).expect("drawing");
+    assert!(
+        svg.contains("CP") && svg.contains("CG"),
+        "drawing lacks CG/CP marks"
+    );
+}
+
+#[test]
+fn bad_heights_are_a_usage_error_not_a_panic() {
+    let output = karman(&[
+        "inspect",
+        example().to_str().expect("UTF-8"),
+        "--heights",
+        "1,x",
+    ]);
+    let text = stderr(&output);
+    assert!(!text.contains("panicked at"), "{text}");
+    assert_eq!(output.status.code(), Some(2), "{text}");
+    assert!(text.contains("x"), "{text}");
+}

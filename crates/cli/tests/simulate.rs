@@ -1,0 +1,159 @@
+//! `karman simulate`: the contract's summary as JSON, the `--out` files, and clear non-zero
+//! exits (never a panic, always within bounded time) for flights that cannot end normally.
+
+use crate::common::{example, failure, karman, stderr};
+use std::path::Path;
+
+/// The summary keys of the mission contract (mission-format.md, "The summary").
+const SUMMARY_KEYS: [&str; 19] = [
+    "apogee_agl_m",
+    "apogee_asl_m",
+    "apogee_time_s",
+    "apogee_x_m",
+    "apogee_y_m",
+    "out_of_rail_time_s",
+    "out_of_rail_velocity_mps",
+    "out_of_rail_stability_margin",
+    "initial_static_margin",
+    "burnout_static_margin",
+    "max_speed_mps",
+    "max_mach",
+    "max_dynamic_pressure_pa",
+    "max_acceleration_mps2",
+    "impact_time_s",
+    "impact_x_m",
+    "impact_y_m",
+    "impact_velocity_mps",
+    "events",
+];
+
+fn example_arg() -> String {
+    example().display().to_string()
+}
+
+#[test]
+fn json_is_exactly_the_contract_summary() {
+    let output = karman(&["simulate", &example_arg(), "--json"]);
+    assert_eq!(output.status.code(), Some(0), "{}", stderr(&output));
+    let summary: serde_json::Value =
+        serde_json::from_slice(&output.stdout).expect("stdout is one JSON object");
+    let mut keys: Vec<&str> = summary
+        .as_object()
+        .expect("an object")
+        .keys()
+        .map(String::as_str)
+        .collect();
+    keys.sort_unstable();
+    let mut expected = SUMMARY_KEYS.to_vec();
+    expected.sort_unstable();
+    assert_eq!(keys, expected);
+    let events: Vec<&str> = summary["events"]
+        .as_array()
+        .expect("events array")
+        .iter()
+        .map(|e| e["name"].as_str().expect("event name"))
+        .collect();
+    assert_eq!(events.first(), Some(&"rail_exit"));
+    assert_eq!(events.last(), Some(&"impact"));
+    assert!(events.contains(&"apogee") && events.contains(&"burnout"));
+    assert!(summary["apogee_agl_m"].as_f64().expect("apogee") > 100.0);
+}
+
+#[test]
+fn out_writes_summary_trajectory_kml_and_plots() {
+    let dir = Path::new(env!("CARGO_TARGET_TMPDIR")).join("karman-cli/simulate-out");
+    let _ = std::fs::remove_dir_all(&dir);
+    let output = karman(&[
+        "simulate",
+        &example_arg(),
+        "--out",
+        dir.to_str().expect("UTF-8"),
+    ]);
+    assert_eq!(output.status.code(), Some(0), "{}", stderr(&output));
+    let text = String::from_utf8_lossy(&output.stdout);
+    assert!(text.contains("apogee AGL") && text.contains("right-hand-side evaluations"));
+    let summary: serde_json::Value = serde_json::from_str(
+        &std::fs::read_to_string(dir.join("summary.json")).expect("summary.json"),
+    )
+    .expect("JSON");
+    assert_eq!(summary["termination"], "impact");
+    assert_eq!(summary["seed"], 0);
+    let csv = std::fs::read_to_string(dir.join("trajectory.csv")).expect("trajectory.csv");
+    let mut lines = csv.lines();
+    let header: Vec<&str> = lines.next().expect("header").split(',').collect();
+    for column in [
+        "time_s",
+        "altitude_agl_m",
+        "mach",
+        "angle_of_attack_deg",
+        "mass_kg",
+    ] {
+        assert!(header.contains(&column), "no column {column}");
+    }
+    let rows: Vec<Vec<f64>> = lines
+        .map(|l| l.split(',').map(|v| v.parse().expect("number")).collect())
+        .collect();
+    assert!(rows.len() > 100);
+    assert!(
+        rows.iter()
+            .all(|r| r.len() == header.len() && r.iter().all(|v| v.is_finite()))
+    );
+    assert!(
+        rows.windows(2).all(|w| w[1][0] >= w[0][0]),
+        "time not increasing"
+    );
+    let kml = std::fs::read_to_string(dir.join("flight.kml")).expect("flight.kml");
+    assert!(kml.contains("<LineString>") && kml.contains("<coordinates>"));
+    for plot in [
+        "altitude",
+        "ground_track",
+        "speed_mach",
+        "attitude",
+        "stability",
+    ] {
+        let svg = std::fs::read_to_string(dir.join(format!("{plot}.svg"))).expect("plot");
+        assert!(svg.contains("<svg"), "{plot}.svg is not SVG");
+    }
+}
+
+#[test]
+fn max_time_reached_is_a_clear_failure() {
+    let text = failure(&["simulate", &example_arg(), "--set", "flight.max_time=5"]);
+    assert!(text.contains("max_time"), "{text}");
+}
+
+#[test]
+fn a_motor_too_weak_to_leave_the_rail_is_a_clear_failure() {
+    let text = failure(&["simulate", &example_arg(), "--set", "rocket.mass=500"]);
+    assert!(text.contains("never left the rail"), "{text}");
+}
+
+#[test]
+fn an_unstable_rocket_ends_within_bounded_work() {
+    // Fins moved to the nose: a negative static margin. The flight must end (landing,
+    // tumbling or an integration error), never hang or panic.
+    let output = karman(&[
+        "simulate",
+        &example_arg(),
+        "--json",
+        "--set",
+        "rocket.surfaces.fins.position=0.2",
+    ]);
+    let text = stderr(&output);
+    assert!(!text.contains("panicked at"), "{text}");
+    if output.status.success() {
+        let summary: serde_json::Value =
+            serde_json::from_slice(&output.stdout).expect("JSON summary");
+        assert!(summary["initial_static_margin"].as_f64().expect("margin") < 0.0);
+    } else {
+        assert_eq!(output.status.code(), Some(1), "{text}");
+    }
+}
+
+#[test]
+fn bad_missions_fail_without_panicking() {
+    let missing = failure(&["simulate", "no/such/mission.toml"]);
+    assert!(missing.contains("no/such/mission.toml"), "{missing}");
+    let bad_set = failure(&["simulate", &example_arg(), "--set", "rocket.nope=1"]);
+    assert!(bad_set.contains("rocket.nope"), "{bad_set}");
+}
