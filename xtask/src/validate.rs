@@ -123,15 +123,10 @@ pub fn run(root: &Path, args: &[String]) -> Result<()> {
 
 /// `--data DIR`, else `$KARMAN_VALIDATION_DATA`, else `../shared/validation` beside the root.
 pub fn data_dir(root: &Path, args: &[String]) -> Result<PathBuf> {
-    let mut it = args.iter();
-    while let Some(a) = it.next() {
-        if a == "--data" {
-            return it
-                .next()
-                .map(PathBuf::from)
-                .context("--data needs a directory");
-        }
-        bail!("unknown argument {a:?} (usage: cargo xtask validate [--data DIR])");
+    match args {
+        [] => {}
+        [flag, dir] if flag == "--data" => return Ok(PathBuf::from(dir)),
+        _ => bail!("unexpected arguments {args:?} (usage: cargo xtask validate [--data DIR])"),
     }
     if let Some(dir) = std::env::var_os("KARMAN_VALIDATION_DATA") {
         return Ok(PathBuf::from(dir));
