@@ -72,8 +72,8 @@ pub fn violations(edges: &BTreeSet<(String, String)>) -> Vec<String> {
     out
 }
 
-/// Runs `cargo metadata` in `root` and fails on any edge outside the layering.
-pub fn check_layering(root: &Path) -> Result<()> {
+/// `cargo metadata --no-deps` of the workspace at `root`, as JSON.
+fn metadata(root: &Path) -> Result<serde_json::Value> {
     let cargo = std::env::var("CARGO").unwrap_or_else(|_| "cargo".to_owned());
     let out = Command::new(cargo)
         .args([
@@ -92,8 +92,12 @@ pub fn check_layering(root: &Path) -> Result<()> {
             String::from_utf8_lossy(&out.stderr)
         );
     }
-    let metadata: serde_json::Value = serde_json::from_slice(&out.stdout)?;
-    let bad = violations(&workspace_edges(&metadata)?);
+    Ok(serde_json::from_slice(&out.stdout)?)
+}
+
+/// Fails on any workspace edge outside the layering.
+pub fn check_layering(root: &Path) -> Result<()> {
+    let bad = violations(&workspace_edges(&metadata(root)?)?);
     if !bad.is_empty() {
         bail!(
             "crate layering violated (see ARCHITECTURE.md):\n  {}",
@@ -120,18 +124,7 @@ mod tests {
         let root = Path::new(env!("CARGO_MANIFEST_DIR"))
             .parent()
             .expect("workspace root");
-        let out = Command::new(std::env::var("CARGO").unwrap_or_else(|_| "cargo".into()))
-            .args([
-                "metadata",
-                "--format-version",
-                "1",
-                "--no-deps",
-                "--offline",
-            ])
-            .current_dir(root)
-            .output()
-            .expect("cargo metadata");
-        let metadata: serde_json::Value = serde_json::from_slice(&out.stdout).expect("json");
+        let metadata = metadata(root).expect("cargo metadata");
         for p in metadata["packages"].as_array().expect("packages") {
             let name = p["name"].as_str().expect("name");
             assert!(
