@@ -1,7 +1,7 @@
 //! Helpers shared by the test modules: where the validation missions and the test fixtures
 //! are.
 
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 
 /// The validation folder (`KARMAN_VALIDATION_DATA`, else `<workspace>/../shared/validation`),
 /// or `None` when it is absent (the caller prints that it skipped).
@@ -31,4 +31,20 @@ pub fn fixture(name: &str) -> PathBuf {
     PathBuf::from(env!("CARGO_MANIFEST_DIR"))
         .join("tests/fixtures")
         .join(name)
+}
+
+/// The flight name of a validation mission: its folder's name.
+pub fn flight_name(mission: &Path) -> String {
+    mission.parent().and_then(Path::file_name).map_or_else(
+        || mission.display().to_string(),
+        |n| n.to_string_lossy().into_owned(),
+    )
+}
+
+/// The RocketPy 1.13 `reference.json` beside a validation mission.
+pub fn load_reference(mission: &Path) -> serde_json::Value {
+    let text = std::fs::read_to_string(mission.with_file_name("reference.json"))
+        .unwrap_or_else(|e| panic!("{}: reference.json: {e}", mission.display()));
+    serde_json::from_str(&text)
+        .unwrap_or_else(|e| panic!("{}: reference.json: {e}", mission.display()))
 }

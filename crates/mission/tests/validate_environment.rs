@@ -3,7 +3,7 @@
 //! sound within 0.05 %, wind components within 0.05 m/s, gravity at launch within 1e-6
 //! (relative) — the acceptance of the atmosphere issue.
 
-use crate::common::validation_missions;
+use crate::common::{flight_name, load_reference, validation_missions};
 use karman_mission::build::environment::build_environment;
 use karman_mission::report::environment::{EnvironmentReport, environment_report};
 use serde_json::Value;
@@ -44,15 +44,10 @@ fn validate_environment() {
     assert!(!missions.is_empty(), "no validation mission found");
     let mut failures = Vec::new();
     for path in missions {
-        let name = path.parent().and_then(|p| p.file_name()).map_or_else(
-            || path.display().to_string(),
-            |n| n.to_string_lossy().into_owned(),
-        );
+        let name = flight_name(&path);
         let mission = karman_mission::load(&path, &[]).expect("mission loads");
         let env = build_environment(&mission).expect("environment builds");
-        let text =
-            std::fs::read_to_string(path.with_file_name("reference.json")).expect("reference.json");
-        let reference: Value = serde_json::from_str(&text).expect("reference.json parses");
+        let reference = load_reference(&path);
         let heights = column(&reference, "heights_asl_m");
         let ours: EnvironmentReport = environment_report(&env, &heights);
         let g_ref = reference["environment"]["gravity_mps2_at_launch"]

@@ -4,7 +4,7 @@
 //! point within 1 % of the impact distance; plus the same events in the same order, parachute
 //! triggers within 0.1 % of their time.
 
-use crate::common::validation_missions;
+use crate::common::{flight_name, load_reference, validation_missions};
 use karman_mission::Override;
 use karman_mission::build::flight::simulate;
 use karman_mission::report::flight::{SummaryComparison, flight_summary};
@@ -31,10 +31,7 @@ fn validate_flight() {
     assert!(!missions.is_empty(), "no validation mission found");
     let mut failures = Vec::new();
     for path in missions {
-        let name = path.parent().and_then(|p| p.file_name()).map_or_else(
-            || path.display().to_string(),
-            |n| n.to_string_lossy().into_owned(),
-        );
+        let name = flight_name(&path);
         let nominal = karman_mission::load(&path, &[]).expect("mission loads");
         let quiet: Vec<Override> = nominal
             .spec
@@ -47,9 +44,7 @@ fn validate_flight() {
         let mission = karman_mission::load(&path, &quiet).expect("mission loads with overrides");
         let run = simulate(&mission).expect("mission flies");
         let summary = flight_summary(&run);
-        let text =
-            std::fs::read_to_string(path.with_file_name("reference.json")).expect("reference.json");
-        let reference: Value = serde_json::from_str(&text).expect("reference.json parses");
+        let reference = load_reference(&path);
         let reference = &reference["summary"];
         let comparison = SummaryComparison::new(&summary, |k| reference.get(k)?.as_f64());
         println!(

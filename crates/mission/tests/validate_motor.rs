@@ -14,7 +14,7 @@
 //! interpolates linearly between its LSODA steps (up to ~0.1 s apart), which departs from the
 //! exact regression by up to ~1e-4 of m_p0 near burn-out.
 
-use crate::common::validation_missions;
+use crate::common::{flight_name, load_reference, validation_missions};
 use karman_mission::build::motor::build_motor;
 use karman_mission::report::motor::MotorReport;
 use serde_json::Value;
@@ -67,15 +67,10 @@ fn validate_motor() {
     assert!(!missions.is_empty(), "no validation mission found");
     let mut failures = Vec::new();
     for path in missions {
-        let name = path.parent().and_then(|p| p.file_name()).map_or_else(
-            || path.display().to_string(),
-            |n| n.to_string_lossy().into_owned(),
-        );
+        let name = flight_name(&path);
         let mission = karman_mission::load(&path, &[]).expect("mission loads");
         let motor = build_motor(&mission).unwrap_or_else(|e| panic!("{name}: {e}: {:?}", e));
-        let text =
-            std::fs::read_to_string(path.with_file_name("reference.json")).expect("reference.json");
-        let reference: Value = serde_json::from_str(&text).expect("reference.json parses");
+        let reference = load_reference(&path);
         let times = column(&reference, "times_s");
         let ours = MotorReport::at_times(&motor, &times);
 

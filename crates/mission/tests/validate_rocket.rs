@@ -4,7 +4,7 @@
 //! 0.1 % and its CP within 1 mm, total mass, dry mass and centre of mass at t = 0 within 0.1 %.
 //! The worst errors are printed per mission (`cargo test -- --nocapture`).
 
-use crate::common::validation_missions;
+use crate::common::{load_reference, validation_missions};
 use karman_mission::build::motor::build_motor;
 use karman_mission::build::rocket::build_rocket;
 use karman_mission::report::rocket::{RocketReport, draw_rocket_svg};
@@ -40,9 +40,7 @@ fn validate_rocket_against_reference() {
         let mission = karman_mission::load(&path, &[]).expect("mission loads");
         let motor = build_motor(&mission).expect("motor builds");
         let rocket = build_rocket(&mission, &motor).expect("rocket builds");
-        let text = std::fs::read_to_string(path.with_file_name("reference.json"))
-            .expect("reference.json readable");
-        let reference: Value = serde_json::from_str(&text).expect("reference.json is JSON");
+        let reference = load_reference(&path);
         let ours = RocketReport::new(&rocket);
 
         let mass = relative(
