@@ -13,7 +13,9 @@
 //! left, at the first node that of the first interval, at the last node that of the last
 //! interval, and 0 outside under constant or zero extrapolation — exactly
 //! [`Table1::derivative`]. Second derivatives (`Function.differentiate(order=2)`) are the
-//! table's own for a table and a central difference with step 1e-6 for a pointwise formula.
+//! table's own for a table and a central difference with RocketPy's step `dx = 1e-6` s for a
+//! pointwise formula; the step is [`karman_math::PhysicalConstants::time_difference_step`],
+//! so that it follows the unit of time.
 
 use karman_math::Table1;
 
@@ -45,6 +47,8 @@ pub(crate) struct MassModel {
     nodal_offset: Option<Table1>,
     nodal_center_of_mass: Option<Table1>,
     nodal_i11: Option<Table1>,
+    /// Step of the central second difference of a pointwise formula (time).
+    difference_step: f64,
 }
 
 /// Whether two tables share their abscissae exactly, strictly increasing (RocketPy's
@@ -67,6 +71,7 @@ impl MassModel {
         rocket_inertia: [f64; 6],
         motor_position: f64,
         motor: MotorProperties,
+        difference_step: f64,
         warnings: &mut Vec<String>,
     ) -> Result<Self, AirframeError> {
         let s = csys * motor.coordinate_system_sign;
@@ -112,6 +117,7 @@ impl MassModel {
             nodal_offset: None,
             nodal_center_of_mass: None,
             nodal_i11: None,
+            difference_step,
         };
         let m = &model.motor;
         if same_grid(&m.propellant_center_of_mass, &m.propellant_mass) {
@@ -228,16 +234,17 @@ impl MassModel {
     }
 
     /// c̈(t), RocketPy's `differentiate(t, order=2)` of c: the table's second derivative
-    /// (0 for a linear table), or a central difference with step 1e-6 of the formula.
+    /// (0 for a linear table), or a central difference of the formula with the step
+    /// `difference_step` (RocketPy's 1e-6 s).
     #[inline]
     pub(crate) fn com_to_cdm_accel(&self, t: f64) -> f64 {
-        const H: f64 = 1e-6;
+        let h = self.difference_step;
         match &self.nodal_offset {
             Some(table) => table.second_derivative(t),
             None => {
-                (self.offset_pointwise(t + H) - 2.0 * self.offset_pointwise(t)
-                    + self.offset_pointwise(t - H))
-                    / (H * H)
+                (self.offset_pointwise(t + h) - 2.0 * self.offset_pointwise(t)
+                    + self.offset_pointwise(t - h))
+                    / (h * h)
             }
         }
     }

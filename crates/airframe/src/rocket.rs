@@ -3,7 +3,7 @@
 
 use std::f64::consts::PI;
 
-use karman_math::{Extrapolation, Interpolation, Table1};
+use karman_math::{Extrapolation, Interpolation, PhysicalConstants, Table1};
 
 use crate::error::{AirframeError, finite, non_negative, positive};
 use crate::mass::MassModel;
@@ -110,7 +110,7 @@ pub struct Rocket {
 }
 
 impl Rocket {
-    /// Builds the rocket with `motor` at `inputs.motor_position`.
+    /// Builds the rocket with `motor` at `inputs.motor_position`, inputs in SI.
     ///
     /// # Errors
     /// [`AirframeError`] for impossible inputs (non-positive radius or mass, negative
@@ -118,6 +118,19 @@ impl Rocket {
     /// flyable inputs (no surfaces, a surface outside the body) are reported by
     /// [`Rocket::warnings`].
     pub fn new(inputs: RocketInputs, motor: MotorProperties) -> Result<Rocket, AirframeError> {
+        Self::with_constants(inputs, motor, &PhysicalConstants::SI)
+    }
+
+    /// [`Rocket::new`] for inputs in the unit system of `constants` (which holds the time
+    /// step of the numerical second derivative of the CM offset).
+    ///
+    /// # Errors
+    /// As [`Rocket::new`].
+    pub fn with_constants(
+        inputs: RocketInputs,
+        motor: MotorProperties,
+        constants: &PhysicalConstants,
+    ) -> Result<Rocket, AirframeError> {
         const C: &str = "rocket";
         let radius = positive(C, "radius", inputs.radius)?;
         let rocket_mass = positive(C, "mass", inputs.mass)?;
@@ -143,13 +156,14 @@ impl Rocket {
             inputs.inertia,
             motor_position,
             motor,
+            constants.time_difference_step,
             &mut warnings,
         )?;
         let cdm = mass.cdm;
 
         let mut surfaces = Vec::with_capacity(inputs.surfaces.len());
         for input in &inputs.surfaces {
-            let (surface, w) = Surface::build(input, radius, csys, cdm)?;
+            let (surface, w) = Surface::build(input, radius, csys, cdm, constants)?;
             warnings.extend(w);
             surfaces.push(surface);
         }
@@ -240,7 +254,8 @@ impl Rocket {
                 Some(acc.map_or(z, |a| a.max(z)))
             });
         let nozzle = body(self.nozzle_position);
-        let tol = 1e-9;
+        // Rounding allowance on positions, relative to the rocket's size.
+        let tol = 1e-9 * self.radius;
         for s in &self.surfaces {
             let front = body(s.position);
             if let Some(tip) = tip {

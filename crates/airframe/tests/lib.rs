@@ -2,5 +2,6 @@
 
 mod calisto;
 mod common;
+mod dimensions;
 mod robustness;
 mod rocketpy_surfaces;

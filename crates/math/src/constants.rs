@@ -79,7 +79,10 @@ pub struct AtmosphereLayer {
     pub base_pressure: f64,
 }
 
-/// The physical constants of the model, in one unit system.
+/// The physical constants of the model, in one unit system, and the few numerical parameters
+/// of the models that carry a unit (a grid step, a finite-difference step, a length
+/// tolerance): a dimensional literal hidden in a model would not follow a change of units
+/// (the dimensional-analysis tests of every crate check this).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct PhysicalConstants {
     /// Standard gravity g0 (m/s²), used by the ISA and geopotential conversions.
@@ -119,6 +122,19 @@ pub struct PhysicalConstants {
     /// NAD83 (GRS 80 ellipsoid) flattening f (dimensionless); Moritz (1980). Its semi-major
     /// axis equals WGS-84's.
     pub nad83_flattening: f64,
+    /// Largest time spacing of a solid motor's propellant tables (s). A numerical parameter,
+    /// not a physical one: it is kept here so that it follows the unit of time (karman-
+    /// propulsion `BatesGrains`, where 5 ms reproduces RocketPy's LSODA-sampled tables).
+    pub propellant_grid_step: f64,
+    /// Step of the central second difference of a pointwise function of time (s): RocketPy's
+    /// `Function.differentiate` default `dx = 1e-6`, applied to time (karman-airframe
+    /// `com_to_cdm_accel`). Numerical; kept here so that it follows the unit of time.
+    pub time_difference_step: f64,
+    /// RocketPy's 1 mm length scale of `NoseCone.evaluate_nose_shape` (m): the smallest
+    /// shortening of a nose cone by its bluff tip that is applied, and the abscissa where the
+    /// tip circle of an elliptical nose is tested against the profile. Numerical; kept here so
+    /// that it follows the unit of length (karman-airframe nose cones).
+    pub nose_shape_tolerance: f64,
 }
 
 const fn layer(h: f64, t: f64, beta: f64, p: f64) -> AtmosphereLayer {
@@ -161,6 +177,9 @@ impl PhysicalConstants {
         sad69_semi_major_axis: 6_378_160.0,
         sad69_flattening: 1.0 / 298.25,
         nad83_flattening: 1.0 / 298.257_024_899,
+        propellant_grid_step: 0.005,
+        time_difference_step: 1e-6,
+        nose_shape_tolerance: 1e-3,
     };
 
     /// The same constants expressed in the unit system `u`.
@@ -194,6 +213,9 @@ impl PhysicalConstants {
             sad69_semi_major_axis: self.sad69_semi_major_axis * len,
             sad69_flattening: self.sad69_flattening,
             nad83_flattening: self.nad83_flattening,
+            propellant_grid_step: self.propellant_grid_step * u.time,
+            time_difference_step: self.time_difference_step * u.time,
+            nose_shape_tolerance: self.nose_shape_tolerance * len,
         }
     }
 }

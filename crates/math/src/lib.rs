@@ -7,6 +7,8 @@
 //!
 //! - [`constants`]: every physical constant of the model, in one [`PhysicalConstants`] value
 //!   that can be expressed in a scaled unit system ([`Units`]) for dimensional-analysis tests.
+//! - [`dimensions`]: test support for those tests (random unit systems, dimensions, scaled
+//!   comparisons); nothing in it runs during a simulation.
 //! - [`Table1`] (module `table`): a tabulated function of one variable with linear, natural
 //!   cubic spline, Akima (1970), RocketPy's `"akima"` Hermite, or polynomial interpolation and
 //!   constant, natural or zero extrapolation; repeated abscissae for linear tables
@@ -49,6 +51,7 @@
 
 pub mod constants;
 pub mod csv;
+pub mod dimensions;
 mod error;
 mod function;
 mod grid;

@@ -77,7 +77,9 @@ const RULE_EVALUATIONS: usize = 21;
 /// Tolerances and budget of an adaptive quadrature.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct QuadratureOptions {
-    /// Absolute error tolerance.
+    /// Absolute error tolerance, in the units of the integral (those of `f` times those of
+    /// `x`): a dimensional value, to be expressed in the unit system of the problem (the
+    /// default suits SI-sized integrals).
     pub abs_tol: f64,
     /// Relative error tolerance.
     pub rel_tol: f64,

@@ -2,6 +2,7 @@
 
 mod allocation;
 mod csv_reader;
+mod dimensions;
 mod functions;
 mod grids;
 mod interpolation;

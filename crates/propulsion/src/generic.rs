@@ -10,7 +10,7 @@
 //!   (`set_discrete_based_on_model` keeps the spline of the product), constant outside;
 //! - the propellant centre of mass is the chamber position.
 
-use karman_math::{Extrapolation, Interpolation, Table1, linspace};
+use karman_math::{Extrapolation, Interpolation, PhysicalConstants, Table1, linspace};
 
 use crate::propellant::{finite, positive};
 use crate::{PropellantModel, PropellantTables, PropulsionError, ThrustCurve};
@@ -47,6 +47,7 @@ impl PropellantModel for CylindricalChamber {
         &self,
         thrust: &ThrustCurve,
         exhaust_velocity: f64,
+        _constants: &PhysicalConstants,
     ) -> Result<PropellantTables, PropulsionError> {
         let curve = thrust.table();
         let (start, end) = curve.domain();
@@ -121,7 +122,7 @@ mod tests {
             propellant_initial_mass: 2.0,
         };
         let ve = curve.total_impulse() / 2.0;
-        let t = chamber.tables(&curve, ve).unwrap();
+        let t = chamber.tables(&curve, ve, &PhysicalConstants::SI).unwrap();
         assert_eq!(t.mass.xs().len(), MASS_SAMPLES);
         assert_eq!(t.mass.interpolation(), Interpolation::Spline);
         assert_eq!(t.i11.xs(), curve.table().xs());

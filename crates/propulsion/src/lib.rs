@@ -30,5 +30,5 @@ pub use error::PropulsionError;
 pub use generic::CylindricalChamber;
 pub use motor::{CoordinateSystem, Motor, MotorKind, MotorStructure};
 pub use propellant::{PropellantModel, PropellantTables};
-pub use solid::{BatesGrains, GRID_STEP, GrainState};
+pub use solid::{BatesGrains, GrainState};
 pub use thrust::{BurnTime, ThrustCurve, ThrustOptions, ThrustSource};

@@ -9,7 +9,7 @@
 //! - `v̄_e = I_tot / m_p0`, `ṁ(t) = −T(t)/v̄_e` (physics.md §6.2);
 //! - pressure thrust `(p_ref − p)·π r_n²` when a reference pressure is given (§6.3).
 
-use karman_math::{Extrapolation, Interpolation, Table1};
+use karman_math::{Extrapolation, Interpolation, PhysicalConstants, Table1};
 
 use crate::propellant::{finite, non_negative};
 use crate::{
@@ -104,7 +104,7 @@ pub struct Motor {
 }
 
 impl Motor {
-    /// A solid motor (RocketPy `SolidMotor`).
+    /// A solid motor (RocketPy `SolidMotor`), inputs in SI.
     ///
     /// # Errors
     /// [`PropulsionError::InvalidParameter`] for a parameter out of range,
@@ -114,8 +114,22 @@ impl Motor {
         structure: MotorStructure,
         grains: BatesGrains,
     ) -> Result<Motor, PropulsionError> {
+        Self::solid_with(thrust, structure, grains, &PhysicalConstants::SI)
+    }
+
+    /// A solid motor whose inputs are in the unit system of `constants` (which sets the time
+    /// spacing of its tables); [`Motor::solid`] with [`PhysicalConstants::SI`].
+    ///
+    /// # Errors
+    /// As [`Motor::solid`].
+    pub fn solid_with(
+        thrust: ThrustCurve,
+        structure: MotorStructure,
+        grains: BatesGrains,
+        constants: &PhysicalConstants,
+    ) -> Result<Motor, PropulsionError> {
         let (propellant_initial_mass, exhaust_velocity, propellant) =
-            Self::propellant(&thrust, &structure, &grains)?;
+            Self::propellant(&thrust, &structure, &grains, constants)?;
         Ok(Motor {
             kind: MotorKind::Solid(grains),
             structure,
@@ -126,7 +140,8 @@ impl Motor {
         })
     }
 
-    /// A generic motor (RocketPy `GenericMotor`).
+    /// A generic motor (RocketPy `GenericMotor`). Its tables have no time step of their own
+    /// (they are sampled on the thrust curve), so no constants are needed.
     ///
     /// # Errors
     /// As [`Motor::solid`].
@@ -136,7 +151,7 @@ impl Motor {
         chamber: CylindricalChamber,
     ) -> Result<Motor, PropulsionError> {
         let (propellant_initial_mass, exhaust_velocity, propellant) =
-            Self::propellant(&thrust, &structure, &chamber)?;
+            Self::propellant(&thrust, &structure, &chamber, &PhysicalConstants::SI)?;
         Ok(Motor {
             kind: MotorKind::Generic(chamber),
             structure,
@@ -188,6 +203,7 @@ impl Motor {
         thrust: &ThrustCurve,
         structure: &MotorStructure,
         model: &dyn PropellantModel,
+        constants: &PhysicalConstants,
     ) -> Result<(f64, f64, PropellantTables), PropulsionError> {
         structure.validate()?;
         model.validate()?;
@@ -200,7 +216,7 @@ impl Motor {
         Ok((
             initial_mass,
             exhaust_velocity,
-            model.tables(thrust, exhaust_velocity)?,
+            model.tables(thrust, exhaust_velocity, constants)?,
         ))
     }
 

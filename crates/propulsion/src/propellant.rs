@@ -7,7 +7,7 @@
 //! (rocketpy/motors/motor.py). Solid ([`crate::BatesGrains`]) and generic
 //! ([`crate::CylindricalChamber`]) models exist; hybrid and liquid models plug in the same way.
 
-use karman_math::Table1;
+use karman_math::{PhysicalConstants, Table1};
 
 use crate::{PropulsionError, ThrustCurve};
 
@@ -36,7 +36,8 @@ pub trait PropellantModel {
     fn validate(&self) -> Result<(), PropulsionError>;
 
     /// Builds the propellant tables for `thrust`, given the average exhaust velocity
-    /// `v̄_e = I_tot / m_p0` (so the mass flow is `ṁ = −T / v̄_e`, physics.md §6.2).
+    /// `v̄_e = I_tot / m_p0` (so the mass flow is `ṁ = −T / v̄_e`, physics.md §6.2), in the
+    /// unit system of `constants` (which holds the numerical time steps of the tables).
     ///
     /// # Errors
     /// [`PropulsionError::Table`] when a table cannot be built.
@@ -44,6 +45,7 @@ pub trait PropellantModel {
         &self,
         thrust: &ThrustCurve,
         exhaust_velocity: f64,
+        constants: &PhysicalConstants,
     ) -> Result<PropellantTables, PropulsionError>;
 }
 

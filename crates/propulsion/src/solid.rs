@@ -13,23 +13,29 @@
 //! reaches before its end) and the geometry is held after that.
 //!
 //! The tables are sampled on the thrust-curve nodes with every interval split into pieces of at
-//! most [`GRID_STEP`] (longer for burns beyond 250 s) and interpolated linearly (RocketPy samples at the LSODA output times; the
-//! two agree to ~1e-4 relative, the error of RocketPy's linear interpolation between its steps).
+//! most [`PhysicalConstants::propellant_grid_step`] (5 ms in SI; longer for burns beyond
+//! 250 s) and interpolated linearly (RocketPy samples at the LSODA output times; the two agree
+//! to ~1e-4 relative, the error of RocketPy's linear interpolation between its steps). The
+//! step is taken from the constants, not written here, so that it follows the unit of time.
 //! Inertia of the grain stack about its centre (grain centres fixed, spaced `h_0 + s_g`):
 //! `I11_p = N m_g [(R_o² + r²)/4 + h²/12] + m_g Σ d_i²`, `d_i = (i − (N−1)/2)(h_0 + s_g)`;
 //! `I33_p = ½ m_p (R_o² + r²)`.
 
-use karman_math::{Extrapolation, Interpolation, Table1};
+use karman_math::{Extrapolation, Interpolation, PhysicalConstants, Table1};
 
 use crate::propellant::{finite, non_negative, positive};
 use crate::{PropellantModel, PropellantTables, PropulsionError, ThrustCurve};
 
-/// Largest spacing of the propellant tables of a solid motor, s.
-pub const GRID_STEP: f64 = 0.005;
-
-/// Bound on the table size for very long burns: the spacing grows beyond [`GRID_STEP`] so
-/// that the grid holds at most about this many points besides the thrust nodes.
+/// Bound on the table size for very long burns: the spacing grows beyond
+/// [`PhysicalConstants::propellant_grid_step`] so that the grid holds at most about this many
+/// points besides the thrust nodes.
 const MAX_GRID_POINTS: f64 = 50_000.0;
+
+/// Relative slack on the number of grid steps in a thrust-curve interval (a few roundings).
+const PIECE_ROUNDING: f64 = 1e-12;
+
+/// Rounding allowance on the remaining propellant mass, relative to the initial mass.
+const MASS_ROUNDING: f64 = 1e-12;
 
 /// BATES grain geometry and material (RocketPy `SolidMotor` grain arguments).
 #[derive(Debug, Clone, PartialEq)]
@@ -197,6 +203,7 @@ impl PropellantModel for BatesGrains {
         &self,
         thrust: &ThrustCurve,
         exhaust_velocity: f64,
+        constants: &PhysicalConstants,
     ) -> Result<PropellantTables, PropulsionError> {
         let m0 = self.initial_mass();
         let curve = thrust.table();
@@ -207,12 +214,17 @@ impl PropellantModel for BatesGrains {
         let mut masses = Vec::new();
         let nodes = curve.xs();
         let (start, end) = curve.domain();
-        let step = GRID_STEP.max((end - start) / MAX_GRID_POINTS);
+        let step = constants
+            .propellant_grid_step
+            .max((end - start) / MAX_GRID_POINTS);
         times.push(nodes[0]);
         masses.push(m0);
         'nodes: for pair in nodes.windows(2) {
             let (a, b) = (pair[0], pair[1]);
-            let pieces = ((b - a) / step).ceil().max(1.0) as usize;
+            // An interval that is a whole number of steps up to rounding gets that number of
+            // pieces: the count must not depend on the rounding of (b − a)/step, which differs
+            // between unit systems (found by the dimensional-analysis tests).
+            let pieces = ((b - a) / step * (1.0 - PIECE_ROUNDING)).ceil().max(1.0) as usize;
             for k in 1..=pieces {
                 let t = if k == pieces {
                     b
@@ -221,9 +233,15 @@ impl PropellantModel for BatesGrains {
                 };
                 let (t_prev, m_prev) = (times[times.len() - 1], masses[masses.len() - 1]);
                 let m = mass_at(t_prev, m_prev, t);
-                if m > 0.0 {
+                // Since v̄_e = I_tot/m_p0 the mass reaches 0 exactly at the end of a
+                // non-negative curve, and the sum above lands within rounding of it on either
+                // side; only a clearly negative mass means the grain is gone before the end
+                // (a negative tail). Otherwise a thrust tapering to 0 would place a spurious
+                // burn-out a few 1e-8 of the burn early, wherever the rounding falls (found by
+                // the dimensional-analysis tests: it differed between unit systems).
+                if m > -MASS_ROUNDING * m0 {
                     times.push(t);
-                    masses.push(m);
+                    masses.push(m.max(0.0));
                     continue;
                 }
                 // Grain consumed inside (t_prev, t]: find the instant and stop there.
@@ -346,7 +364,7 @@ mod tests {
         let g = calisto();
         let m0 = g.initial_mass();
         let ve = curve.total_impulse() / m0;
-        let tables = g.tables(&curve, ve).unwrap();
+        let tables = g.tables(&curve, ve, &PhysicalConstants::SI).unwrap();
         let (_, end) = tables.mass.domain();
         assert!(
             (end - (2.0 - 0.1f64.sqrt())).abs() < 1e-12,
@@ -358,7 +376,7 @@ mod tests {
                 .mass
                 .xs()
                 .windows(2)
-                .all(|w| w[1] - w[0] <= GRID_STEP + 1e-12)
+                .all(|w| w[1] - w[0] <= PhysicalConstants::SI.propellant_grid_step + 1e-12)
         );
         // m_p(0.5) = m0 − (½·0.5·50 N·s)/v̄_e, exact at a grid node.
         assert!((tables.mass.eval(0.5) - (m0 - 12.5 / ve)).abs() < 1e-12 * m0);

@@ -1,5 +1,6 @@
 //! Integration tests of karman-propulsion (one binary, one module per topic).
 
+mod dimensions;
 mod motors;
 mod parsers;
 mod thrust_files;

@@ -202,6 +202,20 @@ impl FinAerodynamics {
     pub fn roll_damping_derivative(&self, mach: f64) -> f64 {
         self.damping_factor * self.single_fin_cn_alpha(mach)
     }
+
+    /// `[CNα_N, C_lf,δ·δ, C_ld,ω]` at `mach` with CNα₁(M) evaluated once: the values of
+    /// [`FinAerodynamics::cn_alpha`], [`FinAerodynamics::roll_forcing_derivative`] times the
+    /// cant angle and [`FinAerodynamics::roll_damping_derivative`], to the bit.
+    #[inline]
+    #[must_use]
+    pub fn coefficients(&self, mach: f64) -> [f64; 3] {
+        let single = self.single_fin_cn_alpha(mach);
+        [
+            self.lift_interference * self.fin_count_factor * single,
+            self.forcing_factor * single * self.cant_angle,
+            self.damping_factor * single,
+        ]
+    }
 }
 
 /// Planform quantities shared by all fin kinds.
@@ -510,7 +524,8 @@ pub(crate) fn free_form(
         .sum::<f64>()
         .abs()
         / 2.0;
-    if area < 1e-6 {
+    // A sliver: less than 1e-4 of its bounding box (1 mm² for a 10 cm × 10 cm fin).
+    if area < 1e-4 * span * root_chord {
         return Err(AirframeError::Geometry {
             component: name.to_owned(),
             reason: format!("fin area {area} m² is too small"),

@@ -12,6 +12,8 @@ mod tail;
 
 use std::f64::consts::PI;
 
+use karman_math::PhysicalConstants;
+
 pub use fins::{
     Airfoil, AngleUnit, EllipticalFinsSpec, FinAerodynamics, FreeFormFinsSpec, Sweep,
     TrapezoidalFinsSpec,
@@ -150,8 +152,9 @@ pub struct Surface {
 }
 
 impl Surface {
-    /// Builds a surface; `cdm` is the rocket's centre of dry mass and `csys` its coordinate
-    /// system sign. Returns the surface and any warnings about its geometry.
+    /// Builds a surface; `cdm` is the rocket's centre of dry mass, `csys` its coordinate
+    /// system sign and `constants` the unit system. Returns the surface and any warnings about
+    /// its geometry.
     ///
     /// # Errors
     /// [`AirframeError`] for impossible dimensions.
@@ -160,12 +163,13 @@ impl Surface {
         rocket_radius: f64,
         csys: f64,
         cdm: f64,
+        constants: &PhysicalConstants,
     ) -> Result<(Surface, Vec<String>), AirframeError> {
         let name = input.name.as_str();
         let position = finite(name, "position", input.position)?;
         let (geometry, aero, cp_local, radius, warnings) = match &input.spec {
             SurfaceSpec::Nose(spec) => {
-                let (n, w) = nose::build(name, spec, rocket_radius)?;
+                let (n, w) = nose::build(name, spec, rocket_radius, constants)?;
                 // Rocket.add_nose passes the base radius as the reference radius: CNα = 2.
                 let g = Geometry::Nose {
                     kind: n.kind,
@@ -242,6 +246,18 @@ impl Surface {
         match &self.aero {
             Aero::Constant(_) => 0.0,
             Aero::Fins(f) => f.roll_damping_derivative(mach),
+        }
+    }
+
+    /// `[CNα, roll forcing, roll damping]` at `mach`: the values of [`Surface::cn_alpha`],
+    /// [`Surface::roll_forcing`] and [`Surface::roll_damping`] with the fin set's
+    /// Mach-dependent slope evaluated once (the equations of motion need all three).
+    #[inline]
+    #[must_use]
+    pub fn coefficients(&self, mach: f64) -> [f64; 3] {
+        match &self.aero {
+            Aero::Constant(c) => [*c, 0.0, 0.0],
+            Aero::Fins(f) => f.coefficients(mach),
         }
     }
 

@@ -6,6 +6,8 @@
 
 use std::f64::consts::PI;
 
+use karman_math::PhysicalConstants;
+
 use crate::error::{AirframeError, positive};
 
 /// The profile family of a nose cone (RocketPy `NoseCone.kind`).
@@ -123,11 +125,13 @@ fn cp_factor(kind: NoseKind, length: f64, radius: f64) -> f64 {
 /// Number of profile points RocketPy's `evaluate_nose_shape` uses.
 const PROFILE_POINTS: usize = 127;
 
-/// Builds the nose cone, returning it and any warnings.
+/// Builds the nose cone, returning it and any warnings; `constants` give the unit system
+/// (RocketPy's 1 mm tolerance of the bluff-tip construction).
 pub(crate) fn build(
     name: &str,
     spec: &NoseConeSpec,
     rocket_radius: f64,
+    constants: &PhysicalConstants,
 ) -> Result<(NoseCone, Vec<String>), AirframeError> {
     let length = positive(name, "length", spec.length)?;
     let radius = positive(
@@ -165,7 +169,14 @@ pub(crate) fn build(
     // k uses the length as given (RocketPy computes it before the bluff-tip shortening).
     let k = cp_factor(spec.kind, length, radius);
     let y = |x: f64| profile_radius(spec.kind, length, radius, x);
-    let tip = bluff_tip(spec.kind, length, radius, spec.bluffness, &y);
+    let tip = bluff_tip(
+        spec.kind,
+        length,
+        radius,
+        spec.bluffness,
+        constants.nose_shape_tolerance,
+        &y,
+    );
     let (r_circle, center, x_init) = match tip {
         Some(t) => t,
         None => {
@@ -182,7 +193,7 @@ pub(crate) fn build(
     let shift = center - r_circle;
     let span = length - shift;
     let mut effective = length;
-    if (span - length).abs() >= 1e-3 {
+    if (span - length).abs() >= constants.nose_shape_tolerance {
         effective = span;
         warnings.push(format!(
             "{name}: the bluff tip shortens the nose cone from {length} m to {span} m"
@@ -213,12 +224,14 @@ pub(crate) fn build(
 
 /// The spherical tip of a bluff nose (RocketPy `evaluate_nose_shape`): the circle of radius
 /// `b·R` tangent to the profile. Returns `(circle radius, circle centre x, tangency x)` or
-/// `None` for a sharp tip.
+/// `None` for a sharp tip. An elliptical nose keeps a sharp tip when the circle is inside the
+/// profile at `x = probe` (RocketPy's 1 mm).
 fn bluff_tip(
     kind: NoseKind,
     length: f64,
     radius: f64,
     bluffness: f64,
+    probe: f64,
     y: &impl Fn(f64) -> f64,
 ) -> Option<(f64, f64, f64)> {
     if bluffness <= 0.0 {
@@ -232,7 +245,7 @@ fn bluff_tip(
         (y(b) - y(a)) / (b - a)
     };
     if kind == NoseKind::Elliptical {
-        let x = 1e-3;
+        let x = probe;
         let test = (r_circle * r_circle - (x - r_circle).powi(2))
             .max(0.0)
             .sqrt();
@@ -302,7 +315,8 @@ mod tests {
             (NoseKind::PowerSeries(0.5), 0.5),
         ];
         for (kind, k) in cases {
-            let (cone, w) = build("nose", &spec(kind), 0.0635).expect("valid nose");
+            let (cone, w) =
+                build("nose", &spec(kind), 0.0635, &PhysicalConstants::SI).expect("valid nose");
             assert!(w.is_empty());
             assert!((cone.cp_local - k * 0.55829).abs() < 1e-12, "{kind:?}");
         }
@@ -318,7 +332,7 @@ mod tests {
             base_radius: None,
             bluffness: 0.0,
         };
-        let (cone, _) = build("nose", &s, 0.1015).expect("valid nose");
+        let (cone, _) = build("nose", &s, 0.1015, &PhysicalConstants::SI).expect("valid nose");
         assert!((cone.cp_local - 0.282_104_872_319_110_97).abs() < 1e-12);
     }
 
@@ -326,7 +340,7 @@ mod tests {
     fn bluff_tip_shortens_the_cone_and_is_tangent() {
         let mut s = spec(NoseKind::Ogive);
         s.bluffness = 0.3;
-        let (cone, w) = build("nose", &s, 0.0635).expect("valid nose");
+        let (cone, w) = build("nose", &s, 0.0635, &PhysicalConstants::SI).expect("valid nose");
         assert!(
             cone.length < 0.55829 && cone.length > 0.4,
             "length {}",
@@ -342,7 +356,13 @@ mod tests {
 
     #[test]
     fn profile_of_sharp_cone_is_the_shape() {
-        let (cone, _) = build("nose", &spec(NoseKind::Conical), 0.0635).expect("valid nose");
+        let (cone, _) = build(
+            "nose",
+            &spec(NoseKind::Conical),
+            0.0635,
+            &PhysicalConstants::SI,
+        )
+        .expect("valid nose");
         for [x, r] in &cone.profile {
             assert!((r - x * 0.0635 / 0.55829).abs() < 1e-12);
         }
@@ -352,15 +372,39 @@ mod tests {
     fn impossible_noses_are_errors() {
         let mut s = spec(NoseKind::Conical);
         s.length = -1.0;
-        assert!(build("nose", &s, 0.0635).is_err());
+        assert!(build("nose", &s, 0.0635, &PhysicalConstants::SI).is_err());
         let mut s = spec(NoseKind::Conical);
         s.bluffness = 1.5;
-        assert!(build("nose", &s, 0.0635).is_err());
+        assert!(build("nose", &s, 0.0635, &PhysicalConstants::SI).is_err());
         let mut s = spec(NoseKind::PowerSeries(0.5));
         s.bluffness = 0.2;
-        assert!(build("nose", &s, 0.0635).is_err());
-        assert!(build("nose", &spec(NoseKind::PowerSeries(1.5)), 0.0635).is_err());
-        assert!(build("nose", &spec(NoseKind::PowerSeries(f64::NAN)), 0.0635).is_err());
-        assert!(build("nose", &spec(NoseKind::Conical), 0.0).is_err());
+        assert!(build("nose", &s, 0.0635, &PhysicalConstants::SI).is_err());
+        assert!(
+            build(
+                "nose",
+                &spec(NoseKind::PowerSeries(1.5)),
+                0.0635,
+                &PhysicalConstants::SI
+            )
+            .is_err()
+        );
+        assert!(
+            build(
+                "nose",
+                &spec(NoseKind::PowerSeries(f64::NAN)),
+                0.0635,
+                &PhysicalConstants::SI
+            )
+            .is_err()
+        );
+        assert!(
+            build(
+                "nose",
+                &spec(NoseKind::Conical),
+                0.0,
+                &PhysicalConstants::SI
+            )
+            .is_err()
+        );
     }
 }
