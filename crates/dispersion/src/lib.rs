@@ -1,4 +1,67 @@
 //! # karman-dispersion
 //!
 //! Monte Carlo dispersion: reproducible sampling of uncertain inputs, many flights in
-//! parallel, statistics and 1σ/2σ/3σ apogee and landing ellipses.
+//! parallel, statistics and 1σ/2σ/3σ apogee and landing ellipses (physics.md §12). The crate
+//! knows nothing of rockets: the caller describes the varied inputs ([`VariedInput`]: a
+//! name, what it is, a [`Variation`]) and the scalar outputs, and supplies a function that
+//! flies one sample from its sampled values.
+//!
+//! ```
+//! use karman_dispersion::{run, Distribution, Outcome, ProgressMode, RunOptions, Study, Target,
+//!     Variation, VariedInput};
+//!
+//! let inputs = vec![
+//!     VariedInput::new("mass", Target::Number(10.0), Variation::Std(0.1)),
+//!     VariedInput::new("drag", Target::Curve,
+//!         Variation::Factor(Distribution::Normal { mean: 1.0, std: 0.05 })),
+//! ];
+//! let study = Study::new(42, 100, inputs, vec!["apogee_m".to_owned()]);
+//! let dir = std::env::temp_dir().join(format!("karman-doc-{}", std::process::id()));
+//! let options = RunOptions { threads: Some(2), progress: ProgressMode::Hidden, ..Default::default() };
+//! let report = run(&study, &dir, &options, |_index, values: &[f64]| {
+//!     let (mass, drag_factor) = (values[0], values[1]);
+//!     Ok(Outcome::new(vec![Some(1000.0 / (mass * drag_factor))]))
+//! })?;
+//! assert_eq!(report.flown, 100);
+//! # std::fs::remove_dir_all(&dir).ok();
+//! # Ok::<(), karman_dispersion::DispersionError>(())
+//! ```
+//!
+//! Output directory (see [`files`]): `study.json` (seed, samples, inputs, outputs,
+//! fingerprint), `samples.csv` (one row per sample in index order, failures included),
+//! `summary.json`, `dispersion.kml`, `landing.svg`, `apogee_histogram.svg`.
+//!
+//! - Reproducible: sample `i` draws from streams keyed by (seed, i) ([`sampling`]); the
+//!   results are byte-identical for any thread count, shard split or interruption.
+//! - Resumable: rerunning [`run`] in the same directory keeps the complete rows (dropping a
+//!   partial last line), refuses a different study, and flies the rest.
+//! - Shardable: [`RunOptions::shard`] `K/N` flies the samples with `index % N == K − 1`;
+//!   [`merge`] joins the shard directories into the files of a single run.
+
+mod csv;
+mod distribution;
+mod error;
+pub mod files;
+mod kml;
+mod merge;
+mod plot;
+mod progress;
+mod runner;
+pub mod sampling;
+mod stats;
+mod study;
+mod summary;
+
+pub use csv::{Row, parse as parse_row};
+pub use distribution::{Distribution, Meaning, Target, Variation, VariedInput};
+pub use error::DispersionError;
+pub use kml::offset_to_lat_lon;
+pub use merge::merge;
+pub use progress::ProgressMode;
+pub use runner::{Outcome, RunOptions, RunReport, WINDOW_PER_THREAD, run};
+pub use stats::{
+    Ellipse, Moments, NORMAL_SIGMA_PROBABILITY, Statistics, k_sigma_probability, probability_scale,
+    quantile,
+};
+pub use study::{Points, Shard, Site, Study};
+pub use summary::{Column, Contour, EllipseSummary, Failure, Summary, summarize};

@@ -17,6 +17,7 @@
 //! - [`load`] / [`parse`]: read, override, deserialize, validate; every error is a
 //!   [`MissionError`] naming the file, line, column and key.
 //! - [`paths`]: the numeric inputs of a mission by dotted path (overrides, dispersion).
+//! - [`montecarlo`]: the `[dispersion]` study of a mission, its samples applied and flown.
 //! - [`build`]: mission → physics models; [`report`]: outputs.
 //!
 //! The lower crates are re-exported ([`math`], [`atmos`], [`propulsion`], [`airframe`],
@@ -27,6 +28,7 @@ mod curves;
 mod document;
 mod error;
 mod overrides;
+pub mod montecarlo;
 pub mod paths;
 pub mod report;
 pub mod schema;

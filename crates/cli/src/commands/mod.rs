@@ -2,6 +2,8 @@
 
 mod check;
 mod inspect;
+mod merge;
+mod montecarlo;
 mod simulate;
 
 use clap::{Args, Subcommand};
@@ -18,6 +20,11 @@ pub enum Command {
     Inspect(inspect::InspectArgs),
     /// Fly a mission: summary (table or JSON); --out writes trajectory.csv, KML and plots.
     Simulate(simulate::SimulateArgs),
+    /// Monte Carlo dispersion: fly the mission with the inputs of its [dispersion] table
+    /// drawn at random; statistics, apogee and landing ellipses (resumable, shardable).
+    Montecarlo(montecarlo::MonteCarloArgs),
+    /// Join the output directories of the shards of one Monte Carlo study.
+    Merge(merge::MergeArgs),
 }
 
 /// The mission file and its `--set` overrides, shared by every command that reads a mission.
@@ -45,5 +52,7 @@ pub fn run(command: Command) -> anyhow::Result<()> {
         Command::Check(args) => check::run(&args),
         Command::Inspect(args) => inspect::run(&args),
         Command::Simulate(args) => simulate::run(&args),
+        Command::Montecarlo(args) => montecarlo::run(&args),
+        Command::Merge(args) => merge::run(&args),
     }
 }

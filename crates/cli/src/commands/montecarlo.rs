@@ -1,0 +1,138 @@
+//! `karman montecarlo MISSION [--samples N] [--seed S] [--threads T] [--out DIR]
+//! [--shard K/N] [--set PATH=VALUE]...`: a Monte Carlo dispersion study of a mission
+//! (docs/montecarlo.md).
+//!
+//! Writes `study.json` and `samples.csv` into DIR (rows flushed in index order as samples
+//! finish); a whole study also gets `summary.json`, `dispersion.kml`, `landing.svg` and
+//! `apogee_histogram.svg`. Rerunning the same command resumes an interrupted study.
+
+use super::MissionArgs;
+use anyhow::Result;
+use clap::Args;
+use karman_mission::dispersion::{self, ProgressMode, RunOptions, Shard, Summary};
+use karman_mission::montecarlo::{MonteCarlo, StudyOverrides};
+use std::io::Write;
+use std::path::PathBuf;
+
+/// Arguments of `karman montecarlo`.
+#[derive(Debug, Args)]
+pub struct MonteCarloArgs {
+    #[command(flatten)]
+    pub mission: MissionArgs,
+    /// Number of samples (default: the mission's `[dispersion] samples`).
+    #[arg(long, value_name = "N")]
+    pub samples: Option<u64>,
+    /// Seed of the random streams (default: the mission's `[dispersion] seed`).
+    #[arg(long, value_name = "S")]
+    pub seed: Option<u64>,
+    /// Worker threads (default: one per core).
+    #[arg(long, value_name = "T")]
+    pub threads: Option<usize>,
+    /// Output directory; rerun with the same directory to resume.
+    #[arg(long, value_name = "DIR", default_value = "montecarlo")]
+    pub out: PathBuf,
+    /// Fly only shard K of N (samples with index % N == K - 1); join shards with
+    /// `karman merge`.
+    #[arg(long, value_name = "K/N")]
+    pub shard: Option<Shard>,
+    /// No progress output on stderr.
+    #[arg(long)]
+    pub quiet: bool,
+}
+
+/// Runs (or resumes) the study and prints what it did.
+pub fn run(args: &MonteCarloArgs) -> Result<()> {
+    let mission = args.mission.load()?;
+    let overrides = StudyOverrides {
+        samples: args.samples,
+        seed: args.seed,
+    };
+    let study = MonteCarlo::new(&mission, overrides)?;
+    let options = RunOptions {
+        threads: args.threads,
+        shard: args.shard,
+        progress: if args.quiet {
+            ProgressMode::Hidden
+        } else {
+            ProgressMode::Auto
+        },
+    };
+    let report = dispersion::run(study.study(), &args.out, &options, |index, values| {
+        study.fly(index, values)
+    })?;
+    let mut out = std::io::stdout().lock();
+    writeln!(
+        out,
+        "{} samples (shard {}): {} resumed, {} flown in {:.1} s ({:.1} flights/s on {} threads), {} failed",
+        report.shard_samples,
+        report.shard,
+        report.resumed,
+        report.flown,
+        report.elapsed.as_secs_f64(),
+        report.rate(),
+        report.threads,
+        report.failed
+    )?;
+    match &report.summary {
+        Some(summary) => print_summary(&mut out, summary)?,
+        None => writeln!(
+            out,
+            "shard written to {}; join the shards with `karman merge OUT DIR...`",
+            args.out.display()
+        )?,
+    }
+    writeln!(
+        out,
+        "seed {}; results in {}",
+        study.study().seed,
+        args.out.display()
+    )?;
+    Ok(())
+}
+
+/// A few lines of the summary: apogee, impact, ellipses.
+pub fn print_summary(out: &mut impl Write, summary: &Summary) -> Result<()> {
+    writeln!(
+        out,
+        "{} of {} samples succeeded, {} failed",
+        summary.succeeded, summary.samples, summary.failed
+    )?;
+    for failure in summary.failures.iter().take(3) {
+        writeln!(out, "  sample {} failed: {}", failure.index, failure.error)?;
+    }
+    writeln!(
+        out,
+        "{:<28} {:>12} {:>10} {:>12} {:>12}",
+        "output", "mean", "std", "2.5 %", "97.5 %"
+    )?;
+    for column in &summary.outputs {
+        if let Some(s) = &column.statistics {
+            writeln!(
+                out,
+                "{:<28} {:>12.3} {:>10.3} {:>12.3} {:>12.3}",
+                column.name, s.mean, s.std, s.p2_5, s.p97_5
+            )?;
+        }
+    }
+    for ellipse in &summary.ellipses {
+        writeln!(
+            out,
+            "{} ellipse: centre ({:.1}, {:.1}) m, major axis {:.1} deg from east",
+            ellipse.name, ellipse.center_m[0], ellipse.center_m[1], ellipse.orientation_deg
+        )?;
+        for (k, p) in ellipse.k_sigma_rocketpy.iter().zip(&ellipse.probability) {
+            writeln!(
+                out,
+                "  {} sigma: semi-axes {:.1} x {:.1} m (k-sigma, {:.1} % if normal); {:.2} % region {:.1} x {:.1} m",
+                k.sigma,
+                k.semi_major_m,
+                k.semi_minor_m,
+                100.0 * k.normal_probability,
+                100.0 * p.normal_probability,
+                p.semi_major_m,
+                p.semi_minor_m
+            )?;
+        }
+    }
+    Ok(())
+}

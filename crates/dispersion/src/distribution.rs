@@ -1,0 +1,364 @@
+//! Distributions of uncertain inputs (mission-format.md "[dispersion]"; physics.md §12.1) and
+//! the check that a distribution fits what it varies.
+//!
+//! Parameters follow NumPy's `Generator` conventions, as RocketPy's stochastic objects do:
+//! `normal(mean, std)`, `uniform(low, high)`, `triangular(low, mode, high)`,
+//! `lognormal(mu, sigma)` of the underlying normal, and a uniform `choice` among values.
+
+use crate::error::DispersionError;
+use rand::Rng;
+use rand_distr::Distribution as _;
+use serde::{Deserialize, Serialize};
+
+/// A validated probability distribution of one number.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Distribution {
+    /// Normal with this mean and standard deviation (`std >= 0`).
+    Normal {
+        /// Mean.
+        mean: f64,
+        /// Standard deviation.
+        std: f64,
+    },
+    /// Uniform on `[low, high]` (`low <= high`).
+    Uniform {
+        /// Lower bound.
+        low: f64,
+        /// Upper bound.
+        high: f64,
+    },
+    /// Triangular on `[low, high]` with its peak at `mode` (`low <= mode <= high`,
+    /// `low < high`).
+    Triangular {
+        /// Lower bound.
+        low: f64,
+        /// Peak.
+        mode: f64,
+        /// Upper bound.
+        high: f64,
+    },
+    /// `exp(N(mu, sigma))` (`sigma >= 0`).
+    Lognormal {
+        /// Mean of the underlying normal.
+        mu: f64,
+        /// Standard deviation of the underlying normal.
+        sigma: f64,
+    },
+    /// Each value with equal probability (at least one value).
+    Choice(Vec<f64>),
+}
+
+impl Distribution {
+    /// Checks the parameters; `input` names the varied input in the error.
+    pub fn validate(&self, input: &str) -> Result<(), DispersionError> {
+        let invalid = |reason: &str| {
+            Err(DispersionError::InvalidDistribution {
+                input: input.to_owned(),
+                reason: reason.to_owned(),
+            })
+        };
+        let finite = match self {
+            Distribution::Normal { mean, std } => [*mean, *std].iter().all(|v| v.is_finite()),
+            Distribution::Uniform { low, high } => low.is_finite() && high.is_finite(),
+            Distribution::Triangular { low, mode, high } => {
+                [*low, *mode, *high].iter().all(|v| v.is_finite())
+            }
+            Distribution::Lognormal { mu, sigma } => mu.is_finite() && sigma.is_finite(),
+            Distribution::Choice(values) => values.iter().all(|v| v.is_finite()),
+        };
+        if !finite {
+            return invalid("distribution parameters must be finite numbers");
+        }
+        match self {
+            Distribution::Normal { std, .. } if *std < 0.0 => invalid(&format!(
+                "normal needs a standard deviation >= 0, got {std}"
+            )),
+            Distribution::Uniform { low, high } if low > high => {
+                invalid(&format!("uniform needs low <= high, got [{low}, {high}]"))
+            }
+            Distribution::Triangular { low, mode, high }
+                if !(low <= mode && mode <= high && low < high) =>
+            {
+                invalid(&format!(
+                    "triangular needs low <= mode <= high and low < high, got [{low}, {mode}, {high}]"
+                ))
+            }
+            Distribution::Lognormal { sigma, .. } if *sigma < 0.0 => {
+                invalid(&format!("lognormal needs sigma >= 0, got {sigma}"))
+            }
+            Distribution::Choice(values) if values.is_empty() => {
+                invalid("choice needs at least one value")
+            }
+            _ => Ok(()),
+        }
+    }
+
+    /// One draw. The distribution must have passed [`Distribution::validate`]; a degenerate
+    /// case (`std = 0`, `low = high`) returns its single value.
+    pub fn sample<R: Rng + ?Sized>(&self, rng: &mut R) -> f64 {
+        match self {
+            Distribution::Normal { mean, std } => {
+                let z: f64 = rand_distr::StandardNormal.sample(rng);
+                mean + std * z
+            }
+            Distribution::Uniform { low, high } => {
+                let u: f64 = rng.random();
+                low + (high - low) * u
+            }
+            Distribution::Triangular { low, mode, high } => {
+                rand_distr::Triangular::new(*low, *high, *mode)
+                    .map_or(*mode, |triangular| triangular.sample(rng))
+            }
+            Distribution::Lognormal { mu, sigma } => {
+                let z: f64 = rand_distr::StandardNormal.sample(rng);
+                (mu + sigma * z).exp()
+            }
+            Distribution::Choice(values) => {
+                let pick = rng.random_range(0..values.len().max(1));
+                values.get(pick).copied().unwrap_or(f64::NAN)
+            }
+        }
+    }
+}
+
+/// How an input varies: the distribution and how a draw combines with the nominal value.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Variation {
+    /// `std = σ`: normal around the nominal number, `N(nominal, σ)`.
+    Std(f64),
+    /// The draw replaces the nominal value.
+    Value(Distribution),
+    /// The draw multiplies the nominal value (a number or every ordinate of a curve).
+    Factor(Distribution),
+    /// The draw is added to the nominal value (a number or every ordinate of a curve).
+    Offset(Distribution),
+}
+
+/// What a draw means to the caller who applies it.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Meaning {
+    /// The sampled value of the input itself.
+    Value,
+    /// A factor on the nominal value.
+    Factor,
+    /// An offset added to the nominal value.
+    Offset,
+}
+
+/// What a varied input is, as far as the fit of a distribution goes.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Target {
+    /// A real number with this nominal value.
+    Number(f64),
+    /// An integer (a count, an index) with this nominal value: only integral `choice` fits.
+    Integer(i64),
+    /// A curve (a table of points or a file): only `factor` and `offset` fit.
+    Curve,
+}
+
+/// One uncertain input of a study.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct VariedInput {
+    /// Its name, for a mission the dotted path (`rocket.mass`).
+    pub name: String,
+    /// What it is and its nominal value.
+    pub target: Target,
+    /// How it varies.
+    pub variation: Variation,
+}
+
+impl VariedInput {
+    /// A varied input; see [`VariedInput::check`] for validation.
+    pub fn new(name: impl Into<String>, target: Target, variation: Variation) -> Self {
+        VariedInput {
+            name: name.into(),
+            target,
+            variation,
+        }
+    }
+
+    /// What the sampled value handed to the flight function means.
+    pub fn meaning(&self) -> Meaning {
+        match self.variation {
+            Variation::Std(_) | Variation::Value(_) => Meaning::Value,
+            Variation::Factor(_) => Meaning::Factor,
+            Variation::Offset(_) => Meaning::Offset,
+        }
+    }
+
+    /// Its column in `samples.csv`: the name, with `:factor` or `:offset` appended when the
+    /// column holds a factor or an offset rather than the input's value.
+    pub fn column(&self) -> String {
+        match self.meaning() {
+            Meaning::Value => self.name.clone(),
+            Meaning::Factor => format!("{}:factor", self.name),
+            Meaning::Offset => format!("{}:offset", self.name),
+        }
+    }
+
+    /// Checks the distribution's parameters and that it fits the target: a curve takes only
+    /// `factor`/`offset`; an integer only a `choice` of integers; `std` needs a finite
+    /// nominal number.
+    pub fn check(&self) -> Result<(), DispersionError> {
+        let misfit = |reason: &str| {
+            Err(DispersionError::DoesNotFit {
+                input: self.name.clone(),
+                reason: reason.to_owned(),
+            })
+        };
+        match &self.variation {
+            Variation::Std(std) => {
+                Distribution::Normal {
+                    mean: 0.0,
+                    std: *std,
+                }
+                .validate(&self.name)?;
+            }
+            Variation::Value(d) | Variation::Factor(d) | Variation::Offset(d) => {
+                d.validate(&self.name)?;
+            }
+        }
+        match (&self.target, &self.variation) {
+            (Target::Curve, Variation::Factor(_) | Variation::Offset(_)) => Ok(()),
+            (Target::Curve, _) => misfit("a curve only takes `factor = ...` or `offset = ...`"),
+            (Target::Integer(_), Variation::Value(Distribution::Choice(values))) => {
+                if values.iter().all(|v| v.fract().abs() <= 0.0) {
+                    Ok(())
+                } else {
+                    misfit("an integer input takes a `choice` of integers")
+                }
+            }
+            (Target::Integer(_), _) => misfit("an integer input only takes `choice = [...]`"),
+            (Target::Number(nominal), Variation::Std(_)) if !nominal.is_finite() => {
+                misfit("`std` needs a finite nominal value")
+            }
+            (Target::Number(_), _) => Ok(()),
+        }
+    }
+
+    /// One draw: the input's value (`std`, plain distributions), or the factor or offset.
+    pub fn sample<R: Rng + ?Sized>(&self, rng: &mut R) -> f64 {
+        match &self.variation {
+            Variation::Std(std) => {
+                let nominal = match self.target {
+                    Target::Number(value) => value,
+                    Target::Integer(value) => value as f64,
+                    Target::Curve => f64::NAN,
+                };
+                Distribution::Normal {
+                    mean: nominal,
+                    std: *std,
+                }
+                .sample(rng)
+            }
+            Variation::Value(d) | Variation::Factor(d) | Variation::Offset(d) => d.sample(rng),
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn input(target: Target, variation: Variation) -> VariedInput {
+        VariedInput::new("x", target, variation)
+    }
+
+    #[test]
+    fn parameters_are_checked() {
+        let bad = [
+            Variation::Std(-1.0),
+            Variation::Value(Distribution::Uniform {
+                low: 2.0,
+                high: 1.0,
+            }),
+            Variation::Value(Distribution::Triangular {
+                low: 0.0,
+                mode: 2.0,
+                high: 1.0,
+            }),
+            Variation::Value(Distribution::Triangular {
+                low: 1.0,
+                mode: 1.0,
+                high: 1.0,
+            }),
+            Variation::Value(Distribution::Lognormal {
+                mu: 0.0,
+                sigma: -0.1,
+            }),
+            Variation::Value(Distribution::Choice(vec![])),
+            Variation::Factor(Distribution::Normal {
+                mean: f64::NAN,
+                std: 1.0,
+            }),
+        ];
+        for variation in bad {
+            let error = input(Target::Number(1.0), variation.clone()).check();
+            assert!(
+                matches!(error, Err(DispersionError::InvalidDistribution { .. })),
+                "{variation:?} accepted"
+            );
+        }
+    }
+
+    #[test]
+    fn fit_to_target() {
+        let normal = Distribution::Normal {
+            mean: 1.0,
+            std: 0.1,
+        };
+        assert!(
+            input(Target::Curve, Variation::Factor(normal.clone()))
+                .check()
+                .is_ok()
+        );
+        assert!(input(Target::Curve, Variation::Std(0.1)).check().is_err());
+        assert!(
+            input(Target::Curve, Variation::Value(normal.clone()))
+                .check()
+                .is_err()
+        );
+        let ints = Distribution::Choice(vec![0.0, 1.0, 2.0]);
+        assert!(
+            input(Target::Integer(0), Variation::Value(ints))
+                .check()
+                .is_ok()
+        );
+        let fractions = Distribution::Choice(vec![0.0, 0.5]);
+        let error = input(Target::Integer(0), Variation::Value(fractions)).check();
+        assert!(matches!(error, Err(DispersionError::DoesNotFit { .. })));
+        assert!(
+            input(Target::Integer(0), Variation::Std(1.0))
+                .check()
+                .is_err()
+        );
+        assert!(
+            input(Target::Number(2.0), Variation::Offset(normal))
+                .check()
+                .is_ok()
+        );
+    }
+
+    #[test]
+    fn columns_say_what_they_hold() {
+        let d = Distribution::Normal {
+            mean: 1.0,
+            std: 0.1,
+        };
+        assert_eq!(
+            input(Target::Curve, Variation::Factor(d.clone())).column(),
+            "x:factor"
+        );
+        assert_eq!(
+            input(Target::Curve, Variation::Offset(d.clone())).column(),
+            "x:offset"
+        );
+        assert_eq!(
+            input(Target::Number(1.0), Variation::Value(d)).column(),
+            "x"
+        );
+    }
+}

@@ -1,0 +1,114 @@
+//! The crate's one error type.
+
+use std::path::PathBuf;
+use thiserror::Error;
+
+/// Everything that can go wrong in a dispersion study.
+#[derive(Debug, Error)]
+pub enum DispersionError {
+    /// A distribution's parameters are not valid (negative standard deviation, `low > high`,
+    /// a non-finite number, an empty choice).
+    #[error("input `{input}`: {reason}")]
+    InvalidDistribution {
+        /// The varied input's name (its dotted path).
+        input: String,
+        /// Why.
+        reason: String,
+    },
+    /// A valid distribution that does not fit what it varies (a `choice` of fractions for an
+    /// integer, a `std` for a curve).
+    #[error("input `{input}`: {reason}")]
+    DoesNotFit {
+        /// The varied input's name.
+        input: String,
+        /// Why.
+        reason: String,
+    },
+    /// The study itself is not valid (no samples, duplicate names, unknown output names).
+    #[error("invalid study: {reason}")]
+    InvalidStudy {
+        /// Why.
+        reason: String,
+    },
+    /// A `--shard K/N` argument that is not `K/N` with `1 <= K <= N`.
+    #[error("invalid shard `{text}`: expected K/N with 1 <= K <= N (e.g. 2/8)")]
+    InvalidShard {
+        /// The argument as given.
+        text: String,
+    },
+    /// Reading or writing a file failed.
+    #[error("{}: {source}", path.display())]
+    Io {
+        /// The file or directory.
+        path: PathBuf,
+        /// The operating system's error.
+        source: std::io::Error,
+    },
+    /// The output directory holds a different study, so it cannot be resumed.
+    #[error(
+        "{} holds a different study (differs in: {}); use another --out directory or remove it",
+        dir.display(),
+        fields.join(", ")
+    )]
+    StudyMismatch {
+        /// The output directory.
+        dir: PathBuf,
+        /// The `study.json` fields that differ (`seed`, `samples`, `inputs`, ...).
+        fields: Vec<String>,
+    },
+    /// `samples.csv` exists without the `study.json` that identifies it.
+    #[error("{} has samples.csv but no study.json; it was not written by this program", dir.display())]
+    MissingStudy {
+        /// The output directory.
+        dir: PathBuf,
+    },
+    /// A complete row of `samples.csv` is malformed (only a trailing partial line is
+    /// expected after an interruption, and that one is dropped).
+    #[error("{}, line {line}: {reason}", file.display())]
+    CorruptSamples {
+        /// The file.
+        file: PathBuf,
+        /// 1-based line number.
+        line: u64,
+        /// What is wrong.
+        reason: String,
+    },
+    /// `study.json` cannot be read back.
+    #[error("{}: {message}", path.display())]
+    Json {
+        /// The file.
+        path: PathBuf,
+        /// The parser's message.
+        message: String,
+    },
+    /// Shard outputs that do not make up one complete study.
+    #[error("cannot merge: {reason}")]
+    Merge {
+        /// Why.
+        reason: String,
+    },
+    /// The worker thread pool could not be created.
+    #[error("cannot start {threads} worker threads: {message}")]
+    ThreadPool {
+        /// Threads asked for.
+        threads: usize,
+        /// The error.
+        message: String,
+    },
+    /// Drawing a plot failed.
+    #[error("{}: cannot draw the plot: {message}", path.display())]
+    Plot {
+        /// The SVG file.
+        path: PathBuf,
+        /// The plotting library's message.
+        message: String,
+    },
+}
+
+impl DispersionError {
+    /// Wraps an I/O error with the path it concerns.
+    pub(crate) fn io(path: impl Into<PathBuf>) -> impl FnOnce(std::io::Error) -> Self {
+        let path = path.into();
+        move |source| DispersionError::Io { path, source }
+    }
+}

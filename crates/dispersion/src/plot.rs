@@ -1,0 +1,156 @@
+//! SVG plots (plotters' SVG backend): the landing scatter with its k-σ ellipses and a
+//! histogram of one output (the apogee).
+
+use crate::error::DispersionError;
+use crate::stats::Ellipse;
+use plotters::prelude::*;
+use std::path::Path;
+
+type PlotResult = Result<(), Box<dyn std::error::Error>>;
+
+fn failed(path: &Path) -> impl FnOnce(Box<dyn std::error::Error>) -> DispersionError + '_ {
+    move |e| DispersionError::Plot {
+        path: path.to_owned(),
+        message: e.to_string(),
+    }
+}
+
+/// Colours of the 1σ, 2σ, 3σ contours.
+const SIGMA_COLOURS: [RGBColor; 3] = [RGBColor(0, 160, 0), RGBColor(255, 140, 0), RED];
+
+/// Draws `points` (x east, y north, m) and the 1σ/2σ/3σ ellipses of `ellipse` to `path`.
+pub fn landing(
+    path: &Path,
+    title: &str,
+    points: &[[f64; 2]],
+    ellipse: Option<&Ellipse>,
+) -> Result<(), DispersionError> {
+    draw_landing(path, title, points, ellipse).map_err(failed(path))
+}
+
+fn draw_landing(
+    path: &Path,
+    title: &str,
+    points: &[[f64; 2]],
+    ellipse: Option<&Ellipse>,
+) -> PlotResult {
+    let rings: Vec<Vec<[f64; 2]>> = ellipse
+        .map(|e| (1..=3).map(|k| e.boundary(f64::from(k), 100)).collect())
+        .unwrap_or_default();
+    let everything = points
+        .iter()
+        .chain(rings.iter().flatten())
+        .chain([&[0.0, 0.0]]);
+    let (mut x0, mut x1, mut y0, mut y1) = (0.0f64, 0.0f64, 0.0f64, 0.0f64);
+    for p in everything.filter(|p| p[0].is_finite() && p[1].is_finite()) {
+        x0 = x0.min(p[0]);
+        x1 = x1.max(p[0]);
+        y0 = y0.min(p[1]);
+        y1 = y1.max(p[1]);
+    }
+    // Equal scales on both axes, 5 % margin.
+    let half = 0.55 * (x1 - x0).max(y1 - y0).max(1.0);
+    let (cx, cy) = (0.5 * (x0 + x1), 0.5 * (y0 + y1));
+    let root = SVGBackend::new(path, (800, 800)).into_drawing_area();
+    root.fill(&WHITE)?;
+    let mut chart = ChartBuilder::on(&root)
+        .caption(title, ("sans-serif", 22))
+        .margin(15)
+        .x_label_area_size(45)
+        .y_label_area_size(70)
+        .build_cartesian_2d((cx - half)..(cx + half), (cy - half)..(cy + half))?;
+    chart
+        .configure_mesh()
+        .x_desc("x, east of the pad (m)")
+        .y_desc("y, north of the pad (m)")
+        .draw()?;
+    chart
+        .draw_series(
+            points
+                .iter()
+                .map(|p| Circle::new((p[0], p[1]), 2, BLUE.mix(0.35).filled())),
+        )?
+        .label("landing points")
+        .legend(|(x, y)| Circle::new((x + 10, y), 3, BLUE.filled()));
+    for (level, ring) in rings.into_iter().enumerate() {
+        let colour = SIGMA_COLOURS[level % 3];
+        let mut closed = ring.clone();
+        if let Some(first) = ring.first() {
+            closed.push(*first);
+        }
+        chart
+            .draw_series(LineSeries::new(
+                closed.into_iter().map(|p| (p[0], p[1])),
+                colour.stroke_width(2),
+            ))?
+            .label(format!("{} sigma (RocketPy k-sigma)", level + 1))
+            .legend(move |(x, y)| {
+                PathElement::new(vec![(x, y), (x + 20, y)], colour.stroke_width(2))
+            });
+    }
+    chart
+        .draw_series([Cross::new((0.0, 0.0), 6, BLACK.stroke_width(2))])?
+        .label("launch pad")
+        .legend(|(x, y)| Cross::new((x + 10, y), 4, BLACK));
+    chart
+        .configure_series_labels()
+        .position(SeriesLabelPosition::UpperLeft)
+        .background_style(WHITE.mix(0.85))
+        .border_style(BLACK)
+        .draw()?;
+    root.present()?;
+    Ok(())
+}
+
+/// Draws a histogram of `sorted` (ascending, finite) values of `name` to `path`.
+pub fn histogram(
+    path: &Path,
+    title: &str,
+    name: &str,
+    sorted: &[f64],
+) -> Result<(), DispersionError> {
+    draw_histogram(path, title, name, sorted).map_err(failed(path))
+}
+
+fn draw_histogram(path: &Path, title: &str, name: &str, sorted: &[f64]) -> PlotResult {
+    let (Some(&low), Some(&high)) = (sorted.first(), sorted.last()) else {
+        return Ok(());
+    };
+    // Square-root rule for the number of bins, 10 to 60.
+    let bins = ((sorted.len() as f64).sqrt().ceil() as usize).clamp(10, 60);
+    let width = if high > low {
+        (high - low) / bins as f64
+    } else {
+        1.0
+    };
+    let mut counts = vec![0u64; bins];
+    for v in sorted {
+        let bin = (((v - low) / width) as usize).min(bins - 1);
+        if let Some(count) = counts.get_mut(bin) {
+            *count += 1;
+        }
+    }
+    let top = counts.iter().copied().max().unwrap_or(1) as f64 * 1.1;
+    let root = SVGBackend::new(path, (900, 600)).into_drawing_area();
+    root.fill(&WHITE)?;
+    let mut chart = ChartBuilder::on(&root)
+        .caption(title, ("sans-serif", 22))
+        .margin(15)
+        .x_label_area_size(45)
+        .y_label_area_size(60)
+        .build_cartesian_2d(low..(low + width * bins as f64), 0.0..top)?;
+    chart
+        .configure_mesh()
+        .x_desc(name)
+        .y_desc("samples")
+        .draw()?;
+    chart.draw_series(counts.iter().enumerate().map(|(i, &count)| {
+        let left = low + width * i as f64;
+        Rectangle::new(
+            [(left, 0.0), (left + width, count as f64)],
+            BLUE.mix(0.6).filled(),
+        )
+    }))?;
+    root.present()?;
+    Ok(())
+}

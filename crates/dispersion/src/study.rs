@@ -1,0 +1,343 @@
+//! A study: what is varied, what is measured, how many samples with which seed, and its
+//! record `study.json`, which identifies the study in an output directory (resume, merge).
+
+use crate::distribution::VariedInput;
+use crate::error::DispersionError;
+use crate::sampling::{SCHEME, fnv1a64};
+use serde::{Deserialize, Serialize};
+use std::collections::HashSet;
+use std::fmt;
+use std::path::Path;
+use std::str::FromStr;
+
+/// Which outputs are the apogee and landing points and which one the histogram shows.
+#[derive(Debug, Clone, Default, PartialEq, Serialize, Deserialize)]
+pub struct Points {
+    /// Output names of the apogee's (x east, y north), m.
+    pub apogee: Option<[String; 2]>,
+    /// Output names of the landing (impact) point's (x east, y north), m.
+    pub landing: Option<[String; 2]>,
+    /// Output drawn as a histogram (e.g. `apogee_agl_m`).
+    pub histogram: Option<String>,
+}
+
+/// The launch site, to turn (x, y) offsets into latitude/longitude in `dispersion.kml`.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+pub struct Site {
+    /// Launch latitude, degrees north.
+    pub latitude_deg: f64,
+    /// Launch longitude, degrees east.
+    pub longitude_deg: f64,
+    /// Earth radius of the inverted haversine, m (physics.md §4.6 / §12.2).
+    pub earth_radius: f64,
+}
+
+/// A Monte Carlo study.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Study {
+    /// Seed of every random stream (recorded in `study.json` and `summary.json`).
+    pub seed: u64,
+    /// Number of samples; they are numbered `0..samples`.
+    pub samples: u64,
+    /// The varied inputs, in the order the flight function receives their values.
+    pub inputs: Vec<VariedInput>,
+    /// Names of the scalar outputs, in the order of [`crate::Outcome`]'s values.
+    pub outputs: Vec<String>,
+    /// Outputs that make the apogee/landing ellipses and the histogram.
+    pub points: Points,
+    /// Launch site for the KML export; none: no `dispersion.kml`.
+    pub site: Option<Site>,
+    /// Free text identifying the model (e.g. the mission file's name and a hash of its
+    /// content): part of the fingerprint, so a changed model is not resumed.
+    pub context: String,
+}
+
+impl Study {
+    /// A study with no points, no site and no context.
+    pub fn new(seed: u64, samples: u64, inputs: Vec<VariedInput>, outputs: Vec<String>) -> Self {
+        Study {
+            seed,
+            samples,
+            inputs,
+            outputs,
+            points: Points::default(),
+            site: None,
+            context: String::new(),
+        }
+    }
+
+    /// Checks the study: at least one sample, valid and fitting distributions, unique
+    /// column names, point outputs that exist, a finite site.
+    pub fn validate(&self) -> Result<(), DispersionError> {
+        let invalid = |reason: String| Err(DispersionError::InvalidStudy { reason });
+        if self.samples == 0 {
+            return invalid("the number of samples must be at least 1".to_owned());
+        }
+        for input in &self.inputs {
+            input.check()?;
+        }
+        let mut seen = HashSet::new();
+        for name in self.columns() {
+            if name.is_empty() || name.contains(['\n', '\r']) {
+                return invalid(format!("column name {name:?} is empty or has a line break"));
+            }
+            if !seen.insert(name.clone()) {
+                return invalid(format!("column `{name}` appears twice"));
+            }
+        }
+        let pairs = [&self.points.apogee, &self.points.landing];
+        let named = pairs
+            .into_iter()
+            .flatten()
+            .flatten()
+            .chain(&self.points.histogram);
+        for name in named {
+            if !self.outputs.contains(name) {
+                return invalid(format!("`{name}` is not one of the outputs"));
+            }
+        }
+        if let Some(site) = self.site {
+            let finite = [site.latitude_deg, site.longitude_deg, site.earth_radius]
+                .iter()
+                .all(|v| v.is_finite());
+            if !finite || site.earth_radius <= 0.0 || site.latitude_deg.abs() > 90.0 {
+                return invalid(format!("launch site {site:?} is not a place on Earth"));
+            }
+        }
+        Ok(())
+    }
+
+    /// Every column of `samples.csv`: `index`, `status`, `error`, the inputs, the outputs.
+    pub fn columns(&self) -> Vec<String> {
+        let fixed = ["index", "status", "error"].map(str::to_owned);
+        let inputs = self.inputs.iter().map(VariedInput::column);
+        fixed
+            .into_iter()
+            .chain(inputs)
+            .chain(self.outputs.iter().cloned())
+            .collect()
+    }
+}
+
+/// A part of a study: samples with `index % count == number − 1`. Interleaving (rather than
+/// contiguous blocks) spreads slow regions of the input space evenly over the shards.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+pub struct Shard {
+    /// This shard, 1-based.
+    pub number: u64,
+    /// Number of shards.
+    pub count: u64,
+}
+
+impl Shard {
+    /// The whole study.
+    pub const WHOLE: Shard = Shard {
+        number: 1,
+        count: 1,
+    };
+
+    /// Shard `number` of `count` (1-based).
+    pub fn new(number: u64, count: u64) -> Result<Self, DispersionError> {
+        if number == 0 || number > count {
+            return Err(DispersionError::InvalidShard {
+                text: format!("{number}/{count}"),
+            });
+        }
+        Ok(Shard { number, count })
+    }
+
+    /// Number of this shard's samples in a study of `samples`.
+    pub fn len(&self, samples: u64) -> u64 {
+        let first = self.number - 1;
+        if samples <= first {
+            0
+        } else {
+            (samples - first).div_ceil(self.count)
+        }
+    }
+
+    /// Whether the shard has no sample of a study of `samples`.
+    pub fn is_empty(&self, samples: u64) -> bool {
+        self.len(samples) == 0
+    }
+
+    /// The sample index at `position` (0-based) of this shard.
+    pub fn index(&self, position: u64) -> u64 {
+        position * self.count + (self.number - 1)
+    }
+}
+
+impl FromStr for Shard {
+    type Err = DispersionError;
+
+    fn from_str(text: &str) -> Result<Self, DispersionError> {
+        let invalid = || DispersionError::InvalidShard {
+            text: text.to_owned(),
+        };
+        let (k, n) = text.split_once('/').ok_or_else(invalid)?;
+        let k = k.trim().parse().map_err(|_| invalid())?;
+        let n = n.trim().parse().map_err(|_| invalid())?;
+        Shard::new(k, n).map_err(|_| invalid())
+    }
+}
+
+impl fmt::Display for Shard {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        write!(f, "{}/{}", self.number, self.count)
+    }
+}
+
+/// Version of the output files' layout.
+const FORMAT_VERSION: u32 = 1;
+
+/// The content of `study.json`.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub(crate) struct Record {
+    pub format: String,
+    pub version: u32,
+    pub fingerprint: String,
+    pub sampling: String,
+    pub seed: u64,
+    pub samples: u64,
+    pub shard: Shard,
+    pub inputs: Vec<VariedInput>,
+    pub outputs: Vec<String>,
+    pub points: Points,
+    pub site: Option<Site>,
+    pub context: String,
+}
+
+const FORMAT: &str = "karman-dispersion study";
+
+impl Record {
+    /// The record of `study`'s `shard`.
+    pub fn new(study: &Study, shard: Shard) -> Self {
+        let mut record = Record {
+            format: FORMAT.to_owned(),
+            version: FORMAT_VERSION,
+            fingerprint: String::new(),
+            sampling: SCHEME.to_owned(),
+            seed: study.seed,
+            samples: study.samples,
+            shard: Shard::WHOLE,
+            inputs: study.inputs.clone(),
+            outputs: study.outputs.clone(),
+            points: study.points.clone(),
+            site: study.site,
+            context: study.context.clone(),
+        };
+        // The fingerprint covers everything but the shard (all shards share it).
+        let canonical = serde_json::to_string(&record).unwrap_or_default();
+        record.fingerprint = format!("{:016x}", fnv1a64(canonical.as_bytes()));
+        record.shard = shard;
+        record
+    }
+
+    /// The study this record describes.
+    pub fn study(&self) -> Study {
+        Study {
+            seed: self.seed,
+            samples: self.samples,
+            inputs: self.inputs.clone(),
+            outputs: self.outputs.clone(),
+            points: self.points.clone(),
+            site: self.site,
+            context: self.context.clone(),
+        }
+    }
+
+    /// The text of `study.json`.
+    pub fn to_json(&self) -> String {
+        let mut text = serde_json::to_string_pretty(self).unwrap_or_default();
+        text.push('\n');
+        text
+    }
+
+    /// Reads `study.json`; `Ok(None)` when it does not exist.
+    pub fn read(path: &Path) -> Result<Option<Self>, DispersionError> {
+        let text = match std::fs::read_to_string(path) {
+            Ok(text) => text,
+            Err(e) if e.kind() == std::io::ErrorKind::NotFound => return Ok(None),
+            Err(e) => return Err(DispersionError::io(path)(e)),
+        };
+        let json = |message: String| DispersionError::Json {
+            path: path.to_owned(),
+            message,
+        };
+        let record: Record = serde_json::from_str(&text).map_err(|e| json(e.to_string()))?;
+        if record.format != FORMAT || record.version != FORMAT_VERSION {
+            return Err(json(format!(
+                "not a {FORMAT} of version {FORMAT_VERSION} (format {:?}, version {})",
+                record.format, record.version
+            )));
+        }
+        Ok(Some(record))
+    }
+
+    /// Names of the fields in which `other` differs from `self`.
+    pub fn differences(&self, other: &Record) -> Vec<String> {
+        let mut fields = Vec::new();
+        let mut differ = |name: &str, same: bool| {
+            if !same {
+                fields.push(name.to_owned());
+            }
+        };
+        differ("sampling", self.sampling == other.sampling);
+        differ("seed", self.seed == other.seed);
+        differ("samples", self.samples == other.samples);
+        differ("shard", self.shard == other.shard);
+        differ("inputs", self.inputs == other.inputs);
+        differ("outputs", self.outputs == other.outputs);
+        differ("points", self.points == other.points);
+        differ("site", self.site == other.site);
+        differ("context", self.context == other.context);
+        if fields.is_empty() && self.fingerprint != other.fingerprint {
+            fields.push("fingerprint".to_owned());
+        }
+        fields
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn shards_partition_the_samples() {
+        let samples = 10;
+        let mut seen = vec![0; samples as usize];
+        for number in 1..=3 {
+            let shard = Shard::new(number, 3).expect("valid");
+            for position in 0..shard.len(samples) {
+                seen[shard.index(position) as usize] += 1;
+            }
+        }
+        assert!(seen.iter().all(|&n| n == 1), "{seen:?}");
+        assert_eq!(Shard::new(5, 8).expect("valid").len(3), 0);
+    }
+
+    #[test]
+    fn shard_text() {
+        assert_eq!(
+            "2/8".parse::<Shard>().expect("valid"),
+            Shard::new(2, 8).expect("valid")
+        );
+        for bad in ["0/3", "4/3", "1", "a/b", "1/0", "-1/2"] {
+            assert!(bad.parse::<Shard>().is_err(), "{bad}");
+        }
+        assert_eq!(Shard::WHOLE.to_string(), "1/1");
+    }
+
+    #[test]
+    fn fingerprint_ignores_the_shard_only() {
+        let study = Study::new(1, 10, vec![], vec!["a".to_owned()]);
+        let whole = Record::new(&study, Shard::WHOLE);
+        let part = Record::new(&study, Shard::new(2, 3).expect("valid"));
+        assert_eq!(whole.fingerprint, part.fingerprint);
+        assert_eq!(whole.differences(&part), ["shard"]);
+        let other = Record::new(&Study { seed: 2, ..study }, Shard::WHOLE);
+        assert_ne!(whole.fingerprint, other.fingerprint);
+        assert_eq!(whole.differences(&other), ["seed"]);
+    }
+}

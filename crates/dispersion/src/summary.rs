@@ -1,0 +1,309 @@
+//! `summary.json`, `dispersion.kml` and the plots of a complete study, computed from its
+//! `samples.csv` (so a resumed or merged study summarizes exactly as an uninterrupted one).
+//!
+//! Memory does not grow without bound with the number of samples: the quantiles need every
+//! value of a column, so columns are read in groups of at most `VALUES_PER_PASS` values
+//! (64 MB), one pass over the file per group; the ellipses use running moments; the KML and
+//! the scatter plot show at most the first `MAX_DRAWN_POINTS` landing points.
+
+use crate::error::DispersionError;
+use crate::files::{
+    self, HISTOGRAM_PLOT_FILE, KML_FILE, LANDING_PLOT_FILE, SAMPLES_FILE, STUDY_FILE, SUMMARY_FILE,
+};
+use crate::kml;
+use crate::plot;
+use crate::stats::{
+    Ellipse, Moments, NORMAL_SIGMA_PROBABILITY, Statistics, k_sigma_probability, probability_scale,
+};
+use crate::study::{Record, Shard};
+use serde::Serialize;
+use std::path::Path;
+
+/// Values held in memory per pass over `samples.csv`.
+const VALUES_PER_PASS: u64 = 8 * 1024 * 1024;
+/// Failed samples listed by index and message in `summary.json` (all are counted).
+const MAX_LISTED_FAILURES: usize = 100;
+/// Landing points drawn in the KML file and the scatter plot.
+const MAX_DRAWN_POINTS: usize = 10_000;
+
+/// The summary of a complete study (`summary.json`).
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct Summary {
+    /// The study's seed.
+    pub seed: u64,
+    /// Number of samples.
+    pub samples: u64,
+    /// Samples flown successfully.
+    pub succeeded: u64,
+    /// Samples that failed.
+    pub failed: u64,
+    /// The first failed samples (at most 100), in index order.
+    pub failures: Vec<Failure>,
+    /// Statistics of the sampled inputs (all samples; a factor or offset column as drawn).
+    pub inputs: Vec<Column>,
+    /// Statistics of the outputs (successful samples where the quantity occurred).
+    pub outputs: Vec<Column>,
+    /// Apogee and landing ellipses, where the study names their outputs.
+    pub ellipses: Vec<EllipseSummary>,
+}
+
+/// A failed sample.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct Failure {
+    /// Sample index.
+    pub index: u64,
+    /// The error message.
+    pub error: String,
+}
+
+/// Statistics of one column (`count`, `mean`, `std` (population), `min`, `max`, `median`,
+/// `p2_5`, `p97_5`); only the name when no value is finite.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct Column {
+    /// Column name.
+    pub name: String,
+    /// Its statistics.
+    #[serde(flatten)]
+    pub statistics: Option<Statistics>,
+}
+
+/// An ellipse in both conventions, 1σ/2σ/3σ.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct EllipseSummary {
+    /// `apogee` or `landing`.
+    pub name: String,
+    /// Output names of x (east) and y (north).
+    pub outputs: [String; 2],
+    /// Samples with both values.
+    pub points: u64,
+    /// Mean point (x, y), m.
+    pub center_m: [f64; 2],
+    /// Sample covariance (divisor N − 1), m².
+    pub covariance_m2: [[f64; 2]; 2],
+    /// Direction of the major axis, degrees counter-clockwise from east, in (−90, 90].
+    pub orientation_deg: f64,
+    /// RocketPy's k-σ contours, k = 1, 2, 3 (`normal_probability`: the share of a bivariate
+    /// normal inside, 1 − exp(−k²/2): 39 %, 86 %, 99 %).
+    pub k_sigma_rocketpy: Vec<Contour>,
+    /// Probability-calibrated contours holding 68.27 %, 95.45 %, 99.73 % of a bivariate
+    /// normal (the one-dimensional 1σ/2σ/3σ shares), `k = sqrt(−2 ln(1 − p))`.
+    pub probability: Vec<Contour>,
+}
+
+/// One contour of an ellipse.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct Contour {
+    /// Level, 1 to 3.
+    pub sigma: u32,
+    /// Scale on the square roots of the eigenvalues.
+    pub k: f64,
+    /// Share of a bivariate normal inside the contour.
+    pub normal_probability: f64,
+    /// Semi-major axis `k√λ1`, m (RocketPy's width is twice it).
+    pub semi_major_m: f64,
+    /// Semi-minor axis `k√λ2`, m.
+    pub semi_minor_m: f64,
+}
+
+impl EllipseSummary {
+    fn new(name: &str, outputs: &[String; 2], ellipse: &Ellipse) -> Self {
+        let contour = |sigma: u32, k: f64, normal_probability: f64| {
+            let [semi_major_m, semi_minor_m] = ellipse.semi_axes(k);
+            Contour {
+                sigma,
+                k,
+                normal_probability,
+                semi_major_m,
+                semi_minor_m,
+            }
+        };
+        EllipseSummary {
+            name: name.to_owned(),
+            outputs: outputs.clone(),
+            points: ellipse.count,
+            center_m: ellipse.center,
+            covariance_m2: ellipse.covariance,
+            orientation_deg: ellipse.orientation_deg,
+            k_sigma_rocketpy: (1..=3)
+                .map(|s| contour(s, f64::from(s), k_sigma_probability(f64::from(s))))
+                .collect(),
+            probability: NORMAL_SIGMA_PROBABILITY
+                .iter()
+                .zip(1..)
+                .map(|(&p, s)| contour(s, probability_scale(p), p))
+                .collect(),
+        }
+    }
+}
+
+/// Computes the summary of the complete study in `dir` and writes `summary.json`,
+/// `dispersion.kml` (when the study has a site and landing points), `landing.svg` and
+/// `apogee_histogram.svg` (when the study names those outputs).
+pub fn summarize(dir: &Path) -> Result<Summary, DispersionError> {
+    let record =
+        Record::read(&dir.join(STUDY_FILE))?.ok_or_else(|| DispersionError::MissingStudy {
+            dir: dir.to_owned(),
+        })?;
+    if record.shard != Shard::WHOLE {
+        return Err(DispersionError::InvalidStudy {
+            reason: format!(
+                "{} holds shard {} only; merge the shards to summarize the study",
+                dir.display(),
+                record.shard
+            ),
+        });
+    }
+    let samples_path = dir.join(SAMPLES_FILE);
+    let scan = files::scan(&samples_path, &record)?;
+    if !files::shard_is_complete(&scan, &record) {
+        return Err(DispersionError::InvalidStudy {
+            reason: format!(
+                "{} has {} of {} samples; run the study again to finish it",
+                samples_path.display(),
+                scan.rows,
+                record.samples
+            ),
+        });
+    }
+    let study = record.study();
+    let (n_inputs, n_outputs) = (study.inputs.len(), study.outputs.len());
+    let output_index = |name: &String| study.outputs.iter().position(|o| o == name);
+    let pair = |names: &Option<[String; 2]>| {
+        names
+            .as_ref()
+            .and_then(|[x, y]| Some((output_index(x)?, output_index(y)?)))
+    };
+    let apogee_pair = pair(&study.points.apogee);
+    let landing_pair = pair(&study.points.landing);
+    let histogram_column = study
+        .points
+        .histogram
+        .as_ref()
+        .and_then(output_index)
+        .map(|i| n_inputs + i);
+
+    // First pass: counts, failures, moments, landing points.
+    let mut failures = Vec::new();
+    let mut failed = 0;
+    let mut apogee = Moments::default();
+    let mut landing = Moments::default();
+    let mut drawn: Vec<(u64, [f64; 2])> = Vec::new();
+    let value = |row: &crate::csv::Row, i: usize| row.outputs.get(i).copied().flatten();
+    files::for_each_row(&samples_path, n_inputs, n_outputs, |row| {
+        if let Some(error) = &row.error {
+            failed += 1;
+            if failures.len() < MAX_LISTED_FAILURES {
+                failures.push(Failure {
+                    index: row.index,
+                    error: error.clone(),
+                });
+            }
+        }
+        if let Some((x, y)) = apogee_pair {
+            if let (Some(x), Some(y)) = (value(&row, x), value(&row, y)) {
+                apogee.push(x, y);
+            }
+        }
+        if let Some((x, y)) = landing_pair {
+            if let (Some(x), Some(y)) = (value(&row, x), value(&row, y)) {
+                landing.push(x, y);
+                if drawn.len() < MAX_DRAWN_POINTS && x.is_finite() && y.is_finite() {
+                    drawn.push((row.index, [x, y]));
+                }
+            }
+        }
+    })?;
+
+    // Column statistics, a group of columns per pass.
+    let columns = n_inputs + n_outputs;
+    let per_pass = (VALUES_PER_PASS / record.samples.max(1)).max(1) as usize;
+    let mut statistics = Vec::with_capacity(columns);
+    for first in (0..columns).step_by(per_pass) {
+        let group = first..(first + per_pass).min(columns);
+        let mut values: Vec<Vec<f64>> = group.clone().map(|_| Vec::new()).collect();
+        files::for_each_row(&samples_path, n_inputs, n_outputs, |row| {
+            for (column, slot) in group.clone().zip(values.iter_mut()) {
+                let v = if column < n_inputs {
+                    row.inputs.get(column).copied()
+                } else {
+                    value(&row, column - n_inputs)
+                };
+                slot.extend(v);
+            }
+        })?;
+        for (column, mut column_values) in group.zip(values) {
+            statistics.push(Statistics::of(&mut column_values));
+            if Some(column) == histogram_column {
+                let name = &study.outputs[column - n_inputs];
+                plot::histogram(
+                    &dir.join(HISTOGRAM_PLOT_FILE),
+                    &format!("{name}: {} samples", column_values.len()),
+                    name,
+                    &column_values,
+                )?;
+            }
+        }
+    }
+    let names = study
+        .inputs
+        .iter()
+        .map(|i| i.column())
+        .chain(study.outputs.iter().cloned());
+    let mut columns: Vec<Column> = names
+        .zip(statistics)
+        .map(|(name, statistics)| Column { name, statistics })
+        .collect();
+    let outputs = columns.split_off(n_inputs);
+
+    let mut ellipses = Vec::new();
+    let mut kml_ellipses = Vec::new();
+    for (name, label, moments, names) in [
+        ("apogee", "Apogee", &apogee, &study.points.apogee),
+        ("landing", "Landing", &landing, &study.points.landing),
+    ] {
+        if let (Some(ellipse), Some(names)) = (moments.ellipse(), names) {
+            ellipses.push(EllipseSummary::new(name, names, &ellipse));
+            kml_ellipses.push((label, ellipse));
+        }
+    }
+    let summary = Summary {
+        seed: record.seed,
+        samples: record.samples,
+        succeeded: record.samples - failed,
+        failed,
+        failures,
+        inputs: columns,
+        outputs,
+        ellipses,
+    };
+    let mut json = serde_json::to_string_pretty(&summary).unwrap_or_default();
+    json.push('\n');
+    files::write_atomic(&dir.join(SUMMARY_FILE), json.as_bytes())?;
+
+    let title = if study.context.is_empty() {
+        format!(
+            "Dispersion, {} samples, seed {}",
+            record.samples, record.seed
+        )
+    } else {
+        format!(
+            "{}: {} samples, seed {}",
+            study.context, record.samples, record.seed
+        )
+    };
+    if study.points.landing.is_some() {
+        let points: Vec<[f64; 2]> = drawn.iter().map(|(_, p)| *p).collect();
+        let ellipse = landing.ellipse();
+        plot::landing(
+            &dir.join(LANDING_PLOT_FILE),
+            &title,
+            &points,
+            ellipse.as_ref(),
+        )?;
+        if let Some(site) = &study.site {
+            let document = kml::document(&title, site, &kml_ellipses, &drawn, landing.count());
+            files::write_atomic(&dir.join(KML_FILE), document.as_bytes())?;
+        }
+    }
+    Ok(summary)
+}

@@ -1,0 +1,102 @@
+//! Byte-identical outputs for any thread count and any shard split.
+
+use crate::common::{assert_same_outputs, files, fly, options, study};
+use karman_dispersion::{DispersionError, Shard, merge, run};
+
+#[test]
+fn threads_do_not_change_the_outputs() {
+    let study = study(600);
+    let tmp = tempfile::tempdir().expect("temporary directory");
+    let one = tmp.path().join("one");
+    let two = tmp.path().join("two");
+    let report = run(&study, &one, &options(1, Shard::WHOLE), fly).expect("run, 1 thread");
+    assert_eq!((report.flown, report.resumed, report.threads), (600, 0, 1));
+    let report2 = run(&study, &two, &options(2, Shard::WHOLE), fly).expect("run, 2 threads");
+    assert_eq!(report2.threads, 2);
+    assert_same_outputs(&one, &two);
+
+    let names: Vec<String> = files(&one).into_iter().map(|(n, _)| n).collect();
+    assert_eq!(
+        names,
+        [
+            "apogee_histogram.svg",
+            "dispersion.kml",
+            "landing.svg",
+            "samples.csv",
+            "study.json",
+            "summary.json"
+        ]
+    );
+    // The synthetic flight fails when the drag factor N(1, 0.05) exceeds 1.1 (2.3 % of the
+    // samples) and has no impact for index % 17 == 5.
+    let summary = report.summary.expect("a whole study is summarized");
+    assert_eq!(summary.succeeded + summary.failed, 600);
+    assert_eq!(report.failed, summary.failed);
+    assert!(
+        (3..=30).contains(&summary.failed),
+        "{} failures",
+        summary.failed
+    );
+    assert_eq!(summary.failures.len() as u64, summary.failed);
+    let impact = summary
+        .outputs
+        .iter()
+        .find(|c| c.name == "impact_x_m")
+        .expect("column");
+    let expected = (0..600u64).filter(|i| i % 17 != 5).count() as u64 - summary.failed;
+    let count = impact.statistics.expect("statistics").count;
+    // Failures and missing impacts can coincide: the count is at least the bound above.
+    assert!(
+        count >= expected && count <= expected + 36,
+        "{count} vs {expected}"
+    );
+    let csv = std::fs::read_to_string(one.join("samples.csv")).expect("samples.csv");
+    assert_eq!(csv.lines().count(), 601);
+    assert!(csv.starts_with(
+        "index,status,error,rocket.mass,rocket.power_off_drag:factor,flight.heading,"
+    ));
+}
+
+#[test]
+fn three_shards_merge_into_a_single_run() {
+    let study = study(400);
+    let tmp = tempfile::tempdir().expect("temporary directory");
+    let single = tmp.path().join("single");
+    run(&study, &single, &options(2, Shard::WHOLE), fly).expect("single run");
+    let mut dirs = Vec::new();
+    // Shards flown in a scrambled order with different thread counts.
+    for (number, threads) in [(2, 1), (3, 2), (1, 3)] {
+        let dir = tmp.path().join(format!("shard{number}"));
+        let shard = Shard::new(number, 3).expect("valid shard");
+        let report = run(&study, &dir, &options(threads, shard), fly).expect("shard run");
+        assert!(report.summary.is_none(), "a shard is not summarized");
+        assert_eq!(report.shard_samples, shard.len(400));
+        dirs.push(dir);
+    }
+    let merged = tmp.path().join("merged");
+    merge(&merged, &dirs).expect("merge");
+    assert_same_outputs(&single, &merged);
+
+    // Incomplete sets of shards are refused.
+    let error = merge(&tmp.path().join("partial"), &dirs[..2]).expect_err("a shard is missing");
+    assert!(
+        error.to_string().contains("shard 1/3 is missing"),
+        "{error}"
+    );
+    let twice = [dirs[0].clone(), dirs[0].clone(), dirs[1].clone()];
+    let error = merge(&tmp.path().join("twice"), &twice).expect_err("a shard twice");
+    assert!(matches!(error, DispersionError::Merge { .. }), "{error}");
+    let mut other = study.clone();
+    other.seed += 1;
+    let foreign = tmp.path().join("foreign");
+    run(
+        &other,
+        &foreign,
+        &options(1, Shard::new(1, 3).expect("valid")),
+        fly,
+    )
+    .expect("run");
+    let mixed = [foreign, dirs[0].clone(), dirs[1].clone()];
+    let error = merge(&tmp.path().join("mixed"), &mixed).expect_err("different studies");
+    assert!(error.to_string().contains("seed"), "{error}");
+}

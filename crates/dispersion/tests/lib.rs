@@ -1,0 +1,10 @@
+//! Integration tests of karman-dispersion (one binary; a module per topic).
+
+mod common;
+mod determinism;
+mod distributions;
+mod ellipses;
+mod never_panics;
+mod resume;
+mod sigkill;
+mod window;

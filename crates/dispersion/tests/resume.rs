@@ -1,0 +1,103 @@
+//! Resuming an interrupted study in its directory.
+
+use crate::common::{assert_same_outputs, fly, options, study};
+use karman_dispersion::{DispersionError, Shard, run};
+
+#[test]
+fn resume_after_a_partial_line_gives_identical_bytes() {
+    let study = study(300);
+    let tmp = tempfile::tempdir().expect("temporary directory");
+    let full = tmp.path().join("full");
+    run(&study, &full, &options(2, Shard::WHOLE), fly).expect("uninterrupted run");
+
+    // An interrupted run: study.json and samples.csv cut in the middle of row 123.
+    let cut = tmp.path().join("cut");
+    std::fs::create_dir(&cut).expect("directory");
+    std::fs::copy(full.join("study.json"), cut.join("study.json")).expect("copy");
+    let csv = std::fs::read(full.join("samples.csv")).expect("samples.csv");
+    let row_starts: Vec<usize> = csv
+        .iter()
+        .enumerate()
+        .filter(|(_, b)| **b == b'\n')
+        .map(|(i, _)| i + 1)
+        .collect();
+    // Line 124 of the file is row 123; cut 7 bytes into it.
+    let at = row_starts[123] + 7;
+    assert_ne!(csv[at - 1], b'\n');
+    std::fs::write(cut.join("samples.csv"), &csv[..at]).expect("write");
+
+    let report = run(&study, &cut, &options(3, Shard::WHOLE), fly).expect("resumed run");
+    assert_eq!((report.resumed, report.flown), (123, 177));
+    assert_same_outputs(&full, &cut);
+
+    // Running a finished study again flies nothing and changes nothing.
+    let again = run(&study, &cut, &options(1, Shard::WHOLE), fly).expect("rerun");
+    assert_eq!((again.resumed, again.flown), (300, 0));
+    assert_same_outputs(&full, &cut);
+}
+
+#[test]
+fn resume_with_only_a_partial_header() {
+    let study = study(20);
+    let tmp = tempfile::tempdir().expect("temporary directory");
+    let full = tmp.path().join("full");
+    run(&study, &full, &options(1, Shard::WHOLE), fly).expect("run");
+    let cut = tmp.path().join("cut");
+    std::fs::create_dir(&cut).expect("directory");
+    std::fs::copy(full.join("study.json"), cut.join("study.json")).expect("copy");
+    let csv = std::fs::read(full.join("samples.csv")).expect("samples.csv");
+    std::fs::write(cut.join("samples.csv"), &csv[..10]).expect("write");
+    run(&study, &cut, &options(1, Shard::WHOLE), fly).expect("resumed run");
+    assert_same_outputs(&full, &cut);
+}
+
+#[test]
+fn a_different_study_is_refused() {
+    let study = study(30);
+    let tmp = tempfile::tempdir().expect("temporary directory");
+    let dir = tmp.path().join("out");
+    run(&study, &dir, &options(1, Shard::WHOLE), fly).expect("run");
+    let mut other = study.clone();
+    other.samples = 31;
+    other.seed = 7;
+    match run(&other, &dir, &options(1, Shard::WHOLE), fly) {
+        Err(DispersionError::StudyMismatch { fields, .. }) => {
+            assert_eq!(fields, ["seed", "samples"]);
+        }
+        other => panic!("expected a mismatch, got {other:?}"),
+    }
+    let shard = Shard::new(1, 2).expect("valid");
+    let error = run(&study, &dir, &options(1, shard), fly).expect_err("another shard");
+    assert!(error.to_string().contains("shard"), "{error}");
+}
+
+#[test]
+fn a_corrupt_complete_row_is_an_error_naming_the_line() {
+    let study = study(30);
+    let tmp = tempfile::tempdir().expect("temporary directory");
+    let dir = tmp.path().join("out");
+    run(&study, &dir, &options(1, Shard::WHOLE), fly).expect("run");
+    let path = dir.join("samples.csv");
+    let text = std::fs::read_to_string(&path).expect("samples.csv");
+    let mut lines: Vec<&str> = text.lines().collect();
+    lines.truncate(10);
+    lines[5] = "4,ok,,1,2,3";
+    std::fs::write(&path, lines.join("\n") + "\n").expect("write");
+    let error = run(&study, &dir, &options(1, Shard::WHOLE), fly).expect_err("corrupt row");
+    match error {
+        DispersionError::CorruptSamples { line, .. } => assert_eq!(line, 6),
+        other => panic!("expected a corrupt row, got {other}"),
+    }
+    // Rows whose inputs are not the study's draws (edited by hand) are refused too.
+    let mut rows: Vec<String> = text.lines().map(str::to_owned).collect();
+    let ok = rows
+        .iter()
+        .position(|r| r.contains(",ok,"))
+        .expect("a successful sample");
+    let mut fields: Vec<String> = rows[ok].split(',').map(str::to_owned).collect();
+    fields[3] = "99.0".to_owned();
+    rows[ok] = fields.join(",");
+    std::fs::write(&path, rows.join("\n") + "\n").expect("write");
+    let error = run(&study, &dir, &options(1, Shard::WHOLE), fly).expect_err("edited inputs");
+    assert!(error.to_string().contains("draws"), "{error}");
+}

@@ -1,0 +1,560 @@
+//! Monte Carlo of a mission (mission-format.md "[dispersion]"): the `[dispersion.vary]`
+//! table turned into a [`karman_dispersion::Study`], each sample's values applied to the
+//! mission by dotted path, and the mission flown.
+//!
+//! - A stored number (`rocket.mass`, `rocket.parachutes.Main.cd_s`, a constant curve) is set
+//!   through [`crate::paths::set_number`]: the drawn value, or the nominal value times the
+//!   drawn factor / plus the drawn offset.
+//! - A curve (`rocket.power_off_drag` from a file or points) takes `factor` / `offset` on
+//!   every ordinate; a file curve is read once and replaced by its scaled points.
+//! - `motor.total_impulse` / `motor.burn_time` reshape the thrust curve
+//!   (`reshape_thrust_curve = [burn end time, impulse]`, RocketPy's `reshape_thrust_curve`);
+//!   the nominal values are those of the nominal motor.
+//! - `environment.wind_factor` multiplies the wind and `environment.wind_direction_offset`
+//!   (deg) turns it clockwise seen from above (the direction it blows from grows by that
+//!   angle), for every atmosphere model: the flight sees the environment through
+//!   [`WindAdjusted`].
+//!
+//! Each sample is built and flown exactly as [`crate::build::flight::simulate_with_seed`]
+//! does (a sample drawing the nominal values gives bit-identical results), except that the
+//! environment is built once from the nominal mission unless a stored `environment.*`
+//! input varies. Parachute trigger noise of sample `i` is seeded from the sample's reserved
+//! stream ([`karman_dispersion::sampling::flight_seed`]), so it replays with the sample.
+//! The KML export converts (x, y) to latitude/longitude with the datum's local Earth radius,
+//! as the flight's own track does (RocketPy's ellipse export uses 6.3781e6 m: up to 0.1 %
+//! apart, about 1 m per km of drift).
+
+use crate::build::environment::build_environment;
+use crate::build::flight::flight_settings;
+use crate::build::motor::build_motor;
+use crate::build::rocket::build_rocket;
+use crate::paths::{self, DerivedKnob, Input};
+use crate::schema::{Curve, Distribution, MissionSpec};
+use crate::{Mission, MissionError};
+use karman_atmos::Environment;
+use karman_dispersion::sampling::{flight_seed, fnv1a64};
+use karman_dispersion::{
+    DispersionError, Distribution as Draw, Meaning, Outcome, Points, Site, Study, Target,
+    Variation, VariedInput,
+};
+use karman_dynamics::{Air, AtmosphereModel, Summary};
+
+/// The outputs of every sample: the scalar keys of the flight summary (mission-format.md
+/// "The summary").
+pub const OUTPUTS: [&str; 18] = [
+    "apogee_agl_m",
+    "apogee_asl_m",
+    "apogee_time_s",
+    "apogee_x_m",
+    "apogee_y_m",
+    "out_of_rail_time_s",
+    "out_of_rail_velocity_mps",
+    "out_of_rail_stability_margin",
+    "initial_static_margin",
+    "burnout_static_margin",
+    "max_speed_mps",
+    "max_mach",
+    "max_dynamic_pressure_pa",
+    "max_acceleration_mps2",
+    "impact_time_s",
+    "impact_x_m",
+    "impact_y_m",
+    "impact_velocity_mps",
+];
+
+fn outcome(s: &Summary) -> Outcome {
+    Outcome::new(vec![
+        s.apogee_agl_m,
+        s.apogee_asl_m,
+        s.apogee_time_s,
+        s.apogee_x_m,
+        s.apogee_y_m,
+        s.out_of_rail_time_s,
+        s.out_of_rail_velocity_mps,
+        s.out_of_rail_stability_margin,
+        Some(s.initial_static_margin),
+        Some(s.burnout_static_margin),
+        Some(s.max_speed_mps),
+        Some(s.max_mach),
+        Some(s.max_dynamic_pressure_pa),
+        Some(s.max_acceleration_mps2),
+        s.impact_time_s,
+        s.impact_x_m,
+        s.impact_y_m,
+        s.impact_velocity_mps,
+    ])
+}
+
+/// How a varied input is applied to the mission.
+#[derive(Debug, Clone)]
+enum Apply {
+    /// A stored number at this path, with its nominal value.
+    Number { path: String, nominal: f64 },
+    /// A curve at this path, with its nominal points.
+    Curve { path: String, points: Vec<[f64; 2]> },
+    /// A derived knob, with its nominal value.
+    Knob { knob: DerivedKnob, nominal: f64 },
+}
+
+/// A mission's Monte Carlo study, ready to fly samples.
+#[derive(Debug, Clone)]
+pub struct MonteCarlo {
+    mission: Mission,
+    study: Study,
+    applies: Vec<Apply>,
+    /// The nominal environment, shared by the samples when no stored environment input varies.
+    environment: Option<Environment>,
+    /// The nominal motor's burn end time and total impulse (the `motor.burn_time` and
+    /// `motor.total_impulse` knobs reshape the thrust curve from them).
+    nominal_reshape: [f64; 2],
+}
+
+/// `--samples` / `--seed` overrides of the `[dispersion]` table.
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
+pub struct StudyOverrides {
+    /// Number of samples.
+    pub samples: Option<u64>,
+    /// Seed.
+    pub seed: Option<u64>,
+}
+
+fn dispersion_error(mission: &Mission, e: DispersionError) -> MissionError {
+    MissionError::Model {
+        file: mission.path.clone(),
+        section: "dispersion".into(),
+        source: Box::new(e),
+    }
+}
+
+/// The plain distribution of a `[dispersion.vary]` entry (`std` inside `factor` is a normal
+/// around 1, inside `offset` around 0).
+fn plain(distribution: &Distribution, centre: f64) -> Option<Draw> {
+    Some(match distribution {
+        Distribution::Std(std) => Draw::Normal {
+            mean: centre,
+            std: *std,
+        },
+        Distribution::Normal([mean, std]) => Draw::Normal {
+            mean: *mean,
+            std: *std,
+        },
+        Distribution::Uniform([low, high]) => Draw::Uniform {
+            low: *low,
+            high: *high,
+        },
+        Distribution::Triangular([low, mode, high]) => Draw::Triangular {
+            low: *low,
+            mode: *mode,
+            high: *high,
+        },
+        Distribution::Lognormal([mu, sigma]) => Draw::Lognormal {
+            mu: *mu,
+            sigma: *sigma,
+        },
+        Distribution::Choice(values) => Draw::Choice(values.clone()),
+        Distribution::Factor(_) | Distribution::Offset(_) => return None,
+    })
+}
+
+fn variation(distribution: &Distribution) -> Option<Variation> {
+    Some(match distribution {
+        Distribution::Std(std) => Variation::Std(*std),
+        Distribution::Factor(inner) => Variation::Factor(plain(inner, 1.0)?),
+        Distribution::Offset(inner) => Variation::Offset(plain(inner, 0.0)?),
+        other => Variation::Value(plain(other, 0.0)?),
+    })
+}
+
+impl MonteCarlo {
+    /// The study of `mission`'s `[dispersion]` table (samples and seed overridable). The
+    /// nominal motor and environment are built once here.
+    ///
+    /// # Errors
+    /// [`MissionError::Model`] (section `dispersion`) when the mission has no `[dispersion]`
+    /// table and no sample count is given, or a distribution does not fit its input; the
+    /// builders' errors for the nominal models.
+    pub fn new(mission: &Mission, overrides: StudyOverrides) -> Result<Self, MissionError> {
+        let spec = &mission.spec;
+        let invalid =
+            |reason: String| dispersion_error(mission, DispersionError::InvalidStudy { reason });
+        let table = spec.dispersion.as_ref();
+        let samples = overrides
+            .samples
+            .or(table.map(|d| u64::from(d.samples)))
+            .ok_or_else(|| {
+                invalid("the mission has no [dispersion] table; give --samples".into())
+            })?;
+        let seed = overrides.seed.or(table.map(|d| d.seed)).unwrap_or(0);
+        let motor = build_motor(mission)?;
+        let environment = build_environment(mission)?;
+        let mut inputs = Vec::new();
+        let mut applies = Vec::new();
+        let mut varies_environment = false;
+        for (path, distribution) in table.map(|d| d.vary.iter()).into_iter().flatten() {
+            let input = paths::resolve(spec, path).map_err(|e| invalid(e.to_string()))?;
+            let variation = variation(distribution).ok_or_else(|| {
+                invalid(format!(
+                    "`{path}`: `factor` and `offset` take a plain distribution"
+                ))
+            })?;
+            let (target, apply) = match input {
+                Input::Number { value, integer } => {
+                    varies_environment |= path.starts_with("environment.");
+                    let target = if integer {
+                        Target::Integer(value as i64)
+                    } else {
+                        Target::Number(value)
+                    };
+                    let apply = Apply::Number {
+                        path: path.clone(),
+                        nominal: value,
+                    };
+                    (target, apply)
+                }
+                Input::Curve(curve) => {
+                    let points = curve
+                        .points(&mission.dir)
+                        .map_err(|e| invalid(format!("`{path}`: {e}")))?;
+                    let apply = Apply::Curve {
+                        path: path.clone(),
+                        points,
+                    };
+                    (Target::Curve, apply)
+                }
+                Input::Knob(knob) => {
+                    let nominal = match knob {
+                        DerivedKnob::TotalImpulse => motor.total_impulse(),
+                        DerivedKnob::BurnTime => motor.burn_out(),
+                        DerivedKnob::WindFactor => 1.0,
+                        DerivedKnob::WindDirectionOffset => 0.0,
+                    };
+                    (Target::Number(nominal), Apply::Knob { knob, nominal })
+                }
+            };
+            inputs.push(VariedInput::new(path.clone(), target, variation));
+            applies.push(apply);
+        }
+        let outputs = OUTPUTS.iter().map(|s| (*s).to_owned()).collect();
+        let mut study = Study::new(seed, samples, inputs, outputs);
+        study.points = Points {
+            apogee: Some(["apogee_x_m".into(), "apogee_y_m".into()]),
+            landing: Some(["impact_x_m".into(), "impact_y_m".into()]),
+            histogram: Some("apogee_agl_m".into()),
+        };
+        study.site = Some(Site {
+            latitude_deg: spec.environment.latitude_deg,
+            longitude_deg: spec.environment.longitude_deg,
+            earth_radius: environment.datum_radius(),
+        });
+        // The whole mission, overrides applied (Debug prints every number exactly), so a
+        // changed mission is not resumed into an old study.
+        let name = spec
+            .name
+            .clone()
+            .unwrap_or_else(|| mission.path.display().to_string());
+        let fingerprint = fnv1a64(format!("{spec:?}").as_bytes());
+        study.context = format!("{name} (mission {fingerprint:016x})");
+        study.validate().map_err(|e| dispersion_error(mission, e))?;
+        Ok(MonteCarlo {
+            mission: mission.clone(),
+            study,
+            applies,
+            environment: (!varies_environment).then_some(environment),
+            nominal_reshape: [motor.burn_out(), motor.total_impulse()],
+        })
+    }
+
+    /// The study.
+    pub fn study(&self) -> &Study {
+        &self.study
+    }
+
+    /// The mission with sampled `values` applied, and the wind (factor, direction offset in
+    /// degrees).
+    fn sample_spec(&self, values: &[f64]) -> Result<(MissionSpec, [f64; 2]), String> {
+        let mut spec = self.mission.spec.clone();
+        let mut wind = [1.0, 0.0];
+        let mut reshape: [Option<f64>; 2] = [None, None];
+        for ((apply, input), &value) in self.applies.iter().zip(&self.study.inputs).zip(values) {
+            let combine = |nominal: f64| match input.meaning() {
+                Meaning::Value => value,
+                Meaning::Factor => nominal * value,
+                Meaning::Offset => nominal + value,
+            };
+            match apply {
+                Apply::Number { path, nominal } => {
+                    paths::set_number(&mut spec, path, combine(*nominal))
+                        .map_err(|e| e.to_string())?;
+                }
+                Apply::Curve { path, points } => {
+                    let scaled = points.iter().map(|[x, y]| [*x, combine(*y)]).collect();
+                    let slot = curve_mut(&mut spec, path)
+                        .ok_or_else(|| format!("`{path}` is not a curve"))?;
+                    *slot = Curve::Points(scaled);
+                }
+                Apply::Knob { knob, nominal } => match knob {
+                    DerivedKnob::TotalImpulse => reshape[1] = Some(combine(*nominal)),
+                    DerivedKnob::BurnTime => reshape[0] = Some(combine(*nominal)),
+                    DerivedKnob::WindFactor => wind[0] = combine(*nominal),
+                    DerivedKnob::WindDirectionOffset => wind[1] = combine(*nominal),
+                },
+            }
+        }
+        if reshape.iter().any(Option::is_some) {
+            let [burn, impulse] = self.nominal_reshape;
+            spec.motor.reshape_thrust_curve =
+                Some([reshape[0].unwrap_or(burn), reshape[1].unwrap_or(impulse)]);
+        }
+        Ok((spec, wind))
+    }
+
+    /// Flies sample `index` with its sampled `values` (in the order of the study's inputs);
+    /// an error is the whole message chain.
+    pub fn fly(&self, index: u64, values: &[f64]) -> Result<Outcome, String> {
+        let (spec, [factor, offset_deg]) = self.sample_spec(values)?;
+        let mission = Mission {
+            path: self.mission.path.clone(),
+            dir: self.mission.dir.clone(),
+            spec,
+        };
+        let built;
+        let environment = match &self.environment {
+            Some(environment) => environment,
+            None => {
+                built = build_environment(&mission).map_err(|e| chain(&e))?;
+                &built
+            }
+        };
+        let motor = build_motor(&mission).map_err(|e| chain(&e))?;
+        let rocket = build_rocket(&mission, &motor).map_err(|e| chain(&e))?;
+        let noise_seed = flight_seed(self.study.seed, index);
+        let settings = flight_settings(&mission, noise_seed);
+        let atmosphere = WindAdjusted::new(environment, factor, offset_deg);
+        let flight =
+            karman_dynamics::simulate(&atmosphere, &rocket, &settings).map_err(|e| chain(&e))?;
+        Ok(outcome(&flight.summary(&atmosphere, &rocket)))
+    }
+}
+
+/// The curve-valued key at `path`.
+fn curve_mut<'a>(spec: &'a mut MissionSpec, path: &str) -> Option<&'a mut Curve> {
+    let atm = &mut spec.environment.atmosphere;
+    match path {
+        "motor.thrust" => Some(&mut spec.motor.thrust),
+        "rocket.power_off_drag" => Some(&mut spec.rocket.power_off_drag),
+        "rocket.power_on_drag" => Some(&mut spec.rocket.power_on_drag),
+        "environment.atmosphere.pressure" => atm.pressure.as_mut(),
+        "environment.atmosphere.temperature" => atm.temperature.as_mut(),
+        "environment.atmosphere.wind_u" => atm.wind_u.as_mut(),
+        "environment.atmosphere.wind_v" => atm.wind_v.as_mut(),
+        _ => None,
+    }
+}
+
+/// An error and its sources, `: `-separated.
+fn chain(error: &dyn std::error::Error) -> String {
+    let mut text = error.to_string();
+    let mut source = error.source();
+    while let Some(e) = source {
+        text.push_str(": ");
+        text.push_str(&e.to_string());
+        source = e.source();
+    }
+    text
+}
+
+/// An environment whose wind is multiplied by `factor` and turned clockwise (seen from
+/// above) by `offset_deg`: `(u, v) → factor · (u cos δ + v sin δ, −u sin δ + v cos δ)`.
+#[derive(Debug, Clone, Copy)]
+pub struct WindAdjusted<'a> {
+    environment: &'a Environment,
+    factor: f64,
+    sin: f64,
+    cos: f64,
+}
+
+impl<'a> WindAdjusted<'a> {
+    /// The adjusted environment.
+    pub fn new(environment: &'a Environment, factor: f64, offset_deg: f64) -> Self {
+        let (sin, cos) = offset_deg.to_radians().sin_cos();
+        WindAdjusted {
+            environment,
+            factor,
+            sin,
+            cos,
+        }
+    }
+}
+
+impl WindAdjusted<'_> {
+    /// The adjusted wind vector.
+    #[inline]
+    fn turn(&self, [u, v]: [f64; 2]) -> [f64; 2] {
+        [
+            self.factor * (u * self.cos + v * self.sin),
+            self.factor * (-u * self.sin + v * self.cos),
+        ]
+    }
+}
+
+impl AtmosphereModel for WindAdjusted<'_> {
+    #[inline]
+    fn elevation(&self) -> f64 {
+        self.environment.elevation()
+    }
+    #[inline]
+    fn pressure(&self, z: f64) -> f64 {
+        self.environment.pressure(z)
+    }
+    #[inline]
+    fn density(&self, z: f64) -> f64 {
+        self.environment.density(z)
+    }
+    #[inline]
+    fn speed_of_sound(&self, z: f64) -> f64 {
+        self.environment.speed_of_sound(z)
+    }
+    #[inline]
+    fn dynamic_viscosity(&self, z: f64) -> f64 {
+        self.environment.dynamic_viscosity(z)
+    }
+    #[inline]
+    fn wind(&self, z: f64) -> [f64; 2] {
+        self.turn(self.environment.wind(z))
+    }
+    fn uniform_wind(&self) -> Option<[f64; 2]> {
+        self.environment.uniform_wind().map(|wind| self.turn(wind))
+    }
+    #[inline]
+    fn air(&self, z: f64) -> Air {
+        self.environment.air(z)
+    }
+    #[inline]
+    fn gravity(&self, z: f64) -> f64 {
+        self.environment.gravity(z)
+    }
+    #[inline]
+    fn earth_rotation_enu(&self) -> [f64; 3] {
+        self.environment.earth_rotation_enu()
+    }
+    #[inline]
+    fn barometric_height(&self, pressure: f64) -> f64 {
+        self.environment.barometric_height(pressure)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::build::flight::simulate_with_seed;
+    use std::path::PathBuf;
+
+    /// The test fixture `minimal.toml` in a custom atmosphere with a constant wind
+    /// (5, −2) m/s, and a `[dispersion]` table.
+    fn mission(vary: &str) -> Mission {
+        let dir = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("tests/fixtures");
+        let text = std::fs::read_to_string(dir.join("minimal.toml"))
+            .expect("fixture")
+            .replace(
+                "model = \"standard\"",
+                "model = \"custom\"\nwind_u = 5\nwind_v = -2",
+            );
+        let text =
+            format!("{text}\n[dispersion]\nsamples = 10\nseed = 3\n\n[dispersion.vary]\n{vary}");
+        crate::parse(&text, &dir.join("minimal.toml"), &[]).expect("valid mission")
+    }
+
+    #[test]
+    fn neutral_draws_fly_the_nominal_mission() {
+        let mission = mission(
+            "\"rocket.mass\" = { offset = { normal = [0, 0.1] } }\n\
+             \"rocket.power_on_drag\" = { factor = { normal = [1, 0.05] } }\n\
+             \"rocket.power_off_drag\" = { factor = { normal = [1, 0.05] } }\n\
+             \"flight.inclination\" = { std = 1 }\n\
+             \"environment.wind_direction_offset\" = { normal = [0, 5] }\n\
+             \"environment.wind_factor\" = { normal = [1, 0.1] }\n\
+             \"rocket.parachutes.main.cd_s\" = { std = 0.1 }\n",
+        );
+        let mc = MonteCarlo::new(&mission, StudyOverrides::default()).expect("study");
+        let columns: Vec<String> = mc.study().inputs.iter().map(VariedInput::column).collect();
+        assert_eq!(columns[1], "rocket.power_on_drag:factor");
+        // Offsets 0, factors 1, values equal to the nominal ones: the nominal flight.
+        let neutral = [0.0, 1.0, 1.0, 85.0, 0.0, 1.0, 1.2];
+        let outcome = mc.fly(4, &neutral).expect("flight");
+        let nominal = simulate_with_seed(&mission, flight_seed(3, 4)).expect("nominal flight");
+        let expected = outcome_values(&nominal.summary());
+        for (name, (a, b)) in OUTPUTS.iter().zip(outcome.values().iter().zip(&expected)) {
+            assert_eq!(
+                a.map(f64::to_bits),
+                b.map(f64::to_bits),
+                "{name}: {a:?} vs {b:?}"
+            );
+        }
+        // A heavier rocket flies lower.
+        let heavier = [0.5, 1.0, 1.0, 85.0, 0.0, 1.0, 1.2];
+        let apogee = |o: &Outcome| o.values()[0].expect("apogee");
+        assert!(apogee(&mc.fly(4, &heavier).expect("flight")) < apogee(&outcome));
+    }
+
+    fn outcome_values(summary: &Summary) -> Vec<Option<f64>> {
+        outcome(summary).values().to_vec()
+    }
+
+    #[test]
+    fn wind_is_scaled_and_turned_clockwise() {
+        let mission = mission("");
+        let environment = build_environment(&mission).expect("environment");
+        let adjusted = WindAdjusted::new(&environment, 2.0, 90.0);
+        // (5, −2) blows toward east-south-east; turned 90° clockwise it blows toward
+        // south-south-west, (−2, −5), doubled.
+        let [u, v] = adjusted.wind(1500.0);
+        assert!(
+            (u + 4.0).abs() < 1e-12 && (v + 10.0).abs() < 1e-12,
+            "({u}, {v})"
+        );
+        if let Some(uniform) = adjusted.uniform_wind() {
+            assert_eq!(uniform.map(f64::to_bits), [u, v].map(f64::to_bits));
+        }
+        let same = WindAdjusted::new(&environment, 1.0, 0.0).wind(1500.0);
+        assert_eq!(
+            same.map(f64::to_bits),
+            environment.wind(1500.0).map(f64::to_bits)
+        );
+    }
+
+    #[test]
+    fn knobs_reshape_the_thrust_curve() {
+        let mission = mission(
+            "\"motor.total_impulse\" = { factor = { normal = [1, 0.05] } }\n\
+             \"motor.burn_time\" = { std = 0.1 }\n",
+        );
+        let mc = MonteCarlo::new(&mission, StudyOverrides::default()).expect("study");
+        let [burn, impulse] = mc.nominal_reshape;
+        assert!(
+            (burn - 2.2).abs() < 1e-12,
+            "burn-out of the fixture's curve: {burn}"
+        );
+        let (spec, _) = mc.sample_spec(&[1.1, 2.5]).expect("applied");
+        let reshaped = spec.motor.reshape_thrust_curve.expect("reshaped");
+        assert!((reshaped[0] - 2.5).abs() < 1e-12);
+        assert!((reshaped[1] - 1.1 * impulse).abs() < 1e-9);
+        let outcome = mc.fly(0, &[1.1, 2.5]).expect("flight");
+        assert!(outcome.values()[0].is_some());
+    }
+
+    #[test]
+    fn overrides_and_missing_table() {
+        let mission = mission("\"rocket.mass\" = { std = 0.1 }\n");
+        let overrides = StudyOverrides {
+            samples: Some(77),
+            seed: Some(9),
+        };
+        let mc = MonteCarlo::new(&mission, overrides).expect("study");
+        assert_eq!((mc.study().samples, mc.study().seed), (77, 9));
+        let mut bare = mission.clone();
+        bare.spec.dispersion = None;
+        assert!(MonteCarlo::new(&bare, StudyOverrides::default()).is_err());
+        let mc = MonteCarlo::new(&bare, overrides).expect("noise-only study");
+        assert!(mc.study().inputs.is_empty());
+    }
+}
