@@ -93,8 +93,10 @@ impl FlightSettings {
         check(
             "inclination",
             i,
-            i.is_finite() && i > 0.0 && i <= 90.0,
-            "must be in (0, 90] deg",
+            // Past 90° the rail leans toward heading + 180° (RocketPy accepts it, and a
+            // dispersion around a vertical rail draws such values).
+            i.is_finite() && i > 0.0 && i < 180.0,
+            "must be in (0, 180) deg",
         )?;
         let h = self.heading_deg;
         check("heading", h, h.is_finite(), "must be finite")?;
@@ -145,7 +147,9 @@ mod tests {
     #[test]
     fn bad_settings_are_named() {
         let mut s = FlightSettings::new(5.2);
-        s.inclination_deg = 120.0;
+        s.inclination_deg = 91.0;
+        assert!(s.validate().is_ok(), "a rail just past vertical is valid");
+        s.inclination_deg = 180.0;
         let err = s.validate().unwrap_err();
         assert!(matches!(
             err,

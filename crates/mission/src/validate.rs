@@ -477,8 +477,8 @@ fn flight(c: &mut Checker<'_, '_>, spec: &MissionSpec) {
     c.range(
         "flight.inclination",
         f.inclination_deg,
-        f.inclination_deg > 0.0 && f.inclination_deg <= 90.0,
-        "must be in (0, 90] deg",
+        f.inclination_deg > 0.0 && f.inclination_deg < 180.0,
+        "must be in (0, 180) deg (past 90 the rail leans toward heading + 180)",
     );
     c.positive("flight.max_time", f.max_time);
     c.positive("flight.rtol", f.rtol);
