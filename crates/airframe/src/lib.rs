@@ -75,6 +75,7 @@ mod rocket;
 pub mod surfaces;
 
 pub use error::AirframeError;
+pub use mass::MassProperties;
 pub use motor::MotorProperties;
 pub use recovery::{
     DEFAULT_CANOPY_DRAG_COEFFICIENT, DEFAULT_POROSITY, DEFAULT_SAMPLING_RATE, Parachute,

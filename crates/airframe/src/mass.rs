@@ -22,6 +22,28 @@ use karman_math::Table1;
 use crate::error::AirframeError;
 use crate::motor::MotorProperties;
 
+/// Every time-dependent mass quantity at one instant ([`crate::Rocket::mass_properties`]),
+/// each equal to the rocket's method of the same name.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct MassProperties {
+    /// Total mass m(t) (kg).
+    pub total_mass: f64,
+    /// Signed mass flow rate ṁ(t) = −T(t)/v̄_e (kg/s).
+    pub mass_flow_rate: f64,
+    /// m̈(t) (kg/s²).
+    pub mass_flow_rate_derivative: f64,
+    /// CM→CDM offset c(t) (m).
+    pub com_to_cdm: f64,
+    /// ċ(t) (m/s).
+    pub com_to_cdm_rate: f64,
+    /// c̈(t) (m/s²).
+    pub com_to_cdm_accel: f64,
+    /// Inertia about the CDM, `(I11, I22, I33, I12, I13, I23)` (kg·m²).
+    pub inertia: [f64; 6],
+    /// İ(t), same layout (kg·m²/s).
+    pub inertia_rate: [f64; 6],
+}
+
 /// Mass properties of rocket + motor as functions of time, allocation-free to evaluate.
 #[derive(Debug, Clone, PartialEq)]
 pub(crate) struct MassModel {
@@ -47,6 +69,10 @@ pub(crate) struct MassModel {
     nodal_offset: Option<Table1>,
     nodal_center_of_mass: Option<Table1>,
     nodal_i11: Option<Table1>,
+    /// Whether the propellant mass, node-wise offset and I11 and the propellant I33 are all
+    /// tables on one time grid (a solid motor's), so that [`MassModel::properties`] finds
+    /// the time once for all of them.
+    one_grid: bool,
     /// Step of the central second difference of a pointwise formula (time).
     difference_step: f64,
 }
@@ -117,6 +143,7 @@ impl MassModel {
             nodal_offset: None,
             nodal_center_of_mass: None,
             nodal_i11: None,
+            one_grid: false,
             difference_step,
         };
         let m = &model.motor;
@@ -149,6 +176,7 @@ impl MassModel {
             } else {
                 None
             };
+            model.one_grid = i11.is_some() && same_grid(&m.propellant_i33, &m.propellant_mass);
             model.nodal_offset = Some(offset);
             model.nodal_center_of_mass = Some(center);
             model.nodal_i11 = i11;
@@ -292,6 +320,60 @@ impl MassModel {
             }
         };
         [i11, i11, m.propellant_i33.derivative(t), 0.0, 0.0, 0.0]
+    }
+
+    /// Every time-dependent quantity at `t`, equal to the individual methods: the thrust
+    /// table is searched once for ṁ and m̈, and on a solid motor's single grid the time is
+    /// searched once for the mass, the offset and the inertia with their derivatives.
+    #[inline]
+    pub(crate) fn properties(&self, t: f64) -> MassProperties {
+        let m = &self.motor;
+        let on_thrust = m.thrust.locate(t);
+        let mass_flow_rate = -m.thrust.eval_at(on_thrust, t) * self.inverse_exhaust_velocity;
+        let mass_flow_rate_derivative =
+            -m.thrust.derivative_at(on_thrust, t) * self.inverse_exhaust_velocity;
+        match (&self.nodal_offset, &self.nodal_i11) {
+            (Some(offset), Some(i11)) if self.one_grid => {
+                let at = m.propellant_mass.locate(t);
+                let i = i11.eval_at(at, t);
+                let i_rate = i11.derivative_at(at, t);
+                let d = &self.dry_inertia;
+                MassProperties {
+                    total_mass: self.dry_mass + m.propellant_mass.eval_at(at, t),
+                    mass_flow_rate,
+                    mass_flow_rate_derivative,
+                    com_to_cdm: offset.eval_at(at, t),
+                    com_to_cdm_rate: offset.derivative_at(at, t),
+                    com_to_cdm_accel: offset.second_derivative_at(at, t),
+                    inertia: [
+                        i,
+                        i - d[0] + d[1],
+                        d[2] + m.propellant_i33.eval_at(at, t),
+                        d[3],
+                        d[4],
+                        d[5],
+                    ],
+                    inertia_rate: [
+                        i_rate,
+                        i_rate,
+                        m.propellant_i33.derivative_at(at, t),
+                        0.0,
+                        0.0,
+                        0.0,
+                    ],
+                }
+            }
+            _ => MassProperties {
+                total_mass: self.total_mass(t),
+                mass_flow_rate,
+                mass_flow_rate_derivative,
+                com_to_cdm: self.com_to_cdm(t),
+                com_to_cdm_rate: self.com_to_cdm_rate(t),
+                com_to_cdm_accel: self.com_to_cdm_accel(t),
+                inertia: self.inertia(t),
+                inertia_rate: self.inertia_rate(t),
+            },
+        }
     }
 
     /// Rocket mass without motor.

@@ -6,7 +6,7 @@ use std::f64::consts::PI;
 use karman_math::{Extrapolation, Interpolation, PhysicalConstants, Table1};
 
 use crate::error::{AirframeError, finite, non_negative, positive};
-use crate::mass::MassModel;
+use crate::mass::{MassModel, MassProperties};
 use crate::motor::{INERTIA_NAMES, MotorProperties};
 use crate::recovery::{Parachute, RailButtons};
 use crate::surfaces::{Geometry, Surface, SurfaceInput};
@@ -395,6 +395,15 @@ impl Rocket {
     #[must_use]
     pub fn inertia_rate(&self, t: f64) -> [f64; 6] {
         self.mass.inertia_rate(t)
+    }
+
+    /// Every time-dependent mass quantity at `t` at once (what the equations of motion
+    /// evaluate per step), each equal to the method of the same name; the tables that share
+    /// a time grid are searched once.
+    #[inline]
+    #[must_use]
+    pub fn mass_properties(&self, t: f64) -> MassProperties {
+        self.mass.properties(t)
     }
 
     /// Dry inertia about the CDM (rocket + unloaded motor), same layout (kg·m²).

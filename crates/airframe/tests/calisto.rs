@@ -211,3 +211,41 @@ fn validate_calisto_mirrored_coordinates_give_the_same_physics() {
     assert_close("z_CP", b.cp_position(0.5), -a.cp_position(0.5), 1e-12);
     assert_close("d_n", b.nozzle_to_cdm(), a.nozzle_to_cdm(), 1e-12);
 }
+
+#[test]
+fn mass_properties_equal_the_individual_methods() {
+    use crate::common::{calisto_inputs, small_motor, validation_dir};
+    use karman_airframe::Rocket;
+    use karman_math::{Extrapolation, Interpolation, Table1};
+    let Some(solid) = calisto(false) else { return };
+    let Some(dir) = validation_dir() else { return };
+    // Propellant I33 on its own grid: the quantities are then looked up one by one.
+    let mut motor = small_motor();
+    motor.propellant_i33 = Table1::new(
+        vec![0.0, 0.3, 1.0],
+        vec![1e-5, 7e-6, 0.0],
+        Interpolation::Linear,
+        Extrapolation::Constant,
+    )
+    .expect("table");
+    let mixed = Rocket::new(calisto_inputs(&dir, None), motor).expect("rocket");
+    let same = |a: f64, b: f64| a.to_bits() == b.to_bits();
+    for r in [&solid, &mixed] {
+        for t in [-1.0, 0.0, 0.01, 0.3, 0.5, 1.0, 2.0, 3.0, 3.9, 3.95, 10.0] {
+            let p = r.mass_properties(t);
+            assert!(same(p.total_mass, r.total_mass(t)), "m({t})");
+            assert!(same(p.mass_flow_rate, r.mass_flow_rate(t)), "ṁ({t})");
+            let mddot = r.mass_flow_rate_derivative(t);
+            assert!(same(p.mass_flow_rate_derivative, mddot), "m̈({t})");
+            assert!(same(p.com_to_cdm, r.com_to_cdm(t)), "c({t})");
+            assert!(same(p.com_to_cdm_rate, r.com_to_cdm_rate(t)), "ċ({t})");
+            assert!(same(p.com_to_cdm_accel, r.com_to_cdm_accel(t)), "c̈({t})");
+            let (i, i_rate) = (r.inertia(t), r.inertia_rate(t));
+            assert!(p.inertia.iter().zip(i).all(|(a, b)| same(*a, b)), "I({t})");
+            assert!(
+                p.inertia_rate.iter().zip(i_rate).all(|(a, b)| same(*a, b)),
+                "İ({t})"
+            );
+        }
+    }
+}

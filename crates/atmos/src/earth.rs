@@ -93,29 +93,6 @@ pub fn somigliana_gravity(latitude_deg: f64, h: f64, c: &PhysicalConstants) -> f
     correction * g_surface
 }
 
-/// Latitude and longitude (deg) of the point `east`, `north` (m) from the origin at
-/// `latitude_deg`, `longitude_deg`, on a sphere of radius `radius` (m): the inverted
-/// haversine (great-circle destination) that RocketPy 1.13 uses for flight and dispersion
-/// outputs (physics.md §11, §12.2), with the drift `√(x² + y²)` and the bearing
-/// `atan2(east, north)` from north.
-#[must_use]
-pub fn destination(
-    latitude_deg: f64,
-    longitude_deg: f64,
-    east: f64,
-    north: f64,
-    radius: f64,
-) -> (f64, f64) {
-    let delta = east.hypot(north) / radius;
-    let bearing = east.atan2(north);
-    let lat1 = latitude_deg.to_radians();
-    let lon1 = longitude_deg.to_radians();
-    let lat2 = (lat1.sin() * delta.cos() + lat1.cos() * delta.sin() * bearing.cos()).asin();
-    let lon2 = lon1
-        + (bearing.sin() * delta.sin() * lat1.cos()).atan2(delta.cos() - lat1.sin() * lat2.sin());
-    (lat2.to_degrees(), lon2.to_degrees())
-}
-
 /// Earth's rotation vector in the launch ENU frame, `Ω (0, cos φ, sin φ)` (physics.md §4.5).
 #[must_use]
 pub fn earth_rotation_enu(latitude_deg: f64, c: &PhysicalConstants) -> [f64; 3] {
@@ -127,29 +104,6 @@ pub fn earth_rotation_enu(latitude_deg: f64, c: &PhysicalConstants) -> [f64; 3] 
 #[cfg(test)]
 mod tests {
     use super::*;
-
-    #[test]
-    fn destination_follows_great_circles() {
-        let r = 6_371_000.0;
-        let arc = r * 1f64.to_radians();
-        // One degree of arc north along a meridian.
-        let (lat, lon) = destination(10.0, 20.0, 0.0, arc, r);
-        assert!(
-            (lat - 11.0).abs() < 1e-12 && (lon - 20.0).abs() < 1e-12,
-            "{lat} {lon}"
-        );
-        // One degree of arc east along the equator.
-        let (lat, lon) = destination(0.0, 20.0, arc, 0.0, r);
-        assert!(
-            lat.abs() < 1e-12 && (lon - 21.0).abs() < 1e-12,
-            "{lat} {lon}"
-        );
-        // South-west, and the origin maps onto itself.
-        let (lat, lon) = destination(45.0, -100.0, -1000.0, -1000.0, r);
-        assert!(lat < 45.0 && lon < -100.0);
-        let (lat, lon) = destination(45.0, -100.0, 0.0, 0.0, r);
-        assert!((lat - 45.0).abs() < 1e-12 && (lon + 100.0).abs() < 1e-12);
-    }
 
     #[test]
     fn somigliana_matches_rocketpy_anchor() {

@@ -98,7 +98,12 @@ pub struct Environment {
     viscosity: Derived,
     wind_u: Table1,
     wind_v: Table1,
+    /// The wind when it is the same at every height ([`Environment::uniform_wind`]).
+    uniform_wind: Option<[f64; 2]>,
     gravity: Table1,
+    /// Whether gravity is tabulated on the pressure heights (ISA pressure and Somigliana
+    /// gravity both are): [`Environment::sample`] then finds the height once for both.
+    gravity_on_pressure_grid: bool,
     barometric_height: Table1,
     gas_constant: f64,
     gamma: f64,
@@ -259,6 +264,8 @@ impl Environment {
             error,
         })?;
 
+        let gravity_on_pressure_grid = gravity.same_abscissae(&pressure);
+        let uniform_wind = uniform_wind(&wind_u, &wind_v);
         Ok(Environment {
             elevation: config.elevation,
             latitude_deg: lat,
@@ -273,7 +280,9 @@ impl Environment {
             viscosity,
             wind_u,
             wind_v,
+            uniform_wind,
             gravity,
+            gravity_on_pressure_grid,
             barometric_height,
             gas_constant: r,
             gamma,
@@ -361,7 +370,18 @@ impl Environment {
     #[inline]
     #[must_use]
     pub fn wind(&self, z: f64) -> [f64; 2] {
-        [self.wind_u.eval(z), self.wind_v.eval(z)]
+        match self.uniform_wind {
+            Some(w) => w,
+            None => [self.wind_u.eval(z), self.wind_v.eval(z)],
+        }
+    }
+
+    /// The wind `[east u, north v]` (m/s) when it is the same at every height (a constant
+    /// profile, such as the calm of the standard atmosphere), so that a caller may skip the
+    /// per-height lookups of [`Environment::wind`]; `None` when it varies with height.
+    #[must_use]
+    pub fn uniform_wind(&self) -> Option<[f64; 2]> {
+        self.uniform_wind
     }
 
     /// Gravity (m/s², positive down) at height `z` (m ASL).
@@ -371,23 +391,32 @@ impl Environment {
         self.gravity.eval(z)
     }
 
-    /// Every height-dependent quantity at once (pressure and temperature looked up once and
-    /// shared by the pointwise-derived quantities); equal to the individual methods.
+    /// Every height-dependent quantity at once, equal to the individual methods: pressure and
+    /// temperature looked up once and shared by the pointwise-derived quantities, and the
+    /// height located once per grid (the node-wise density is on the pressure heights, the
+    /// speed of sound and viscosity on the temperature heights, gravity where it coincides).
     #[inline]
     #[must_use]
     pub fn sample(&self, z: f64) -> AtmosphereSample {
-        let pressure = self.pressure.eval(z);
-        let temperature = self.temperature.eval(z);
+        let on_pressure = self.pressure.locate(z);
+        let on_temperature = self.temperature.locate(z);
+        let pressure = self.pressure.eval_at(on_pressure, z);
+        let temperature = self.temperature.eval_at(on_temperature, z);
         let density = match &self.density {
-            Derived::Table(t) => t.eval(z),
+            Derived::Table(t) => t.eval_at(on_pressure, z),
             Derived::Pointwise => pressure / (self.gas_constant * temperature),
         };
         let speed_of_sound = match &self.speed_of_sound {
-            Derived::Table(t) => t.eval(z),
+            Derived::Table(t) => t.eval_at(on_temperature, z),
             Derived::Pointwise => (self.gamma * self.gas_constant * temperature).sqrt(),
         };
+        let gravity = if self.gravity_on_pressure_grid {
+            self.gravity.eval_at(on_pressure, z)
+        } else {
+            self.gravity.eval(z)
+        };
         let dynamic_viscosity = match &self.viscosity {
-            Derived::Table(t) => t.eval(z),
+            Derived::Table(t) => t.eval_at(on_temperature, z),
             Derived::Pointwise => {
                 self.sutherland_b * temperature.powf(1.5) / (temperature + self.sutherland_s)
             }
@@ -399,7 +428,7 @@ impl Environment {
             speed_of_sound,
             dynamic_viscosity,
             wind: self.wind(z),
-            gravity: self.gravity.eval(z),
+            gravity,
         }
     }
 
@@ -418,10 +447,10 @@ impl Environment {
     }
 
     /// Latitude and longitude (deg) of the point `east`, `north` (m) of the launch point, on
-    /// the sphere of the datum radius ([`crate::earth::destination`]).
+    /// the sphere of the datum radius ([`karman_math::geodesy::destination`]).
     #[must_use]
     pub fn geodetic(&self, east: f64, north: f64) -> (f64, f64) {
-        crate::earth::destination(
+        karman_math::geodesy::destination(
             self.latitude_deg,
             self.longitude_deg,
             east,
@@ -455,6 +484,20 @@ fn positive(curve: &Curve, source_name: &str, quantity: &str) -> Result<(), Atmo
         }),
         None => Ok(()),
     }
+}
+
+/// The wind of two constant profiles: every value [`Table1::eval`] returns is then the
+/// sample, bit for bit — a single sample, or equal samples whose pieces are flat (not a
+/// fitted polynomial), with no zero extrapolation of a non-zero value.
+fn uniform_wind(wind_u: &Table1, wind_v: &Table1) -> Option<[f64; 2]> {
+    let uniform = |t: &Table1| {
+        let y0 = *t.ys().first()?;
+        let flat = t.xs().len() == 1 || t.interpolation() != Interpolation::Polynomial;
+        let same = t.ys().iter().all(|y| y.to_bits() == y0.to_bits());
+        let held = t.extrapolation() != Extrapolation::Zero || y0.to_bits() == 0;
+        (flat && same && held).then_some(y0)
+    };
+    Some([uniform(wind_u)?, uniform(wind_v)?])
 }
 
 /// The barometric-height table of a tabulated atmosphere (see [`Profiles::barometric_points`]).
@@ -535,15 +578,39 @@ mod tests {
 
     #[test]
     fn sample_equals_the_individual_queries() {
-        let e = isa_env();
-        for z in [-500.0, 0.0, 1400.0, 9000.0, 90_000.0] {
-            let s = e.sample(z);
-            let same = |a: f64, b: f64| (a - b).abs() <= 1e-15 * b.abs();
-            assert!(same(s.pressure, e.pressure(z)) && same(s.density, e.density(z)));
-            assert!(same(s.temperature, e.temperature(z)));
-            assert!(same(s.speed_of_sound, e.speed_of_sound(z)));
-            assert!(same(s.dynamic_viscosity, e.dynamic_viscosity(z)));
-            assert!(same(s.gravity, e.gravity(z)));
+        let isa = isa_env();
+        // ISA pressure and Somigliana gravity share their heights: one search for both.
+        assert!(isa.gravity_on_pressure_grid);
+        let profiles = Profiles {
+            source_name: "inline".into(),
+            pressure: Some(Curve::Points(vec![[0.0, 100_000.0], [1000.0, 90_000.0]])),
+            temperature: Some(Curve::Points(vec![[0.0, 290.0], [1000.0, 280.0]])),
+            ..Profiles::wind_only("inline", Curve::Constant(1.0), Curve::Constant(2.0))
+        };
+        let custom = Environment::new(
+            &EnvironmentConfig {
+                atmosphere: Atmosphere::Profiles(profiles),
+                gravity: Gravity::Constant(9.8),
+                ..Default::default()
+            },
+            &PhysicalConstants::SI,
+        )
+        .expect("environment");
+        assert!(!custom.gravity_on_pressure_grid);
+        for e in [isa, custom] {
+            for z in [
+                -500.0, 0.0, 500.0, 1000.0, 1400.0, 9000.0, 11_019.004, 90_000.0,
+            ] {
+                let s = e.sample(z);
+                // Bit for bit: the equations of motion use `sample`, post-processing the rest.
+                let same = |a: f64, b: f64| a.to_bits() == b.to_bits();
+                assert!(same(s.pressure, e.pressure(z)) && same(s.density, e.density(z)));
+                assert!(same(s.temperature, e.temperature(z)));
+                assert!(same(s.speed_of_sound, e.speed_of_sound(z)));
+                assert!(same(s.dynamic_viscosity, e.dynamic_viscosity(z)));
+                assert!(same(s.gravity, e.gravity(z)));
+                assert!(s.wind.iter().zip(e.wind(z)).all(|(a, b)| same(*a, b)));
+            }
         }
     }
 
@@ -568,6 +635,32 @@ mod tests {
         assert!((e.barometric_height(95_000.0) - 500.0).abs() < 1e-9);
         assert!((e.wind(2500.0)[1] + 4.0).abs() < 1e-12);
         assert!((e.wind(1e5)[0] - 5.0).abs() < 1e-12);
+        assert_eq!(e.uniform_wind(), None, "the north wind varies with height");
+    }
+
+    #[test]
+    fn uniform_wind_is_every_height_s_wind() {
+        let calm = isa_env();
+        let steady = Environment::new(
+            &EnvironmentConfig {
+                atmosphere: Atmosphere::Profiles(Profiles::wind_only(
+                    "inline",
+                    Curve::Constant(5.0),
+                    Curve::Points(vec![[0.0, -2.0], [3000.0, -2.0], [9000.0, -2.0]]),
+                )),
+                ..Default::default()
+            },
+            &PhysicalConstants::SI,
+        )
+        .expect("environment");
+        for e in [calm, steady] {
+            let w = e.uniform_wind().expect("a uniform wind");
+            for z in [-100.0, 0.0, 1400.0, 2999.0, 4700.0, 1e5] {
+                let at = e.wind(z);
+                // Bit for bit: a caller uses it instead of the lookups.
+                assert!(w.iter().zip(at).all(|(a, b)| a.to_bits() == b.to_bits()));
+            }
+        }
     }
 
     #[test]

@@ -10,14 +10,13 @@ use std::fmt::Write as _;
 /// north on a sphere of the site's radius (the inverted haversine of RocketPy's
 /// `tools.inverted_haversine`; physics.md §4.6, §12.2).
 pub fn offset_to_lat_lon(site: &Site, x: f64, y: f64) -> (f64, f64) {
-    let angle = x.hypot(y) / site.earth_radius;
-    let bearing = x.atan2(y);
-    let lat1 = site.latitude_deg.to_radians();
-    let lon1 = site.longitude_deg.to_radians();
-    let lat2 = (lat1.sin() * angle.cos() + lat1.cos() * angle.sin() * bearing.cos()).asin();
-    let lon2 = lon1
-        + (bearing.sin() * angle.sin() * lat1.cos()).atan2(angle.cos() - lat1.sin() * lat2.sin());
-    (lat2.to_degrees(), lon2.to_degrees())
+    karman_math::geodesy::destination(
+        site.latitude_deg,
+        site.longitude_deg,
+        x,
+        y,
+        site.earth_radius,
+    )
 }
 
 /// Points of each ellipse ring (physics.md §12.2 uses 100).

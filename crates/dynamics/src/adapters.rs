@@ -5,7 +5,8 @@ use karman_airframe::{Rocket, Surface, Trigger};
 use karman_atmos::Environment;
 
 use crate::model::{
-    AtmosphereModel, ParachuteSpec, RailButtonGeometry, SurfaceModel, TriggerKind, VehicleModel,
+    Air, AtmosphereModel, MassSample, ParachuteSpec, RailButtonGeometry, SurfaceModel, TriggerKind,
+    VehicleModel,
 };
 
 impl AtmosphereModel for Environment {
@@ -32,6 +33,19 @@ impl AtmosphereModel for Environment {
     #[inline]
     fn wind(&self, z: f64) -> [f64; 2] {
         Environment::wind(self, z)
+    }
+    #[inline]
+    fn air(&self, z: f64) -> Air {
+        let s = Environment::sample(self, z);
+        Air {
+            pressure: s.pressure,
+            density: s.density,
+            speed_of_sound: s.speed_of_sound,
+            gravity: s.gravity,
+        }
+    }
+    fn uniform_wind(&self) -> Option<[f64; 2]> {
+        Environment::uniform_wind(self)
     }
     #[inline]
     fn gravity(&self, z: f64) -> f64 {
@@ -74,6 +88,10 @@ impl SurfaceModel for Surface {
     #[inline]
     fn roll_damping(&self, mach: f64) -> f64 {
         Surface::roll_damping(self, mach)
+    }
+    #[inline]
+    fn coefficients(&self, mach: f64) -> [f64; 3] {
+        Surface::coefficients(self, mach)
     }
 }
 
@@ -127,6 +145,20 @@ impl VehicleModel for Rocket {
     #[inline]
     fn inertia_rate(&self, t: f64) -> [f64; 6] {
         Rocket::inertia_rate(self, t)
+    }
+    #[inline]
+    fn mass_sample(&self, t: f64) -> MassSample {
+        let p = Rocket::mass_properties(self, t);
+        MassSample {
+            total_mass: p.total_mass,
+            mass_flow_rate: p.mass_flow_rate,
+            mass_flow_rate_derivative: p.mass_flow_rate_derivative,
+            com_to_cdm: p.com_to_cdm,
+            com_to_cdm_rate: p.com_to_cdm_rate,
+            com_to_cdm_accel: p.com_to_cdm_accel,
+            inertia: p.inertia,
+            inertia_rate: p.inertia_rate,
+        }
     }
     #[inline]
     fn nozzle_to_cdm(&self) -> f64 {

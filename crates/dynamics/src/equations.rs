@@ -7,7 +7,7 @@
 //! state derivative together with the loads that produced it, so the same code serves the
 //! integrator and the post-processing. Nothing here allocates.
 
-use crate::model::{AtmosphereModel, SurfaceModel, VehicleModel};
+use crate::model::{Air, AtmosphereModel, SurfaceModel, VehicleModel};
 use crate::state::{
     Mat3, State, Vec3, add, cross, dot, inverse, mat_t_vec, mat_vec, norm, quaternion,
     quaternion_rate, rotation, scale, sub, tensor,
@@ -53,6 +53,8 @@ pub struct Equations<'a, A, V> {
     nozzle_gyration: Mat3,
     dry_mass: f64,
     coast: Option<CoastMass>,
+    /// The wind when it does not vary with height (read once; no per-height lookups then).
+    uniform_wind: Option<[f64; 2]>,
 }
 
 /// Mass properties after burn-out, when they no longer change (physics.md §8.2 remarks:
@@ -61,7 +63,19 @@ pub struct Equations<'a, A, V> {
 struct CoastMass {
     mass: f64,
     com_to_cdm: f64,
-    inertia: [f64; 6],
+    inertia: Mat3,
+    inverse_cm_inertia: Mat3,
+}
+
+/// Mass properties at one instant as the 6-DOF equations use them (physics.md §8.2).
+#[derive(Debug, Clone, Copy, PartialEq)]
+struct MassState {
+    mass: f64,
+    c: f64,
+    c_dot: f64,
+    c_ddot: f64,
+    inertia: Mat3,
+    inertia_dot: Mat3,
     inverse_cm_inertia: Mat3,
 }
 
@@ -106,7 +120,7 @@ fn coast_mass<V: VehicleModel>(vehicle: &V) -> Option<CoastMass> {
     constant.then(|| CoastMass {
         mass: m1,
         com_to_cdm: c1,
-        inertia: i1,
+        inertia: tensor(i1),
         inverse_cm_inertia: inverse_cm_inertia(&tensor(i1), m1, c1),
     })
 }
@@ -126,6 +140,7 @@ impl<'a, A: AtmosphereModel, V: VehicleModel> Equations<'a, A, V> {
             nozzle_gyration: [[s[0], 0.0, 0.0], [0.0, s[1], 0.0], [0.0, 0.0, s[2]]],
             dry_mass: vehicle.dry_mass(),
             coast: coast_mass(vehicle),
+            uniform_wind: atmosphere.uniform_wind(),
         }
     }
 
@@ -139,6 +154,15 @@ impl<'a, A: AtmosphereModel, V: VehicleModel> Equations<'a, A, V> {
     #[must_use]
     pub fn vehicle(&self) -> &'a V {
         self.vehicle
+    }
+
+    /// The horizontal wind at height `z`, without a lookup when it is uniform.
+    #[inline]
+    fn wind(&self, z: f64) -> [f64; 2] {
+        match self.uniform_wind {
+            Some(w) => w,
+            None => self.atmosphere.wind(z),
+        }
     }
 
     /// Whether the motor is burning at `t` (strict `t_b0 < t < t_b1`, physics.md §6.3).
@@ -157,16 +181,17 @@ impl<'a, A: AtmosphereModel, V: VehicleModel> Equations<'a, A, V> {
         let z = u[2];
         let atm = self.atmosphere;
         let veh = self.vehicle;
-        let wind = atm.wind(z);
+        let wind = self.wind(z);
         let free = [wind[0] - u[3], wind[1] - u[4], -u[5]];
         let speed = norm(free);
-        let mach = speed / atm.speed_of_sound(z);
-        let rho = atm.density(z);
+        let air = atm.air(z);
+        let mach = speed / air.speed_of_sound;
+        let rho = air.density;
         let cd = veh.drag_coefficient(true, mach);
-        let net_thrust = veh.net_thrust(t, atm.pressure(z));
+        let net_thrust = veh.net_thrust(t, air.pressure);
         let r3 = -0.5 * rho * speed * speed * self.reference_area * cd;
         let a3 = (r3 + net_thrust) / veh.total_mass(t)
-            - (e0 * e0 - e1 * e1 - e2 * e2 + e3 * e3) * atm.gravity(z);
+            - (e0 * e0 - e1 * e1 - e2 * e2 + e3 * e3) * air.gravity;
         let (ax, ay, az) = if a3 > 0.0 {
             (
                 2.0 * (e1 * e3 + e0 * e2) * a3,
@@ -192,21 +217,21 @@ impl<'a, A: AtmosphereModel, V: VehicleModel> Equations<'a, A, V> {
     /// Aerodynamic force and moment in body axes about the CDM, plus the net thrust
     /// (physics.md §7.1, §7.2, §7.6, §8.3 steps 1–5).
     #[inline]
-    fn loads(&self, t: f64, u: &State, k: &Mat3) -> (Vec3, Vec3, f64) {
+    fn loads(&self, t: f64, u: &State, k: &Mat3, air: &Air) -> (Vec3, Vec3, f64) {
         let atm = self.atmosphere;
         let veh = self.vehicle;
         let z = u[2];
         let v = [u[3], u[4], u[5]];
         let w = [u[10], u[11], u[12]];
-        let rho = atm.density(z);
-        let wind = atm.wind(z);
-        let a = atm.speed_of_sound(z);
+        let rho = air.density;
+        let wind = self.wind(z);
+        let a = air.speed_of_sound;
         let free = [wind[0] - v[0], wind[1] - v[1], -v[2]];
         let speed = norm(free);
         let mach = speed / a;
         let powered = self.powered(t);
         let net_thrust = if powered {
-            veh.net_thrust(t, atm.pressure(z))
+            veh.net_thrust(t, air.pressure)
         } else {
             0.0
         };
@@ -218,34 +243,46 @@ impl<'a, A: AtmosphereModel, V: VehicleModel> Equations<'a, A, V> {
         ];
         let mut m = [0.0; 3];
         let v_body = mat_t_vec(k, v);
+        // The wind in body axes at each surface's height: once when it is uniform.
+        let uniform_wind_body = self
+            .uniform_wind
+            .map(|wc| mat_t_vec(k, [wc[0], wc[1], 0.0]));
         for surface in veh.surfaces() {
             let cp = surface.cp_body();
             let vb = add(v_body, cross(w, cp));
-            let zc = z + dot(k[2], cp);
-            let wc = atm.wind(zc);
-            let wb = mat_t_vec(k, [wc[0], wc[1], 0.0]);
+            let wb = match uniform_wind_body {
+                Some(wb) => wb,
+                None => {
+                    let wc = atm.wind(z + dot(k[2], cp));
+                    mat_t_vec(k, [wc[0], wc[1], 0.0])
+                }
+            };
             let s = sub(wb, vb);
             let sp = norm(s);
             let smach = sp / a;
             let area = surface.reference_area();
+            let [cn_alpha, forcing, damping] = surface.coefficients(smach);
             let transverse2 = s[0] * s[0] + s[1] * s[1];
             if transverse2 > 0.0 {
-                let vzn = s[2] / sp;
-                if -vzn < 1.0 {
-                    let alpha = (-vzn).acos();
-                    let lift = 0.5 * rho * sp * sp * area * surface.cn_alpha(smach) * alpha;
-                    let inv = 1.0 / transverse2.sqrt();
-                    let fx = lift * s[0] * inv;
-                    let fy = lift * s[1] * inv;
-                    r[0] += fx;
-                    r[1] += fy;
-                    m[0] -= cp[2] * fy;
-                    m[1] += cp[2] * fx;
-                }
+                // Angle of attack α = acos(−s₃/|s|) (physics.md §7.2) in the equal form
+                // atan2(|s_⊥|, −s₃): better conditioned at small angles, and for the usual
+                // nose-first stream (s₃ < 0) a plain arctangent, about twice as fast as acos.
+                let transverse = transverse2.sqrt();
+                let alpha = if s[2] < 0.0 {
+                    (transverse / -s[2]).atan()
+                } else {
+                    transverse.atan2(-s[2])
+                };
+                let lift = 0.5 * rho * sp * sp * area * cn_alpha * alpha;
+                let inv = 1.0 / transverse;
+                let fx = lift * s[0] * inv;
+                let fy = lift * s[1] * inv;
+                r[0] += fx;
+                r[1] += fy;
+                m[0] -= cp[2] * fy;
+                m[1] += cp[2] * fx;
             }
             if surface.rolls() {
-                let forcing = surface.roll_forcing(smach);
-                let damping = surface.roll_damping(smach);
                 let d = surface.reference_length();
                 m[2] += 0.5 * rho * sp * sp * area * d * forcing
                     - 0.5 * rho * sp * area * d * d * damping * w[2] / 2.0;
@@ -259,7 +296,7 @@ impl<'a, A: AtmosphereModel, V: VehicleModel> Equations<'a, A, V> {
     #[must_use]
     pub fn rail_loads(&self, t: f64, u: &State) -> (Vec3, Vec3, f64) {
         let k = rotation(quaternion(u));
-        self.loads(t, u, &k)
+        self.loads(t, u, &k, &self.atmosphere.air(u[2]))
     }
 
     /// 6-DOF variable-mass flight (physics.md §8.2, RocketPy's `u_dot_generalized`), with the
@@ -286,16 +323,16 @@ impl<'a, A: AtmosphereModel, V: VehicleModel> Equations<'a, A, V> {
         // After burn-out c ≡ 0 and nothing changes; a finite-difference c̈ of a spline table
         // (RocketPy's, §5.4) straddling the burn-out kink would otherwise spike within 1e-6 s
         // of it, exactly where steps stop.
-        let (mass, c, c_dot, c_ddot, inertia, inertia_dot, i_cm_inv) = match self.coast {
-            Some(k) if t >= self.burn_out => (
-                k.mass,
-                k.com_to_cdm,
-                0.0,
-                0.0,
-                tensor(k.inertia),
-                [[0.0; 3]; 3],
-                k.inverse_cm_inertia,
-            ),
+        let ms = match &self.coast {
+            Some(k) if t >= self.burn_out => MassState {
+                mass: k.mass,
+                c: k.com_to_cdm,
+                c_dot: 0.0,
+                c_ddot: 0.0,
+                inertia: k.inertia,
+                inertia_dot: [[0.0; 3]; 3],
+                inverse_cm_inertia: k.inverse_cm_inertia,
+            },
             _ => {
                 let (mass, c) = (veh.total_mass(t), veh.com_to_cdm(t));
                 let inertia = tensor(veh.inertia(t));
@@ -304,23 +341,33 @@ impl<'a, A: AtmosphereModel, V: VehicleModel> Equations<'a, A, V> {
                 } else {
                     0.0
                 };
-                (
+                MassState {
                     mass,
                     c,
-                    veh.com_to_cdm_rate(t),
+                    c_dot: veh.com_to_cdm_rate(t),
                     c_ddot,
                     inertia,
-                    tensor(veh.inertia_rate(t)),
-                    inverse_cm_inertia(&inertia, mass, c),
-                )
+                    inertia_dot: tensor(veh.inertia_rate(t)),
+                    inverse_cm_inertia: inverse_cm_inertia(&inertia, mass, c),
+                }
             }
         };
+        let MassState {
+            mass,
+            c,
+            c_dot,
+            c_ddot,
+            inertia,
+            inertia_dot,
+            inverse_cm_inertia: i_cm_inv,
+        } = ms;
         let r_cm = [0.0, 0.0, c];
         let r_cm_dot = [0.0, 0.0, c_dot];
         let r_cm_ddot = [0.0, 0.0, c_ddot];
 
-        let (force, moment, net_thrust) = self.loads(t, u, &k);
-        let weight = mat_t_vec(&k, [0.0, 0.0, -mass * atm.gravity(z)]);
+        let air = atm.air(z);
+        let (force, moment, net_thrust) = self.loads(t, u, &k, &air);
+        let weight = mat_t_vec(&k, [0.0, 0.0, -mass * air.gravity]);
 
         let noz_minus_r = sub(self.nozzle, r_cm);
         let t00 = scale(mass, r_cm);
@@ -377,8 +424,9 @@ impl<'a, A: AtmosphereModel, V: VehicleModel> Equations<'a, A, V> {
         let atm = self.atmosphere;
         let z = u[2];
         let v = [u[3], u[4], u[5]];
-        let rho = atm.density(z);
-        let wind = atm.wind(z);
+        let air = atm.air(z);
+        let rho = air.density;
+        let wind = self.wind(z);
         let mass = self.dry_mass;
         let added = canopy.added_mass_coefficient
             * rho
@@ -395,7 +443,7 @@ impl<'a, A: AtmosphereModel, V: VehicleModel> Equations<'a, A, V> {
         let a = [
             drag[0] / total - coriolis[0],
             drag[1] / total - coriolis[1],
-            (drag[2] - mass * atm.gravity(z)) / total - coriolis[2],
+            (drag[2] - mass * air.gravity) / total - coriolis[2],
         ];
         Derivative {
             u_dot: [

@@ -643,10 +643,17 @@ impl Run {
                 continue;
             }
             let interval = 1.0 / specs[p].sampling_rate;
-            let j0 = (t_start / interval).ceil() as i64;
-            let j1 = (t_end / interval).floor() as i64;
+            // The instants of this step by their keys, so that one at the step end is
+            // deferred to the next step and found there whatever the rounding of t/Δ (a
+            // quotient a hair above an integer lost it, and shifted the trigger noise).
+            let (k_start, k_end) = (node_key(t_start), node_key(t_end));
+            let j0 = (t_start / interval).floor() as i64 - 1;
+            let j1 = (t_end / interval).ceil() as i64 + 1;
             for j in j0..=j1 {
-                self.nodes.push((j as f64 * interval, p));
+                let t = j as f64 * interval;
+                if (k_start..=k_end).contains(&node_key(t)) {
+                    self.nodes.push((t, p));
+                }
             }
         }
         if self.nodes.is_empty() {

@@ -198,7 +198,13 @@ impl<const N: usize> DormandPrince<N> {
         Ok(integ)
     }
 
-    /// Initial step of HNW I, §II.4 for a method of order 5 (as SciPy's `select_initial_step`).
+    /// Initial step of HNW I, §II.4 for a method of order 5 (as SciPy's `select_initial_step`),
+    /// in a dimensionally consistent form: with the tolerance-weighted norms `d0 = ‖y‖`,
+    /// `d1 = ‖f‖` (1/time) and `d2 ≈ ‖f′‖` (1/time²), "negligible" is judged over the
+    /// interval `T = t_bound − t`, the fall-back steps are fractions of `T`, and the fifth
+    /// derivative (the order of the error estimator, as SciPy) is estimated as `d2·ω³` with
+    /// the rate `ω = d2/d1` (`√d2` when `d1` is negligible), so the step follows the unit of
+    /// time (dimensional-analysis tests).
     fn initial_step<F>(&mut self, f: &mut F) -> f64
     where
         F: FnMut(f64, &[f64; N]) -> [f64; N],
@@ -213,8 +219,9 @@ impl<const N: usize> DormandPrince<N> {
         }
         let d0 = rms_norm(&self.y, &scale);
         let d1 = rms_norm(&self.f, &scale);
-        let h0 = if d0 < 1e-5 || d1 < 1e-5 {
-            1e-6
+        let negligible_rate = d1 * interval < 1e-5;
+        let h0 = if d0 < 1e-5 || negligible_rate {
+            1e-6 * interval
         } else {
             0.01 * d0 / d1
         };
@@ -230,13 +237,14 @@ impl<const N: usize> DormandPrince<N> {
             diff[i] = f1[i] - self.f[i];
         }
         let d2 = rms_norm(&diff, &scale) / h0;
-        let h1 = if d1 <= 1e-15 && d2 <= 1e-15 {
-            (h0 * 1e-3).max(1e-6)
+        let h1 = if negligible_rate && d2 * interval * interval <= 1e-15 {
+            (h0 * 1e-3).max(1e-6 * interval)
         } else {
-            (0.01 / d1.max(d2)).powf(1.0 / 5.0)
+            let rate = if negligible_rate { d2.sqrt() } else { d2 / d1 };
+            (0.01 / (d2 * rate.powi(3))).powf(1.0 / 5.0)
         };
         let h = (100.0 * h0).min(h1).min(self.tol.max_step).min(interval);
-        if h.is_finite() {
+        if h.is_finite() && h > 0.0 {
             h
         } else {
             interval.min(self.tol.max_step)
@@ -407,12 +415,16 @@ impl<const N: usize> DormandPrince<N> {
         self.k[0] = self.f;
         let mut y_stage = [0.0; N];
         for s in 1..7 {
-            for i in 0..N {
-                let mut acc = 0.0;
-                for (j, a) in A[s].iter().enumerate().take(s) {
-                    acc += a * self.k[j][i];
+            // Stage-major loops (vectorised over the components); each component still sums
+            // its terms in stage order, so the result is the same to the bit.
+            let mut acc = [0.0; N];
+            for (a, k) in A[s].iter().zip(&self.k).take(s) {
+                for (acc, k) in acc.iter_mut().zip(k) {
+                    *acc += a * k;
                 }
-                y_stage[i] = self.y[i] + h * acc;
+            }
+            for i in 0..N {
+                y_stage[i] = self.y[i] + h * acc[i];
             }
             self.k[s] = f(self.t + C[s] * h, &y_stage);
             self.nfev += 1;
@@ -424,14 +436,16 @@ impl<const N: usize> DormandPrince<N> {
     /// Scaled RMS norm of the embedded error estimate.
     #[inline]
     fn error_norm(&self, h: f64, y_new: &[f64; N]) -> f64 {
+        let mut acc = [0.0; N];
+        for (e, k) in E.iter().zip(&self.k) {
+            for (acc, k) in acc.iter_mut().zip(k) {
+                *acc += e * k;
+            }
+        }
         let mut err = [0.0; N];
         let mut scale = [0.0; N];
         for i in 0..N {
-            let mut acc = 0.0;
-            for (j, e) in E.iter().enumerate() {
-                acc += e * self.k[j][i];
-            }
-            err[i] = h * acc;
+            err[i] = h * acc[i];
             scale[i] = self.tol.atol[i] + self.y[i].abs().max(y_new[i].abs()) * self.tol.rtol;
         }
         max_norm(&err, &scale)

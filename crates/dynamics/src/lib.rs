@@ -28,7 +28,8 @@ pub use flight::{
     Flight, IntegrationStats, ParachuteEvent, PhaseKind, SolutionPoint, Termination, simulate,
 };
 pub use model::{
-    AtmosphereModel, ParachuteSpec, RailButtonGeometry, SurfaceModel, TriggerKind, VehicleModel,
+    Air, AtmosphereModel, MassSample, ParachuteSpec, RailButtonGeometry, SurfaceModel, TriggerKind,
+    VehicleModel,
 };
 pub use output::{EventRecord, Sample, Summary};
 pub use settings::{DEFAULT_ATOL, FlightSettings};

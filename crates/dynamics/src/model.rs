@@ -6,6 +6,20 @@
 //! models and the model crates can evolve behind one adapter. Every per-step method must be
 //! allocation-free; the methods documented "once" are called when a flight is set up.
 
+/// The atmosphere at one height, as the equations of motion use it
+/// ([`AtmosphereModel::air`]).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Air {
+    /// Air pressure, Pa.
+    pub pressure: f64,
+    /// Air density, kg/m³.
+    pub density: f64,
+    /// Speed of sound, m/s.
+    pub speed_of_sound: f64,
+    /// Gravity, m/s².
+    pub gravity: f64,
+}
+
 /// Atmosphere, gravity and Earth rotation at the launch site (physics.md §4). Heights are
 /// geometric, metres above sea level.
 pub trait AtmosphereModel {
@@ -21,8 +35,25 @@ pub trait AtmosphereModel {
     fn dynamic_viscosity(&self, z: f64) -> f64;
     /// Horizontal wind `(east, north)`, m/s.
     fn wind(&self, z: f64) -> [f64; 2];
+    /// The wind when it is the same at every height, bit for bit what
+    /// [`AtmosphereModel::wind`] returns (once): the engine then skips the per-height lookups.
+    /// `None` (the default) when it varies with height.
+    fn uniform_wind(&self) -> Option<[f64; 2]> {
+        None
+    }
     /// Gravity, m/s².
     fn gravity(&self, z: f64) -> f64;
+    /// Pressure, density, speed of sound and gravity at once, equal to the individual
+    /// methods; a model overrides it to share the height lookups.
+    #[inline]
+    fn air(&self, z: f64) -> Air {
+        Air {
+            pressure: self.pressure(z),
+            density: self.density(z),
+            speed_of_sound: self.speed_of_sound(z),
+            gravity: self.gravity(z),
+        }
+    }
     /// Earth rotation vector in the ENU launch frame, rad/s (once).
     fn earth_rotation_enu(&self) -> [f64; 3];
     /// Barometric height `h_baro(P)` of a (noisy) pressure, m ASL (physics.md §4.4).
@@ -46,6 +77,20 @@ pub trait SurfaceModel {
     fn roll_forcing(&self, mach: f64) -> f64;
     /// Roll-damping coefficient `C_ld,ω(Mach)` (0 for surfaces that do not roll).
     fn roll_damping(&self, mach: f64) -> f64;
+    /// `[CNα, roll forcing, roll damping]` at one Mach number, what the equations of motion
+    /// evaluate per surface; a model overrides it to share the Mach-dependent work.
+    #[inline]
+    fn coefficients(&self, mach: f64) -> [f64; 3] {
+        if self.rolls() {
+            [
+                self.cn_alpha(mach),
+                self.roll_forcing(mach),
+                self.roll_damping(mach),
+            ]
+        } else {
+            [self.cn_alpha(mach), 0.0, 0.0]
+        }
+    }
 }
 
 /// Rail-button geometry in the rocket's user coordinates (physics.md §2.5, §8.1).
@@ -91,6 +136,27 @@ pub struct ParachuteSpec {
     pub added_mass_coefficient: f64,
 }
 
+/// Every time-dependent mass quantity at one instant ([`VehicleModel::mass_sample`]).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct MassSample {
+    /// Total mass `m(t)`, kg.
+    pub total_mass: f64,
+    /// Signed mass-flow rate `ṁ(t)`, kg/s.
+    pub mass_flow_rate: f64,
+    /// `m̈(t)`, kg/s².
+    pub mass_flow_rate_derivative: f64,
+    /// CM→CDM offset `c(t)`, m.
+    pub com_to_cdm: f64,
+    /// `ċ(t)`, m/s.
+    pub com_to_cdm_rate: f64,
+    /// `c̈(t)`, m/s².
+    pub com_to_cdm_accel: f64,
+    /// Inertia about the CDM `(I11, I22, I33, I12, I13, I23)`, kg·m².
+    pub inertia: [f64; 6],
+    /// Its time derivative, kg·m²/s.
+    pub inertia_rate: [f64; 6],
+}
+
 /// The rocket as the equations of motion see it (physics.md §5–§7). Times are seconds from
 /// motor ignition reference `t = 0`; positions are SI.
 pub trait VehicleModel {
@@ -121,6 +187,21 @@ pub trait VehicleModel {
     fn inertia(&self, t: f64) -> [f64; 6];
     /// Time derivative of [`VehicleModel::inertia`], kg·m²/s.
     fn inertia_rate(&self, t: f64) -> [f64; 6];
+    /// Every time-dependent mass quantity at once, equal to the individual methods; a model
+    /// overrides it to share the table lookups.
+    #[inline]
+    fn mass_sample(&self, t: f64) -> MassSample {
+        MassSample {
+            total_mass: self.total_mass(t),
+            mass_flow_rate: self.mass_flow_rate(t),
+            mass_flow_rate_derivative: self.mass_flow_rate_derivative(t),
+            com_to_cdm: self.com_to_cdm(t),
+            com_to_cdm_rate: self.com_to_cdm_rate(t),
+            com_to_cdm_accel: self.com_to_cdm_accel(t),
+            inertia: self.inertia(t),
+            inertia_rate: self.inertia_rate(t),
+        }
+    }
     /// Nozzle-to-CDM distance `d_n` (physics.md §5.6), m (once).
     fn nozzle_to_cdm(&self) -> f64;
     /// Nozzle gyration tensor diagonal `(S11, S22, S33)`, m² (once).

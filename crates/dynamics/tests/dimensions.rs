@@ -31,10 +31,6 @@ use karman_propulsion::{
 /// Agreement required between unit systems: rounding only, as for the model crates.
 const TOL: f64 = 1e-9;
 
-/// Agreement of the lift-driven quantities of the 6-DOF equations, limited by the
-/// conditioning of their angle of attack (see [`equations_of_motion_scale_with_their_units`]).
-const LIFT_TOL: f64 = 1e-5;
-
 const L: Dimension = Dimension::LENGTH;
 const T: Dimension = Dimension::TIME;
 const M: Dimension = Dimension::MASS;
@@ -395,15 +391,9 @@ where
 /// the one-sided slopes of the tables (RocketPy's `bisect_left` convention) would pick an
 /// interval by the rounding of the scaled time, which is not a dimensional matter.
 ///
-/// The 6-DOF loads take the angle of attack as `acos(−v̂_z)` (equations.rs), which loses
-/// half the digits near zero incidence: a rounding ε of v̂_z moves α by ~ε/α, i.e. ε/α²
-/// relative (2e-6 at α = 1e-5 rad, just off the rail), and the pitch and yaw moments are
-/// differences of the nose's and the fins' moments, which amplifies it further. So the
-/// lift-driven quantities of those states (v̇, ω̇, force, moment) agree between unit systems
-/// only to [`LIFT_TOL`] (measured up to 7e-7 over a dozen unit systems); a dimensional error
-/// still shows, as a factor λ^k ≠ 1. Writing α as `atan2(√(v̂_x² + v̂_y²), −v̂_z)` removes
-/// the loss (reported): on a copy of the engine with that change every quantity of every
-/// phase agrees to [`TOL`] (largest deviation 8e-13).
+/// The 6-DOF loads take the angle of attack as an arctangent of the transverse and axial
+/// flow (equations.rs), exact to rounding at any incidence, so every quantity of every phase
+/// agrees to [`TOL`].
 #[test]
 fn equations_of_motion_scale_with_their_units() {
     let si_c = PhysicalConstants::SI;
@@ -432,7 +422,7 @@ fn equations_of_motion_scale_with_their_units() {
             };
             counts[k] += 1;
             let (tolerance, worst) = match p.phase {
-                PhaseKind::SixDof => (LIFT_TOL, &mut worst_lift),
+                PhaseKind::SixDof => (TOL, &mut worst_lift),
                 _ => (TOL, &mut worst_other),
             };
             let name = |q: &str| format!("{:?} t = {t:.4} s: {q}", p.phase);
@@ -536,29 +526,10 @@ fn a_dimensionally_wrong_formula_is_detected() {
     }
 }
 
-/// A whole flight in two unit systems.
-///
-/// Ignored: two pieces of the engine do not follow the units, so the runs take different
-/// integration steps and agree only to the integration error (~1e-8 on the apogee, ~1e-5 on
-/// its horizontal position), and the noisy main-parachute trigger fires some sampling
-/// instants apart (~1e-4 on impact):
-/// 1. `integrator.rs` `initial_step` (Hairer–Nørsett–Wanner I §II.4 as SciPy) compares
-///    ‖f‖ (1/s) with ‖Δf‖/h (1/s²) and uses literal steps and thresholds (`1e-6` s, `1e-5`,
-///    `1e-15`): the first step of every phase differs (1e-6 s on the rail in every system);
-/// 2. `flight.rs` `sample_parachutes` takes the sampling instants of a step from
-///    `ceil(t_start/Δ)`, `floor(t_end/Δ)` and defers the one whose 1e-7 s key equals the
-///    step end: an instant that coincides with a step end (a thrust knot at a multiple of
-///    1/105 s) is either evaluated with the next step or lost depending on the rounding of
-///    the quotient, and a lost instant shifts the trigger-noise sequence.
-///
-/// With a dimensionally consistent first step and the instants of a step chosen by their
-/// keys (`key(t_start) ≤ key(t_j) ≤ key(t_end)`, then the existing deferral), this test
-/// passes with a largest deviation of ~2e-11 (checked on a copy of the engine; ~5e-14 with
-/// the angle of attack by `atan2` as well). Run it with
-/// `cargo test -p karman-dynamics -- --ignored`.
+/// A whole flight in two unit systems: the integrator's first step is chosen in a
+/// dimensionally consistent way and the parachute sampling instants of a step are selected
+/// by their time keys, so both runs take the same steps and agree to rounding.
 #[test]
-#[ignore = "the integrator's first step and the parachute sampling bookkeeping do not scale \
-            with the unit of time yet (see the docs of this test)"]
 fn flight_scales_with_its_units() {
     let si = fly(&Units::SI);
     for seed in test_seeds(2) {

@@ -20,6 +20,7 @@
 //! - [`quadrature`]: adaptive Gauss–Kronrod (21-point) quadrature, QUADPACK style.
 //! - [`RegularGrid`] and [`ScatteredTable`] (module `grid`): functions of several variables
 //!   (multilinear on a grid; inverse-distance weighting on scattered points).
+//! - [`geodesy`]: latitude/longitude of an east/north offset (great-circle destination).
 //! - [`csv`]: numeric columns and `[x, y]` curves from text files, with errors that name the
 //!   file, line, column and text ([`CsvError`]).
 //!
@@ -54,6 +55,7 @@ pub mod csv;
 pub mod dimensions;
 mod error;
 mod function;
+pub mod geodesy;
 mod grid;
 pub mod quadrature;
 mod table;
@@ -64,4 +66,4 @@ pub use error::{CsvError, MathError};
 pub use function::{Extremum, Function};
 pub use grid::{MAX_GRID_DIMENSIONS, RegularGrid, ScatteredTable};
 pub use quadrature::{Quadrature, QuadratureOptions, integrate};
-pub use table::{Cursor, Extrapolation, Interpolation, PointOrder, Table1, linspace};
+pub use table::{Cursor, Extrapolation, Interpolation, Location, PointOrder, Table1, linspace};

@@ -79,6 +79,19 @@ pub enum PointOrder {
 #[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
 pub struct Cursor(usize);
 
+/// Where an abscissa falls among a table's samples ([`Table1::locate`]). It depends on the
+/// abscissae only, so one search serves every table on the same abscissae
+/// ([`Table1::same_abscissae`]) through [`Table1::eval_at`] and its siblings.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Location {
+    /// Left of the first sample.
+    Below,
+    /// Right of the last sample.
+    Above,
+    /// Within the samples, on this interval (RocketPy's `bisect_left` choice).
+    Interval(usize),
+}
+
 /// The single interpolating polynomial, in the scaled variable `t = (x − center)/half_width`.
 #[derive(Debug, Clone, PartialEq)]
 struct Polynomial {
@@ -392,7 +405,17 @@ impl Table1 {
         let n = self.xs.len();
         let k = self.guide.key(self.xs[0], x);
         let (lo, hi) = (self.guide.start[k], self.guide.start[k + 1]);
-        let below = lo + self.xs[lo..hi].partition_point(|&v| v < x);
+        // The count of samples below `x`: a scan of a short bucket (the usual one or two
+        // samples of evenly spread abscissae) is faster than a binary search, same count.
+        let below = if hi - lo <= 4 {
+            let mut i = lo;
+            while i < hi && self.xs[i] < x {
+                i += 1;
+            }
+            i
+        } else {
+            lo + self.xs[lo..hi].partition_point(|&v| v < x)
+        };
         below.clamp(1, n - 1) - 1
     }
 
@@ -401,6 +424,92 @@ impl Table1 {
     fn interval_holds(&self, j: usize, x: f64) -> bool {
         let last = self.xs.len() - 2;
         (j == 0 || self.xs[j] < x) && (j == last || x <= self.xs[j + 1])
+    }
+
+    /// Whether `other` has exactly these abscissae (bit for bit), so that a [`Location`] of
+    /// one is valid for the other.
+    #[must_use]
+    pub fn same_abscissae(&self, other: &Table1) -> bool {
+        self.xs.len() == other.xs.len()
+            && self
+                .xs
+                .iter()
+                .zip(&other.xs)
+                .all(|(a, b)| a.to_bits() == b.to_bits())
+    }
+
+    /// Where `x` falls among the samples: the search that [`Table1::eval`] does, done once for
+    /// several tables on the same abscissae.
+    #[inline]
+    #[must_use]
+    pub fn locate(&self, x: f64) -> Location {
+        let n = self.xs.len();
+        if x < self.xs[0] {
+            Location::Below
+        } else if x > self.xs[n - 1] {
+            Location::Above
+        } else if n == 1 {
+            Location::Interval(0)
+        } else {
+            Location::Interval(self.interval(x))
+        }
+    }
+
+    /// The piece that evaluates `at`, or the value itself where extrapolation is constant or
+    /// zero. An interval past this table's (a location from a table with other abscissae) is
+    /// clamped: a wrong value, never a panic.
+    #[inline(always)]
+    fn piece_at(&self, at: Location) -> Result<usize, f64> {
+        let n = self.xs.len();
+        let end = n.saturating_sub(2);
+        match (at, self.extrapolation) {
+            (Location::Interval(i), _) => Ok(i.min(end)),
+            (Location::Below, Extrapolation::Natural) => Ok(0),
+            (Location::Above, Extrapolation::Natural) => Ok(end),
+            (Location::Below, Extrapolation::Constant) => Err(self.ys[0]),
+            (Location::Above, Extrapolation::Constant) => Err(self.ys[n - 1]),
+            (_, Extrapolation::Zero) => Err(0.0),
+        }
+    }
+
+    /// Value at `x` located by [`Table1::locate`] of a table with the same abscissae (this one
+    /// or another): equal to [`Table1::eval`]`(x)`.
+    #[inline(always)]
+    #[must_use]
+    pub fn eval_at(&self, at: Location, x: f64) -> f64 {
+        match self.piece_at(at) {
+            Err(v) => v,
+            Ok(_) if self.xs.len() == 1 => self.ys[0],
+            Ok(i) => self.piece_value(i, x),
+        }
+    }
+
+    /// First derivative at `x` located by [`Table1::locate`]: equal to
+    /// [`Table1::derivative`]`(x)`.
+    #[inline]
+    #[must_use]
+    pub fn derivative_at(&self, at: Location, x: f64) -> f64 {
+        match self.piece_at(at) {
+            Ok(i) if self.xs.len() > 1 => self.piece_derivative(i, x),
+            _ => 0.0,
+        }
+    }
+
+    /// Second derivative at `x` located by [`Table1::locate`]: equal to
+    /// [`Table1::second_derivative`]`(x)`.
+    #[inline]
+    #[must_use]
+    pub fn second_derivative_at(&self, at: Location, x: f64) -> f64 {
+        match self.piece_at(at) {
+            Ok(i) if self.xs.len() > 1 => match &self.pieces {
+                Pieces::Cubic(coeffs) => {
+                    let [_, _, c, e] = coeffs[i];
+                    2.0 * c + 6.0 * e * (x - self.xs[i])
+                }
+                Pieces::Polynomial(p) => p.second_derivative(x),
+            },
+            _ => 0.0,
+        }
     }
 
     /// Constant/zero extrapolation value when `x` is outside and extrapolation is not natural.
@@ -423,13 +532,20 @@ impl Table1 {
     }
 
     /// The interpolant on interval `i` (or the polynomial) at `x`.
-    #[inline]
+    #[inline(always)]
     fn piece_value(&self, i: usize, x: f64) -> f64 {
         match &self.pieces {
             Pieces::Cubic(coeffs) => {
                 let [a, b, c, e] = coeffs[i];
                 let d = x - self.xs[i];
-                a + d * (b + d * (c + d * e))
+                // A straight piece (c and e both ±0, as every linear table's): `a + d·b` is
+                // the same number as the full Horner form, without its two dependent
+                // multiply-adds on the critical path.
+                if (c.to_bits() | e.to_bits()) << 1 == 0 {
+                    a + d * b
+                } else {
+                    a + d * (b + d * (c + d * e))
+                }
             }
             Pieces::Polynomial(p) => p.eval(x),
         }
@@ -439,13 +555,7 @@ impl Table1 {
     #[inline]
     #[must_use]
     pub fn eval(&self, x: f64) -> f64 {
-        if let Some(v) = self.outside(x) {
-            return v;
-        }
-        if self.xs.len() == 1 {
-            return self.ys[0];
-        }
-        self.piece_value(self.interval(x), x)
+        self.eval_at(self.locate(x), x)
     }
 
     /// Value at `x`, starting the interval search from `cursor` (and updating it). Same result
@@ -497,10 +607,7 @@ impl Table1 {
     /// zero.
     #[must_use]
     pub fn derivative(&self, x: f64) -> f64 {
-        if self.xs.len() == 1 || self.outside(x).is_some() {
-            return 0.0;
-        }
-        self.piece_derivative(self.interval(x), x)
+        self.derivative_at(self.locate(x), x)
     }
 
     /// Derivative of piece `i` (or of the polynomial) at `x`.
@@ -520,17 +627,7 @@ impl Table1 {
     /// RocketPy returns for them); zero where extrapolation is constant or zero.
     #[must_use]
     pub fn second_derivative(&self, x: f64) -> f64 {
-        if self.xs.len() == 1 || self.outside(x).is_some() {
-            return 0.0;
-        }
-        match &self.pieces {
-            Pieces::Cubic(coeffs) => {
-                let i = self.interval(x);
-                let [_, _, c, e] = coeffs[i];
-                2.0 * c + 6.0 * e * (x - self.xs[i])
-            }
-            Pieces::Polynomial(p) => p.second_derivative(x),
-        }
+        self.second_derivative_at(self.locate(x), x)
     }
 
     /// `∫` of the natural continuation from `s` to `e` (both on one side of the samples).
@@ -1120,5 +1217,63 @@ mod tests {
         .unwrap();
         assert!(close(t.eval(-5.0), 3.0, 1e-15));
         assert!(close(t.integral(0.0, 2.0), 6.0, 1e-15));
+    }
+
+    #[test]
+    fn one_location_serves_tables_on_the_same_abscissae() {
+        let xs = vec![0.0, 0.5, 1.5, 1.5, 3.0, 4.0];
+        let probes = [-1.0, 0.0, 0.2, 0.5, 1.5, 2.0, 3.0, 3.9, 4.0, 7.0];
+        let kinds = [
+            Interpolation::Linear,
+            Interpolation::Spline,
+            Interpolation::Akima,
+            Interpolation::RocketPyAkima,
+            Interpolation::Polynomial,
+        ];
+        let extrapolations = [
+            Extrapolation::Constant,
+            Extrapolation::Natural,
+            Extrapolation::Zero,
+        ];
+        let base =
+            Table1::linear_stepwise(xs.clone(), vec![0.0; xs.len()], Extrapolation::Zero).unwrap();
+        let single = Table1::new(
+            vec![2.0],
+            vec![4.0],
+            Interpolation::Linear,
+            Extrapolation::Zero,
+        )
+        .unwrap();
+        let mut tables = vec![single.clone()];
+        for (k, i) in kinds.into_iter().enumerate() {
+            for e in extrapolations {
+                let ys = xs.iter().map(|x| (x + k as f64).sin()).collect();
+                // Repeated abscissae only for linear tables (stepwise semantics).
+                let t = if i == Interpolation::Linear {
+                    Table1::linear_stepwise(xs.clone(), ys, e)
+                } else {
+                    let strict = [0.0, 0.5, 1.5, 1.7, 3.0, 4.0];
+                    Table1::new(strict.to_vec(), ys, i, e)
+                };
+                tables.push(t.unwrap());
+            }
+        }
+        for t in &tables {
+            for x in probes {
+                // A location from the table itself, or from another on the same abscissae.
+                let at = if base.same_abscissae(t) {
+                    base.locate(x)
+                } else {
+                    t.locate(x)
+                };
+                let same = |a: f64, b: f64| a.to_bits() == b.to_bits();
+                assert!(same(t.eval_at(at, x), t.eval(x)), "{t:?} at {x}");
+                assert!(same(t.derivative_at(at, x), t.derivative(x)));
+                assert!(same(t.second_derivative_at(at, x), t.second_derivative(x)));
+            }
+        }
+        assert!(!base.same_abscissae(&single));
+        // A location of a longer table is clamped, not a panic.
+        assert!(single.eval_at(base.locate(3.5), 2.0).is_finite());
     }
 }

@@ -1,5 +1,6 @@
 //! Integration tests of karman-mission (one binary; one module per topic).
 
+mod allocation;
 mod broken;
 mod common;
 mod fuzz;

@@ -130,21 +130,26 @@ pub struct FinAerodynamics {
     pub roll_integral: f64,
     /// Cant angle δ (rad).
     pub cant_angle: f64,
-    cos_gamma: f64,
-    area_ratio: f64,
+    /// `2π AR A_f/A`, the numerator of CNα₁ (see [`FinAerodynamics::single_fin_cn_alpha`]).
+    lift_numerator: f64,
+    /// `(2π AR / (cl_α0 cos Γ_c))²`, so that `f_d² = ` this `· β²`.
+    diederich_factor_squared: f64,
+    /// The sign of `f_d` (that of `cl_α0`).
+    diederich_sign: f64,
     forcing_factor: f64,
     damping_factor: f64,
 }
 
-/// RocketPy's compressibility factor β(M) (physics.md §7.5, **\[RP\]**).
+/// The square of RocketPy's compressibility factor β(M) (physics.md §7.5, **\[RP\]**):
+/// `1 − M²` below Mach 0.8, held at `1 − 0.8²` up to Mach 1.1, `M² − 1` above.
 #[inline]
-fn beta(mach: f64) -> f64 {
+fn beta_squared(mach: f64) -> f64 {
     if mach < 0.8 {
-        (1.0 - mach * mach).sqrt()
+        1.0 - mach * mach
     } else if mach < 1.1 {
-        (1.0f64 - 0.8 * 0.8).sqrt()
+        1.0f64 - 0.8 * 0.8
     } else {
-        (mach * mach - 1.0).sqrt()
+        mach * mach - 1.0
     }
 }
 
@@ -177,9 +182,12 @@ impl FinAerodynamics {
     #[inline]
     #[must_use]
     pub fn single_fin_cn_alpha(&self, mach: f64) -> f64 {
-        let cla = self.airfoil_lift_slope / beta(mach);
-        let fd = 2.0 * PI * self.aspect_ratio / (cla * self.cos_gamma);
-        cla * fd * self.area_ratio * self.cos_gamma / (2.0 + fd * (1.0 + (2.0 / fd).powi(2)).sqrt())
+        // Diederich's form (physics.md §7.5) `cla·f_d·(A_f/A)·cos Γ_c / (2 + f_d √(1 + (2/f_d)²))`
+        // with `cla = cl_α0/β` and `f_d = 2π AR / (cla cos Γ_c)`: the numerator is the
+        // constant `2π AR A_f/A` and `f_d √(1 + (2/f_d)²) = sign(f_d) √(f_d² + 4)` with
+        // `f_d² ∝ β²` — one square root and one division per call, equal to rounding.
+        let fd_squared = self.diederich_factor_squared * beta_squared(mach);
+        self.lift_numerator / (2.0 + self.diederich_sign * (fd_squared + 4.0).sqrt())
     }
 
     /// Fin-set normal-force slope CNα_N(M) = f_N K_T CNα₁(M).
@@ -296,11 +304,13 @@ fn finish(
     let k_f = roll_forcing_interference(tau);
     let nf = f64::from(n);
     let cla0 = airfoil_slope(name, airfoil, &mut warnings);
+    let aspect_ratio = 2.0 * p.span * p.span / p.fin_area;
+    let diederich_factor = 2.0 * PI * aspect_ratio / (cla0 * p.mid_chord_sweep.cos());
     let aero = FinAerodynamics {
         n,
         body_radius,
         fin_area: p.fin_area,
-        aspect_ratio: 2.0 * p.span * p.span / p.fin_area,
+        aspect_ratio,
         mid_chord_sweep: p.mid_chord_sweep,
         mean_aerodynamic_span: p.mean_aerodynamic_span,
         tau,
@@ -311,8 +321,9 @@ fn finish(
         roll_damping_interference: p.roll_damping_interference,
         roll_integral: p.roll_integral,
         cant_angle: cant,
-        cos_gamma: p.mid_chord_sweep.cos(),
-        area_ratio: p.fin_area / reference_area,
+        lift_numerator: 2.0 * PI * aspect_ratio * p.fin_area / reference_area,
+        diederich_factor_squared: diederich_factor * diederich_factor,
+        diederich_sign: diederich_factor.signum(),
         forcing_factor: k_f * nf * (p.mean_aerodynamic_span + body_radius) / d,
         damping_factor: 2.0 * p.roll_damping_interference * nf * cant.cos() * p.roll_integral
             / (reference_area * d * d),
@@ -653,6 +664,40 @@ mod tests {
 
     fn close(a: f64, b: f64, rel: f64) -> bool {
         (a - b).abs() <= rel * b.abs()
+    }
+
+    #[test]
+    fn single_fin_slope_is_diederich_s_form_as_rocketpy_writes_it() {
+        // physics.md §7.5 (RocketPy's form): cl_α2D = cl_α0/β, F_D = 2π AR/(cl_α2D cos Γ_c),
+        // CNα₁ = cl_α2D·F_D·(A_f/A)·cos Γ_c / (2 + F_D √(1 + (2/F_D)²)); the evaluated form
+        // (one root, one division) must agree to rounding at every Mach regime of β.
+        let a = calisto().aero;
+        let area_ratio = a.fin_area / (PI * a.body_radius * a.body_radius);
+        let cos_gamma = a.mid_chord_sweep.cos();
+        for mach in [0.0f64, 0.3, 0.79, 0.8, 0.95, 1.1, 1.5, 3.0] {
+            let beta: f64 = if mach < 0.8 {
+                (1.0 - mach * mach).sqrt()
+            } else if mach < 1.1 {
+                (1.0f64 - 0.8 * 0.8).sqrt()
+            } else {
+                (mach * mach - 1.0).sqrt()
+            };
+            let cla = a.airfoil_lift_slope / beta;
+            let fd = 2.0 * PI * a.aspect_ratio / (cla * cos_gamma);
+            let rocketpy =
+                cla * fd * area_ratio * cos_gamma / (2.0 + fd * (1.0 + (2.0 / fd).powi(2)).sqrt());
+            // Rounding: a few operations of relative error 2⁻⁵³ each.
+            assert!(
+                close(a.single_fin_cn_alpha(mach), rocketpy, 1e-14),
+                "Mach {mach}"
+            );
+            let [cn, forcing, damping] = a.coefficients(mach);
+            assert!(cn.to_bits() == a.cn_alpha(mach).to_bits());
+            assert!(
+                forcing.to_bits() == (a.roll_forcing_derivative(mach) * a.cant_angle).to_bits()
+            );
+            assert!(damping.to_bits() == a.roll_damping_derivative(mach).to_bits());
+        }
     }
 
     #[test]

@@ -1,0 +1,135 @@
+//! The equations of motion and the integrator step loop must not allocate (style.md: nothing
+//! the right-hand side calls per step allocates). Every validation mission is flown once with
+//! the real models (karman-atmos' `Environment`, karman-airframe's `Rocket` through the
+//! karman-dynamics adapters); then, under `allocation_counter::measure` (which counts the
+//! current thread's allocations), the right-hand side of the phase of every stored point is
+//! re-evaluated at that point, and the Dormand–Prince integrator is stepped through the
+//! 6-DOF phase and the parachute descent (everything but the storing of solution points,
+//! which `simulate` does into a `Vec`).
+
+use karman_mission::Override;
+use karman_mission::build::environment::build_environment;
+use karman_mission::build::flight::flight_settings;
+use karman_mission::build::motor::build_motor;
+use karman_mission::build::rocket::build_rocket;
+use karman_mission::dynamics::equations::{CanopyState, Equations};
+use karman_mission::dynamics::integrator::{DormandPrince, StepStatus, Tolerances};
+use karman_mission::dynamics::{PhaseKind, SolutionPoint, simulate};
+
+use crate::common::{flight_name, validation_missions};
+
+/// Integration tolerances of the mission's flight settings, with generous step limits.
+fn tolerances(rtol: f64, atol: [f64; 13]) -> Tolerances<13> {
+    Tolerances {
+        rtol,
+        atol,
+        max_step: f64::INFINITY,
+        min_step: 1e-12,
+        max_steps: 100_000,
+    }
+}
+
+#[test]
+fn equations_and_steps_do_not_allocate() {
+    let Some(missions) = validation_missions() else {
+        println!("allocation: skipped, the validation folder is absent");
+        return;
+    };
+    // The counter is live: a Vec allocates.
+    let probe = allocation_counter::measure(|| drop(std::hint::black_box(vec![1.0f64; 4])));
+    assert!(
+        probe.count_total > 0,
+        "the allocation counter counts nothing"
+    );
+    for path in missions {
+        let name = flight_name(&path);
+        let nominal = karman_mission::load(&path, &[]).expect("mission loads");
+        let quiet: Vec<Override> = nominal
+            .spec
+            .rocket
+            .parachutes
+            .keys()
+            .map(|p| Override::new(&format!("rocket.parachutes.{p}.noise"), "[0, 0, 0]"))
+            .collect::<Result<_, _>>()
+            .expect("noise override parses");
+        let mission = karman_mission::load(&path, &quiet).expect("mission loads");
+        let env = build_environment(&mission).expect("environment");
+        let motor = build_motor(&mission).expect("motor");
+        let rocket = build_rocket(&mission, &motor).expect("rocket");
+        let settings = flight_settings(&mission, 0);
+        let flight = simulate(&env, &rocket, &settings).expect("mission flies");
+        let points: &[SolutionPoint] = &flight.points;
+        let eq = Equations::new(&env, &rocket);
+        let tol = tolerances(settings.rtol, settings.atol);
+        let first = |kind: fn(&PhaseKind) -> bool| points.iter().find(|p| kind(&p.phase));
+        let six_dof_start = first(|k| matches!(k, PhaseKind::SixDof));
+        let parachute_start = first(|k| matches!(k, PhaseKind::Parachute(_)));
+
+        let mut phases = [0usize; 3];
+        let mut sum = 0.0;
+        let mut steps = 0usize;
+        let info = allocation_counter::measure(|| {
+            for p in points {
+                let d = match p.phase {
+                    PhaseKind::Rail => {
+                        phases[0] += 1;
+                        let (force, _, _) = eq.rail_loads(p.t, &p.state);
+                        sum += force[2];
+                        eq.rail(p.t, &p.state)
+                    }
+                    PhaseKind::SixDof => {
+                        phases[1] += 1;
+                        eq.six_dof(p.t, &p.state)
+                    }
+                    PhaseKind::Parachute(canopy) => {
+                        phases[2] += 1;
+                        eq.parachute(p.t, &p.state, &canopy)
+                    }
+                };
+                sum += d.u_dot.iter().sum::<f64>();
+            }
+            // The integrator loop of the 6-DOF phase, to apogee or 60 s at most.
+            if let Some(p) = six_dof_start {
+                let mut f = |t: f64, u: &[f64; 13]| eq.six_dof(t, u).u_dot;
+                let bound = p.t + 60.0;
+                let mut dp =
+                    DormandPrince::new(&mut f, p.t, p.state, bound, tol).expect("6-DOF starts");
+                while dp.y()[5] > 0.0 {
+                    match dp.step(&mut f).expect("6-DOF steps") {
+                        StepStatus::Running => steps += 1,
+                        StepStatus::Finished => break,
+                    }
+                    sum += dp.dense(0.5 * (dp.t_old() + dp.t()))[2];
+                }
+            }
+            // The parachute descent for 30 s.
+            if let Some(p) = parachute_start {
+                let PhaseKind::Parachute(canopy) = p.phase else {
+                    return;
+                };
+                let canopy: CanopyState = canopy;
+                let mut f = |t: f64, u: &[f64; 13]| eq.parachute(t, u, &canopy).u_dot;
+                let mut dp = DormandPrince::new(&mut f, p.t, p.state, p.t + 30.0, tol)
+                    .expect("descent starts");
+                while let StepStatus::Running = dp.step(&mut f).expect("descent steps") {
+                    steps += 1;
+                }
+            }
+        });
+        assert!(sum.is_finite(), "{name}: non-finite derivatives");
+        assert!(
+            phases[1] > 0 && steps > 0,
+            "{name}: no 6-DOF point or no integrator step exercised ({phases:?}, {steps} steps)"
+        );
+        println!(
+            "{name}: {} rail, {} 6-DOF, {} parachute evaluations and {steps} integrator steps: \
+             {} allocations",
+            phases[0], phases[1], phases[2], info.count_total
+        );
+        assert_eq!(
+            info.count_total, 0,
+            "{name}: the equations of motion or the integrator allocated {} times",
+            info.count_total
+        );
+    }
+}
