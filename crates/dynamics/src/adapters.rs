@@ -1,13 +1,38 @@
 //! [`AtmosphereModel`] and [`VehicleModel`] for the karman model crates: the only place where
-//! the engine touches `karman_atmos::Environment` and `karman_airframe::Rocket`.
+//! the engine touches `karman_atmos::Environment` and `karman_airframe::Rocket`; and
+//! [`motor_properties`], the motor as the airframe sees it (karman-airframe does not depend
+//! on karman-propulsion, so the hand-over lives here, the first crate that sees both).
 
-use karman_airframe::{Rocket, Surface, Trigger};
+use karman_airframe::{MotorProperties, Rocket, Surface, Trigger};
 use karman_atmos::Environment;
+use karman_propulsion::Motor;
 
 use crate::model::{
     Air, AtmosphereModel, MassSample, ParachuteSpec, RailButtonGeometry, SurfaceModel, TriggerKind,
     VehicleModel,
 };
+
+/// The motor's tables and constants as the airframe needs them (`karman_airframe::MotorProperties`).
+pub fn motor_properties(motor: &Motor) -> MotorProperties {
+    let (i11, i33) = motor.propellant_inertia();
+    MotorProperties {
+        thrust: motor.thrust_table().clone(),
+        burn_start: motor.burn_start(),
+        burn_out: motor.burn_out(),
+        exhaust_velocity: motor.exhaust_velocity(),
+        propellant_mass: motor.propellant_mass().clone(),
+        propellant_center_of_mass: motor.propellant_center_of_mass().clone(),
+        propellant_i11: i11.clone(),
+        propellant_i33: i33.clone(),
+        dry_mass: motor.dry_mass(),
+        center_of_dry_mass: motor.center_of_dry_mass(),
+        dry_inertia: motor.dry_inertia(),
+        nozzle_position: motor.nozzle_position(),
+        nozzle_radius: motor.nozzle_radius(),
+        coordinate_system_sign: motor.coordinate_system_sign(),
+        reference_pressure: motor.reference_pressure(),
+    }
+}
 
 impl AtmosphereModel for Environment {
     #[inline]

@@ -112,24 +112,7 @@ fn motor(u: &Units, c: &PhysicalConstants) -> MotorProperties {
         c,
     )
     .expect("valid motor");
-    let (i11, i33) = motor.propellant_inertia();
-    MotorProperties {
-        thrust: motor.thrust_table().clone(),
-        burn_start: motor.burn_start(),
-        burn_out: motor.burn_out(),
-        exhaust_velocity: motor.exhaust_velocity(),
-        propellant_mass: motor.propellant_mass().clone(),
-        propellant_center_of_mass: motor.propellant_center_of_mass().clone(),
-        propellant_i11: i11.clone(),
-        propellant_i33: i33.clone(),
-        dry_mass: motor.dry_mass(),
-        center_of_dry_mass: motor.center_of_dry_mass(),
-        dry_inertia: motor.dry_inertia(),
-        nozzle_position: motor.nozzle_position(),
-        nozzle_radius: motor.nozzle_radius(),
-        coordinate_system_sign: motor.coordinate_system_sign(),
-        reference_pressure: motor.reference_pressure(),
-    }
+    karman_dynamics::adapters::motor_properties(&motor)
 }
 
 fn rocket(u: &Units, c: &PhysicalConstants) -> Rocket {
