@@ -312,44 +312,51 @@ impl<'a, A: AtmosphereModel, V: VehicleModel> Equations<'a, A, V> {
         let w = [u[10], u[11], u[12]];
         let k = rotation(e);
 
-        // ṁ = −T/v̄_e vanishes outside the burn (zero-extrapolated thrust); gating it with the
-        // thrust makes the burn-out instant itself, where integration steps stop, the
-        // unpowered limit instead of a mix (thrust off but the last segment's m̈ on).
-        let (mdot, mddot) = if self.powered(t) {
-            (veh.mass_flow_rate(t), veh.mass_flow_rate_derivative(t))
-        } else {
-            (0.0, 0.0)
-        };
         // After burn-out c ≡ 0 and nothing changes; a finite-difference c̈ of a spline table
         // (RocketPy's, §5.4) straddling the burn-out kink would otherwise spike within 1e-6 s
-        // of it, exactly where steps stop.
-        let ms = match &self.coast {
-            Some(k) if t >= self.burn_out => MassState {
-                mass: k.mass,
-                c: k.com_to_cdm,
-                c_dot: 0.0,
-                c_ddot: 0.0,
-                inertia: k.inertia,
-                inertia_dot: [[0.0; 3]; 3],
-                inverse_cm_inertia: k.inverse_cm_inertia,
-            },
+        // of it, exactly where steps stop. ṁ = −T/v̄_e vanishes outside the burn
+        // (zero-extrapolated thrust); gating it with the thrust makes the burn-out instant
+        // itself, where integration steps stop, the unpowered limit instead of a mix (thrust
+        // off but the last segment's m̈ on). Powered implies t < t_b1, so the coast branch
+        // never needs it.
+        let (ms, mdot, mddot) = match &self.coast {
+            Some(k) if t >= self.burn_out => (
+                MassState {
+                    mass: k.mass,
+                    c: k.com_to_cdm,
+                    c_dot: 0.0,
+                    c_ddot: 0.0,
+                    inertia: k.inertia,
+                    inertia_dot: [[0.0; 3]; 3],
+                    inverse_cm_inertia: k.inverse_cm_inertia,
+                },
+                0.0,
+                0.0,
+            ),
             _ => {
-                let (mass, c) = (veh.total_mass(t), veh.com_to_cdm(t));
-                let inertia = tensor(veh.inertia(t));
+                let p = veh.mass_sample(t);
+                let (mass, c) = (p.total_mass, p.com_to_cdm);
+                let inertia = tensor(p.inertia);
                 let c_ddot = if t < self.burn_out {
-                    veh.com_to_cdm_accel(t)
+                    p.com_to_cdm_accel
                 } else {
                     0.0
                 };
-                MassState {
+                let (mdot, mddot) = if self.powered(t) {
+                    (p.mass_flow_rate, p.mass_flow_rate_derivative)
+                } else {
+                    (0.0, 0.0)
+                };
+                let state = MassState {
                     mass,
                     c,
-                    c_dot: veh.com_to_cdm_rate(t),
+                    c_dot: p.com_to_cdm_rate,
                     c_ddot,
                     inertia,
-                    inertia_dot: tensor(veh.inertia_rate(t)),
+                    inertia_dot: tensor(p.inertia_rate),
                     inverse_cm_inertia: inverse_cm_inertia(&inertia, mass, c),
-                }
+                };
+                (state, mdot, mddot)
             }
         };
         let MassState {
