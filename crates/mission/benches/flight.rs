@@ -6,7 +6,6 @@
 use std::path::PathBuf;
 
 use criterion::{Criterion, criterion_group, criterion_main};
-use karman_mission::Override;
 use karman_mission::build::environment::build_environment;
 use karman_mission::build::flight::flight_settings;
 use karman_mission::build::motor::build_motor;
@@ -27,17 +26,7 @@ fn flight(c: &mut Criterion) {
         return;
     };
     let nominal = karman_mission::load(&path, &[]).expect("calisto loads");
-    let quiet: Vec<Override> = nominal
-        .spec
-        .rocket
-        .parachutes
-        .keys()
-        .map(|name| {
-            format!("rocket.parachutes.{name}.noise=[0,0,0]")
-                .parse()
-                .expect("override")
-        })
-        .collect();
+    let quiet = nominal.parachute_noise_off().expect("noise overrides");
     let mission = karman_mission::load(&path, &quiet).expect("calisto loads");
     let environment = build_environment(&mission).expect("environment");
     let motor = build_motor(&mission).expect("motor");

@@ -63,6 +63,20 @@ impl Mission {
     pub fn resolve(&self, relative: &Path) -> PathBuf {
         self.dir.join(relative)
     }
+
+    /// Overrides that set every parachute's trigger noise to `[0, 0, 0]`: the noise-free
+    /// flights the RocketPy references were computed with.
+    ///
+    /// # Errors
+    /// [`OverrideError`] for a parachute name that does not make a dotted path.
+    pub fn parachute_noise_off(&self) -> Result<Vec<Override>, OverrideError> {
+        self.spec
+            .rocket
+            .parachutes
+            .keys()
+            .map(|name| Override::new(&format!("rocket.parachutes.{name}.noise"), "[0, 0, 0]"))
+            .collect()
+    }
 }
 
 /// Reads, overrides, deserializes and validates the mission file at `path`.

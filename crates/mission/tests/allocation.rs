@@ -7,7 +7,6 @@
 //! 6-DOF phase and the parachute descent (everything but the storing of solution points,
 //! which `simulate` does into a `Vec`).
 
-use karman_mission::Override;
 use karman_mission::build::environment::build_environment;
 use karman_mission::build::flight::flight_settings;
 use karman_mission::build::motor::build_motor;
@@ -44,14 +43,7 @@ fn equations_and_steps_do_not_allocate() {
     for path in missions {
         let name = flight_name(&path);
         let nominal = karman_mission::load(&path, &[]).expect("mission loads");
-        let quiet: Vec<Override> = nominal
-            .spec
-            .rocket
-            .parachutes
-            .keys()
-            .map(|p| Override::new(&format!("rocket.parachutes.{p}.noise"), "[0, 0, 0]"))
-            .collect::<Result<_, _>>()
-            .expect("noise override parses");
+        let quiet = nominal.parachute_noise_off().expect("noise overrides");
         let mission = karman_mission::load(&path, &quiet).expect("mission loads");
         let env = build_environment(&mission).expect("environment");
         let motor = build_motor(&mission).expect("motor");

@@ -33,14 +33,7 @@ fn validate_flight() {
     for path in missions {
         let name = flight_name(&path);
         let nominal = karman_mission::load(&path, &[]).expect("mission loads");
-        let quiet: Vec<Override> = nominal
-            .spec
-            .rocket
-            .parachutes
-            .keys()
-            .map(|p| Override::new(&format!("rocket.parachutes.{p}.noise"), "[0, 0, 0]"))
-            .collect::<Result<_, _>>()
-            .expect("noise override parses");
+        let quiet = nominal.parachute_noise_off().expect("noise overrides");
         let mission = karman_mission::load(&path, &quiet).expect("mission loads with overrides");
         let run = simulate(&mission).expect("mission flies");
         let summary = flight_summary(&run);
