@@ -85,6 +85,12 @@ fn ci(root: &Path) -> Result<()> {
         ],
     )?;
     tidy::check_layering(root)?;
+    // The API documentation builds without broken links.
+    cargo_with(
+        root,
+        &["doc", "--workspace", "--no-deps"],
+        &[("RUSTDOCFLAGS", "-D warnings")],
+    )?;
     // Property tests explore random cases when developers run `cargo test`; CI replays a
     // fixed seed (unless one is given) so that a landing never depends on the draw.
     let seed = std::env::var("PROPTEST_RNG_SEED").unwrap_or_else(|_| "20261123".to_owned());

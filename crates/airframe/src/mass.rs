@@ -148,31 +148,46 @@ impl MassModel {
         };
         let m = &model.motor;
         if same_grid(&m.propellant_center_of_mass, &m.propellant_mass) {
+            // On the common grid the tables' own ordinates are the values at the nodes: the
+            // node-wise tables follow from them without a lookup.
             let cpm = &m.propellant_center_of_mass;
-            let xs = cpm.xs().to_vec();
-            let nodal = |f: &dyn Fn(f64) -> f64, quantity: &'static str| {
-                let ys = xs.iter().map(|&t| f(t)).collect();
-                Table1::new(xs.clone(), ys, cpm.interpolation(), cpm.extrapolation()).map_err(
-                    |source| AirframeError::Table {
-                        component: "rocket".to_owned(),
-                        quantity,
-                        source,
-                    },
+            let masses = m.propellant_mass.ys();
+            let positions: Vec<f64> = cpm.ys().iter().map(|&z| model.motor_to_user(z)).collect();
+            let nodal = |ys: Vec<f64>, like: &Table1, quantity: &'static str| {
+                Table1::new(
+                    like.xs().to_vec(),
+                    ys,
+                    like.interpolation(),
+                    like.extrapolation(),
                 )
+                .map_err(|source| AirframeError::Table {
+                    component: "rocket".to_owned(),
+                    quantity,
+                    source,
+                })
             };
-            let offset = nodal(&|t| model.offset_pointwise(t), "com_to_cdm")?;
-            let center = nodal(&|t| model.center_of_mass_pointwise(t), "center_of_mass")?;
+            let each = |f: &dyn Fn(f64, f64) -> f64| -> Vec<f64> {
+                masses
+                    .iter()
+                    .zip(&positions)
+                    .map(|(&mp, &zp)| f(mp, zp))
+                    .collect()
+            };
+            let offset = nodal(each(&|mp, zp| model.offset_of(mp, zp)), cpm, "com_to_cdm")?;
+            let center = nodal(
+                each(&|mp, zp| model.center_of_mass_of(mp, zp)),
+                cpm,
+                "center_of_mass",
+            )?;
             let i11 = if same_grid(&m.propellant_i11, &m.propellant_mass) {
                 let i = &m.propellant_i11;
-                let ys = i.xs().iter().map(|&t| model.i11_pointwise(t)).collect();
-                Some(
-                    Table1::new(i.xs().to_vec(), ys, i.interpolation(), i.extrapolation())
-                        .map_err(|source| AirframeError::Table {
-                            component: "rocket".to_owned(),
-                            quantity: "inertia I11",
-                            source,
-                        })?,
-                )
+                let ys = masses
+                    .iter()
+                    .zip(&positions)
+                    .zip(i.ys())
+                    .map(|((&mp, &zp), &ip)| model.i11_of(mp, zp, ip))
+                    .collect();
+                Some(nodal(ys, i, "inertia I11")?)
             } else {
                 None
             };
@@ -219,20 +234,39 @@ impl MassModel {
         -self.motor.thrust.derivative(t) * self.inverse_exhaust_velocity
     }
 
+    /// c for propellant mass `mp` at `zp` (user coordinates).
+    fn offset_of(&self, mp: f64, zp: f64) -> f64 {
+        -self.csys * (zp - self.cdm) * mp / (self.dry_mass + mp)
+    }
+
+    /// z_CM for propellant mass `mp` at `zp`.
+    fn center_of_mass_of(&self, mp: f64, zp: f64) -> f64 {
+        (self.dry_moment + mp * zp) / (self.dry_mass + mp)
+    }
+
+    /// I11 about the CDM for propellant mass `mp` at `zp` with its own I11 `ip`.
+    fn i11_of(&self, mp: f64, zp: f64, ip: f64) -> f64 {
+        let d = self.cdm - zp;
+        self.dry_inertia[0] + ip + mp * d * d
+    }
+
     fn offset_pointwise(&self, t: f64) -> f64 {
         let mp = self.motor.propellant_mass.eval(t);
-        -self.csys * (self.propellant_position(t) - self.cdm) * mp / (self.dry_mass + mp)
+        self.offset_of(mp, self.propellant_position(t))
     }
 
     fn center_of_mass_pointwise(&self, t: f64) -> f64 {
         let mp = self.motor.propellant_mass.eval(t);
-        (self.dry_moment + mp * self.propellant_position(t)) / (self.dry_mass + mp)
+        self.center_of_mass_of(mp, self.propellant_position(t))
     }
 
     fn i11_pointwise(&self, t: f64) -> f64 {
         let mp = self.motor.propellant_mass.eval(t);
-        let d = self.cdm - self.propellant_position(t);
-        self.dry_inertia[0] + self.motor.propellant_i11.eval(t) + mp * d * d
+        self.i11_of(
+            mp,
+            self.propellant_position(t),
+            self.motor.propellant_i11.eval(t),
+        )
     }
 
     /// c(t), RocketPy's `com_to_cdm_function` (physics.md §5.4, RocketPy sign).

@@ -1,4 +1,4 @@
-//! Monte Carlo of a mission (mission-format.md "[dispersion]"): the `[dispersion.vary]`
+//! Monte Carlo of a mission (mission-format.md, section `[dispersion]`): the `[dispersion.vary]`
 //! table turned into a [`karman_dispersion::Study`], each sample's values applied to the
 //! mission by dotted path, and the mission flown.
 //!
@@ -16,9 +16,11 @@
 //!   [`WindAdjusted`].
 //!
 //! Each sample is built and flown exactly as [`crate::build::flight::simulate_with_seed`]
-//! does (a sample drawing the nominal values gives bit-identical results), except that the
-//! environment is built once from the nominal mission unless a stored `environment.*`
-//! input varies. Parachute trigger noise of sample `i` is seeded from the sample's reserved
+//! does (a sample drawing the nominal values gives bit-identical results), except that what
+//! no varied input reaches is built once from the nominal mission and shared: the
+//! environment unless a stored `environment.*` input varies, the motor unless a `motor.*`
+//! input or knob varies, the rocket unless the motor or a `rocket.*` input varies; thrust and
+//! rocket curve files are read once. Parachute trigger noise of sample `i` is seeded from the sample's reserved
 //! stream ([`karman_dispersion::sampling::flight_seed`]), so it replays with the sample.
 //! The KML export converts (x, y) to latitude/longitude with the datum's local Earth radius,
 //! as the flight's own track does (RocketPy's ellipse export uses 6.3781e6 m: up to 0.1 %
@@ -26,11 +28,12 @@
 
 use crate::build::environment::build_environment;
 use crate::build::flight::flight_settings;
-use crate::build::motor::build_motor;
+use crate::build::motor::{build_motor_with, thrust_source};
 use crate::build::rocket::build_rocket;
 use crate::paths::{self, DerivedKnob, Input};
 use crate::schema::{Curve, Distribution, MissionSpec};
 use crate::{Mission, MissionError};
+use karman_airframe::Rocket;
 use karman_atmos::Environment;
 use karman_dispersion::sampling::{flight_seed, fnv1a64};
 use karman_dispersion::{
@@ -38,6 +41,7 @@ use karman_dispersion::{
     Variation, VariedInput,
 };
 use karman_dynamics::{Air, AtmosphereModel, Summary};
+use karman_propulsion::{Motor, ThrustSource};
 
 /// The outputs of every sample: the scalar keys of the flight summary (mission-format.md
 /// "The summary").
@@ -96,14 +100,45 @@ enum Apply {
     Knob { knob: DerivedKnob, nominal: f64 },
 }
 
+/// Which models the varied inputs reach (the others are built once and shared).
+#[derive(Debug, Clone, Copy, Default)]
+struct Reach {
+    /// A stored `environment.*` input: the environment is rebuilt per sample.
+    environment: bool,
+    /// `motor.thrust` itself: the thrust data are taken from the sample's mission.
+    thrust: bool,
+    /// A `motor.*` input or knob: the motor is rebuilt per sample.
+    motor: bool,
+    /// A `rocket.*` input, or the motor: the rocket is rebuilt per sample.
+    rocket: bool,
+}
+
+impl Reach {
+    fn add(&mut self, path: &str) {
+        let section = path.split('.').next().unwrap_or_default();
+        let knob = DerivedKnob::from_path(path);
+        self.environment |= section == "environment" && knob.is_none();
+        self.thrust |= path == "motor.thrust";
+        self.motor |= section == "motor";
+        self.rocket |= section == "motor" || section == "rocket";
+    }
+}
+
 /// A mission's Monte Carlo study, ready to fly samples.
 #[derive(Debug, Clone)]
 pub struct MonteCarlo {
+    /// The mission, its rocket's curve files read into inline points.
     mission: Mission,
     study: Study,
     applies: Vec<Apply>,
+    reach: Reach,
     /// The nominal environment, shared by the samples when no stored environment input varies.
     environment: Option<Environment>,
+    /// The nominal thrust data, read once.
+    thrust: ThrustSource,
+    /// The nominal motor and rocket, shared by the samples that do not vary them.
+    motor: Motor,
+    rocket: Rocket,
     /// The nominal motor's burn end time and total impulse (the `motor.burn_time` and
     /// `motor.total_impulse` knobs reshape the thrust curve from them).
     nominal_reshape: [f64; 2],
@@ -185,11 +220,13 @@ impl MonteCarlo {
                 invalid("the mission has no [dispersion] table; give --samples".into())
             })?;
         let seed = overrides.seed.or(table.map(|d| d.seed)).unwrap_or(0);
-        let motor = build_motor(mission)?;
+        let thrust = thrust_source(mission)?;
+        let motor = build_motor_with(mission, &thrust)?;
+        let rocket = build_rocket(mission, &motor)?;
         let environment = build_environment(mission)?;
         let mut inputs = Vec::new();
         let mut applies = Vec::new();
-        let mut varies_environment = false;
+        let mut reach = Reach::default();
         for (path, distribution) in table.map(|d| d.vary.iter()).into_iter().flatten() {
             let input = paths::resolve(spec, path).map_err(|e| invalid(e.to_string()))?;
             let variation = variation(distribution).ok_or_else(|| {
@@ -197,9 +234,9 @@ impl MonteCarlo {
                     "`{path}`: `factor` and `offset` take a plain distribution"
                 ))
             })?;
+            reach.add(path);
             let (target, apply) = match input {
                 Input::Number { value, integer } => {
-                    varies_environment |= path.starts_with("environment.");
                     let target = if integer {
                         Target::Integer(value as i64)
                     } else {
@@ -255,12 +292,18 @@ impl MonteCarlo {
         let fingerprint = fnv1a64(format!("{spec:?}").as_bytes());
         study.context = format!("{name} (mission {fingerprint:016x})");
         study.validate().map_err(|e| dispersion_error(mission, e))?;
+        let mut base = mission.clone();
+        inline_rocket_curves(&mut base)?;
         Ok(MonteCarlo {
-            mission: mission.clone(),
+            mission: base,
             study,
             applies,
-            environment: (!varies_environment).then_some(environment),
+            reach,
+            environment: (!reach.environment).then_some(environment),
+            thrust,
             nominal_reshape: [motor.burn_out(), motor.total_impulse()],
+            motor,
+            rocket,
         })
     }
 
@@ -325,15 +368,61 @@ impl MonteCarlo {
                 &built
             }
         };
-        let motor = build_motor(&mission).map_err(|e| chain(&e))?;
-        let rocket = build_rocket(&mission, &motor).map_err(|e| chain(&e))?;
+        let (sample_motor, sample_rocket);
+        let rocket = if self.reach.rocket {
+            let motor = if self.reach.motor {
+                let read;
+                let thrust = if self.reach.thrust {
+                    read = thrust_source(&mission).map_err(|e| chain(&e))?;
+                    &read
+                } else {
+                    &self.thrust
+                };
+                sample_motor = build_motor_with(&mission, thrust).map_err(|e| chain(&e))?;
+                &sample_motor
+            } else {
+                &self.motor
+            };
+            sample_rocket = build_rocket(&mission, motor).map_err(|e| chain(&e))?;
+            &sample_rocket
+        } else {
+            &self.rocket
+        };
         let noise_seed = flight_seed(self.study.seed, index);
         let settings = flight_settings(&mission, noise_seed);
         let atmosphere = WindAdjusted::new(environment, factor, offset_deg);
         let flight =
-            karman_dynamics::simulate(&atmosphere, &rocket, &settings).map_err(|e| chain(&e))?;
-        Ok(outcome(&flight.summary(&atmosphere, &rocket)))
+            karman_dynamics::simulate(&atmosphere, rocket, &settings).map_err(|e| chain(&e))?;
+        Ok(outcome(&flight.summary(&atmosphere, rocket)))
     }
+}
+
+/// Reads the rocket's curve files (drag, airfoil lift) into inline points, so that samples
+/// rebuilding the rocket do not read them again (the same points, so the same tables).
+fn inline_rocket_curves(mission: &mut Mission) -> Result<(), MissionError> {
+    let dir = mission.dir.clone();
+    let path = mission.path.clone();
+    let rocket = &mut mission.spec.rocket;
+    let mut curves: Vec<(String, &mut Curve)> = vec![
+        ("rocket.power_off_drag".into(), &mut rocket.power_off_drag),
+        ("rocket.power_on_drag".into(), &mut rocket.power_on_drag),
+    ];
+    for (name, surface) in &mut rocket.surfaces {
+        if let Some(airfoil) = surface.airfoil_mut() {
+            curves.push((format!("rocket.surfaces.{name}.airfoil"), &mut airfoil.lift));
+        }
+    }
+    for (key, curve) in curves {
+        if matches!(curve, Curve::File(_)) {
+            let points = curve.points(&dir).map_err(|source| MissionError::Curve {
+                file: path.clone(),
+                key,
+                source,
+            })?;
+            *curve = Curve::Points(points);
+        }
+    }
+    Ok(())
 }
 
 /// The curve-valued key at `path`.

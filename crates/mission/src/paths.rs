@@ -7,7 +7,9 @@
 //! `inclination_deg`); keys the file omits but the schema defaults (e.g. a parachute's `lag`)
 //! are inputs too. Besides stored keys, four derived knobs exist ([`DerivedKnob`]).
 
-use crate::schema::{Curve, Distribution, MissionSpec};
+use crate::schema::{
+    Atol, Curve, Distribution, MissionSpec, RocketSpec, SurfaceSpec, Sweep, Trigger,
+};
 use thiserror::Error;
 
 /// A dispersion knob that is not a stored key but scales or shifts a model
@@ -91,12 +93,6 @@ pub enum PathError {
         path: String,
         /// The value.
         value: f64,
-    },
-    /// The mission with the new values does not deserialize (the schema's message).
-    #[error("the changed mission is rejected: {message}")]
-    Rejected {
-        /// Why.
-        message: String,
     },
 }
 
@@ -221,42 +217,224 @@ pub fn numeric_inputs(spec: &MissionSpec) -> Vec<(String, f64)> {
     out
 }
 
-/// Sets the number at `path` (an integer key needs an integral value); the changed mission
-/// must still deserialize.
-pub fn set_number(spec: &mut MissionSpec, path: &str, value: f64) -> Result<(), PathError> {
-    set_numbers(spec, &[(path, value)])
+/// A numeric slot of the typed mission, by the dotted path of its key.
+enum Slot<'a> {
+    Float(&'a mut f64),
+    Integer(&'a mut u32),
 }
 
-/// Sets several numbers at once (one serialization round trip for all of them, e.g. one
-/// Monte Carlo sample); on error `spec` is unchanged.
-pub fn set_numbers(spec: &mut MissionSpec, values: &[(&str, f64)]) -> Result<(), PathError> {
-    let mut table = as_table(spec);
-    for &(path, value) in values {
-        let slot = walk(&mut table, path)?;
-        *slot = match slot {
-            toml::Value::Float(_) => toml::Value::Float(value),
-            toml::Value::Integer(_) => {
-                if value.fract().abs() > 0.0 || !value.is_finite() {
-                    return Err(PathError::NotInteger {
-                        path: path.to_owned(),
-                        value,
-                    });
-                }
-                toml::Value::Integer(value as i64)
-            }
-            other => {
-                return Err(PathError::NotNumeric {
+/// The stored number at `path` in the typed mission: the same keys the file form has (an
+/// optional key only when present, a curve or a trigger only when it is a number), reached
+/// without a round trip through TOML, so a Monte Carlo sample sets its inputs in nanoseconds.
+/// The integration test `typed_slots_match_the_file_form` checks it against the TOML form of
+/// every fixture and validation mission.
+fn slot<'a>(spec: &'a mut MissionSpec, path: &str) -> Option<Slot<'a>> {
+    use Slot::{Float, Integer};
+    let (section, rest) = path.split_once('.')?;
+    match section {
+        "environment" => {
+            let env = &mut spec.environment;
+            Some(match rest {
+                "latitude" => Float(&mut env.latitude_deg),
+                "longitude" => Float(&mut env.longitude_deg),
+                "elevation" => Float(&mut env.elevation),
+                "gravity" => Float(env.gravity.as_mut()?),
+                "max_expected_height" => Float(env.max_expected_height.as_mut()?),
+                "atmosphere.member" => Integer(env.atmosphere.member.as_mut()?),
+                "atmosphere.pressure" => constant(env.atmosphere.pressure.as_mut()?)?,
+                "atmosphere.temperature" => constant(env.atmosphere.temperature.as_mut()?)?,
+                "atmosphere.wind_u" => constant(env.atmosphere.wind_u.as_mut()?)?,
+                "atmosphere.wind_v" => constant(env.atmosphere.wind_v.as_mut()?)?,
+                _ => return None,
+            })
+        }
+        "motor" => {
+            let m = &mut spec.motor;
+            Some(match rest {
+                "thrust" => constant(&mut m.thrust)?,
+                "dry_mass" => Float(&mut m.dry_mass),
+                "nozzle_position" => Float(&mut m.nozzle_position),
+                "nozzle_radius" => Float(&mut m.nozzle_radius),
+                "grain_number" => Integer(m.grain_number.as_mut()?),
+                other => Float(
+                    match other {
+                        "center_of_dry_mass_position" => &mut m.center_of_dry_mass_position,
+                        "throat_radius" => &mut m.throat_radius,
+                        "reference_pressure" => &mut m.reference_pressure,
+                        "grain_separation" => &mut m.grain_separation,
+                        "grain_density" => &mut m.grain_density,
+                        "grain_outer_radius" => &mut m.grain_outer_radius,
+                        "grain_initial_inner_radius" => &mut m.grain_initial_inner_radius,
+                        "grain_initial_height" => &mut m.grain_initial_height,
+                        "grains_center_of_mass_position" => &mut m.grains_center_of_mass_position,
+                        "propellant_initial_mass" => &mut m.propellant_initial_mass,
+                        "chamber_radius" => &mut m.chamber_radius,
+                        "chamber_height" => &mut m.chamber_height,
+                        "chamber_position" => &mut m.chamber_position,
+                        _ => return None,
+                    }
+                    .as_mut()?,
+                ),
+            })
+        }
+        "rocket" => rocket_slot(&mut spec.rocket, rest),
+        "flight" => {
+            let f = &mut spec.flight;
+            Some(Float(match rest {
+                "rail_length" => &mut f.rail_length,
+                "inclination" => &mut f.inclination_deg,
+                "heading" => &mut f.heading_deg,
+                "max_time" => &mut f.max_time,
+                "rtol" => &mut f.rtol,
+                "max_time_step" => &mut f.max_time_step,
+                "atol" => match f.atol.as_mut()? {
+                    Atol::Scalar(value) => value,
+                    Atol::PerState(_) => return None,
+                },
+                _ => return None,
+            }))
+        }
+        _ => None,
+    }
+}
+
+/// A curve's slot when it is a constant.
+fn constant(curve: &mut Curve) -> Option<Slot<'_>> {
+    match curve {
+        Curve::Constant(value) => Some(Slot::Float(value)),
+        Curve::Points(_) | Curve::File(_) => None,
+    }
+}
+
+fn rocket_slot<'a>(rocket: &'a mut RocketSpec, path: &str) -> Option<Slot<'a>> {
+    use Slot::Float;
+    if let Some(rest) = path.strip_prefix("rail_buttons.") {
+        let b = rocket.rail_buttons.as_mut()?;
+        return Some(Float(match rest {
+            "upper_position" => &mut b.upper_position,
+            "lower_position" => &mut b.lower_position,
+            "angular_position" => &mut b.angular_position_deg,
+            _ => return None,
+        }));
+    }
+    if let Some(rest) = path.strip_prefix("surfaces.") {
+        let (name, key) = rest.rsplit_once('.')?;
+        return surface_slot(rocket.surfaces.get_mut(name)?, key);
+    }
+    if let Some(rest) = path.strip_prefix("parachutes.") {
+        let (name, key) = rest.rsplit_once('.')?;
+        let p = rocket.parachutes.get_mut(name)?;
+        return Some(Float(match key {
+            "cd_s" => &mut p.cd_s,
+            "sampling_rate" => &mut p.sampling_rate,
+            "lag" => &mut p.lag,
+            "trigger" => match &mut p.trigger {
+                Trigger::HeightAboveGround(height) => height,
+                Trigger::Apogee => return None,
+            },
+            "radius" => p.radius.as_mut()?,
+            "height" => p.height.as_mut()?,
+            "porosity" => p.porosity.as_mut()?,
+            _ => return None,
+        }));
+    }
+    Some(match path {
+        "radius" => Float(&mut rocket.radius),
+        "mass" => Float(&mut rocket.mass),
+        "center_of_mass_without_motor" => Float(&mut rocket.center_of_mass_without_motor),
+        "motor_position" => Float(&mut rocket.motor_position),
+        "power_off_drag" => constant(&mut rocket.power_off_drag)?,
+        "power_on_drag" => constant(&mut rocket.power_on_drag)?,
+        _ => return None,
+    })
+}
+
+fn surface_slot<'a>(surface: &'a mut SurfaceSpec, key: &str) -> Option<Slot<'a>> {
+    use Slot::{Float, Integer};
+    Some(match surface {
+        SurfaceSpec::Nose(s) => Float(match key {
+            "length" => &mut s.length,
+            "position" => &mut s.position,
+            "bluffness" => s.bluffness.as_mut()?,
+            "power" => s.power.as_mut()?,
+            "base_radius" => s.base_radius.as_mut()?,
+            _ => return None,
+        }),
+        SurfaceSpec::TrapezoidalFins(s) => match key {
+            "n" => Integer(&mut s.n),
+            "span" => Float(&mut s.span),
+            "root_chord" => Float(&mut s.root_chord),
+            "tip_chord" => Float(&mut s.tip_chord),
+            "position" => Float(&mut s.position),
+            "cant_angle" => Float(&mut s.cant_angle_deg),
+            "radius" => Float(s.radius.as_mut()?),
+            "sweep_angle" => match s.sweep.as_mut()? {
+                Sweep::AngleDeg(angle) => Float(angle),
+                Sweep::Length(_) => return None,
+            },
+            "sweep_length" => match s.sweep.as_mut()? {
+                Sweep::Length(length) => Float(length),
+                Sweep::AngleDeg(_) => return None,
+            },
+            _ => return None,
+        },
+        SurfaceSpec::EllipticalFins(s) => match key {
+            "n" => Integer(&mut s.n),
+            "span" => Float(&mut s.span),
+            "root_chord" => Float(&mut s.root_chord),
+            "position" => Float(&mut s.position),
+            "cant_angle" => Float(&mut s.cant_angle_deg),
+            "radius" => Float(s.radius.as_mut()?),
+            _ => return None,
+        },
+        SurfaceSpec::FreeFormFins(s) => match key {
+            "n" => Integer(&mut s.n),
+            "position" => Float(&mut s.position),
+            "cant_angle" => Float(&mut s.cant_angle_deg),
+            "radius" => Float(s.radius.as_mut()?),
+            _ => return None,
+        },
+        SurfaceSpec::Tail(s) => Float(match key {
+            "top_radius" => &mut s.top_radius,
+            "bottom_radius" => &mut s.bottom_radius,
+            "length" => &mut s.length,
+            "position" => &mut s.position,
+            _ => return None,
+        }),
+    })
+}
+
+/// Sets the number at `path` (an integer key needs an integral value that fits).
+///
+/// # Errors
+/// [`PathError::Unknown`] / [`PathError::NotNumeric`] (from [`resolve`]) when `path` names no
+/// stored number, [`PathError::NotInteger`] for a non-integral value of an integer key.
+pub fn set_number(spec: &mut MissionSpec, path: &str, value: f64) -> Result<(), PathError> {
+    match slot(spec, path) {
+        Some(Slot::Float(x)) => *x = value,
+        Some(Slot::Integer(n)) => {
+            let integral = value.is_finite() && value.fract().abs() <= 0.0;
+            if !integral || value < 0.0 || value > f64::from(u32::MAX) {
+                return Err(PathError::NotInteger {
                     path: path.to_owned(),
-                    found: type_name(other),
+                    value,
                 });
             }
-        };
+            *n = value as u32;
+        }
+        None => {
+            // Not a stored number: say what the path names instead.
+            let found = match resolve(spec, path)? {
+                Input::Curve(_) => "a curve",
+                Input::Knob(_) => "a derived knob",
+                Input::Number { .. } => "a number without a typed slot",
+            };
+            return Err(PathError::NotNumeric {
+                path: path.to_owned(),
+                found,
+            });
+        }
     }
-    *spec = toml::Value::Table(table)
-        .try_into()
-        .map_err(|e: toml::de::Error| PathError::Rejected {
-            message: e.message().trim_end().to_owned(),
-        })?;
     Ok(())
 }
 

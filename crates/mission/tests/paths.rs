@@ -198,3 +198,146 @@ fn validate_set_number_round_trips_every_mission() {
         assert_ne!(spec, original);
     }
 }
+
+/// Sets `path` the slow, obviously right way: through the TOML form of the mission.
+fn set_through_toml(
+    spec: &karman_mission::schema::MissionSpec,
+    path: &str,
+    value: f64,
+) -> karman_mission::schema::MissionSpec {
+    let mut table = toml::Table::try_from(spec).expect("serializable");
+    let (tables, last) = path.rsplit_once('.').expect("dotted");
+    let mut here = &mut table;
+    for segment in tables.split('.') {
+        here = here
+            .get_mut(segment)
+            .and_then(toml::Value::as_table_mut)
+            .unwrap_or_else(|| panic!("{path}: no table {segment}"));
+    }
+    let slot = here.get_mut(last).expect("key");
+    *slot = match slot {
+        toml::Value::Integer(_) => toml::Value::Integer(value as i64),
+        _ => toml::Value::Float(value),
+    };
+    toml::Value::Table(table).try_into().expect("deserializes")
+}
+
+/// Every optional numeric key of the format present at least once, with surfaces of every
+/// type: the minimal fixture plus these keys.
+const EVERY_KEY: &str = r#"
+[environment]
+gravity = 9.79
+max_expected_height = 5000
+[environment.atmosphere]
+model = "custom"
+pressure = 101325
+temperature = 288
+wind_u = 2
+wind_v = -1
+[motor]
+reference_pressure = 90000
+propellant_initial_mass = 1.0
+[rocket.rail_buttons]
+upper_position = 0.1
+lower_position = -0.5
+[rocket.surfaces.nose]
+bluffness = 0.1
+base_radius = 0.04
+[rocket.surfaces.fins]
+sweep_length = 0.02
+cant_angle = 0.5
+radius = 0.04
+[rocket.surfaces.ellipse]
+type = "elliptical_fins"
+n = 4
+span = 0.05
+root_chord = 0.08
+position = -0.4
+[rocket.surfaces.freeform]
+type = "free_form_fins"
+n = 3
+shape_points = [[0, 0], [0.08, 0.05], [0.1, 0]]
+position = -0.3
+[rocket.surfaces.tail]
+type = "tail"
+top_radius = 0.04
+bottom_radius = 0.03
+length = 0.05
+position = -0.75
+[rocket.parachutes.main]
+radius = 1.0
+height = 1.0
+porosity = 0.04
+[flight]
+atol = 0.001
+max_time_step = 0.5
+"#;
+
+/// The minimal fixture with the keys of [`EVERY_KEY`] merged in.
+fn every_key_mission() -> karman_mission::schema::MissionSpec {
+    fn merge(base: &mut toml::Table, extra: toml::Table) {
+        for (key, value) in extra {
+            match (base.get_mut(&key), value) {
+                (Some(toml::Value::Table(b)), toml::Value::Table(e)) => merge(b, e),
+                (_, value) => {
+                    base.insert(key, value);
+                }
+            }
+        }
+    }
+    let minimal = load(&fixture("minimal.toml"), &[])
+        .unwrap_or_else(|e| panic!("{e}"))
+        .spec;
+    let mut table = toml::Table::try_from(&minimal).expect("serializable");
+    merge(&mut table, EVERY_KEY.parse().expect("valid TOML"));
+    toml::Value::Table(table).try_into().expect("deserializes")
+}
+
+#[test]
+fn typed_slots_match_the_file_form() {
+    let mut specs = vec![every_key_mission()];
+    specs.extend(
+        validation_missions()
+            .unwrap_or_default()
+            .iter()
+            .map(|p| load(p, &[]).unwrap_or_else(|e| panic!("{e}")).spec),
+    );
+    let mut seen = std::collections::BTreeSet::new();
+    for spec in &specs {
+        for (path, value) in paths::numeric_inputs(spec) {
+            let new = value + 1.0;
+            let mut typed = spec.clone();
+            paths::set_number(&mut typed, &path, new).unwrap_or_else(|e| panic!("{path}: {e}"));
+            assert_eq!(typed, set_through_toml(spec, &path, new), "{path}");
+            // Keys under a name (surfaces, parachutes) counted once per key.
+            let parts: Vec<&str> = path.split('.').collect();
+            let key = match parts.as_slice() {
+                ["rocket", "surfaces" | "parachutes", _, key] => format!("{}.{key}", parts[1]),
+                _ => path.clone(),
+            };
+            seen.insert(key);
+        }
+    }
+    // The every-key mission reaches every slot kind: a sample of them must have been seen.
+    for key in [
+        "environment.gravity",
+        "environment.atmosphere.wind_v",
+        "motor.reference_pressure",
+        "rocket.rail_buttons.angular_position",
+        "surfaces.sweep_length",
+        "surfaces.top_radius",
+        "surfaces.n",
+        "parachutes.porosity",
+        "parachutes.trigger",
+        "flight.atol",
+        "flight.max_time_step",
+    ] {
+        assert!(seen.contains(key), "{key} not exercised: {seen:?}");
+    }
+    // Not numbers: a curve of points, an apogee trigger, a string.
+    let mut spec = specs[0].clone();
+    assert!(paths::set_number(&mut spec, "motor.thrust", 1.0).is_err());
+    assert!(paths::set_number(&mut spec, "rocket.surfaces.nose.kind", 1.0).is_err());
+    assert!(paths::set_number(&mut spec, "rocket.nothing", 1.0).is_err());
+    assert_eq!(spec, specs[0]);
+}

@@ -20,7 +20,7 @@ pub enum Command {
     Inspect(inspect::InspectArgs),
     /// Fly a mission: summary (table or JSON); --out writes trajectory.csv, KML and plots.
     Simulate(simulate::SimulateArgs),
-    /// Monte Carlo dispersion: fly the mission with the inputs of its [dispersion] table
+    /// Monte Carlo dispersion: fly the mission with the inputs of its `[dispersion]` table
     /// drawn at random; statistics, apogee and landing ellipses (resumable, shardable).
     Montecarlo(montecarlo::MonteCarloArgs),
     /// Join the output directories of the shards of one Monte Carlo study.

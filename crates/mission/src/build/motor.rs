@@ -33,15 +33,26 @@ const DEFAULT_THROAT_RADIUS: f64 = 0.01;
 /// [`PropulsionError`]: an unreadable or malformed thrust file (naming file, line and value),
 /// a burn interval outside the data, a parameter the motor model rejects.
 pub fn build_motor(mission: &Mission) -> Result<Motor, MissionError> {
+    build_motor_with(mission, &thrust_source(mission)?)
+}
+
+fn model_err(mission: &Mission, section: &'static str) -> impl Fn(PropulsionError) -> MissionError {
+    move |e: PropulsionError| MissionError::Model {
+        file: mission.path.clone(),
+        section: section.to_owned(),
+        source: Box::new(e),
+    }
+}
+
+/// Builds the motor of `mission` from an already read thrust `source` (the Monte Carlo reads
+/// a thrust file once for all its samples); [`build_motor`] reads it with
+/// [`thrust_source`].
+///
+/// # Errors
+/// As [`build_motor`], except for reading the thrust data.
+pub fn build_motor_with(mission: &Mission, source: &ThrustSource) -> Result<Motor, MissionError> {
     let spec = &mission.spec.motor;
-    let model_err = |section: &'static str| {
-        move |e: PropulsionError| MissionError::Model {
-            file: mission.path.clone(),
-            section: section.to_owned(),
-            source: Box::new(e),
-        }
-    };
-    let source = thrust_source(mission, spec).map_err(model_err("motor.thrust"))?;
+    let model_err = |section: &'static str| model_err(mission, section);
     let options = ThrustOptions {
         burn_time: spec.burn_time.map(|b| BurnTime::Interval(b.start, b.end)),
         reshape: spec
@@ -49,7 +60,7 @@ pub fn build_motor(mission: &Mission) -> Result<Motor, MissionError> {
             .map(|[time, impulse]| (BurnTime::End(time), impulse)),
         interpolation: spec.interpolation.into(),
     };
-    let thrust = ThrustCurve::new(&source, &options).map_err(model_err("motor"))?;
+    let thrust = ThrustCurve::new(source, &options).map_err(model_err("motor"))?;
     let chamber_position = spec.chamber_position.unwrap_or(0.0);
     let structure = MotorStructure {
         dry_mass: spec.dry_mass,
@@ -112,8 +123,16 @@ fn unsupported(mission: &Mission) -> MissionError {
     }
 }
 
-/// The thrust source named by `motor.thrust`.
-fn thrust_source(mission: &Mission, spec: &MotorSpec) -> Result<ThrustSource, PropulsionError> {
+/// The thrust source named by `motor.thrust`: a constant, inline points or a file read now.
+///
+/// # Errors
+/// [`MissionError::Model`] (section `motor.thrust`) for unreadable or malformed thrust data,
+/// naming the file, line and value.
+pub fn thrust_source(mission: &Mission) -> Result<ThrustSource, MissionError> {
+    read_thrust(mission, &mission.spec.motor).map_err(model_err(mission, "motor.thrust"))
+}
+
+fn read_thrust(mission: &Mission, spec: &MotorSpec) -> Result<ThrustSource, PropulsionError> {
     Ok(match &spec.thrust {
         Curve::Constant(value) => ThrustSource::Constant(*value),
         Curve::Points(points) => ThrustSource::Data(Box::new(ThrustData::from_points(

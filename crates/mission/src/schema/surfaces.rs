@@ -47,6 +47,16 @@ impl SurfaceSpec {
             SurfaceSpec::Nose(_) | SurfaceSpec::Tail(_) => None,
         }
     }
+
+    /// The airfoil of a fin set, if it has one, mutable.
+    pub fn airfoil_mut(&mut self) -> Option<&mut AirfoilSpec> {
+        match self {
+            SurfaceSpec::TrapezoidalFins(f) => f.airfoil.as_mut(),
+            SurfaceSpec::EllipticalFins(f) => f.airfoil.as_mut(),
+            SurfaceSpec::FreeFormFins(f) => f.airfoil.as_mut(),
+            SurfaceSpec::Nose(_) | SurfaceSpec::Tail(_) => None,
+        }
+    }
 }
 
 /// A nose cone.
