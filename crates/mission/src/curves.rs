@@ -4,7 +4,7 @@
 //! (mission-format.md "Conventions").
 
 use crate::error::{CurveError, ProblemKind};
-use crate::schema::{Curve, InterpolationKind};
+use crate::schema::{Curve, ExtrapolationKind, InterpolationKind};
 use karman_math::{Extrapolation, Interpolation, PointOrder, Table1};
 use std::path::Path;
 
@@ -18,6 +18,17 @@ impl From<InterpolationKind> for Interpolation {
             InterpolationKind::Spline => Interpolation::Spline,
             InterpolationKind::Akima => Interpolation::RocketPyAkima,
             InterpolationKind::Polynomial => Interpolation::Polynomial,
+        }
+    }
+}
+
+/// The table extrapolation of a mission `extrapolation` key.
+impl From<ExtrapolationKind> for Extrapolation {
+    fn from(kind: ExtrapolationKind) -> Self {
+        match kind {
+            ExtrapolationKind::Constant => Extrapolation::Constant,
+            ExtrapolationKind::Natural => Extrapolation::Natural,
+            ExtrapolationKind::Zero => Extrapolation::Zero,
         }
     }
 }
@@ -57,15 +68,21 @@ impl Curve {
     }
 }
 
-/// Validation of a curve: its file exists and parses, and its points make a linear table.
-pub(crate) fn check(curve: &Curve, mission_dir: &Path) -> Result<(), ProblemKind> {
+/// Validation of a curve: its file exists and parses, and its points make a table of the
+/// given kind.
+pub(crate) fn check(
+    curve: &Curve,
+    mission_dir: &Path,
+    interpolation: Interpolation,
+    extrapolation: Extrapolation,
+) -> Result<(), ProblemKind> {
     if let Some(path) = curve.file_path(mission_dir) {
         if let Err(source) = std::fs::metadata(&path) {
             return Err(ProblemKind::File { path, source });
         }
     }
     curve
-        .to_linear_table(mission_dir)
+        .to_table(mission_dir, interpolation, extrapolation)
         .map(drop)
         .map_err(|source| ProblemKind::Curve { source })
 }

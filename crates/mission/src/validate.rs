@@ -7,6 +7,7 @@ use crate::document::Document;
 use crate::error::{Problem, ProblemKind};
 use crate::paths;
 use crate::schema::{AtmosphereModel, Curve, MissionSpec, MotorKind, SurfaceSpec, Sweep, Trigger};
+use karman_math::{Extrapolation, Interpolation};
 use std::path::Path;
 
 /// Keys where `inf` is a valid value.
@@ -96,8 +97,19 @@ impl Checker<'_, '_> {
     }
 
     /// A curve: its file must exist and parse; inline points must make a table.
+    /// A curve read with the format's default table (linear, end values held).
     fn curve(&mut self, key: &str, curve: &Curve) {
-        match crate::curves::check(curve, self.dir) {
+        self.curve_as(key, curve, Interpolation::Linear, Extrapolation::Constant);
+    }
+
+    fn curve_as(
+        &mut self,
+        key: &str,
+        curve: &Curve,
+        interpolation: Interpolation,
+        extrapolation: Extrapolation,
+    ) {
+        match crate::curves::check(curve, self.dir, interpolation, extrapolation) {
             Ok(()) => {}
             Err(kind) => self.report(key, kind),
         }
@@ -374,8 +386,19 @@ fn rocket(c: &mut Checker<'_, '_>, spec: &MissionSpec) {
     let r = &spec.rocket;
     c.positive("rocket.radius", r.radius);
     c.positive("rocket.mass", r.mass);
-    c.curve("rocket.power_off_drag", &r.power_off_drag);
-    c.curve("rocket.power_on_drag", &r.power_on_drag);
+    let (interpolation, extrapolation) = (r.interpolation.into(), r.extrapolation.into());
+    c.curve_as(
+        "rocket.power_off_drag",
+        &r.power_off_drag,
+        interpolation,
+        extrapolation,
+    );
+    c.curve_as(
+        "rocket.power_on_drag",
+        &r.power_on_drag,
+        interpolation,
+        extrapolation,
+    );
     for (name, surface) in &r.surfaces {
         let key = |k: &str| format!("rocket.surfaces.{name}.{k}");
         match surface {

@@ -28,6 +28,19 @@ pub fn build_rocket(mission: &Mission, motor: &Motor) -> Result<Rocket, MissionE
                 source,
             })
     };
+    // The drag curves with the rocket's `interpolation` / `extrapolation`.
+    let drag = |key: &str, c: &schema::Curve| {
+        c.to_table(
+            &mission.dir,
+            spec.interpolation.into(),
+            spec.extrapolation.into(),
+        )
+        .map_err(|source| MissionError::Curve {
+            file: mission.path.clone(),
+            key: key.to_owned(),
+            source,
+        })
+    };
     let model = |section: String, source: AirframeError| MissionError::Model {
         file: mission.path.clone(),
         section,
@@ -87,8 +100,8 @@ pub fn build_rocket(mission: &Mission, motor: &Motor) -> Result<Rocket, MissionE
             RocketCoordinateSystem::TailToNose => CoordinateSystem::TailToNose,
             RocketCoordinateSystem::NoseToTail => CoordinateSystem::NoseToTail,
         },
-        power_off_drag: curve("rocket.power_off_drag".to_owned(), &spec.power_off_drag)?,
-        power_on_drag: curve("rocket.power_on_drag".to_owned(), &spec.power_on_drag)?,
+        power_off_drag: drag("rocket.power_off_drag", &spec.power_off_drag)?,
+        power_on_drag: drag("rocket.power_on_drag", &spec.power_on_drag)?,
         motor_position: spec.motor_position,
         surfaces,
         parachutes,

@@ -20,8 +20,8 @@ use serde::{Deserialize, Serialize};
 use std::path::PathBuf;
 
 pub use names::{
-    AngleUnit, AtmosphereModel, Datum, InterpolationKind, MotorCoordinateSystem, MotorKind,
-    NoseKind, RocketCoordinateSystem, SoundingFormat, SurfaceType,
+    AngleUnit, AtmosphereModel, Datum, ExtrapolationKind, InterpolationKind, MotorCoordinateSystem,
+    MotorKind, NoseKind, RocketCoordinateSystem, SoundingFormat, SurfaceType,
 };
 pub use surfaces::{
     AirfoilSpec, EllipticalFinsSpec, FreeFormFinsSpec, NoseSpec, SurfaceSpec, Sweep, TailSpec,
@@ -218,6 +218,10 @@ pub struct MotorSpec {
     pub chamber_position: Option<f64>,
 }
 
+fn default_hold() -> ExtrapolationKind {
+    ExtrapolationKind::Constant
+}
+
 fn default_tail_to_nose() -> RocketCoordinateSystem {
     RocketCoordinateSystem::TailToNose
 }
@@ -241,6 +245,12 @@ pub struct RocketSpec {
     pub power_off_drag: Curve,
     /// Drag coefficient of Mach, motor burning.
     pub power_on_drag: Curve,
+    /// How both drag curves interpolate between their points.
+    #[serde(default = "default_linear")]
+    pub interpolation: InterpolationKind,
+    /// What both drag curves give outside their Mach range.
+    #[serde(default = "default_hold")]
+    pub extrapolation: ExtrapolationKind,
     /// Position of the motor's coordinate origin, rocket coordinates, m.
     pub motor_position: f64,
     /// `[rocket.rail_buttons]`, optional.

@@ -181,7 +181,7 @@ names! {
 }
 
 names! {
-    /// `motor.interpolation`: how the thrust curve is interpolated.
+    /// `motor.interpolation` (the thrust curve) and `rocket.interpolation` (both drag curves).
     pub enum InterpolationKind ("interpolation") {
         /// Piecewise linear (RocketPy default).
         Linear => ["linear"],
@@ -191,6 +191,18 @@ names! {
         Akima => ["akima"],
         /// One polynomial through every point.
         Polynomial => ["polynomial"],
+    }
+}
+
+names! {
+    /// `rocket.extrapolation`: what the drag curves give outside their Mach range.
+    pub enum ExtrapolationKind ("extrapolation") {
+        /// Hold the end values (RocketPy's `"constant"`, the default).
+        Constant => ["constant"],
+        /// Continue the end piece (RocketPy's `"natural"`).
+        Natural => ["natural"],
+        /// Zero outside the range (RocketPy's `"zero"`).
+        Zero => ["zero"],
     }
 }
 
