@@ -234,9 +234,10 @@ impl Flight {
             let v = [u[3], u[4], u[5]];
             let wind = atmosphere.wind(z);
             let free = norm([wind[0] - v[0], wind[1] - v[1], -v[2]]);
+            let air = atmosphere.air(z);
             max_speed = max_speed.max(norm(v));
-            max_mach = max_mach.max(free / atmosphere.speed_of_sound(z));
-            max_q = max_q.max(0.5 * atmosphere.density(z) * free * free);
+            max_mach = max_mach.max(free / air.speed_of_sound);
+            max_q = max_q.max(0.5 * air.density * free * free);
             let d = evaluate(&eq, &p.phase, p.t, u);
             max_acc = max_acc.max(norm([d.u_dot[3], d.u_dot[4], d.u_dot[5]]));
         }

@@ -135,12 +135,14 @@ impl BatesGrains {
             return state(r_end);
         }
         // Newton's method on the decreasing cubic g(r) = V(r) − V, safeguarded by the bracket
-        // [lo, hi] it keeps (a step leaving it bisects instead); it stops when a step no longer
-        // moves r by more than a few units in the last place, i.e. at the root to rounding.
+        // [lo, hi] it keeps (a step leaving it bisects instead). Convergence is quadratic, so
+        // once a Newton step is below a few units in the last place, the point it lands on is
+        // the root to rounding.
         let excess = |r: f64| self.grain_volume(state(r)) - volume;
         // g′(r) = π[−2r·h(r) − 2(R_o² − r²)] with h(r) = h_0 − 2(r − r_0).
-        let slope =
-            |r: f64| -2.0 * std::f64::consts::PI * (r * (h0 - 2.0 * (r - r0)) + (ro * ro - r * r));
+        let slope = |r: f64| {
+            -2.0 * std::f64::consts::PI * (r * (h0 - 2.0 * (r - r0)) + (ro * ro - r * r))
+        };
         let (mut lo, mut hi) = (r0, r_end);
         let full = self.grain_volume(initial);
         let mut r = match guess {
@@ -156,16 +158,18 @@ impl BatesGrains {
             } else {
                 break;
             }
-            let newton = r - g / slope(r);
-            let next = if newton > lo && newton < hi {
-                newton
+            let step = g / slope(r);
+            let newton = r - step;
+            if newton > lo && newton < hi {
+                r = newton;
+                if step.abs() <= 4.0 * f64::EPSILON * r {
+                    break;
+                }
             } else {
-                0.5 * (lo + hi)
-            };
-            let settled = (next - r).abs() <= 4.0 * f64::EPSILON * r.abs();
-            r = next;
-            if settled || hi - lo <= 4.0 * f64::EPSILON * r.abs() {
-                break;
+                r = 0.5 * (lo + hi);
+                if hi - lo <= 4.0 * f64::EPSILON * r {
+                    break;
+                }
             }
         }
         state(r)
