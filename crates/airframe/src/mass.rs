@@ -17,7 +17,7 @@
 //! pointwise formula; the step is [`karman_math::PhysicalConstants::time_difference_step`],
 //! so that it follows the unit of time.
 
-use karman_math::Table1;
+use karman_math::{Cursor, Table1};
 
 use crate::error::AirframeError;
 use crate::motor::MotorProperties;
@@ -358,17 +358,19 @@ impl MassModel {
 
     /// Every time-dependent quantity at `t`, equal to the individual methods: the thrust
     /// table is searched once for ṁ and m̈, and on a solid motor's single grid the time is
-    /// searched once for the mass, the offset and the inertia with their derivatives.
+    /// searched once for the mass, the offset and the inertia with their derivatives. The
+    /// searches start from `cursors` (thrust times, propellant times; updated).
     #[inline]
-    pub(crate) fn properties(&self, t: f64) -> MassProperties {
+    pub(crate) fn properties_near(&self, t: f64, cursors: &mut [Cursor; 2]) -> MassProperties {
         let m = &self.motor;
-        let on_thrust = m.thrust.locate(t);
+        let [on_thrust_cursor, on_grid_cursor] = cursors;
+        let on_thrust = m.thrust.locate_with(t, on_thrust_cursor);
         let mass_flow_rate = -m.thrust.eval_at(on_thrust, t) * self.inverse_exhaust_velocity;
         let mass_flow_rate_derivative =
             -m.thrust.derivative_at(on_thrust, t) * self.inverse_exhaust_velocity;
         match (&self.nodal_offset, &self.nodal_i11) {
             (Some(offset), Some(i11)) if self.one_grid => {
-                let at = m.propellant_mass.locate(t);
+                let at = m.propellant_mass.locate_with(t, on_grid_cursor);
                 let i = i11.eval_at(at, t);
                 let i_rate = i11.derivative_at(at, t);
                 let d = &self.dry_inertia;

@@ -3,7 +3,7 @@
 
 use std::f64::consts::PI;
 
-use karman_math::{Extrapolation, Interpolation, PhysicalConstants, Table1};
+use karman_math::{Cursor, Extrapolation, Interpolation, PhysicalConstants, Table1};
 
 use crate::error::{AirframeError, finite, non_negative, positive};
 use crate::mass::{MassModel, MassProperties};
@@ -403,7 +403,16 @@ impl Rocket {
     #[inline]
     #[must_use]
     pub fn mass_properties(&self, t: f64) -> MassProperties {
-        self.mass.properties(t)
+        self.mass.properties_near(t, &mut [Cursor::default(); 2])
+    }
+
+    /// [`Rocket::mass_properties`] with the time located from `cursors` (on the thrust
+    /// curve's and on the propellant tables' times; updated): the same values, found faster
+    /// when successive times are close, as along an integration.
+    #[inline]
+    #[must_use]
+    pub fn mass_properties_near(&self, t: f64, cursors: &mut [Cursor; 2]) -> MassProperties {
+        self.mass.properties_near(t, cursors)
     }
 
     /// Dry inertia about the CDM (rocket + unloaded motor), same layout (kg·m²).
@@ -463,8 +472,16 @@ impl Rocket {
     #[inline]
     #[must_use]
     pub fn net_thrust(&self, t: f64, ambient_pressure: f64) -> f64 {
+        self.net_thrust_near(t, ambient_pressure, &mut Cursor::default())
+    }
+
+    /// [`Rocket::net_thrust`] with the time located on the thrust curve from `cursor`
+    /// (updated; the first cursor of [`Rocket::mass_properties_near`] serves): the same value.
+    #[inline]
+    #[must_use]
+    pub fn net_thrust_near(&self, t: f64, ambient_pressure: f64, cursor: &mut Cursor) -> f64 {
         let m = self.mass.motor();
-        let mut thrust = m.thrust.eval(t);
+        let mut thrust = m.thrust.eval_with(t, cursor);
         if let Some(p_ref) = m.reference_pressure {
             thrust += (p_ref - ambient_pressure) * PI * m.nozzle_radius * m.nozzle_radius;
         }
@@ -489,10 +506,18 @@ impl Rocket {
     #[inline]
     #[must_use]
     pub fn drag_coefficient(&self, power_on: bool, mach: f64) -> f64 {
+        self.drag_coefficient_near(power_on, mach, &mut Cursor::default())
+    }
+
+    /// [`Rocket::drag_coefficient`] with the Mach number located from `cursor` (updated):
+    /// the same value, found faster when successive Mach numbers are close.
+    #[inline]
+    #[must_use]
+    pub fn drag_coefficient_near(&self, power_on: bool, mach: f64, cursor: &mut Cursor) -> f64 {
         if power_on {
-            self.power_on_drag.eval(mach)
+            self.power_on_drag.eval_with(mach, cursor)
         } else {
-            self.power_off_drag.eval(mach)
+            self.power_off_drag.eval_with(mach, cursor)
         }
     }
 

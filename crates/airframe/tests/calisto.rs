@@ -216,7 +216,7 @@ fn validate_calisto_mirrored_coordinates_give_the_same_physics() {
 fn mass_properties_equal_the_individual_methods() {
     use crate::common::{calisto_inputs, small_motor, validation_dir};
     use karman_airframe::Rocket;
-    use karman_math::{Extrapolation, Interpolation, Table1};
+    use karman_math::{Cursor, Extrapolation, Interpolation, Table1};
     let Some(solid) = calisto(false) else { return };
     let Some(dir) = validation_dir() else { return };
     // Propellant I33 on its own grid: the quantities are then looked up one by one.
@@ -246,6 +246,23 @@ fn mass_properties_equal_the_individual_methods() {
                 p.inertia_rate.iter().zip(i_rate).all(|(a, b)| same(*a, b)),
                 "İ({t})"
             );
+        }
+        // Cursors carried forward and back through the times (and Mach numbers) change
+        // nothing.
+        let times = [-1.0, 0.0, 0.01, 0.3, 0.5, 1.0, 2.0, 3.0, 3.9, 3.95, 10.0];
+        let (mut on_times, mut on_mach) = ([Cursor::default(); 2], Cursor::default());
+        for &t in times.iter().chain(times.iter().rev()) {
+            assert_eq!(
+                r.mass_properties_near(t, &mut on_times),
+                r.mass_properties(t)
+            );
+            let thrust = r.net_thrust_near(t, 80_000.0, &mut on_times[0]);
+            assert!(same(thrust, r.net_thrust(t, 80_000.0)), "T({t})");
+            let mach = t / 4.0;
+            for power_on in [true, false] {
+                let cd = r.drag_coefficient_near(power_on, mach, &mut on_mach);
+                assert!(same(cd, r.drag_coefficient(power_on, mach)), "Cd({mach})");
+            }
         }
     }
 }

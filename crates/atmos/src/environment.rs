@@ -16,7 +16,7 @@ use crate::curve::{Curve, sorted_unique};
 use crate::earth::{Datum, earth_rotation_enu, somigliana_gravity};
 use crate::isa::IsaTables;
 use crate::profile::Profiles;
-use karman_math::{Extrapolation, Interpolation, PhysicalConstants, Table1};
+use karman_math::{Cursor, Extrapolation, Interpolation, PhysicalConstants, Table1};
 
 /// The atmosphere model of an environment.
 #[derive(Debug, Clone, PartialEq, Default)]
@@ -398,8 +398,18 @@ impl Environment {
     #[inline]
     #[must_use]
     pub fn sample(&self, z: f64) -> AtmosphereSample {
-        let on_pressure = self.pressure.locate(z);
-        let on_temperature = self.temperature.locate(z);
+        self.sample_near(z, &mut [Cursor::default(); 3])
+    }
+
+    /// [`Environment::sample`] with the height located from `cursors` (on the pressure,
+    /// temperature and gravity heights, in that order; updated): the same values, found faster
+    /// when successive heights are close, as along an integration.
+    #[inline]
+    #[must_use]
+    pub fn sample_near(&self, z: f64, cursors: &mut [Cursor; 3]) -> AtmosphereSample {
+        let [on_p, on_t, on_g] = cursors;
+        let on_pressure = self.pressure.locate_with(z, on_p);
+        let on_temperature = self.temperature.locate_with(z, on_t);
         let pressure = self.pressure.eval_at(on_pressure, z);
         let temperature = self.temperature.eval_at(on_temperature, z);
         let density = match &self.density {
@@ -413,7 +423,7 @@ impl Environment {
         let gravity = if self.gravity_on_pressure_grid {
             self.gravity.eval_at(on_pressure, z)
         } else {
-            self.gravity.eval(z)
+            self.gravity.eval_with(z, on_g)
         };
         let dynamic_viscosity = match &self.viscosity {
             Derived::Table(t) => t.eval_at(on_temperature, z),
@@ -587,21 +597,28 @@ mod tests {
             temperature: Some(Curve::Points(vec![[0.0, 290.0], [1000.0, 280.0]])),
             ..Profiles::wind_only("inline", Curve::Constant(1.0), Curve::Constant(2.0))
         };
-        let custom = Environment::new(
-            &EnvironmentConfig {
-                atmosphere: Atmosphere::Profiles(profiles),
-                gravity: Gravity::Constant(9.8),
-                ..Default::default()
-            },
-            &PhysicalConstants::SI,
-        )
-        .expect("environment");
-        assert!(!custom.gravity_on_pressure_grid);
-        for e in [isa, custom] {
-            for z in [
-                -500.0, 0.0, 500.0, 1000.0, 1400.0, 9000.0, 11_019.004, 90_000.0,
-            ] {
+        let custom = |gravity| {
+            Environment::new(
+                &EnvironmentConfig {
+                    atmosphere: Atmosphere::Profiles(profiles.clone()),
+                    gravity,
+                    ..Default::default()
+                },
+                &PhysicalConstants::SI,
+            )
+            .expect("environment")
+        };
+        let (constant, somigliana) = (custom(Gravity::Constant(9.8)), custom(Gravity::Somigliana));
+        assert!(!constant.gravity_on_pressure_grid && !somigliana.gravity_on_pressure_grid);
+        let heights = [
+            -500.0, 0.0, 500.0, 1000.0, 1400.0, 9000.0, 11_019.004, 90_000.0,
+        ];
+        for e in [isa, constant, somigliana] {
+            // Cursors carried up and down the heights change nothing.
+            let mut cursors = [Cursor::default(); 3];
+            for &z in heights.iter().chain(heights.iter().rev()) {
                 let s = e.sample(z);
+                assert_eq!(e.sample_near(z, &mut cursors), s);
                 // Bit for bit: the equations of motion use `sample`, post-processing the rest.
                 let same = |a: f64, b: f64| a.to_bits() == b.to_bits();
                 assert!(same(s.pressure, e.pressure(z)) && same(s.density, e.density(z)));

@@ -8,8 +8,8 @@ use karman_atmos::Environment;
 use karman_propulsion::Motor;
 
 use crate::model::{
-    Air, AtmosphereModel, MassSample, ParachuteSpec, RailButtonGeometry, SurfaceModel, TriggerKind,
-    VehicleModel,
+    Air, AtmosphereModel, Cursor, MassSample, ParachuteSpec, RailButtonGeometry, SurfaceModel,
+    TriggerKind, VehicleModel,
 };
 
 /// The motor's tables and constants as the airframe needs them (`karman_airframe::MotorProperties`).
@@ -61,7 +61,11 @@ impl AtmosphereModel for Environment {
     }
     #[inline]
     fn air(&self, z: f64) -> Air {
-        let s = Environment::sample(self, z);
+        self.air_near(z, &mut [Cursor::default(); 3])
+    }
+    #[inline]
+    fn air_near(&self, z: f64, cursors: &mut [Cursor; 3]) -> Air {
+        let s = Environment::sample_near(self, z, cursors);
         Air {
             pressure: s.pressure,
             density: s.density,
@@ -173,7 +177,11 @@ impl VehicleModel for Rocket {
     }
     #[inline]
     fn mass_sample(&self, t: f64) -> MassSample {
-        let p = Rocket::mass_properties(self, t);
+        self.mass_sample_near(t, &mut [Cursor::default(); 2])
+    }
+    #[inline]
+    fn mass_sample_near(&self, t: f64, cursors: &mut [Cursor; 2]) -> MassSample {
+        let p = Rocket::mass_properties_near(self, t, cursors);
         MassSample {
             total_mass: p.total_mass,
             mass_flow_rate: p.mass_flow_rate,
@@ -201,6 +209,10 @@ impl VehicleModel for Rocket {
     fn net_thrust(&self, t: f64, ambient_pressure: f64) -> f64 {
         Rocket::net_thrust(self, t, ambient_pressure)
     }
+    #[inline]
+    fn net_thrust_near(&self, t: f64, ambient_pressure: f64, cursor: &mut Cursor) -> f64 {
+        Rocket::net_thrust_near(self, t, ambient_pressure, cursor)
+    }
     fn thrust_knots(&self) -> Vec<f64> {
         self.motor().thrust.xs().to_vec()
     }
@@ -215,6 +227,10 @@ impl VehicleModel for Rocket {
     #[inline]
     fn drag_coefficient(&self, power_on: bool, mach: f64) -> f64 {
         Rocket::drag_coefficient(self, power_on, mach)
+    }
+    #[inline]
+    fn drag_coefficient_near(&self, power_on: bool, mach: f64, cursor: &mut Cursor) -> f64 {
+        Rocket::drag_coefficient_near(self, power_on, mach, cursor)
     }
     fn dry_mass(&self) -> f64 {
         Rocket::dry_mass(self)

@@ -7,7 +7,9 @@
 //! state derivative together with the loads that produced it, so the same code serves the
 //! integrator and the post-processing. Nothing here allocates.
 
-use crate::model::{Air, AtmosphereModel, SurfaceModel, VehicleModel};
+use std::cell::Cell;
+
+use crate::model::{Air, AtmosphereModel, Cursor, SurfaceModel, VehicleModel};
 use crate::state::{
     Mat3, State, Vec3, add, cross, dot, inverse, mat_t_vec, mat_vec, norm, quaternion,
     quaternion_rate, rotation, scale, sub, tensor,
@@ -55,6 +57,20 @@ pub struct Equations<'a, A, V> {
     coast: Option<CoastMass>,
     /// The wind when it does not vary with height (read once; no per-height lookups then).
     uniform_wind: Option<[f64; 2]>,
+    /// Where the last evaluation's table lookups ended; the next start there (heights, Mach
+    /// numbers and times change little between evaluations). Values never depend on them.
+    cursors: Cell<Cursors>,
+}
+
+/// The table cursors of the models' `*_near` lookups ([`crate::model`]).
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
+struct Cursors {
+    /// Heights ([`AtmosphereModel::air_near`]).
+    height: [Cursor; 3],
+    /// Mach number ([`VehicleModel::drag_coefficient_near`]).
+    mach: Cursor,
+    /// Times ([`VehicleModel::mass_sample_near`], [`VehicleModel::net_thrust_near`]).
+    time: [Cursor; 2],
 }
 
 /// Mass properties after burn-out, when they no longer change (physics.md §8.2 remarks:
@@ -62,6 +78,8 @@ pub struct Equations<'a, A, V> {
 #[derive(Debug, Clone, Copy, PartialEq)]
 struct CoastMass {
     mass: f64,
+    /// `1/m`, the same number as computed per evaluation.
+    inverse_mass: f64,
     com_to_cdm: f64,
     inertia: Mat3,
     inverse_cm_inertia: Mat3,
@@ -71,6 +89,7 @@ struct CoastMass {
 #[derive(Debug, Clone, Copy, PartialEq)]
 struct MassState {
     mass: f64,
+    inverse_mass: f64,
     c: f64,
     c_dot: f64,
     c_ddot: f64,
@@ -119,6 +138,7 @@ fn coast_mass<V: VehicleModel>(vehicle: &V) -> Option<CoastMass> {
         && vehicle.com_to_cdm_rate(b1 + 1.0).abs() <= f64::MIN_POSITIVE;
     constant.then(|| CoastMass {
         mass: m1,
+        inverse_mass: 1.0 / m1,
         com_to_cdm: c1,
         inertia: tensor(i1),
         inverse_cm_inertia: inverse_cm_inertia(&tensor(i1), m1, c1),
@@ -141,6 +161,7 @@ impl<'a, A: AtmosphereModel, V: VehicleModel> Equations<'a, A, V> {
             dry_mass: vehicle.dry_mass(),
             coast: coast_mass(vehicle),
             uniform_wind: atmosphere.uniform_wind(),
+            cursors: Cell::default(),
         }
     }
 
@@ -184,11 +205,13 @@ impl<'a, A: AtmosphereModel, V: VehicleModel> Equations<'a, A, V> {
         let wind = self.wind(z);
         let free = [wind[0] - u[3], wind[1] - u[4], -u[5]];
         let speed = norm(free);
-        let air = atm.air(z);
+        let mut cursors = self.cursors.get();
+        let air = atm.air_near(z, &mut cursors.height);
         let mach = speed / air.speed_of_sound;
         let rho = air.density;
-        let cd = veh.drag_coefficient(true, mach);
-        let net_thrust = veh.net_thrust(t, air.pressure);
+        let cd = veh.drag_coefficient_near(true, mach, &mut cursors.mach);
+        let net_thrust = veh.net_thrust_near(t, air.pressure, &mut cursors.time[0]);
+        self.cursors.set(cursors);
         let r3 = -0.5 * rho * speed * speed * self.reference_area * cd;
         let a3 = (r3 + net_thrust) / veh.total_mass(t)
             - (e0 * e0 - e1 * e1 - e2 * e2 + e3 * e3) * air.gravity;
@@ -217,7 +240,14 @@ impl<'a, A: AtmosphereModel, V: VehicleModel> Equations<'a, A, V> {
     /// Aerodynamic force and moment in body axes about the CDM, plus the net thrust
     /// (physics.md §7.1, §7.2, §7.6, §8.3 steps 1–5).
     #[inline]
-    fn loads(&self, t: f64, u: &State, k: &Mat3, air: &Air) -> (Vec3, Vec3, f64) {
+    fn loads(
+        &self,
+        t: f64,
+        u: &State,
+        k: &Mat3,
+        air: &Air,
+        cursors: &mut Cursors,
+    ) -> (Vec3, Vec3, f64) {
         let atm = self.atmosphere;
         let veh = self.vehicle;
         let z = u[2];
@@ -231,11 +261,11 @@ impl<'a, A: AtmosphereModel, V: VehicleModel> Equations<'a, A, V> {
         let mach = speed / a;
         let powered = self.powered(t);
         let net_thrust = if powered {
-            veh.net_thrust(t, air.pressure)
+            veh.net_thrust_near(t, air.pressure, &mut cursors.time[0])
         } else {
             0.0
         };
-        let cd = veh.drag_coefficient(powered, mach);
+        let cd = veh.drag_coefficient_near(powered, mach, &mut cursors.mach);
         let mut r = [
             0.0,
             0.0,
@@ -247,6 +277,8 @@ impl<'a, A: AtmosphereModel, V: VehicleModel> Equations<'a, A, V> {
         let uniform_wind_body = self
             .uniform_wind
             .map(|wc| mat_t_vec(k, [wc[0], wc[1], 0.0]));
+        // The Mach number of each surface's stream: one division for all.
+        let inverse_a = 1.0 / a;
         for surface in veh.surfaces() {
             let cp = surface.cp_body();
             let vb = add(v_body, cross(w, cp));
@@ -259,9 +291,8 @@ impl<'a, A: AtmosphereModel, V: VehicleModel> Equations<'a, A, V> {
             };
             let s = sub(wb, vb);
             let sp = norm(s);
-            let smach = sp / a;
             let area = surface.reference_area();
-            let [cn_alpha, forcing, damping] = surface.coefficients(smach);
+            let [cn_alpha, forcing, damping] = surface.coefficients(sp * inverse_a);
             let transverse2 = s[0] * s[0] + s[1] * s[1];
             if transverse2 > 0.0 {
                 // Angle of attack α = acos(−s₃/|s|) (physics.md §7.2) in the equal form
@@ -296,7 +327,11 @@ impl<'a, A: AtmosphereModel, V: VehicleModel> Equations<'a, A, V> {
     #[must_use]
     pub fn rail_loads(&self, t: f64, u: &State) -> (Vec3, Vec3, f64) {
         let k = rotation(quaternion(u));
-        self.loads(t, u, &k, &self.atmosphere.air(u[2]))
+        let mut cursors = self.cursors.get();
+        let air = self.atmosphere.air_near(u[2], &mut cursors.height);
+        let loads = self.loads(t, u, &k, &air, &mut cursors);
+        self.cursors.set(cursors);
+        loads
     }
 
     /// 6-DOF variable-mass flight (physics.md §8.2, RocketPy's `u_dot_generalized`), with the
@@ -311,6 +346,7 @@ impl<'a, A: AtmosphereModel, V: VehicleModel> Equations<'a, A, V> {
         let e = quaternion(u);
         let w = [u[10], u[11], u[12]];
         let k = rotation(e);
+        let mut cursors = self.cursors.get();
 
         // After burn-out c ≡ 0 and nothing changes; a finite-difference c̈ of a spline table
         // (RocketPy's, §5.4) straddling the burn-out kink would otherwise spike within 1e-6 s
@@ -319,10 +355,12 @@ impl<'a, A: AtmosphereModel, V: VehicleModel> Equations<'a, A, V> {
         // itself, where integration steps stop, the unpowered limit instead of a mix (thrust
         // off but the last segment's m̈ on). Powered implies t < t_b1, so the coast branch
         // never needs it.
+        let coasting = self.coast.is_some() && t >= self.burn_out;
         let (ms, mdot, mddot) = match &self.coast {
-            Some(k) if t >= self.burn_out => (
+            Some(k) if coasting => (
                 MassState {
                     mass: k.mass,
+                    inverse_mass: k.inverse_mass,
                     c: k.com_to_cdm,
                     c_dot: 0.0,
                     c_ddot: 0.0,
@@ -334,7 +372,7 @@ impl<'a, A: AtmosphereModel, V: VehicleModel> Equations<'a, A, V> {
                 0.0,
             ),
             _ => {
-                let p = veh.mass_sample(t);
+                let p = veh.mass_sample_near(t, &mut cursors.time);
                 let (mass, c) = (p.total_mass, p.com_to_cdm);
                 let inertia = tensor(p.inertia);
                 let c_ddot = if t < self.burn_out {
@@ -349,6 +387,7 @@ impl<'a, A: AtmosphereModel, V: VehicleModel> Equations<'a, A, V> {
                 };
                 let state = MassState {
                     mass,
+                    inverse_mass: 1.0 / mass,
                     c,
                     c_dot: p.com_to_cdm_rate,
                     c_ddot,
@@ -361,6 +400,7 @@ impl<'a, A: AtmosphereModel, V: VehicleModel> Equations<'a, A, V> {
         };
         let MassState {
             mass,
+            inverse_mass,
             c,
             c_dot,
             c_ddot,
@@ -372,41 +412,56 @@ impl<'a, A: AtmosphereModel, V: VehicleModel> Equations<'a, A, V> {
         let r_cm_dot = [0.0, 0.0, c_dot];
         let r_cm_ddot = [0.0, 0.0, c_ddot];
 
-        let air = atm.air(z);
-        let (force, moment, net_thrust) = self.loads(t, u, &k, &air);
+        let air = atm.air_near(z, &mut cursors.height);
+        let (force, moment, net_thrust) = self.loads(t, u, &k, &air, &mut cursors);
+        self.cursors.set(cursors);
         let weight = mat_t_vec(&k, [0.0, 0.0, -mass * air.gravity]);
 
-        let noz_minus_r = sub(self.nozzle, r_cm);
         let t00 = scale(mass, r_cm);
-        let t03 = sub(scale(2.0 * mdot, noz_minus_r), scale(2.0 * mass, r_cm_dot));
-        let t04 = add(
-            sub(
-                sub([0.0, 0.0, net_thrust], scale(mass, r_cm_ddot)),
-                scale(2.0 * mdot, r_cm_dot),
-            ),
-            scale(mddot, noz_minus_r),
-        );
-        let mut t05 = inertia_dot;
-        for (i, row) in t05.iter_mut().enumerate() {
-            for (j, x) in row.iter_mut().enumerate() {
-                *x = mdot * self.nozzle_gyration[i][j] - *x;
+        let (t20, t21) = if coasting {
+            // The variable-mass terms t03, t04 and t05 vanish (ṁ = m̈ = ċ = c̈ = T = 0, İ = 0):
+            // adding their zeros changes no value, so they are left out.
+            (
+                add(add(cross(cross(w, t00), w), weight), force),
+                add(
+                    cross(mat_vec(&inertia, w), w),
+                    sub(moment, cross(weight, r_cm)),
+                ),
+            )
+        } else {
+            let noz_minus_r = sub(self.nozzle, r_cm);
+            let t03 = sub(scale(2.0 * mdot, noz_minus_r), scale(2.0 * mass, r_cm_dot));
+            let t04 = add(
+                sub(
+                    sub([0.0, 0.0, net_thrust], scale(mass, r_cm_ddot)),
+                    scale(2.0 * mdot, r_cm_dot),
+                ),
+                scale(mddot, noz_minus_r),
+            );
+            let mut t05 = inertia_dot;
+            for (i, row) in t05.iter_mut().enumerate() {
+                for (j, x) in row.iter_mut().enumerate() {
+                    *x = mdot * self.nozzle_gyration[i][j] - *x;
+                }
             }
-        }
-        let t20 = add(
-            add(
-                add(cross(cross(w, t00), w), cross(w, t03)),
-                add(t04, weight),
-            ),
-            force,
-        );
-        let t21 = add(
-            add(cross(mat_vec(&inertia, w), w), mat_vec(&t05, w)),
-            sub(moment, cross(weight, r_cm)),
-        );
+            (
+                add(
+                    add(
+                        add(cross(cross(w, t00), w), cross(w, t03)),
+                        add(t04, weight),
+                    ),
+                    force,
+                ),
+                add(
+                    add(cross(mat_vec(&inertia, w), w), mat_vec(&t05, w)),
+                    sub(moment, cross(weight, r_cm)),
+                ),
+            )
+        };
         let rhs = add(t21, cross(t20, r_cm));
         let w_dot = mat_vec(&i_cm_inv, rhs);
         let e_dot = quaternion_rate(e, w);
-        let body_acc = sub(scale(1.0 / mass, t20), cross(r_cm, w_dot));
+        let body_acc = sub(scale(inverse_mass, t20), cross(r_cm, w_dot));
         let v_dot = sub(
             mat_vec(&k, body_acc),
             scale(2.0, cross(self.earth_rotation, v)),
@@ -431,7 +486,9 @@ impl<'a, A: AtmosphereModel, V: VehicleModel> Equations<'a, A, V> {
         let atm = self.atmosphere;
         let z = u[2];
         let v = [u[3], u[4], u[5]];
-        let air = atm.air(z);
+        let mut cursors = self.cursors.get();
+        let air = atm.air_near(z, &mut cursors.height);
+        self.cursors.set(cursors);
         let rho = air.density;
         let wind = self.wind(z);
         let mass = self.dry_mass;

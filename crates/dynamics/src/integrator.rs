@@ -146,16 +146,6 @@ fn rms_norm<const N: usize>(v: &[f64; N], scale: &[f64; N]) -> f64 {
     (sum / N as f64).sqrt()
 }
 
-/// Scaled max norm `max_i |v_i/s_i|`.
-#[inline]
-fn max_norm<const N: usize>(v: &[f64; N], scale: &[f64; N]) -> f64 {
-    let mut m: f64 = 0.0;
-    for i in 0..N {
-        m = m.max((v[i] / scale[i]).abs());
-    }
-    m
-}
-
 impl<const N: usize> DormandPrince<N> {
     /// Starts an integration of `y' = f(t, y)` at `(t0, y0)` towards `t_bound > t0`.
     ///
@@ -416,11 +406,14 @@ impl<const N: usize> DormandPrince<N> {
         let mut y_stage = [0.0; N];
         for s in 1..7 {
             // Stage-major loops (vectorised over the components); each component still sums
-            // its terms in stage order, so the result is the same to the bit.
+            // its terms in stage order, so the result is the same to the bit. A zero
+            // coefficient (a_62) adds nothing to a finite sum and is skipped.
             let mut acc = [0.0; N];
             for (a, k) in A[s].iter().zip(&self.k).take(s) {
-                for (acc, k) in acc.iter_mut().zip(k) {
-                    *acc += a * k;
+                if *a != 0.0 {
+                    for (acc, k) in acc.iter_mut().zip(k) {
+                        *acc += a * k;
+                    }
                 }
             }
             for i in 0..N {
@@ -433,22 +426,24 @@ impl<const N: usize> DormandPrince<N> {
         y_stage
     }
 
-    /// Scaled RMS norm of the embedded error estimate.
+    /// Scaled max norm of the embedded error estimate, in one pass over the components (the
+    /// zero weight `e_2` skipped as in [`DormandPrince::stages`]).
     #[inline]
     fn error_norm(&self, h: f64, y_new: &[f64; N]) -> f64 {
         let mut acc = [0.0; N];
         for (e, k) in E.iter().zip(&self.k) {
-            for (acc, k) in acc.iter_mut().zip(k) {
-                *acc += e * k;
+            if *e != 0.0 {
+                for (acc, k) in acc.iter_mut().zip(k) {
+                    *acc += e * k;
+                }
             }
         }
-        let mut err = [0.0; N];
-        let mut scale = [0.0; N];
+        let mut m: f64 = 0.0;
         for i in 0..N {
-            err[i] = h * acc[i];
-            scale[i] = self.tol.atol[i] + self.y[i].abs().max(y_new[i].abs()) * self.tol.rtol;
+            let scale = self.tol.atol[i] + self.y[i].abs().max(y_new[i].abs()) * self.tol.rtol;
+            m = m.max((h * acc[i] / scale).abs());
         }
-        max_norm(&err, &scale)
+        m
     }
 
     /// Dense output of the last accepted step at `t` (`t_old ≤ t ≤ t`; extrapolates

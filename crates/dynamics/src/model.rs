@@ -4,7 +4,11 @@
 //! (implemented for `karman_atmos::Environment` and `karman_airframe::Rocket` in
 //! [`crate::adapters`]), so the equations of motion can be unit-tested against hand-built
 //! models and the model crates can evolve behind one adapter. Every per-step method must be
-//! allocation-free; the methods documented "once" are called when a flight is set up.
+//! allocation-free; the methods documented "once" are called when a flight is set up. The
+//! `*_near` methods take table cursors ([`Cursor`]) that the engine keeps between
+//! evaluations, so that a model's lookups start where the previous ones ended.
+
+pub use karman_math::Cursor;
 
 /// The atmosphere at one height, as the equations of motion use it
 /// ([`AtmosphereModel::air`]).
@@ -53,6 +57,14 @@ pub trait AtmosphereModel {
             speed_of_sound: self.speed_of_sound(z),
             gravity: self.gravity(z),
         }
+    }
+    /// [`AtmosphereModel::air`] with the height located from `cursors`, which the engine
+    /// keeps between evaluations (updated): the same values whatever they hold. A model with
+    /// tables overrides it to start its searches where the last ones ended; the default
+    /// ignores them.
+    #[inline]
+    fn air_near(&self, z: f64, _cursors: &mut [Cursor; 3]) -> Air {
+        self.air(z)
     }
     /// Earth rotation vector in the ENU launch frame, rad/s (once).
     fn earth_rotation_enu(&self) -> [f64; 3];
@@ -202,6 +214,13 @@ pub trait VehicleModel {
             inertia_rate: self.inertia_rate(t),
         }
     }
+    /// [`VehicleModel::mass_sample`] with the time located from `cursors`, which the engine
+    /// keeps between evaluations (updated): the same values whatever they hold. The default
+    /// ignores them.
+    #[inline]
+    fn mass_sample_near(&self, t: f64, _cursors: &mut [Cursor; 2]) -> MassSample {
+        self.mass_sample(t)
+    }
     /// Nozzle-to-CDM distance `d_n` (physics.md §5.6), m (once).
     fn nozzle_to_cdm(&self) -> f64;
     /// Nozzle gyration tensor diagonal `(S11, S22, S33)`, m² (once).
@@ -210,6 +229,12 @@ pub trait VehicleModel {
     fn thrust(&self, t: f64) -> f64;
     /// Net thrust with the pressure correction, clamped at 0, N (physics.md §6.3).
     fn net_thrust(&self, t: f64, ambient_pressure: f64) -> f64;
+    /// [`VehicleModel::net_thrust`] with the time located from `cursor` (updated; the first
+    /// cursor of [`VehicleModel::mass_sample_near`]): the same value. The default ignores it.
+    #[inline]
+    fn net_thrust_near(&self, t: f64, ambient_pressure: f64, _cursor: &mut Cursor) -> f64 {
+        self.net_thrust(t, ambient_pressure)
+    }
     /// Abscissae of the thrust curve's knots, s, where the thrust has kinks (once).
     fn thrust_knots(&self) -> Vec<f64>;
     /// Start of the burn, s (once).
@@ -218,6 +243,12 @@ pub trait VehicleModel {
     fn burn_out(&self) -> f64;
     /// Drag coefficient (power on or off) at a Mach number.
     fn drag_coefficient(&self, power_on: bool, mach: f64) -> f64;
+    /// [`VehicleModel::drag_coefficient`] with the Mach number located from `cursor`
+    /// (updated): the same value. The default ignores it.
+    #[inline]
+    fn drag_coefficient_near(&self, power_on: bool, mach: f64, _cursor: &mut Cursor) -> f64 {
+        self.drag_coefficient(power_on, mach)
+    }
     /// Rocket + motor dry mass, kg (once).
     fn dry_mass(&self) -> f64;
     /// Centre of dry mass, user coordinates, m (once).

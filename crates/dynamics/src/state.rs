@@ -107,27 +107,29 @@ pub fn inverse(m: &Mat3) -> Option<Mat3> {
     ])
 }
 
-/// Rotation matrix body → inertial from a quaternion, normalised first (physics.md §2.3).
+/// Rotation matrix body → inertial of the normalised quaternion `ê = e/|e|` (physics.md §2.3).
+/// Every entry is quadratic in `ê`, `êi·êj = ei·ej/|e|²`, so the matrix is formed from the raw
+/// components with the one factor `2/|e|²`: no square root, one division.
 #[inline]
 #[must_use]
 pub fn rotation(e: [f64; 4]) -> Mat3 {
-    let n = (e[0] * e[0] + e[1] * e[1] + e[2] * e[2] + e[3] * e[3]).sqrt();
-    let (e0, e1, e2, e3) = (e[0] / n, e[1] / n, e[2] / n, e[3] / n);
+    let [e0, e1, e2, e3] = e;
+    let s = 2.0 / ((e0 * e0 + e1 * e1) + (e2 * e2 + e3 * e3));
     [
         [
-            1.0 - 2.0 * (e2 * e2 + e3 * e3),
-            2.0 * (e1 * e2 - e0 * e3),
-            2.0 * (e1 * e3 + e0 * e2),
+            1.0 - s * (e2 * e2 + e3 * e3),
+            s * (e1 * e2 - e0 * e3),
+            s * (e1 * e3 + e0 * e2),
         ],
         [
-            2.0 * (e1 * e2 + e0 * e3),
-            1.0 - 2.0 * (e1 * e1 + e3 * e3),
-            2.0 * (e2 * e3 - e0 * e1),
+            s * (e1 * e2 + e0 * e3),
+            1.0 - s * (e1 * e1 + e3 * e3),
+            s * (e2 * e3 - e0 * e1),
         ],
         [
-            2.0 * (e1 * e3 - e0 * e2),
-            2.0 * (e2 * e3 + e0 * e1),
-            1.0 - 2.0 * (e1 * e1 + e2 * e2),
+            s * (e1 * e3 - e0 * e2),
+            s * (e2 * e3 + e0 * e1),
+            1.0 - s * (e1 * e1 + e2 * e2),
         ],
     ]
 }

@@ -73,9 +73,9 @@ pub enum PointOrder {
 }
 
 /// A remembered interval for evaluating a table along a monotone sequence of abscissae
-/// (integration steps, output grids): [`Table1::eval_with`] first tries the interval of the
-/// previous call and its neighbours before falling back to a binary search. Any cursor works
-/// with any table; a stale one only costs the search.
+/// (integration steps, output grids): [`Table1::eval_with`] and [`Table1::locate_with`] first
+/// try the interval of the previous call and its neighbours before falling back to the search.
+/// Any cursor works with any table; a stale one only costs the search.
 #[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
 pub struct Cursor(usize);
 
@@ -400,7 +400,7 @@ impl Table1 {
 
     /// Interval used for `x` (RocketPy's `bisect_left` choice, clamped to the end
     /// intervals). Needs at least two samples.
-    #[inline]
+    #[inline(always)]
     fn interval(&self, x: f64) -> usize {
         let n = self.xs.len();
         let k = self.guide.key(self.xs[0], x);
@@ -440,7 +440,7 @@ impl Table1 {
 
     /// Where `x` falls among the samples: the search that [`Table1::eval`] does, done once for
     /// several tables on the same abscissae.
-    #[inline]
+    #[inline(always)]
     #[must_use]
     pub fn locate(&self, x: f64) -> Location {
         let n = self.xs.len();
@@ -452,6 +452,37 @@ impl Table1 {
             Location::Interval(0)
         } else {
             Location::Interval(self.interval(x))
+        }
+    }
+
+    /// [`Table1::locate`] starting from `cursor` (and updating it): the interval of the
+    /// previous call and its neighbours are tried before the search, the same location
+    /// whatever the cursor holds. Along slowly moving abscissae (the heights, Mach numbers and
+    /// times of an integration) the interval is usually the remembered one, known before `x`
+    /// is, so that only two comparisons wait for `x`.
+    #[inline(always)]
+    #[must_use]
+    pub fn locate_with(&self, x: f64, cursor: &mut Cursor) -> Location {
+        let n = self.xs.len();
+        if x < self.xs[0] {
+            Location::Below
+        } else if x > self.xs[n - 1] {
+            Location::Above
+        } else if n == 1 {
+            Location::Interval(0)
+        } else {
+            let j = cursor.0.min(n - 2);
+            let i = if self.interval_holds(j, x) {
+                j
+            } else if j + 2 < n && self.interval_holds(j + 1, x) {
+                j + 1
+            } else if j > 0 && self.interval_holds(j - 1, x) {
+                j - 1
+            } else {
+                self.interval(x)
+            };
+            cursor.0 = i;
+            Location::Interval(i)
         }
     }
 
@@ -512,25 +543,6 @@ impl Table1 {
         }
     }
 
-    /// Constant/zero extrapolation value when `x` is outside and extrapolation is not natural.
-    #[inline]
-    fn outside(&self, x: f64) -> Option<f64> {
-        let n = self.xs.len();
-        if x < self.xs[0] || x > self.xs[n - 1] {
-            match self.extrapolation {
-                Extrapolation::Constant => Some(if x < self.xs[0] {
-                    self.ys[0]
-                } else {
-                    self.ys[n - 1]
-                }),
-                Extrapolation::Zero => Some(0.0),
-                Extrapolation::Natural => None,
-            }
-        } else {
-            None
-        }
-    }
-
     /// The interpolant on interval `i` (or the polynomial) at `x`.
     #[inline(always)]
     fn piece_value(&self, i: usize, x: f64) -> f64 {
@@ -563,25 +575,7 @@ impl Table1 {
     #[inline]
     #[must_use]
     pub fn eval_with(&self, x: f64, cursor: &mut Cursor) -> f64 {
-        if let Some(v) = self.outside(x) {
-            return v;
-        }
-        let n = self.xs.len();
-        if n == 1 {
-            return self.ys[0];
-        }
-        let j = cursor.0.min(n - 2);
-        let i = if self.interval_holds(j, x) {
-            j
-        } else if j + 2 < n && self.interval_holds(j + 1, x) {
-            j + 1
-        } else if j > 0 && self.interval_holds(j - 1, x) {
-            j - 1
-        } else {
-            self.interval(x)
-        };
-        cursor.0 = i;
-        self.piece_value(i, x)
+        self.eval_at(self.locate_with(x, cursor), x)
     }
 
     /// Evaluates at every `xs[k]` into `out[k]`, hunting intervals with a [`Cursor`] (fast for
@@ -1270,6 +1264,18 @@ mod tests {
                 assert!(same(t.eval_at(at, x), t.eval(x)), "{t:?} at {x}");
                 assert!(same(t.derivative_at(at, x), t.derivative(x)));
                 assert!(same(t.second_derivative_at(at, x), t.second_derivative(x)));
+            }
+        }
+        // A cursor carried along the probes (both ways), or stale from a longer table,
+        // locates exactly as the search does.
+        let mut stale = Cursor::default();
+        let long = Table1::linear((0..50).map(f64::from).collect(), vec![0.0; 50]).unwrap();
+        assert_eq!(long.locate_with(40.5, &mut stale), Location::Interval(40));
+        for t in tables.iter().chain([&base]) {
+            let mut carried = Cursor::default();
+            for &x in probes.iter().chain(probes.iter().rev()) {
+                assert_eq!(t.locate_with(x, &mut carried), t.locate(x), "{t:?} at {x}");
+                assert_eq!(t.locate_with(x, &mut stale.clone()), t.locate(x));
             }
         }
         assert!(!base.same_abscissae(&single));
