@@ -134,8 +134,20 @@ pub struct Flight {
     pub elevation: f64,
     /// Seed of the parachute noise streams.
     pub noise_seed: u64,
+    /// Largest acceleration magnitude `|v̇|` at the stored points, m/s², including the
+    /// equations of the next phase at each phase start (a canopy inflates instantly, so the
+    /// deceleration peaks there; RocketPy's LSODA stores its first point a fraction of a
+    /// millisecond later, a Runge–Kutta step tens of milliseconds later). Taken from the
+    /// derivatives the integrator evaluates anyway (its FSAL stage at each stored point), so
+    /// it costs nothing extra.
+    pub max_acceleration: f64,
     /// Integration counters.
     pub stats: IntegrationStats,
+}
+
+/// `|v̇|` of a state derivative.
+fn acceleration(u_dot: &State) -> f64 {
+    (u_dot[3] * u_dot[3] + u_dot[4] * u_dot[4] + u_dot[5] * u_dot[5]).sqrt()
 }
 
 /// Evaluates the equations of a phase.
@@ -381,6 +393,7 @@ pub fn simulate<A: AtmosphereModel, V: VehicleModel>(
     let mut t = 0.0;
     let mut y = u0;
     let mut index = 0;
+    let mut max_acceleration: f64 = 0.0;
     while index + 1 < run.phases.len() {
         let phase = run.phases[index];
         let Some(kind) = phase.kind else { break };
@@ -400,6 +413,8 @@ pub fn simulate<A: AtmosphereModel, V: VehicleModel>(
         let mut rhs = |tt: f64, uu: &State| evaluate(&eq, &kind, tt, uu).u_dot;
         let mut integ = DormandPrince::new(&mut rhs, t, y, t_bound, tol)?;
         run.stats.phases += 1;
+        // The phase's equations at its first point (the last point of the previous phase).
+        max_acceleration = max_acceleration.max(acceleration(integ.f()));
         loop {
             integ.set_stop(
                 knots
@@ -428,10 +443,15 @@ pub fn simulate<A: AtmosphereModel, V: VehicleModel>(
                 elevation,
             )?;
             if let Some((t_event, y_event)) = outcome {
+                // The step's end point was replaced by the event's.
+                let u_dot = evaluate(&eq, &kind, t_event, &y_event).u_dot;
+                max_acceleration = max_acceleration.max(acceleration(&u_dot));
                 t = t_event;
                 y = y_event;
                 break;
             }
+            // The FSAL stage is the derivative at the stored end point.
+            max_acceleration = max_acceleration.max(acceleration(integ.f()));
             if status == StepStatus::Finished {
                 break;
             }
@@ -451,6 +471,7 @@ pub fn simulate<A: AtmosphereModel, V: VehicleModel>(
         burn_out: vehicle.burn_out(),
         elevation,
         noise_seed: settings.noise_seed,
+        max_acceleration,
         stats: run.stats,
     })
 }

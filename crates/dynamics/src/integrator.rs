@@ -344,7 +344,7 @@ impl<const N: usize> DormandPrince<N> {
             let truncated = t + h >= t_end;
             let t_new = if truncated { t_end } else { t + h };
             let h_eff = t_new - t;
-            let y_new = self.stages(f, h_eff);
+            let y_new = self.stages(f, h_eff, t_new);
             let finite = y_new.iter().chain(self.k[6].iter()).all(|v| v.is_finite());
             let error_norm = if finite {
                 self.error_norm(h_eff, &y_new)
@@ -395,10 +395,13 @@ impl<const N: usize> DormandPrince<N> {
         }
     }
 
-    /// Evaluates the seven stages for a step `h` from the current point; returns `y_new`
-    /// and leaves `f(t + h, y_new)` in `k[6]`.
+    /// Evaluates the seven stages for a step `h` from the current point to `t_new`; returns
+    /// `y_new` and leaves `f(t_new, y_new)` in `k[6]`. The last stage is taken at `t_new`
+    /// itself, not at `t + h` (which may differ from it in the last bit), so the FSAL
+    /// derivative is the derivative at the stored point: a step ending on a stop (burn-out)
+    /// sees the equations that hold there, and callers may use it as the point's derivative.
     #[inline]
-    fn stages<F>(&mut self, f: &mut F, h: f64) -> [f64; N]
+    fn stages<F>(&mut self, f: &mut F, h: f64, t_new: f64) -> [f64; N]
     where
         F: FnMut(f64, &[f64; N]) -> [f64; N],
     {
@@ -419,7 +422,8 @@ impl<const N: usize> DormandPrince<N> {
             for i in 0..N {
                 y_stage[i] = self.y[i] + h * acc[i];
             }
-            self.k[s] = f(self.t + C[s] * h, &y_stage);
+            let t_stage = if s == 6 { t_new } else { self.t + C[s] * h };
+            self.k[s] = f(t_stage, &y_stage);
             self.nfev += 1;
         }
         // Row 6 of A holds b, so the last stage point is the fifth-order solution.

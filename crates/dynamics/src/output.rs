@@ -223,11 +223,9 @@ impl Flight {
         atmosphere: &A,
         vehicle: &V,
     ) -> Summary {
-        let eq = Equations::new(atmosphere, vehicle);
         let mut max_speed: f64 = 0.0;
         let mut max_mach: f64 = 0.0;
         let mut max_q: f64 = 0.0;
-        let mut max_acc: f64 = 0.0;
         for p in &self.points {
             let u = &p.state;
             let z = u[2];
@@ -238,18 +236,6 @@ impl Flight {
             max_speed = max_speed.max(norm(v));
             max_mach = max_mach.max(free / air.speed_of_sound);
             max_q = max_q.max(0.5 * air.density * free * free);
-            let d = evaluate(&eq, &p.phase, p.t, u);
-            max_acc = max_acc.max(norm([d.u_dot[3], d.u_dot[4], d.u_dot[5]]));
-        }
-        // A canopy inflates instantly (physics.md §8.4), so the deceleration peaks at the
-        // phase start; RocketPy's LSODA stores its first point a fraction of a millisecond
-        // later, a Runge–Kutta step tens of milliseconds later. Evaluating the new phase's
-        // equations at the boundary point keeps that peak (within ~1 % of RocketPy's).
-        for w in self.points.windows(2) {
-            if w[0].phase != w[1].phase {
-                let d = evaluate(&eq, &w[1].phase, w[0].t, &w[0].state);
-                max_acc = max_acc.max(norm([d.u_dot[3], d.u_dot[4], d.u_dot[5]]));
-            }
         }
         let elevation = self.elevation;
         let (apogee_t, apogee_y) = match self.apogee {
@@ -314,7 +300,7 @@ impl Flight {
             max_speed_mps: max_speed,
             max_mach,
             max_dynamic_pressure_pa: max_q,
-            max_acceleration_mps2: max_acc,
+            max_acceleration_mps2: self.max_acceleration,
             impact_time_s: self.impact.map(|(t, _)| t),
             impact_x_m: self.impact.map(|(_, u)| u[0]),
             impact_y_m: self.impact.map(|(_, u)| u[1]),

@@ -41,6 +41,7 @@ use karman_dispersion::{
     Variation, VariedInput,
 };
 use karman_dynamics::{Air, AtmosphereModel, Summary};
+use karman_math::Cursor;
 use karman_propulsion::{Motor, ThrustSource};
 
 /// The outputs of every sample: the scalar keys of the flight summary (mission-format.md
@@ -519,6 +520,10 @@ impl AtmosphereModel for WindAdjusted<'_> {
         self.environment.air(z)
     }
     #[inline]
+    fn air_near(&self, z: f64, cursors: &mut [Cursor; 3]) -> Air {
+        self.environment.air_near(z, cursors)
+    }
+    #[inline]
     fn gravity(&self, z: f64) -> f64 {
         self.environment.gravity(z)
     }
@@ -603,6 +608,15 @@ mod tests {
         );
         if let Some(uniform) = adjusted.uniform_wind() {
             assert_eq!(uniform.map(f64::to_bits), [u, v].map(f64::to_bits));
+        }
+        // The thermodynamics pass through untouched, with or without cursors.
+        let mut cursors = [Cursor::default(); 3];
+        for z in [1500.0, 3000.0, 1400.0] {
+            let (a, b) = (adjusted.air_near(z, &mut cursors), environment.air(z));
+            assert_eq!(
+                [a.pressure, a.density, a.speed_of_sound, a.gravity].map(f64::to_bits),
+                [b.pressure, b.density, b.speed_of_sound, b.gravity].map(f64::to_bits)
+            );
         }
         let same = WindAdjusted::new(&environment, 1.0, 0.0).wind(1500.0);
         assert_eq!(

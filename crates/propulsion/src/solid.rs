@@ -140,9 +140,8 @@ impl BatesGrains {
         // the root to rounding.
         let excess = |r: f64| self.grain_volume(state(r)) - volume;
         // g′(r) = π[−2r·h(r) − 2(R_o² − r²)] with h(r) = h_0 − 2(r − r_0).
-        let slope = |r: f64| {
-            -2.0 * std::f64::consts::PI * (r * (h0 - 2.0 * (r - r0)) + (ro * ro - r * r))
-        };
+        let slope =
+            |r: f64| -2.0 * std::f64::consts::PI * (r * (h0 - 2.0 * (r - r0)) + (ro * ro - r * r));
         let (mut lo, mut hi) = (r0, r_end);
         let full = self.grain_volume(initial);
         let mut r = match guess {
