@@ -12,8 +12,19 @@
 //! ([`FlightSettings::stop_at_thrust_knots`]): without those stops a Dormand–Prince step at
 //! the default tolerances straddles the kinks of a jagged thrust curve and the apogee drifts by
 //! up to ~0.1 % (Valetudo), with them every validation apogee is within 0.02 % of RocketPy's.
-//! Noise-free parachutes skip the sampling instants of steps in which they provably cannot
-//! fire (`v_z > 0`, or well above a height trigger's threshold height).
+//!
+//! Parachute sampling (§9.4, RocketPy's `__process_overshootable_nodes`): the instants `j / f`
+//! of every pending parachute inside a step are merged in time order on the fly (no node list,
+//! no sort), instants within 1e-7 s of each other forming one group evaluated at its first
+//! instant, exactly as a sorted, merged node list would be. Most steps cannot fire any trigger,
+//! and bounds over the step prove it without evaluating the instants (see `sample_parachutes`):
+//! - noise-free parachutes skip steps with `v_z > 0`, or well above a height trigger's threshold
+//!   height, as if they had no instants there;
+//! - a noisy height trigger still advances its noise stream once per instant (the AR(1)
+//!   sequence it sees is what matters), but its instants are only evaluated when the step's
+//!   highest possible noisy pressure could reach the trigger pressure;
+//! - an apogee trigger never reads the noise, so its stream is never drawn (its draws would
+//!   change nothing: every parachute has its own stream).
 //!
 //! Deviations from RocketPy (none changes a validation flight):
 //! - a rocket still at rest on the rail after burn-out can never leave it (the rail
@@ -254,10 +265,54 @@ struct Run {
     termination: Termination,
     pending: Vec<usize>,
     streams: Vec<NoiseStream>,
-    nodes: Vec<(f64, usize)>,
+    /// The sampling instants of the last step, one cursor per parachute that samples it.
+    cursors: Vec<Cursor>,
     /// Per parachute: the ASL height below which a noise-free height trigger fires.
     thresholds: Vec<Option<f64>>,
     stats: IntegrationStats,
+    sampling: Sampling,
+}
+
+/// How the parachute sampling instants of a step are evaluated.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+enum Sampling {
+    /// Steps in which no trigger can fire are passed over with bounds ([`Run::sample_parachutes`]).
+    Bounded,
+    /// Every instant of every pending parachute evaluated directly, as a sorted node list
+    /// (the tests' reference).
+    #[cfg(test)]
+    Direct,
+}
+
+/// The sampling instants `j · interval`, `j = next..=last`, of one parachute in the last step.
+#[derive(Debug, Clone, Copy)]
+struct Cursor {
+    /// Parachute index.
+    p: usize,
+    /// Sampling interval `1 / f`, s.
+    interval: f64,
+    /// Next instant to evaluate.
+    next: i64,
+    /// Last instant to evaluate.
+    last: i64,
+    /// The noise stream is advanced at every instant (a noisy height trigger).
+    draws: bool,
+    /// The trigger may fire at one of the instants; false when the step bounds exclude it.
+    may_fire: bool,
+}
+
+impl Cursor {
+    /// Time of instant `j`, s (computed as RocketPy's node list does, `j · Δ`).
+    #[inline]
+    fn time(&self, j: i64) -> f64 {
+        j as f64 * self.interval
+    }
+
+    /// Number of instants left.
+    #[inline]
+    fn count(&self) -> usize {
+        usize::try_from(self.last - self.next + 1).unwrap_or(0)
+    }
 }
 
 /// Half-width of the band around a height threshold inside which the trigger is evaluated
@@ -292,6 +347,16 @@ pub fn simulate<A: AtmosphereModel, V: VehicleModel>(
     atmosphere: &A,
     vehicle: &V,
     settings: &FlightSettings,
+) -> Result<Flight, DynamicsError> {
+    fly(atmosphere, vehicle, settings, Sampling::Bounded)
+}
+
+/// [`simulate`] with a choice of parachute sampling.
+fn fly<A: AtmosphereModel, V: VehicleModel>(
+    atmosphere: &A,
+    vehicle: &V,
+    settings: &FlightSettings,
+    sampling: Sampling,
 ) -> Result<Flight, DynamicsError> {
     settings.validate()?;
     let eq = Equations::new(atmosphere, vehicle);
@@ -362,7 +427,7 @@ pub fn simulate<A: AtmosphereModel, V: VehicleModel>(
             .filter(|&i| specs[i].sampling_rate > 0.0)
             .collect(),
         streams,
-        nodes: Vec::new(),
+        cursors: Vec::new(),
         thresholds: specs
             .iter()
             .map(|p| match p.trigger {
@@ -371,6 +436,7 @@ pub fn simulate<A: AtmosphereModel, V: VehicleModel>(
             })
             .collect(),
         stats: IntegrationStats::default(),
+        sampling,
     };
 
     // Steps end on the knots of the thrust curve during the burn and at burn-out: the
@@ -609,35 +675,61 @@ impl Run {
             return Ok(Some((t_impact, y_impact)));
         }
         // (d) Parachute sampling instants inside the step.
-        Ok(self.sample_parachutes(integ, eq, specs, index, phase, kind, elevation))
+        match self.sampling {
+            Sampling::Bounded => {
+                Ok(self.sample_parachutes(integ, eq, specs, index, phase, kind, elevation))
+            }
+            #[cfg(test)]
+            Sampling::Direct => {
+                Ok(self.sample_every_instant(integ, eq, specs, index, phase, kind, elevation))
+            }
+        }
     }
 
-    /// Whether a silent (noise-free) parachute certainly cannot fire inside the last step, so
-    /// its sampling instants need no evaluation: both triggers need `v_z < 0`, a height
-    /// trigger also `z` below its threshold. The bounds are the end values less a generous
-    /// allowance (`h · max|derivative|`) for the dense output between them.
-    fn cannot_fire(&self, p: usize, integ: &DormandPrince<13>) -> bool {
-        if !self.streams[p].is_silent() {
-            return false;
-        }
+    /// Lower bounds of `v_z` and `z` over the last step: the end values less a generous
+    /// allowance (`h · max|derivative|` at the ends) for the dense output between them.
+    fn step_lows(integ: &DormandPrince<13>) -> (f64, f64) {
         let (y0, y1) = (integ.y_old(), integ.y());
         let (f0, f1) = (integ.f_old(), integ.f());
         let h = integ.last_step();
         let vz_low = y0[5].min(y1[5]) - h * f0[5].abs().max(f1[5].abs());
+        let z_low = y0[2].min(y1[2]) - h * y0[5].abs().max(y1[5].abs());
+        (vz_low, z_low)
+    }
+
+    /// Whether a silent (noise-free) parachute certainly cannot fire inside the last step, so
+    /// that it has no sampling instants there: both triggers need `v_z < 0`, a height trigger
+    /// also `z` below its threshold ([`Run::step_lows`]).
+    fn cannot_fire(&self, p: usize, integ: &DormandPrince<13>) -> bool {
+        if !self.streams[p].is_silent() {
+            return false;
+        }
+        let (vz_low, z_low) = Self::step_lows(integ);
         if vz_low > 0.0 {
             return true;
         }
         match self.thresholds[p] {
-            Some(z_threshold) => {
-                let z_low = y0[2].min(y1[2]) - h * y0[5].abs().max(y1[5].abs());
-                z_low > z_threshold + THRESHOLD_BAND
-            }
+            Some(z_threshold) => z_low > z_threshold + THRESHOLD_BAND,
             None => false,
         }
     }
 
     /// Overshootable parachute nodes of the last step (physics.md §9.4, RocketPy's
     /// `__process_overshootable_nodes`).
+    ///
+    /// The instants of each parachute are the `j · Δ` whose 1e-7 s keys lie in the step
+    /// (`[t_start, t_end]`); the first group is cleared on the start of a `clear` phase and the
+    /// group at the step end is left to the next step. They are merged in time order (ties in
+    /// parachute order) and grouped by key, which is the order and grouping of RocketPy's
+    /// sorted, merged node list. Before any instant is evaluated each parachute's trigger is
+    /// bounded over the step: it cannot fire if `v_z > 0` throughout ([`Run::step_lows`]), and a
+    /// noisy height trigger cannot fire if even the highest possible pressure, `P(z_low)` plus
+    /// the largest noise value its instants will see (drawn ahead, [`NoiseStream::peek_max`]),
+    /// reads a barometric height at least [`THRESHOLD_BAND`] above its threshold (`h_baro` and
+    /// `P` decrease with their arguments; the band absorbs round-off and interpolation
+    /// wiggles). When no parachute can fire the noisy streams are advanced past the step's
+    /// instants and nothing else is evaluated; otherwise the instants are evaluated in order,
+    /// those of excluded parachutes only advancing their streams.
     #[allow(clippy::too_many_arguments)]
     fn sample_parachutes<A: AtmosphereModel, V: VehicleModel>(
         &mut self,
@@ -657,83 +749,164 @@ impl Run {
         let n = self.points.len();
         let t_start = self.points[n - 2].t;
         let t_end = self.points[n - 1].t;
-        self.nodes.clear();
+        // The instants of this step by their keys, so that one at the step end is deferred to
+        // the next step and found there whatever the rounding of t/Δ (a quotient a hair above
+        // an integer lost it, and shifted the trigger noise).
+        let (k_start, k_end) = (node_key(t_start), node_key(t_end));
+        self.cursors.clear();
+        let mut first = f64::INFINITY;
         for i in 0..self.pending.len() {
             let p = self.pending[i];
             if self.cannot_fire(p, integ) {
                 continue;
             }
-            let interval = 1.0 / specs[p].sampling_rate;
-            // The instants of this step by their keys, so that one at the step end is
-            // deferred to the next step and found there whatever the rounding of t/Δ (a
-            // quotient a hair above an integer lost it, and shifted the trigger noise).
-            let (k_start, k_end) = (node_key(t_start), node_key(t_end));
-            let j0 = (t_start / interval).floor() as i64 - 1;
-            let j1 = (t_end / interval).ceil() as i64 + 1;
-            for j in j0..=j1 {
-                let t = j as f64 * interval;
-                if (k_start..=k_end).contains(&node_key(t)) {
-                    self.nodes.push((t, p));
-                }
+            let mut cursor = Cursor {
+                p,
+                interval: 1.0 / specs[p].sampling_rate,
+                next: 0,
+                last: 0,
+                draws: matches!(specs[p].trigger, TriggerKind::HeightAboveGround(_))
+                    && !self.streams[p].is_silent(),
+                may_fire: false,
+            };
+            // The keys grow with j: the instants in the window form one run of j.
+            cursor.next = (t_start / cursor.interval).floor() as i64 - 1;
+            cursor.last = (t_end / cursor.interval).ceil() as i64 + 1;
+            while cursor.next <= cursor.last && node_key(cursor.time(cursor.next)) < k_start {
+                cursor.next += 1;
+            }
+            while cursor.last >= cursor.next && node_key(cursor.time(cursor.last)) > k_end {
+                cursor.last -= 1;
+            }
+            if cursor.count() > 0 {
+                first = first.min(cursor.time(cursor.next));
+                self.cursors.push(cursor);
             }
         }
-        if self.nodes.is_empty() {
+        if self.cursors.is_empty() {
             return None;
         }
-        self.nodes.sort_by(|a, b| a.0.total_cmp(&b.0));
-        let end_key = node_key(t_end);
-        let first_key = node_key(self.nodes[0].0);
-        // The first group is cleared when it sits on the start of a `clear` phase.
-        let skip_first = phase.clear && (self.nodes[0].0 - phase.t).abs() < 1e-9;
+        // The first group is cleared when it sits on the start of a `clear` phase; the group
+        // at the step end is evaluated with the next step.
+        let first_key = node_key(first);
+        let skip_first = phase.clear && (first - phase.t).abs() < 1e-9;
+        let (vz_low, z_low) = Self::step_lows(integ);
+        let descending = vz_low <= 0.0 || vz_low.is_nan();
         let atm = eq.atmosphere();
-        let mut i = 0;
-        while i < self.nodes.len() {
-            let key = node_key(self.nodes[i].0);
-            if key == end_key {
-                break; // the node at the step end is evaluated with the next step
+        let mut highest_pressure = None;
+        let mut any_may_fire = false;
+        for cursor in &mut self.cursors {
+            while skip_first
+                && cursor.next <= cursor.last
+                && node_key(cursor.time(cursor.next)) == first_key
+            {
+                cursor.next += 1;
             }
-            let t_node = self.nodes[i].0;
-            let group_end = self.nodes[i..]
-                .iter()
-                .position(|n| node_key(n.0) != key)
-                .map_or(self.nodes.len(), |k| i + k);
-            if skip_first && key == first_key {
-                i = group_end;
-                continue;
+            while cursor.last >= cursor.next && node_key(cursor.time(cursor.last)) == k_end {
+                cursor.last -= 1;
             }
-            let z = integ.dense_component(t_node, 2);
-            let vz = integ.dense_component(t_node, 5);
-            let mut pressure = None;
-            for g in i..group_end {
-                let p = self.nodes[g].1;
-                let noise = self.streams[p].next_value();
-                let fired = vz < 0.0
-                    && match specs[p].trigger {
-                        TriggerKind::Apogee => true,
-                        TriggerKind::HeightAboveGround(h) => match self.thresholds[p] {
-                            // Noise-free: compare heights directly, away from the threshold.
-                            Some(zt) if noise == 0.0 && (z - zt).abs() > THRESHOLD_BAND => z < zt,
-                            _ => {
-                                let p_clean = *pressure.get_or_insert_with(|| atm.pressure(z));
-                                atm.barometric_height(p_clean + noise) - elevation < h
-                            }
-                        },
-                    };
-                if !fired {
+            let count = cursor.count();
+            cursor.may_fire = count > 0
+                && descending
+                && match specs[cursor.p].trigger {
+                    TriggerKind::Apogee => true,
+                    TriggerKind::HeightAboveGround(h) if cursor.draws => {
+                        let p_high = *highest_pressure.get_or_insert_with(|| atm.pressure(z_low));
+                        let noise_high = self.streams[cursor.p].peek_max(count);
+                        let height_low = atm.barometric_height(p_high + noise_high) - elevation;
+                        let excluded = height_low >= h + THRESHOLD_BAND;
+                        !excluded
+                    }
+                    // Noise-free: `cannot_fire` has already bounded it.
+                    TriggerKind::HeightAboveGround(_) => true,
+                };
+            any_may_fire |= cursor.may_fire;
+        }
+        if !any_may_fire {
+            for cursor in &self.cursors {
+                if cursor.draws {
+                    self.streams[cursor.p].skip(cursor.count());
+                }
+            }
+            return None;
+        }
+        let mut group_key = None;
+        let mut t_node = 0.0;
+        let (mut z, mut vz, mut pressure) = (None, None, None);
+        loop {
+            // The earliest instant left; ties go to the earlier parachute.
+            let mut earliest: Option<(usize, f64)> = None;
+            for (k, cursor) in self.cursors.iter().enumerate() {
+                if cursor.next > cursor.last {
                     continue;
                 }
-                let y_node = integ.dense(t_node);
-                self.deploy(&specs[p], p, index, kind, t_node);
-                self.points[n - 1] = SolutionPoint {
-                    t: t_node,
-                    state: y_node,
-                    phase: kind,
-                };
-                return Some((t_node, y_node));
+                let t = cursor.time(cursor.next);
+                if earliest.is_none_or(|(_, t_min)| t < t_min) {
+                    earliest = Some((k, t));
+                }
             }
-            i = group_end;
+            // None once every instant is evaluated: nothing fired.
+            let (k, t) = earliest?;
+            let cursor = self.cursors[k];
+            self.cursors[k].next += 1;
+            let key = node_key(t);
+            if group_key != Some(key) {
+                group_key = Some(key);
+                t_node = t;
+                (z, vz, pressure) = (None, None, None);
+            }
+            let p = cursor.p;
+            let noise = if cursor.draws {
+                self.streams[p].next_value()
+            } else {
+                0.0
+            };
+            if !cursor.may_fire {
+                continue;
+            }
+            let vz_node = *vz.get_or_insert_with(|| integ.dense_component(t_node, 5));
+            let fired = vz_node < 0.0
+                && match specs[p].trigger {
+                    TriggerKind::Apogee => true,
+                    TriggerKind::HeightAboveGround(h) => {
+                        let z_node = *z.get_or_insert_with(|| integ.dense_component(t_node, 2));
+                        match self.thresholds[p] {
+                            // Noise-free: compare heights directly, away from the threshold.
+                            Some(zt) if noise == 0.0 && (z_node - zt).abs() > THRESHOLD_BAND => {
+                                z_node < zt
+                            }
+                            _ => {
+                                let p_clean = *pressure.get_or_insert_with(|| atm.pressure(z_node));
+                                atm.barometric_height(p_clean + noise) - elevation < h
+                            }
+                        }
+                    }
+                };
+            if fired {
+                return Some(self.fire(integ, specs, p, index, kind, t_node));
+            }
         }
-        None
+    }
+
+    /// Deploys parachute `p` at `t_node` inside the last step and cuts the step there.
+    fn fire(
+        &mut self,
+        integ: &DormandPrince<13>,
+        specs: &[ParachuteSpec],
+        p: usize,
+        index: usize,
+        kind: PhaseKind,
+        t_node: f64,
+    ) -> (f64, State) {
+        let y_node = integ.dense(t_node);
+        self.deploy(&specs[p], p, index, kind, t_node);
+        let n = self.points.len();
+        self.points[n - 1] = SolutionPoint {
+            t: t_node,
+            state: y_node,
+            phase: kind,
+        };
+        (t_node, y_node)
     }
 
     /// Schedules a triggered parachute: an optional lag phase with the current equations,
@@ -788,6 +961,379 @@ impl Run {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::model::{RailButtonGeometry, SurfaceModel};
+
+    /// The reference the bounded sampling must agree with: every instant of every pending
+    /// parachute collected into a node list, sorted, grouped by key and evaluated in order
+    /// (every noisy stream drawn at each of its instants), with no bounds.
+    impl Run {
+        #[allow(clippy::too_many_arguments)]
+        pub(super) fn sample_every_instant<A: AtmosphereModel, V: VehicleModel>(
+            &mut self,
+            integ: &DormandPrince<13>,
+            eq: &Equations<'_, A, V>,
+            specs: &[ParachuteSpec],
+            index: usize,
+            phase: Phase,
+            kind: PhaseKind,
+            elevation: f64,
+        ) -> Option<(f64, State)> {
+            if self.pending.is_empty() || kind == PhaseKind::Rail {
+                return None;
+            }
+            let n = self.points.len();
+            let (t_start, t_end) = (self.points[n - 2].t, self.points[n - 1].t);
+            let (k_start, k_end) = (node_key(t_start), node_key(t_end));
+            let mut nodes: Vec<(f64, usize)> = Vec::new();
+            for &p in &self.pending {
+                let interval = 1.0 / specs[p].sampling_rate;
+                let j0 = (t_start / interval).floor() as i64 - 1;
+                let j1 = (t_end / interval).ceil() as i64 + 1;
+                for j in j0..=j1 {
+                    let t = j as f64 * interval;
+                    if (k_start..=k_end).contains(&node_key(t)) {
+                        nodes.push((t, p));
+                    }
+                }
+            }
+            if nodes.is_empty() {
+                return None;
+            }
+            nodes.sort_by(|a, b| a.0.total_cmp(&b.0));
+            let first_key = node_key(nodes[0].0);
+            let skip_first = phase.clear && (nodes[0].0 - phase.t).abs() < 1e-9;
+            let atm = eq.atmosphere();
+            for &(t, p) in &nodes {
+                let key = node_key(t);
+                if key == k_end {
+                    break;
+                }
+                if skip_first && key == first_key {
+                    continue;
+                }
+                // The group is evaluated at its first instant.
+                let t_node = nodes
+                    .iter()
+                    .find(|m| node_key(m.0) == key)
+                    .map_or(t, |m| m.0);
+                let z = integ.dense_component(t_node, 2);
+                let vz = integ.dense_component(t_node, 5);
+                let noise = self.streams[p].next_value();
+                let fired = vz < 0.0
+                    && match specs[p].trigger {
+                        TriggerKind::Apogee => true,
+                        TriggerKind::HeightAboveGround(h) => {
+                            atm.barometric_height(atm.pressure(z) + noise) - elevation < h
+                        }
+                    };
+                if fired {
+                    return Some(self.fire(integ, specs, p, index, kind, t_node));
+                }
+            }
+            None
+        }
+    }
+
+    /// Exponential atmosphere (scale height 8500 m) over a pad at 100 m.
+    struct Air8500;
+
+    impl AtmosphereModel for Air8500 {
+        fn elevation(&self) -> f64 {
+            100.0
+        }
+        fn pressure(&self, z: f64) -> f64 {
+            101_325.0 * (-z / 8500.0).exp()
+        }
+        fn density(&self, z: f64) -> f64 {
+            1.225 * (-z / 8500.0).exp()
+        }
+        fn speed_of_sound(&self, _z: f64) -> f64 {
+            340.0
+        }
+        fn dynamic_viscosity(&self, _z: f64) -> f64 {
+            1.8e-5
+        }
+        fn wind(&self, _z: f64) -> [f64; 2] {
+            [2.0, -1.0]
+        }
+        fn gravity(&self, _z: f64) -> f64 {
+            9.80665
+        }
+        fn earth_rotation_enu(&self) -> [f64; 3] {
+            [0.0; 3]
+        }
+        fn barometric_height(&self, pressure: f64) -> f64 {
+            -8500.0 * (pressure / 101_325.0).ln()
+        }
+    }
+
+    /// A surface with a constant normal-force slope.
+    struct Fin([f64; 3], f64);
+
+    impl SurfaceModel for Fin {
+        fn cp_body(&self) -> [f64; 3] {
+            self.0
+        }
+        fn reference_area(&self) -> f64 {
+            std::f64::consts::PI * 0.0025
+        }
+        fn reference_length(&self) -> f64 {
+            0.1
+        }
+        fn cn_alpha(&self, _mach: f64) -> f64 {
+            self.1
+        }
+        fn rolls(&self) -> bool {
+            false
+        }
+        fn roll_forcing(&self, _mach: f64) -> f64 {
+            0.0
+        }
+        fn roll_damping(&self, _mach: f64) -> f64 {
+            0.0
+        }
+    }
+
+    /// A stable 10 kg rocket with a 2 s, 800 N burn of 1 kg propellant (held at the CDM).
+    struct Rocket10 {
+        surfaces: [Fin; 2],
+        parachutes: Vec<ParachuteSpec>,
+    }
+
+    impl Rocket10 {
+        fn new(parachutes: Vec<ParachuteSpec>) -> Self {
+            Self {
+                surfaces: [Fin([0.0, 0.0, 0.8], 2.0), Fin([0.0, 0.0, -0.9], 6.0)],
+                parachutes,
+            }
+        }
+    }
+
+    impl VehicleModel for Rocket10 {
+        type Surface = Fin;
+
+        fn surfaces(&self) -> &[Fin] {
+            &self.surfaces
+        }
+        fn reference_area(&self) -> f64 {
+            std::f64::consts::PI * 0.0025
+        }
+        fn radius(&self) -> f64 {
+            0.05
+        }
+        fn csys(&self) -> f64 {
+            1.0
+        }
+        fn total_mass(&self, t: f64) -> f64 {
+            10.0 + (1.0 - t / 2.0).clamp(0.0, 1.0)
+        }
+        fn mass_flow_rate(&self, t: f64) -> f64 {
+            if (0.0..=2.0).contains(&t) { -0.5 } else { 0.0 }
+        }
+        fn mass_flow_rate_derivative(&self, _t: f64) -> f64 {
+            0.0
+        }
+        fn com_to_cdm(&self, _t: f64) -> f64 {
+            0.0
+        }
+        fn com_to_cdm_rate(&self, _t: f64) -> f64 {
+            0.0
+        }
+        fn com_to_cdm_accel(&self, _t: f64) -> f64 {
+            0.0
+        }
+        fn inertia(&self, t: f64) -> [f64; 6] {
+            let m = self.total_mass(t);
+            [m * 0.25, m * 0.25, m * 0.0025, 0.0, 0.0, 0.0]
+        }
+        fn inertia_rate(&self, t: f64) -> [f64; 6] {
+            let md = self.mass_flow_rate(t);
+            [md * 0.25, md * 0.25, md * 0.0025, 0.0, 0.0, 0.0]
+        }
+        fn nozzle_to_cdm(&self) -> f64 {
+            1.0
+        }
+        fn nozzle_gyration(&self) -> [f64; 3] {
+            [0.25, 0.25, 0.0005]
+        }
+        fn thrust(&self, t: f64) -> f64 {
+            if (0.0..=2.0).contains(&t) { 800.0 } else { 0.0 }
+        }
+        fn net_thrust(&self, t: f64, _p: f64) -> f64 {
+            self.thrust(t)
+        }
+        fn thrust_knots(&self) -> Vec<f64> {
+            vec![0.0, 2.0]
+        }
+        fn burn_start(&self) -> f64 {
+            0.0
+        }
+        fn burn_out(&self) -> f64 {
+            2.0
+        }
+        fn drag_coefficient(&self, _power_on: bool, _mach: f64) -> f64 {
+            0.5
+        }
+        fn dry_mass(&self) -> f64 {
+            10.0
+        }
+        fn center_of_dry_mass(&self) -> f64 {
+            0.0
+        }
+        fn nozzle_position(&self) -> f64 {
+            -1.0
+        }
+        fn rail_buttons(&self) -> Option<RailButtonGeometry> {
+            Some(RailButtonGeometry {
+                upper_position: 0.2,
+                lower_position: -0.5,
+                angular_position_rad: std::f64::consts::FRAC_PI_4,
+            })
+        }
+        fn parachutes(&self) -> Vec<ParachuteSpec> {
+            self.parachutes.clone()
+        }
+        fn static_margin(&self, _t: f64) -> f64 {
+            0.0
+        }
+        fn stability_margin(&self, _mach: f64, _t: f64) -> f64 {
+            0.0
+        }
+    }
+
+    /// A parachute with the given trigger, rate, lag and noise.
+    fn chute(
+        name: &str,
+        trigger: TriggerKind,
+        rate: f64,
+        lag: f64,
+        noise: [f64; 3],
+    ) -> ParachuteSpec {
+        ParachuteSpec {
+            name: name.into(),
+            cd_s: if trigger == TriggerKind::Apogee {
+                0.5
+            } else {
+                2.0
+            },
+            trigger,
+            sampling_rate: rate,
+            lag,
+            noise,
+            radius: 0.5,
+            height: 0.5,
+            added_mass_coefficient: 1.0,
+        }
+    }
+
+    fn fly_with(parachutes: Vec<ParachuteSpec>, seed: u64, sampling: Sampling) -> Flight {
+        let mut settings = FlightSettings::new(3.0);
+        settings.inclination_deg = 86.0;
+        settings.noise_seed = seed;
+        fly(&Air8500, &Rocket10::new(parachutes), &settings, sampling).expect("flies")
+    }
+
+    /// Calisto's trigger noise, Pa.
+    const CALISTO_NOISE: [f64; 3] = [0.0, 8.3, 0.5];
+
+    #[test]
+    fn noisy_flight_replays_bit_for_bit() {
+        let chutes = || {
+            vec![
+                chute(
+                    "main",
+                    TriggerKind::HeightAboveGround(300.0),
+                    105.0,
+                    1.5,
+                    CALISTO_NOISE,
+                ),
+                chute("drogue", TriggerKind::Apogee, 105.0, 1.5, CALISTO_NOISE),
+            ]
+        };
+        let a = fly_with(chutes(), 11, Sampling::Bounded);
+        let b = fly_with(chutes(), 11, Sampling::Bounded);
+        assert_eq!(a.parachute_events.len(), 2);
+        let bits = |f: &Flight| {
+            f.points
+                .iter()
+                .flat_map(|p| std::iter::once(p.t).chain(p.state))
+                .map(f64::to_bits)
+                .collect::<Vec<_>>()
+        };
+        assert_eq!(bits(&a), bits(&b));
+        assert_eq!(a, b);
+    }
+
+    #[test]
+    fn bounded_sampling_decides_as_direct_evaluation() {
+        // Apogee of this rocket with no parachute, m above the pad.
+        let ballistic = fly_with(Vec::new(), 0, Sampling::Bounded);
+        let apogee_agl = ballistic.apogee.expect("apogee").1[2] - 100.0;
+        let height = TriggerKind::HeightAboveGround;
+        let cases: Vec<(&str, Vec<ParachuteSpec>)> = vec![
+            (
+                "Calisto-like, equal rates",
+                vec![
+                    chute("main", height(300.0), 105.0, 1.5, CALISTO_NOISE),
+                    chute("drogue", TriggerKind::Apogee, 105.0, 1.5, CALISTO_NOISE),
+                ],
+            ),
+            (
+                "unequal rates, no lag, silent drogue",
+                vec![
+                    chute("drogue", TriggerKind::Apogee, 100.0, 0.0, [0.0; 3]),
+                    chute("main", height(250.0), 30.0, 0.0, [2.0, 40.0, 0.8]),
+                ],
+            ),
+            (
+                // 0.3 m below apogee, with 8.3 Pa (~0.7 m) of noise: fires at apogee or not.
+                "height trigger at the apogee threshold",
+                vec![
+                    chute("high", height(apogee_agl - 0.3), 100.0, 0.0, CALISTO_NOISE),
+                    chute("low", height(200.0), 105.0, 1.0, CALISTO_NOISE),
+                    chute("quiet", height(120.0), 10.0, 0.0, [0.0; 3]),
+                ],
+            ),
+            (
+                "two noisy height triggers, one without lag",
+                vec![
+                    chute("upper", height(400.0), 20.0, 0.0, [0.0, 300.0, 0.5]),
+                    chute("lower", height(150.0), 50.0, 0.7, [1.0, 300.0, 0.0]),
+                ],
+            ),
+        ];
+        let mut high_triggers = Vec::new();
+        for (name, chutes) in &cases {
+            for seed in 0..6 {
+                let bounded = fly_with(chutes.clone(), seed, Sampling::Bounded);
+                let direct = fly_with(chutes.clone(), seed, Sampling::Direct);
+                assert!(
+                    !bounded.parachute_events.is_empty(),
+                    "{name}, seed {seed}: nothing fired"
+                );
+                assert_eq!(
+                    bounded.parachute_events, direct.parachute_events,
+                    "{name}, seed {seed}"
+                );
+                assert_eq!(bounded, direct, "{name}, seed {seed}");
+                let apogee_t = bounded.apogee.expect("apogee").0;
+                high_triggers.extend(
+                    bounded
+                        .parachute_events
+                        .iter()
+                        .filter(|e| e.name == "high")
+                        .map(|e| e.trigger_time - apogee_t),
+                );
+            }
+        }
+        // The threshold case must depend on the draws to test anything.
+        assert!(
+            high_triggers
+                .iter()
+                .any(|&dt| (dt - high_triggers[0]).abs() > 1e-6),
+            "high trigger instants after apogee {high_triggers:?}"
+        );
+    }
 
     #[test]
     fn hermite_root_of_a_cubic() {

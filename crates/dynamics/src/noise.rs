@@ -5,6 +5,11 @@
 //! [`rand::rngs::StdRng`] seeded from the flight's recorded `u64` seed and the parachute's
 //! index, so a noisy flight replays exactly from its seed. Noise `(0, 0, 0)` is identically 0
 //! and draws nothing.
+//!
+//! The flight engine may look ahead ([`NoiseStream::peek_max`]): values drawn before their
+//! sampling instant are kept and handed out, in order, by [`NoiseStream::next_value`] and
+//! [`NoiseStream::skip`], so the `k`-th value a stream delivers is the same whether or not it
+//! was looked at early (the sequence, not the time of the draw, fixes the noise).
 
 use rand::SeedableRng;
 use rand::rngs::StdRng;
@@ -18,6 +23,9 @@ pub struct NoiseStream {
     correlation: f64,
     innovation_scale: f64,
     last: f64,
+    /// Values drawn ahead of their instants; `ahead[head..]` are still to be delivered.
+    ahead: Vec<f64>,
+    head: usize,
 }
 
 impl NoiseStream {
@@ -52,6 +60,8 @@ impl NoiseStream {
             correlation,
             innovation_scale: (1.0 - correlation * correlation).sqrt(),
             last,
+            ahead: Vec::new(),
+            head: 0,
         }
     }
 
@@ -63,6 +73,57 @@ impl NoiseStream {
 
     /// Advances the stream one sampling instant and returns the new noise value, Pa.
     pub fn next_value(&mut self) -> f64 {
+        if let Some(&value) = self.ahead.get(self.head) {
+            self.head += 1;
+            return value;
+        }
+        self.draw()
+    }
+
+    /// The largest of the next `count` values (−∞ for `count = 0`), Pa, without advancing the
+    /// stream: the values are drawn now and delivered later. Allocation-free once the
+    /// look-ahead buffer has grown to the largest `count` asked for.
+    pub fn peek_max(&mut self, count: usize) -> f64 {
+        let Some(normal) = self.normal else {
+            return if count == 0 { f64::NEG_INFINITY } else { 0.0 };
+        };
+        if self.head > 0 {
+            self.ahead.drain(..self.head);
+            self.head = 0;
+        }
+        let mut max = self.ahead[..count.min(self.ahead.len())]
+            .iter()
+            .fold(f64::NEG_INFINITY, |max, &v| max.max(v));
+        let mut last = self.last;
+        for _ in self.ahead.len()..count {
+            last = self.correlation * last + self.innovation_scale * normal.sample(&mut self.rng);
+            self.ahead.push(last);
+            max = max.max(last);
+        }
+        self.last = last;
+        max
+    }
+
+    /// Advances the stream `count` sampling instants, discarding the values.
+    pub fn skip(&mut self, count: usize) {
+        let Some(normal) = self.normal else {
+            return;
+        };
+        let buffered = (self.ahead.len() - self.head).min(count);
+        self.head += buffered;
+        if self.head == self.ahead.len() {
+            self.ahead.clear();
+            self.head = 0;
+        }
+        let mut last = self.last;
+        for _ in buffered..count {
+            last = self.correlation * last + self.innovation_scale * normal.sample(&mut self.rng);
+        }
+        self.last = last;
+    }
+
+    /// Draws the next value of the AR(1) recursion.
+    fn draw(&mut self) -> f64 {
         let Some(normal) = self.normal else {
             return 0.0;
         };
@@ -107,5 +168,47 @@ mod tests {
             (c.next_value() - xs[0]).abs() > 1e-12,
             "different parachutes differ"
         );
+    }
+
+    #[test]
+    fn look_ahead_keeps_the_sequence() {
+        let mut plain = NoiseStream::new([0.5, 8.3, 0.5], 9, 3);
+        let reference: Vec<f64> = (0..40).map(|_| plain.next_value()).collect();
+        let mut s = NoiseStream::new([0.5, 8.3, 0.5], 9, 3);
+        let mut got = Vec::new();
+        let max5 = s.peek_max(5);
+        assert_eq!(
+            max5.to_bits(),
+            reference[..5]
+                .iter()
+                .copied()
+                .fold(f64::NEG_INFINITY, f64::max)
+                .to_bits()
+        );
+        got.push(s.next_value());
+        got.push(s.next_value());
+        // A longer look-ahead over partly consumed values, then a skip across the buffer end.
+        let max10 = s.peek_max(10);
+        assert_eq!(
+            max10.to_bits(),
+            reference[2..12]
+                .iter()
+                .copied()
+                .fold(f64::NEG_INFINITY, f64::max)
+                .to_bits()
+        );
+        s.skip(3);
+        got.extend(reference[2..5].iter());
+        got.push(s.next_value());
+        s.skip(20);
+        got.extend(reference[6..26].iter());
+        assert!(s.peek_max(0).is_infinite());
+        got.extend((26..40).map(|_| s.next_value()));
+        let bits = |v: &[f64]| v.iter().map(|x| x.to_bits()).collect::<Vec<_>>();
+        assert_eq!(bits(&got), bits(&reference));
+        let mut silent = NoiseStream::new([0.0; 3], 9, 3);
+        assert!(silent.peek_max(4).abs() < f64::MIN_POSITIVE);
+        silent.skip(4);
+        assert!(silent.next_value().abs() < f64::MIN_POSITIVE);
     }
 }

@@ -1,15 +1,21 @@
 //! The Calisto validation mission (`../shared/validation/calisto`, or
-//! `$KARMAN_VALIDATION_DATA/calisto`) flown to the ground, parachute noise zeroed: the models
-//! are built once, the timing covers `karman_dynamics::simulate` only. Prints the step and
+//! `$KARMAN_VALIDATION_DATA/calisto`) flown to the ground, once with the parachute noise zeroed
+//! (`calisto_flight_to_ground`) and once with the mission's trigger noise kept and a fixed
+//! noise seed (`calisto_flight_noisy`, the flight a Monte Carlo run repeats): the models are
+//! built once, the timing covers `karman_dynamics::simulate` only. Prints the step and
 //! right-hand-side counts once so that ns per evaluation can be read off the median.
 
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 
 use criterion::{Criterion, criterion_group, criterion_main};
+use karman_mission::Override;
 use karman_mission::build::environment::build_environment;
 use karman_mission::build::flight::flight_settings;
 use karman_mission::build::motor::build_motor;
 use karman_mission::build::rocket::build_rocket;
+
+/// Noise seed of the noisy flight (any fixed value: the bench must time the same flight).
+const NOISE_SEED: u64 = 20_240_611;
 
 fn calisto() -> Option<PathBuf> {
     let dir = std::env::var_os("KARMAN_VALIDATION_DATA").map_or_else(
@@ -20,6 +26,31 @@ fn calisto() -> Option<PathBuf> {
     path.is_file().then_some(path)
 }
 
+/// Builds the mission with `overrides`, flies it once to print its counters, then times it.
+fn bench_one(c: &mut Criterion, name: &str, path: &Path, overrides: &[Override], seed: u64) {
+    let mission = karman_mission::load(path, overrides).expect("calisto loads");
+    let environment = build_environment(&mission).expect("environment");
+    let motor = build_motor(&mission).expect("motor");
+    let rocket = build_rocket(&mission, &motor).expect("rocket");
+    let settings = flight_settings(&mission, seed);
+    let once = karman_mission::dynamics::simulate(&environment, &rocket, &settings).expect("flies");
+    eprintln!(
+        "{name}: {} steps ({} rejected), {} right-hand-side evaluations, parachutes {:?}",
+        once.stats.steps,
+        once.stats.rejected_steps,
+        once.stats.evaluations,
+        once.parachute_events
+            .iter()
+            .map(|e| (e.name.as_str(), e.trigger_time))
+            .collect::<Vec<_>>()
+    );
+    c.bench_function(name, |b| {
+        b.iter(|| {
+            karman_mission::dynamics::simulate(&environment, &rocket, &settings).expect("flies")
+        });
+    });
+}
+
 fn flight(c: &mut Criterion) {
     let Some(path) = calisto() else {
         eprintln!("calisto mission not found: flight bench skipped");
@@ -27,21 +58,8 @@ fn flight(c: &mut Criterion) {
     };
     let nominal = karman_mission::load(&path, &[]).expect("calisto loads");
     let quiet = nominal.parachute_noise_off().expect("noise overrides");
-    let mission = karman_mission::load(&path, &quiet).expect("calisto loads");
-    let environment = build_environment(&mission).expect("environment");
-    let motor = build_motor(&mission).expect("motor");
-    let rocket = build_rocket(&mission, &motor).expect("rocket");
-    let settings = flight_settings(&mission, 0);
-    let once = karman_mission::dynamics::simulate(&environment, &rocket, &settings).expect("flies");
-    eprintln!(
-        "calisto: {} steps ({} rejected), {} right-hand-side evaluations",
-        once.stats.steps, once.stats.rejected_steps, once.stats.evaluations
-    );
-    c.bench_function("calisto_flight_to_ground", |b| {
-        b.iter(|| {
-            karman_mission::dynamics::simulate(&environment, &rocket, &settings).expect("flies")
-        });
-    });
+    bench_one(c, "calisto_flight_to_ground", &path, &quiet, 0);
+    bench_one(c, "calisto_flight_noisy", &path, &[], NOISE_SEED);
 }
 
 criterion_group!(benches, flight);
