@@ -1237,6 +1237,49 @@ mod tests {
     const CALISTO_NOISE: [f64; 3] = [0.0, 8.3, 0.5];
 
     #[test]
+    fn max_acceleration_is_the_largest_at_the_stored_points() {
+        // The definition the FSAL shortcut replaces: the equations evaluated at every stored
+        // point, and the next phase's equations at each phase boundary (the canopy peak).
+        // A main canopy so large that its opening shock is the largest acceleration of the
+        // flight, at the first instant of its phase.
+        let chutes = || {
+            let mut main = chute(
+                "main",
+                TriggerKind::HeightAboveGround(300.0),
+                100.0,
+                0.0,
+                [0.0; 3],
+            );
+            main.cd_s = 400.0;
+            vec![
+                chute("drogue", TriggerKind::Apogee, 100.0, 1.0, [0.0; 3]),
+                main,
+            ]
+        };
+        let flight = fly_with(chutes(), 0, Sampling::Bounded);
+        assert_eq!(flight.parachute_events.len(), 2);
+        let rocket = Rocket10::new(chutes());
+        let eq = Equations::new(&Air8500, &rocket);
+        let at =
+            |kind: &PhaseKind, t: f64, u: &State| acceleration(&evaluate(&eq, kind, t, u).u_dot);
+        let mut expected: f64 = 0.0;
+        for p in &flight.points {
+            expected = expected.max(at(&p.phase, p.t, &p.state));
+        }
+        for w in flight.points.windows(2) {
+            if w[0].phase != w[1].phase {
+                expected = expected.max(at(&w[1].phase, w[0].t, &w[0].state));
+            }
+        }
+        // The same evaluations (the FSAL stage is taken at the stored point's time).
+        assert!(
+            (flight.max_acceleration - expected).abs() <= 1e-12 * expected,
+            "{} vs {expected}",
+            flight.max_acceleration
+        );
+    }
+
+    #[test]
     fn noisy_flight_replays_bit_for_bit() {
         let chutes = || {
             vec![

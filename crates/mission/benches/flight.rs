@@ -5,8 +5,11 @@
 //! built once, the timing covers `karman_dynamics::simulate` only. Prints the step and
 //! right-hand-side counts once so that ns per evaluation can be read off the median.
 
-use std::path::{Path, PathBuf};
+use std::path::Path;
 
+mod common;
+
+use common::calisto;
 use criterion::{Criterion, criterion_group, criterion_main};
 use karman_mission::Override;
 use karman_mission::build::environment::build_environment;
@@ -16,15 +19,6 @@ use karman_mission::build::rocket::build_rocket;
 
 /// Noise seed of the noisy flight (any fixed value: the bench must time the same flight).
 const NOISE_SEED: u64 = 20_240_611;
-
-fn calisto() -> Option<PathBuf> {
-    let dir = std::env::var_os("KARMAN_VALIDATION_DATA").map_or_else(
-        || PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../../../shared/validation"),
-        PathBuf::from,
-    );
-    let path = dir.join("calisto/mission.toml");
-    path.is_file().then_some(path)
-}
 
 /// Builds the mission with `overrides`, flies it once to print its counters, then times it.
 fn bench_one(c: &mut Criterion, name: &str, path: &Path, overrides: &[Override], seed: u64) {

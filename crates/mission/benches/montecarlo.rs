@@ -10,8 +10,9 @@
 //!   worker threads, samples.csv written in index order, summary, ellipses, KML and plots)
 //!   for 2,000 samples; criterion's throughput line gives flights per second.
 
-use std::path::PathBuf;
+mod common;
 
+use common::calisto;
 use criterion::{Criterion, Throughput, criterion_group, criterion_main};
 use karman_mission::dispersion::{self, ProgressMode, RunOptions};
 use karman_mission::montecarlo::{MonteCarlo, StudyOverrides};
@@ -34,15 +35,6 @@ seed = 42
 "rocket.parachutes.main.cd_s" = { std = 0.5 }
 "rocket.parachutes.drogue.cd_s" = { std = 0.1 }
 "#;
-
-fn calisto() -> Option<PathBuf> {
-    let dir = std::env::var_os("KARMAN_VALIDATION_DATA").map_or_else(
-        || PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../../../shared/validation"),
-        PathBuf::from,
-    );
-    let path = dir.join("calisto/mission.toml");
-    path.is_file().then_some(path)
-}
 
 fn montecarlo(c: &mut Criterion) {
     let Some(path) = calisto() else {
