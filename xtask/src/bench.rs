@@ -1,6 +1,7 @@
 //! `cargo xtask bench [FILTER]`: run every criterion benchmark of the workspace in release and
 //! print one line per benchmark with its median time, read from criterion's
-//! `target/criterion/**/new/estimates.json`. Speed targets live here, never in timed tests.
+//! `target/criterion/**/new/estimates.json` written by this run (older files, of benchmarks
+//! since renamed or removed, are left out). Speed targets live here, never in timed tests.
 
 use std::path::{Path, PathBuf};
 
@@ -13,12 +14,19 @@ pub fn run(root: &Path, args: &[String]) -> Result<()> {
     if let Some(filter) = args.first() {
         cargo_args.push(filter);
     }
+    // File times have a coarse resolution on some systems: a second of slack.
+    let started = std::time::SystemTime::now() - std::time::Duration::from_secs(1);
     crate::cargo(root, &cargo_args)?;
     let dir = root.join("target/criterion");
     let mut found = Vec::new();
     collect(&dir, &mut found)?;
+    found.retain(|path| {
+        std::fs::metadata(path)
+            .and_then(|m| m.modified())
+            .is_ok_and(|modified| modified >= started)
+    });
     found.sort();
-    println!("{:<60} {:>14}", "benchmark", "median");
+    println!("{:<50} {:>14} {:>18}", "benchmark", "median", "throughput");
     for path in found {
         let text = std::fs::read_to_string(&path)?;
         let v: Value = serde_json::from_str(&text).with_context(|| path.display().to_string())?;
@@ -30,7 +38,14 @@ pub fn run(root: &Path, args: &[String]) -> Result<()> {
             .ok()
             .and_then(|p| p.parent()?.parent())
             .map_or_else(String::new, |p| p.display().to_string());
-        println!("{name:<60} {:>14}", human(ns));
+        // Elements per second where the bench declares a throughput (criterion's
+        // benchmark.json beside the estimates).
+        let rate = std::fs::read_to_string(path.with_file_name("benchmark.json"))
+            .ok()
+            .and_then(|t| serde_json::from_str::<Value>(&t).ok())
+            .and_then(|b| b["throughput"]["Elements"].as_f64())
+            .map_or_else(String::new, |n| format!("{:.0} /s", n / (ns * 1e-9)));
+        println!("{name:<50} {:>14} {rate:>18}", human(ns));
     }
     Ok(())
 }
