@@ -590,6 +590,40 @@ mod tests {
         assert!(apogee(&mc.fly(4, &heavier).expect("flight")) < apogee(&outcome));
     }
 
+    #[test]
+    fn shared_models_fly_as_rebuilt_ones() {
+        // Inputs that reach nothing but the flight settings, only the rocket, or the motor:
+        // the shared environment / motor / rocket must give the flight a fresh build gives.
+        for (vary, neutral, reach) in [
+            (
+                "\"flight.heading\" = { std = 2 }\n",
+                10.0,
+                [false, false, false],
+            ),
+            (
+                "\"rocket.mass\" = { std = 0.1 }\n",
+                3.0,
+                [false, false, true],
+            ),
+            (
+                "\"motor.dry_mass\" = { std = 0.01 }\n",
+                0.5,
+                [false, true, true],
+            ),
+        ] {
+            let mission = mission(vary);
+            let mc = MonteCarlo::new(&mission, StudyOverrides::default()).expect("study");
+            let r = mc.reach;
+            assert_eq!([r.environment, r.motor, r.rocket], reach, "{vary}");
+            let outcome = mc.fly(2, &[neutral]).expect("flight");
+            let nominal = simulate_with_seed(&mission, flight_seed(3, 2)).expect("nominal");
+            let expected = outcome_values(&nominal.summary());
+            let bits =
+                |v: &[Option<f64>]| v.iter().map(|x| x.map(f64::to_bits)).collect::<Vec<_>>();
+            assert_eq!(bits(outcome.values()), bits(&expected), "{vary}");
+        }
+    }
+
     fn outcome_values(summary: &Summary) -> Vec<Option<f64>> {
         outcome(summary).values().to_vec()
     }
