@@ -961,7 +961,6 @@ impl Run {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::model::{RailButtonGeometry, SurfaceModel};
 
     /// The reference the bounded sampling must agree with: every instant of every pending
     /// parachute collected into a node list, sorted, grouped by key and evaluated in order
@@ -1034,170 +1033,21 @@ mod tests {
         }
     }
 
-    /// Exponential atmosphere (scale height 8500 m) over a pad at 100 m.
-    struct Air8500;
+    use crate::mock::{MockAtmosphere, MockRocket};
 
-    impl AtmosphereModel for Air8500 {
-        fn elevation(&self) -> f64 {
-            100.0
-        }
-        fn pressure(&self, z: f64) -> f64 {
-            101_325.0 * (-z / 8500.0).exp()
-        }
-        fn density(&self, z: f64) -> f64 {
-            1.225 * (-z / 8500.0).exp()
-        }
-        fn speed_of_sound(&self, _z: f64) -> f64 {
-            340.0
-        }
-        fn dynamic_viscosity(&self, _z: f64) -> f64 {
-            1.8e-5
-        }
-        fn wind(&self, _z: f64) -> [f64; 2] {
-            [2.0, -1.0]
-        }
-        fn gravity(&self, _z: f64) -> f64 {
-            9.80665
-        }
-        fn earth_rotation_enu(&self) -> [f64; 3] {
-            [0.0; 3]
-        }
-        fn barometric_height(&self, pressure: f64) -> f64 {
-            -8500.0 * (pressure / 101_325.0).ln()
+    /// The test atmosphere: the mock's, with a constant wind (2, −1) m/s.
+    fn air() -> MockAtmosphere {
+        MockAtmosphere {
+            wind: [2.0, -1.0],
+            ..MockAtmosphere::default()
         }
     }
 
-    /// A surface with a constant normal-force slope.
-    struct Fin([f64; 3], f64);
-
-    impl SurfaceModel for Fin {
-        fn cp_body(&self) -> [f64; 3] {
-            self.0
-        }
-        fn reference_area(&self) -> f64 {
-            std::f64::consts::PI * 0.0025
-        }
-        fn reference_length(&self) -> f64 {
-            0.1
-        }
-        fn cn_alpha(&self, _mach: f64) -> f64 {
-            self.1
-        }
-        fn rolls(&self) -> bool {
-            false
-        }
-        fn roll_forcing(&self, _mach: f64) -> f64 {
-            0.0
-        }
-        fn roll_damping(&self, _mach: f64) -> f64 {
-            0.0
-        }
-    }
-
-    /// A stable 10 kg rocket with a 2 s, 800 N burn of 1 kg propellant (held at the CDM).
-    struct Rocket10 {
-        surfaces: [Fin; 2],
-        parachutes: Vec<ParachuteSpec>,
-    }
-
-    impl Rocket10 {
-        fn new(parachutes: Vec<ParachuteSpec>) -> Self {
-            Self {
-                surfaces: [Fin([0.0, 0.0, 0.8], 2.0), Fin([0.0, 0.0, -0.9], 6.0)],
-                parachutes,
-            }
-        }
-    }
-
-    impl VehicleModel for Rocket10 {
-        type Surface = Fin;
-
-        fn surfaces(&self) -> &[Fin] {
-            &self.surfaces
-        }
-        fn reference_area(&self) -> f64 {
-            std::f64::consts::PI * 0.0025
-        }
-        fn radius(&self) -> f64 {
-            0.05
-        }
-        fn csys(&self) -> f64 {
-            1.0
-        }
-        fn total_mass(&self, t: f64) -> f64 {
-            10.0 + (1.0 - t / 2.0).clamp(0.0, 1.0)
-        }
-        fn mass_flow_rate(&self, t: f64) -> f64 {
-            if (0.0..=2.0).contains(&t) { -0.5 } else { 0.0 }
-        }
-        fn mass_flow_rate_derivative(&self, _t: f64) -> f64 {
-            0.0
-        }
-        fn com_to_cdm(&self, _t: f64) -> f64 {
-            0.0
-        }
-        fn com_to_cdm_rate(&self, _t: f64) -> f64 {
-            0.0
-        }
-        fn com_to_cdm_accel(&self, _t: f64) -> f64 {
-            0.0
-        }
-        fn inertia(&self, t: f64) -> [f64; 6] {
-            let m = self.total_mass(t);
-            [m * 0.25, m * 0.25, m * 0.0025, 0.0, 0.0, 0.0]
-        }
-        fn inertia_rate(&self, t: f64) -> [f64; 6] {
-            let md = self.mass_flow_rate(t);
-            [md * 0.25, md * 0.25, md * 0.0025, 0.0, 0.0, 0.0]
-        }
-        fn nozzle_to_cdm(&self) -> f64 {
-            1.0
-        }
-        fn nozzle_gyration(&self) -> [f64; 3] {
-            [0.25, 0.25, 0.0005]
-        }
-        fn thrust(&self, t: f64) -> f64 {
-            if (0.0..=2.0).contains(&t) { 800.0 } else { 0.0 }
-        }
-        fn net_thrust(&self, t: f64, _p: f64) -> f64 {
-            self.thrust(t)
-        }
-        fn thrust_knots(&self) -> Vec<f64> {
-            vec![0.0, 2.0]
-        }
-        fn burn_start(&self) -> f64 {
-            0.0
-        }
-        fn burn_out(&self) -> f64 {
-            2.0
-        }
-        fn drag_coefficient(&self, _power_on: bool, _mach: f64) -> f64 {
-            0.5
-        }
-        fn dry_mass(&self) -> f64 {
-            10.0
-        }
-        fn center_of_dry_mass(&self) -> f64 {
-            0.0
-        }
-        fn nozzle_position(&self) -> f64 {
-            -1.0
-        }
-        fn rail_buttons(&self) -> Option<RailButtonGeometry> {
-            Some(RailButtonGeometry {
-                upper_position: 0.2,
-                lower_position: -0.5,
-                angular_position_rad: std::f64::consts::FRAC_PI_4,
-            })
-        }
-        fn parachutes(&self) -> Vec<ParachuteSpec> {
-            self.parachutes.clone()
-        }
-        fn static_margin(&self, _t: f64) -> f64 {
-            0.0
-        }
-        fn stability_margin(&self, _mach: f64, _t: f64) -> f64 {
-            0.0
+    /// The mock's stable rocket with `parachutes`.
+    fn rocket(parachutes: Vec<ParachuteSpec>) -> MockRocket {
+        MockRocket {
+            parachutes,
+            ..MockRocket::stable()
         }
     }
 
@@ -1230,7 +1080,7 @@ mod tests {
         let mut settings = FlightSettings::new(3.0);
         settings.inclination_deg = 86.0;
         settings.noise_seed = seed;
-        fly(&Air8500, &Rocket10::new(parachutes), &settings, sampling).expect("flies")
+        fly(&air(), &rocket(parachutes), &settings, sampling).expect("flies")
     }
 
     /// Calisto's trigger noise, Pa.
@@ -1258,8 +1108,8 @@ mod tests {
         };
         let flight = fly_with(chutes(), 0, Sampling::Bounded);
         assert_eq!(flight.parachute_events.len(), 2);
-        let rocket = Rocket10::new(chutes());
-        let eq = Equations::new(&Air8500, &rocket);
+        let (air, rocket) = (air(), rocket(chutes()));
+        let eq = Equations::new(&air, &rocket);
         let at =
             |kind: &PhaseKind, t: f64, u: &State| acceleration(&evaluate(&eq, kind, t, u).u_dot);
         let mut expected: f64 = 0.0;

@@ -12,6 +12,15 @@
 //! - [`flight`]: phases, time nodes and events; [`simulate`] flies a rocket.
 //! - [`output`]: post-processed samples and the [`Summary`] of the mission contract.
 
+// The integration tests' analytic models (an exponential atmosphere, a stable 10 kg rocket),
+// shared with the unit tests rather than copied; they name this crate.
+#[cfg(test)]
+extern crate self as karman_dynamics;
+#[cfg(test)]
+#[allow(dead_code)]
+#[path = "../tests/mock.rs"]
+mod mock;
+
 pub mod adapters;
 pub mod equations;
 mod error;
