@@ -265,8 +265,8 @@ struct Run {
     termination: Termination,
     pending: Vec<usize>,
     streams: Vec<NoiseStream>,
-    /// The sampling instants of the last step, one cursor per parachute that samples it.
-    cursors: Vec<Cursor>,
+    /// The sampling instants of the last step, one range per parachute that samples it.
+    instants: Vec<Instants>,
     /// Per parachute: the ASL height below which a noise-free height trigger fires.
     thresholds: Vec<Option<f64>>,
     stats: IntegrationStats,
@@ -286,7 +286,7 @@ enum Sampling {
 
 /// The sampling instants `j · interval`, `j = next..=last`, of one parachute in the last step.
 #[derive(Debug, Clone, Copy)]
-struct Cursor {
+struct Instants {
     /// Parachute index.
     p: usize,
     /// Sampling interval `1 / f`, s.
@@ -301,7 +301,7 @@ struct Cursor {
     may_fire: bool,
 }
 
-impl Cursor {
+impl Instants {
     /// Time of instant `j`, s (computed as RocketPy's node list does, `j · Δ`).
     #[inline]
     fn time(&self, j: i64) -> f64 {
@@ -427,7 +427,7 @@ fn fly<A: AtmosphereModel, V: VehicleModel>(
             .filter(|&i| specs[i].sampling_rate > 0.0)
             .collect(),
         streams,
-        cursors: Vec::new(),
+        instants: Vec::new(),
         thresholds: specs
             .iter()
             .map(|p| match p.trigger {
@@ -753,14 +753,14 @@ impl Run {
         // the next step and found there whatever the rounding of t/Δ (a quotient a hair above
         // an integer lost it, and shifted the trigger noise).
         let (k_start, k_end) = (node_key(t_start), node_key(t_end));
-        self.cursors.clear();
+        self.instants.clear();
         let mut first = f64::INFINITY;
         for i in 0..self.pending.len() {
             let p = self.pending[i];
             if self.cannot_fire(p, integ) {
                 continue;
             }
-            let mut cursor = Cursor {
+            let mut range = Instants {
                 p,
                 interval: 1.0 / specs[p].sampling_rate,
                 next: 0,
@@ -770,20 +770,20 @@ impl Run {
                 may_fire: false,
             };
             // The keys grow with j: the instants in the window form one run of j.
-            cursor.next = (t_start / cursor.interval).floor() as i64 - 1;
-            cursor.last = (t_end / cursor.interval).ceil() as i64 + 1;
-            while cursor.next <= cursor.last && node_key(cursor.time(cursor.next)) < k_start {
-                cursor.next += 1;
+            range.next = (t_start / range.interval).floor() as i64 - 1;
+            range.last = (t_end / range.interval).ceil() as i64 + 1;
+            while range.next <= range.last && node_key(range.time(range.next)) < k_start {
+                range.next += 1;
             }
-            while cursor.last >= cursor.next && node_key(cursor.time(cursor.last)) > k_end {
-                cursor.last -= 1;
+            while range.last >= range.next && node_key(range.time(range.last)) > k_end {
+                range.last -= 1;
             }
-            if cursor.count() > 0 {
-                first = first.min(cursor.time(cursor.next));
-                self.cursors.push(cursor);
+            if range.count() > 0 {
+                first = first.min(range.time(range.next));
+                self.instants.push(range);
             }
         }
-        if self.cursors.is_empty() {
+        if self.instants.is_empty() {
             return None;
         }
         // The first group is cleared when it sits on the start of a `clear` phase; the group
@@ -795,24 +795,24 @@ impl Run {
         let atm = eq.atmosphere();
         let mut highest_pressure = None;
         let mut any_may_fire = false;
-        for cursor in &mut self.cursors {
+        for range in &mut self.instants {
             while skip_first
-                && cursor.next <= cursor.last
-                && node_key(cursor.time(cursor.next)) == first_key
+                && range.next <= range.last
+                && node_key(range.time(range.next)) == first_key
             {
-                cursor.next += 1;
+                range.next += 1;
             }
-            while cursor.last >= cursor.next && node_key(cursor.time(cursor.last)) == k_end {
-                cursor.last -= 1;
+            while range.last >= range.next && node_key(range.time(range.last)) == k_end {
+                range.last -= 1;
             }
-            let count = cursor.count();
-            cursor.may_fire = count > 0
+            let count = range.count();
+            range.may_fire = count > 0
                 && descending
-                && match specs[cursor.p].trigger {
+                && match specs[range.p].trigger {
                     TriggerKind::Apogee => true,
-                    TriggerKind::HeightAboveGround(h) if cursor.draws => {
+                    TriggerKind::HeightAboveGround(h) if range.draws => {
                         let p_high = *highest_pressure.get_or_insert_with(|| atm.pressure(z_low));
-                        let noise_high = self.streams[cursor.p].peek_max(count);
+                        let noise_high = self.streams[range.p].peek_max(count);
                         let height_low = atm.barometric_height(p_high + noise_high) - elevation;
                         let excluded = height_low >= h + THRESHOLD_BAND;
                         !excluded
@@ -820,12 +820,12 @@ impl Run {
                     // Noise-free: `cannot_fire` has already bounded it.
                     TriggerKind::HeightAboveGround(_) => true,
                 };
-            any_may_fire |= cursor.may_fire;
+            any_may_fire |= range.may_fire;
         }
         if !any_may_fire {
-            for cursor in &self.cursors {
-                if cursor.draws {
-                    self.streams[cursor.p].skip(cursor.count());
+            for range in &self.instants {
+                if range.draws {
+                    self.streams[range.p].skip(range.count());
                 }
             }
             return None;
@@ -836,32 +836,32 @@ impl Run {
         loop {
             // The earliest instant left; ties go to the earlier parachute.
             let mut earliest: Option<(usize, f64)> = None;
-            for (k, cursor) in self.cursors.iter().enumerate() {
-                if cursor.next > cursor.last {
+            for (k, range) in self.instants.iter().enumerate() {
+                if range.next > range.last {
                     continue;
                 }
-                let t = cursor.time(cursor.next);
+                let t = range.time(range.next);
                 if earliest.is_none_or(|(_, t_min)| t < t_min) {
                     earliest = Some((k, t));
                 }
             }
             // None once every instant is evaluated: nothing fired.
             let (k, t) = earliest?;
-            let cursor = self.cursors[k];
-            self.cursors[k].next += 1;
+            let range = self.instants[k];
+            self.instants[k].next += 1;
             let key = node_key(t);
             if group_key != Some(key) {
                 group_key = Some(key);
                 t_node = t;
                 (z, vz, pressure) = (None, None, None);
             }
-            let p = cursor.p;
-            let noise = if cursor.draws {
+            let p = range.p;
+            let noise = if range.draws {
                 self.streams[p].next_value()
             } else {
                 0.0
             };
-            if !cursor.may_fire {
+            if !range.may_fire {
                 continue;
             }
             let vz_node = *vz.get_or_insert_with(|| integ.dense_component(t_node, 5));
