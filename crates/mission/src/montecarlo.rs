@@ -20,8 +20,9 @@
 //! no varied input reaches is built once from the nominal mission and shared: the
 //! environment unless a stored `environment.*` input varies, the motor unless a `motor.*`
 //! input or knob varies, the rocket unless the motor or a `rocket.*` input varies; thrust and
-//! rocket curve files are read once. Parachute trigger noise of sample `i` is seeded from the sample's reserved
-//! stream ([`karman_dispersion::sampling::flight_seed`]), so it replays with the sample.
+//! rocket curve files are read once. Parachute trigger noise of sample `i` is seeded from the
+//! sample's reserved stream ([`karman_dispersion::sampling::flight_seed`]), so it replays with
+//! the sample.
 //! The KML export converts (x, y) to latitude/longitude with the datum's local Earth radius,
 //! as the flight's own track does (RocketPy's ellipse export uses 6.3781e6 m: up to 0.1 %
 //! apart, about 1 m per km of drift).
