@@ -7,6 +7,7 @@ use karman_airframe::{
     self as airframe, Airfoil, AirframeError, CoordinateSystem, NoseKind, Parachute, RailButtons,
     Rocket, RocketInputs, SurfaceInput, Trigger,
 };
+use karman_math::{Extrapolation, Interpolation};
 use karman_propulsion::Motor;
 
 use crate::schema::{self, AngleUnit, RocketCoordinateSystem, SurfaceSpec};
@@ -20,27 +21,18 @@ use crate::{Mission, MissionError};
 /// `rocket.parachutes.<name>` or `rocket.rail_buttons`) for impossible airframe inputs.
 pub fn build_rocket(mission: &Mission, motor: &Motor) -> Result<Rocket, MissionError> {
     let spec = &mission.spec.rocket;
-    let curve = |key: String, c: &schema::Curve| {
-        c.to_linear_table(&mission.dir)
+    // A curve as a table of the given kind: airfoils are linear with held ends, the drag
+    // curves follow the rocket's `interpolation` / `extrapolation`.
+    let curve = |key: String, c: &schema::Curve, kind: (Interpolation, Extrapolation)| {
+        c.to_table(&mission.dir, kind.0, kind.1)
             .map_err(|source| MissionError::Curve {
                 file: mission.path.clone(),
                 key,
                 source,
             })
     };
-    // The drag curves with the rocket's `interpolation` / `extrapolation`.
-    let drag = |key: &str, c: &schema::Curve| {
-        c.to_table(
-            &mission.dir,
-            spec.interpolation.into(),
-            spec.extrapolation.into(),
-        )
-        .map_err(|source| MissionError::Curve {
-            file: mission.path.clone(),
-            key: key.to_owned(),
-            source,
-        })
-    };
+    let linear = (Interpolation::Linear, Extrapolation::Constant);
+    let drag = (spec.interpolation.into(), spec.extrapolation.into());
     let model = |section: String, source: AirframeError| MissionError::Model {
         file: mission.path.clone(),
         section,
@@ -51,7 +43,7 @@ pub fn build_rocket(mission: &Mission, motor: &Motor) -> Result<Rocket, MissionE
     for (name, surface) in &spec.surfaces {
         let airfoil = match surface.airfoil() {
             Some(a) => Some(Airfoil {
-                lift_curve: curve(format!("rocket.surfaces.{name}.airfoil"), &a.lift)?,
+                lift_curve: curve(format!("rocket.surfaces.{name}.airfoil"), &a.lift, linear)?,
                 unit: match a.unit {
                     AngleUnit::Radians => airframe::AngleUnit::Radians,
                     AngleUnit::Degrees => airframe::AngleUnit::Degrees,
@@ -100,8 +92,8 @@ pub fn build_rocket(mission: &Mission, motor: &Motor) -> Result<Rocket, MissionE
             RocketCoordinateSystem::TailToNose => CoordinateSystem::TailToNose,
             RocketCoordinateSystem::NoseToTail => CoordinateSystem::NoseToTail,
         },
-        power_off_drag: drag("rocket.power_off_drag", &spec.power_off_drag)?,
-        power_on_drag: drag("rocket.power_on_drag", &spec.power_on_drag)?,
+        power_off_drag: curve("rocket.power_off_drag".into(), &spec.power_off_drag, drag)?,
+        power_on_drag: curve("rocket.power_on_drag".into(), &spec.power_on_drag, drag)?,
         motor_position: spec.motor_position,
         surfaces,
         parachutes,
