@@ -96,7 +96,7 @@ impl NoiseStream {
             .fold(f64::NEG_INFINITY, |max, &v| max.max(v));
         let mut last = self.last;
         for _ in self.ahead.len()..count {
-            last = self.correlation * last + self.innovation_scale * normal.sample(&mut self.rng);
+            last = self.step(normal, last);
             self.ahead.push(last);
             max = max.max(last);
         }
@@ -117,7 +117,7 @@ impl NoiseStream {
         }
         let mut last = self.last;
         for _ in buffered..count {
-            last = self.correlation * last + self.innovation_scale * normal.sample(&mut self.rng);
+            last = self.step(normal, last);
         }
         self.last = last;
     }
@@ -127,9 +127,14 @@ impl NoiseStream {
         let Some(normal) = self.normal else {
             return 0.0;
         };
-        self.last =
-            self.correlation * self.last + self.innovation_scale * normal.sample(&mut self.rng);
+        self.last = self.step(normal, self.last);
         self.last
+    }
+
+    /// One step of the AR(1) recursion from `last`: `ρ · last + √(1 − ρ²) · N(μ, σ)`.
+    #[inline]
+    fn step(&mut self, normal: Normal<f64>, last: f64) -> f64 {
+        self.correlation * last + self.innovation_scale * normal.sample(&mut self.rng)
     }
 }
 
