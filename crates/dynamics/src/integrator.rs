@@ -1,86 +1,473 @@
-//! Adaptive Dormand–Prince 5(4) integrator with dense output.
+//! Adaptive embedded Runge–Kutta integrators with dense output: the Dormand–Prince pairs
+//! DOPRI5 and DOP853.
 //!
-//! The method is the embedded Runge–Kutta pair RK5(4)7M of Dormand & Prince (1980), *A family
-//! of embedded Runge–Kutta formulae*, J. Comput. Appl. Math. 6(1), 19–26, propagated with the
-//! fifth-order solution (local extrapolation) and the FSAL property, as in Hairer, Nørsett &
-//! Wanner, *Solving Ordinary Differential Equations I* (2nd ed., 1993), §II.5 (Table 5.2). Its
-//! continuous extension is the fourth-order dense output of the same book, §II.6 (the `d_i`
-//! coefficients of the DOPRI5 code, eq. 6.12 ff.).
+//! - **DOPRI5**, the pair RK5(4)7M of Dormand & Prince (1980), *A family of embedded
+//!   Runge–Kutta formulae*, J. Comput. Appl. Math. 6(1), 19–26, as in Hairer, Nørsett &
+//!   Wanner, *Solving Ordinary Differential Equations I* (2nd ed., 1993), §II.5 (Table 5.2):
+//!   seven stages, six evaluations per step (FSAL), propagation with the fifth-order solution,
+//!   a fourth-order error estimate, and the fourth-order continuous extension of §II.6 (the
+//!   `d_i` of the DOPRI5 code, eq. 6.12 ff.), free of further evaluations.
+//! - **DOP853**, the eighth-order pair of Prince & Dormand (1981), *High order embedded
+//!   Runge–Kutta formulae*, J. Comput. Appl. Math. 7(1), 67–75, in the form of Hairer's DOP853
+//!   code (HNW I, §II.10): twelve evaluations per step (`f(t + h, y_new)` is reused as the next
+//!   step's first stage), an error estimate that combines a fifth- and a third-order embedded
+//!   solution, `err = err₅² / √(err₅² + 0.01 err₃²)`, and a continuous extension of order 7
+//!   that needs three more evaluations, made only for the steps where a dense value is asked
+//!   for. Its coefficients are those of `dop853.f`, written as the nearest doubles.
+//!
+//! Which pair where ([`crate::flight`]): DOPRI5 on the rail (steps capped), through the burn
+//! (steps end on every thrust-curve knot) and under parachutes (steps bounded by the stability
+//! of the drag relaxation), where a cheaper step wins; DOP853 for the unpowered 6-DOF flight,
+//! where accuracy sets the step: the attitude quaternion of a rolling rocket turns at half the
+//! roll rate (Calisto: ~9 rad/s), and DOPRI5 needed ~410 steps (2,450 evaluations) for its 22 s
+//! coast at the default tolerances, DOP853 ~100 steps (1,200 evaluations). Where the right-hand
+//! side has kinks (linearly interpolated wind and temperature profiles: a reanalysis or a
+//! sounding) every kink rejects a long step, and DOP853 loses (Astra: 18 % more evaluations
+//! than DOPRI5): the flight hands such a phase back to DOPRI5 once its steps keep being
+//! rejected. Through the burn DOP853 lost on every validation flight (knot stops cap its
+//! steps).
+//!
+//! Both dense outputs share one form, `y₀ + θ(F₀ + (1−θ)(F₁ + θ(F₂ + (1−θ)(F₃ + θ(F₄ + (1−θ)(F₅
+//! + θF₆))))))` with `θ = (t − t₀)/h`, `F₀ = Δy` and `F₁ = h f₀ − Δy` (HNW I, §II.6 and
+//! `dop853.f`'s `contd8`); DOPRI5's stops at `F₃`.
 //!
 //! Step-size control uses the scaled **max** norm `max_i |err_i| / (atol_i + rtol·max(|y_i|,
-//! |ŷ_i|))`, the norm of ODEPACK's LSODA (`vmnorm`, Hindmarsh 1983; Petzold 1983), which
-//! RocketPy integrates with: the RMS norm of SciPy's `RK45` dilutes a velocity error over the
-//! thirteen components and lets steps grow past what LSODA accepts (Calisto: 16 % fewer steps,
-//! but maxima sampled at the stored points drift by up to 0.16 %). The controller is
-//! `h ← h · min(10, max(0.2, 0.9 · err^(−1/5)))` (no growth right after a rejection) and the
-//! initial step comes from the algorithm of HNW I, §II.4 ("Starting step size"), as in SciPy.
+//! |ŷ_i|))` (for DOP853 both embedded errors), the norm of ODEPACK's LSODA (`vmnorm`,
+//! Hindmarsh 1983; Petzold 1983), which RocketPy integrates with: the RMS norm of SciPy's `RK45`
+//! dilutes a velocity error over the thirteen components and lets steps grow past what LSODA
+//! accepts (Calisto: 16 % fewer DOPRI5 steps, but maxima sampled at the stored points drift by
+//! up to 0.16 %). The controller is `h ← h · min(10, max(0.2, 0.9 · err^(−1/(q+1))))` with the
+//! estimator order `q` (no growth right after a rejection), and the initial step comes from the
+//! algorithm of HNW I, §II.4 ("Starting step size"), as in SciPy.
 //!
-//! The state is a fixed `[f64; N]`; the seven stages live inside the integrator, so a step
-//! never allocates.
+//! The state is a fixed `[f64; N]`; the stages live inside the integrator, which owns the
+//! right-hand side, so neither a step nor a dense value allocates.
 
 // Index loops over several parallel fixed-size arrays read closer to the formulas.
-#![allow(clippy::needless_range_loop)]
+#![allow(clippy::needless_range_loop, clippy::unreadable_literal)]
 
 use crate::DynamicsError;
 
-/// Nodes `c_i` of the Dormand–Prince 5(4) tableau (HNW I, Table 5.2).
-const C: [f64; 7] = [0.0, 1.0 / 5.0, 3.0 / 10.0, 4.0 / 5.0, 8.0 / 9.0, 1.0, 1.0];
+/// The DOPRI5 tableau.
+mod dopri5 {
+    /// Nodes `c_i` of the Dormand–Prince 5(4) tableau (HNW I, Table 5.2).
+    pub const C: [f64; 7] = [0.0, 1.0 / 5.0, 3.0 / 10.0, 4.0 / 5.0, 8.0 / 9.0, 1.0, 1.0];
 
-/// Lower-triangular coupling coefficients `a_ij` (HNW I, Table 5.2); row 6 holds the
-/// fifth-order weights `b_i` (FSAL: the seventh stage is `f(t + h, y_new)`).
-const A: [[f64; 6]; 7] = [
-    [0.0, 0.0, 0.0, 0.0, 0.0, 0.0],
-    [1.0 / 5.0, 0.0, 0.0, 0.0, 0.0, 0.0],
-    [3.0 / 40.0, 9.0 / 40.0, 0.0, 0.0, 0.0, 0.0],
-    [44.0 / 45.0, -56.0 / 15.0, 32.0 / 9.0, 0.0, 0.0, 0.0],
-    [
-        19372.0 / 6561.0,
-        -25360.0 / 2187.0,
-        64448.0 / 6561.0,
-        -212.0 / 729.0,
-        0.0,
-        0.0,
-    ],
-    [
-        9017.0 / 3168.0,
-        -355.0 / 33.0,
-        46732.0 / 5247.0,
-        49.0 / 176.0,
-        -5103.0 / 18656.0,
-        0.0,
-    ],
-    [
-        35.0 / 384.0,
-        0.0,
-        500.0 / 1113.0,
-        125.0 / 192.0,
-        -2187.0 / 6784.0,
-        11.0 / 84.0,
-    ],
-];
+    /// Lower-triangular coupling coefficients `a_ij` (HNW I, Table 5.2); row 6 holds the
+    /// fifth-order weights `b_i` (FSAL: the seventh stage is `f(t + h, y_new)`).
+    pub const A: [[f64; 6]; 7] = [
+        [0.0, 0.0, 0.0, 0.0, 0.0, 0.0],
+        [1.0 / 5.0, 0.0, 0.0, 0.0, 0.0, 0.0],
+        [3.0 / 40.0, 9.0 / 40.0, 0.0, 0.0, 0.0, 0.0],
+        [44.0 / 45.0, -56.0 / 15.0, 32.0 / 9.0, 0.0, 0.0, 0.0],
+        [
+            19372.0 / 6561.0,
+            -25360.0 / 2187.0,
+            64448.0 / 6561.0,
+            -212.0 / 729.0,
+            0.0,
+            0.0,
+        ],
+        [
+            9017.0 / 3168.0,
+            -355.0 / 33.0,
+            46732.0 / 5247.0,
+            49.0 / 176.0,
+            -5103.0 / 18656.0,
+            0.0,
+        ],
+        [
+            35.0 / 384.0,
+            0.0,
+            500.0 / 1113.0,
+            125.0 / 192.0,
+            -2187.0 / 6784.0,
+            11.0 / 84.0,
+        ],
+    ];
 
-/// Error weights `e_i = b_i − b̂_i` (fifth minus fourth order), HNW I, Table 5.2 / DOPRI5.
-const E: [f64; 7] = [
-    71.0 / 57600.0,
-    0.0,
-    -71.0 / 16695.0,
-    71.0 / 1920.0,
-    -17253.0 / 339200.0,
-    22.0 / 525.0,
-    -1.0 / 40.0,
-];
+    /// Error weights `e_i = b_i − b̂_i` (fifth minus fourth order), HNW I, Table 5.2 / DOPRI5.
+    pub const E: [f64; 7] = [
+        71.0 / 57600.0,
+        0.0,
+        -71.0 / 16695.0,
+        71.0 / 1920.0,
+        -17253.0 / 339200.0,
+        22.0 / 525.0,
+        -1.0 / 40.0,
+    ];
 
-/// Dense-output coefficients `d_i` of DOPRI5 (HNW I, §II.6, Dormand & Prince's continuous
-/// extension of order 4).
-const D: [f64; 7] = [
-    -12715105075.0 / 11282082432.0,
-    0.0,
-    87487479700.0 / 32700410799.0,
-    -10690763975.0 / 1880347072.0,
-    701980252875.0 / 199316789632.0,
-    -1453857185.0 / 822651844.0,
-    69997945.0 / 29380423.0,
-];
+    /// Dense-output coefficients `d_i` of DOPRI5 (HNW I, §II.6, Dormand & Prince's continuous
+    /// extension of order 4).
+    pub const D: [f64; 7] = [
+        -12715105075.0 / 11282082432.0,
+        0.0,
+        87487479700.0 / 32700410799.0,
+        -10690763975.0 / 1880347072.0,
+        701980252875.0 / 199316789632.0,
+        -1453857185.0 / 822651844.0,
+        69997945.0 / 29380423.0,
+    ];
+}
+
+/// The DOP853 tableau.
+mod dop853 {
+    /// Stages of a step; the first is the previous step's `f(t + h, y_new)`.
+    pub const STAGES: usize = 12;
+
+    /// Nodes `c_i` of the twelve stages.
+    pub const C: [f64; 12] = [
+        0.0,
+        0.05260015195876773,
+        0.0789002279381516,
+        0.1183503419072274,
+        0.2816496580927726,
+        0.3333333333333333,
+        0.25,
+        0.3076923076923077,
+        0.6512820512820513,
+        0.6,
+        0.8571428571428571,
+        1.0,
+    ];
+
+    /// Coupling coefficients `a_ij` of the twelve stages (row `i`, columns `j < i`).
+    pub const A: [[f64; 11]; 12] = [
+        [0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0],
+        [
+            0.05260015195876773,
+            0.0,
+            0.0,
+            0.0,
+            0.0,
+            0.0,
+            0.0,
+            0.0,
+            0.0,
+            0.0,
+            0.0,
+        ],
+        [
+            0.0197250569845379,
+            0.0591751709536137,
+            0.0,
+            0.0,
+            0.0,
+            0.0,
+            0.0,
+            0.0,
+            0.0,
+            0.0,
+            0.0,
+        ],
+        [
+            0.02958758547680685,
+            0.0,
+            0.08876275643042054,
+            0.0,
+            0.0,
+            0.0,
+            0.0,
+            0.0,
+            0.0,
+            0.0,
+            0.0,
+        ],
+        [
+            0.2413651341592667,
+            0.0,
+            -0.8845494793282861,
+            0.924834003261792,
+            0.0,
+            0.0,
+            0.0,
+            0.0,
+            0.0,
+            0.0,
+            0.0,
+        ],
+        [
+            0.037037037037037035,
+            0.0,
+            0.0,
+            0.17082860872947386,
+            0.12546768756682242,
+            0.0,
+            0.0,
+            0.0,
+            0.0,
+            0.0,
+            0.0,
+        ],
+        [
+            0.037109375,
+            0.0,
+            0.0,
+            0.17025221101954405,
+            0.06021653898045596,
+            -0.017578125,
+            0.0,
+            0.0,
+            0.0,
+            0.0,
+            0.0,
+        ],
+        [
+            0.03709200011850479,
+            0.0,
+            0.0,
+            0.17038392571223998,
+            0.10726203044637328,
+            -0.015319437748624402,
+            0.008273789163814023,
+            0.0,
+            0.0,
+            0.0,
+            0.0,
+        ],
+        [
+            0.6241109587160757,
+            0.0,
+            0.0,
+            -3.3608926294469414,
+            -0.868219346841726,
+            27.59209969944671,
+            20.154067550477894,
+            -43.48988418106996,
+            0.0,
+            0.0,
+            0.0,
+        ],
+        [
+            0.47766253643826434,
+            0.0,
+            0.0,
+            -2.4881146199716677,
+            -0.590290826836843,
+            21.230051448181193,
+            15.279233632882423,
+            -33.28821096898486,
+            -0.020331201708508627,
+            0.0,
+            0.0,
+        ],
+        [
+            -0.9371424300859873,
+            0.0,
+            0.0,
+            5.186372428844064,
+            1.0914373489967295,
+            -8.149787010746927,
+            -18.52006565999696,
+            22.739487099350505,
+            2.4936055526796523,
+            -3.0467644718982196,
+            0.0,
+        ],
+        [
+            2.273310147516538,
+            0.0,
+            0.0,
+            -10.53449546673725,
+            -2.0008720582248625,
+            -17.9589318631188,
+            27.94888452941996,
+            -2.8589982771350235,
+            -8.87285693353063,
+            12.360567175794303,
+            0.6433927460157636,
+        ],
+    ];
+
+    /// Weights `b_i` of the eighth-order solution.
+    pub const B: [f64; 12] = [
+        0.054293734116568765,
+        0.0,
+        0.0,
+        0.0,
+        0.0,
+        4.450312892752409,
+        1.8915178993145003,
+        -5.801203960010585,
+        0.3111643669578199,
+        -0.1521609496625161,
+        0.20136540080403034,
+        0.04471061572777259,
+    ];
+
+    /// Weights of the fifth-order error estimate (`b_i − b̂_i`, the thirteenth on `f(t+h, y_new)`).
+    pub const E5: [f64; 13] = [
+        0.01312004499419488,
+        0.0,
+        0.0,
+        0.0,
+        0.0,
+        -1.2251564463762044,
+        -0.4957589496572502,
+        1.6643771824549864,
+        -0.35032884874997366,
+        0.3341791187130175,
+        0.08192320648511571,
+        -0.022355307863886294,
+        0.0,
+    ];
+
+    /// Weights of the third-order error estimate.
+    pub const E3: [f64; 13] = [
+        -0.18980075407240762,
+        0.0,
+        0.0,
+        0.0,
+        0.0,
+        4.450312892752409,
+        1.8915178993145003,
+        -5.801203960010585,
+        -0.4226823213237919,
+        -0.1521609496625161,
+        0.20136540080403034,
+        0.02265179219836082,
+        0.0,
+    ];
+
+    /// Nodes of the three extra stages of the dense output.
+    pub const C_EXTRA: [f64; 3] = [0.1, 0.2, 0.7777777777777778];
+
+    /// Coupling coefficients of the three extra stages (columns: the thirteen stages of the step,
+    /// then the earlier extra stages).
+    pub const A_EXTRA: [[f64; 16]; 3] = [
+        [
+            0.056167502283047954,
+            0.0,
+            0.0,
+            0.0,
+            0.0,
+            0.0,
+            0.25350021021662483,
+            -0.2462390374708025,
+            -0.12419142326381637,
+            0.15329179827876568,
+            0.00820105229563469,
+            0.007567897660545699,
+            -0.008298,
+            0.0,
+            0.0,
+            0.0,
+        ],
+        [
+            0.03183464816350214,
+            0.0,
+            0.0,
+            0.0,
+            0.0,
+            0.028300909672366776,
+            0.053541988307438566,
+            -0.05492374857139099,
+            0.0,
+            0.0,
+            -0.00010834732869724932,
+            0.0003825710908356584,
+            -0.00034046500868740456,
+            0.1413124436746325,
+            0.0,
+            0.0,
+        ],
+        [
+            -0.42889630158379194,
+            0.0,
+            0.0,
+            0.0,
+            0.0,
+            -4.697621415361164,
+            7.683421196062599,
+            4.06898981839711,
+            0.3567271874552811,
+            0.0,
+            0.0,
+            0.0,
+            -0.0013990241651590145,
+            2.9475147891527724,
+            -9.15095847217987,
+            0.0,
+        ],
+    ];
+
+    /// Coefficients of the four highest terms of the dense output (HNW I, §II.10, `dop853.f`'s
+    /// `d4j…d7j`).
+    pub const D: [[f64; 16]; 4] = [
+        [
+            -8.428938276109013,
+            0.0,
+            0.0,
+            0.0,
+            0.0,
+            0.5667149535193777,
+            -3.0689499459498917,
+            2.38466765651207,
+            2.117034582445028,
+            -0.871391583777973,
+            2.2404374302607883,
+            0.6315787787694688,
+            -0.08899033645133331,
+            18.148505520854727,
+            -9.194632392478356,
+            -4.436036387594894,
+        ],
+        [
+            10.427508642579134,
+            0.0,
+            0.0,
+            0.0,
+            0.0,
+            242.28349177525817,
+            165.20045171727028,
+            -374.5467547226902,
+            -22.113666853125306,
+            7.733432668472264,
+            -30.674084731089398,
+            -9.332130526430229,
+            15.697238121770845,
+            -31.139403219565178,
+            -9.35292435884448,
+            35.81684148639408,
+        ],
+        [
+            19.985053242002433,
+            0.0,
+            0.0,
+            0.0,
+            0.0,
+            -387.0373087493518,
+            -189.17813819516758,
+            527.8081592054236,
+            -11.57390253995963,
+            6.8812326946963,
+            -1.0006050966910838,
+            0.7777137798053443,
+            -2.778205752353508,
+            -60.19669523126412,
+            84.32040550667716,
+            11.99229113618279,
+        ],
+        [
+            -25.69393346270375,
+            0.0,
+            0.0,
+            0.0,
+            0.0,
+            -154.18974869023643,
+            -231.5293791760455,
+            357.6391179106141,
+            93.40532418362432,
+            -37.45832313645163,
+            104.0996495089623,
+            29.8402934266605,
+            -43.53345659001114,
+            96.32455395918828,
+            -39.17726167561544,
+            -149.72683625798564,
+        ],
+    ];
+}
 
 /// Safety factor of the step-size controller.
 const SAFETY: f64 = 0.9;
@@ -88,8 +475,43 @@ const SAFETY: f64 = 0.9;
 const MIN_FACTOR: f64 = 0.2;
 /// Largest step-size growth factor after an accepted step.
 const MAX_FACTOR: f64 = 10.0;
-/// Exponent of the controller, `−1/(q+1)` with the error-estimator order `q = 4`.
-const ERROR_EXPONENT: f64 = -1.0 / 5.0;
+/// Stage slots: DOP853's twelve stages, `f(t + h, y_new)` and three dense-output stages.
+const SLOTS: usize = 16;
+
+/// An embedded Runge–Kutta pair.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Pair {
+    /// Dormand–Prince 5(4), six evaluations per step.
+    Dopri5,
+    /// Dormand–Prince 8(5,3), twelve evaluations per step.
+    Dop853,
+}
+
+impl Pair {
+    /// Order `q` of the error estimate that controls the step.
+    fn error_order(self) -> i32 {
+        match self {
+            Pair::Dopri5 => 4,
+            Pair::Dop853 => 7,
+        }
+    }
+
+    /// Exponent `−1/(q+1)` of the step-size controller.
+    fn error_exponent(self) -> f64 {
+        match self {
+            Pair::Dopri5 => -1.0 / 5.0,
+            Pair::Dop853 => -1.0 / 8.0,
+        }
+    }
+
+    /// Slot of `f(t + h, y_new)` among the stages.
+    fn last(self) -> usize {
+        match self {
+            Pair::Dopri5 => 6,
+            Pair::Dop853 => dop853::STAGES,
+        }
+    }
+}
 
 /// Tolerances and limits of the integrator.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -107,7 +529,7 @@ pub struct Tolerances<const N: usize> {
     pub max_steps: usize,
 }
 
-/// Result of one [`DormandPrince::step`].
+/// Result of one [`RungeKutta::step`].
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum StepStatus {
     /// A step was accepted; more remain before the time bound.
@@ -116,9 +538,12 @@ pub enum StepStatus {
     Finished,
 }
 
-/// The integrator: current point, last step's stages (for the dense output) and counters.
+/// The integrator of `y' = f(t, y)`: the pair, the right-hand side, the current point, the
+/// last step's stages (for the dense output) and counters.
 #[derive(Debug, Clone)]
-pub struct DormandPrince<const N: usize> {
+pub struct RungeKutta<const N: usize, F> {
+    pair: Pair,
+    rhs: F,
     tol: Tolerances<N>,
     t: f64,
     y: [f64; N],
@@ -129,7 +554,13 @@ pub struct DormandPrince<const N: usize> {
     h: f64,
     t_bound: f64,
     stop: f64,
-    k: [[f64; N]; 7],
+    /// Stages of the last step, `f(t + h, y_new)` at [`Pair::last`] and, for DOP853, the
+    /// three dense-output stages after it.
+    k: [[f64; N]; SLOTS],
+    /// The seven coefficient rows of the dense output of the last accepted step…
+    rows: [[f64; N]; 7],
+    /// …valid once made for that step.
+    rows_made: bool,
     steps: usize,
     rejected: usize,
     nfev: usize,
@@ -146,106 +577,35 @@ fn rms_norm<const N: usize>(v: &[f64; N], scale: &[f64; N]) -> f64 {
     (sum / N as f64).sqrt()
 }
 
-impl<const N: usize> DormandPrince<N> {
-    /// Starts an integration of `y' = f(t, y)` at `(t0, y0)` towards `t_bound > t0`.
-    ///
-    /// Evaluates `f(t0, y0)` and selects the first step (HNW I, §II.4), capped by
-    /// `tol.max_step` and the interval length.
-    ///
-    /// # Errors
-    /// [`DynamicsError::NonFinite`] when the initial state or derivative is not finite.
-    pub fn new<F>(
-        f: &mut F,
-        t0: f64,
-        y0: [f64; N],
-        t_bound: f64,
-        tol: Tolerances<N>,
-    ) -> Result<Self, DynamicsError>
-    where
-        F: FnMut(f64, &[f64; N]) -> [f64; N],
-    {
-        let f0 = f(t0, &y0);
-        if y0.iter().chain(f0.iter()).any(|v| !v.is_finite()) {
-            return Err(DynamicsError::NonFinite { t: t0 });
-        }
-        let mut integ = Self {
-            tol,
-            t: t0,
-            y: y0,
-            f: f0,
-            t_old: t0,
-            y_old: y0,
-            h_last: 0.0,
-            h: 0.0,
-            t_bound,
-            stop: f64::INFINITY,
-            k: [[0.0; N]; 7],
-            steps: 0,
-            rejected: 0,
-            nfev: 1,
-        };
-        integ.h = integ.initial_step(f);
-        Ok(integ)
-    }
-
-    /// Initial step of HNW I, §II.4 for a method of order 5 (as SciPy's `select_initial_step`),
-    /// in a dimensionally consistent form: with the tolerance-weighted norms `d0 = ‖y‖`,
-    /// `d1 = ‖f‖` (1/time) and `d2 ≈ ‖f′‖` (1/time²), "negligible" is judged over the
-    /// interval `T = t_bound − t`, the fall-back steps are fractions of `T`, and the fifth
-    /// derivative (the order of the error estimator, as SciPy) is estimated as `d2·ω³` with
-    /// the rate `ω = d2/d1` (`√d2` when `d1` is negligible), so the step follows the unit of
-    /// time (dimensional-analysis tests).
-    fn initial_step<F>(&mut self, f: &mut F) -> f64
-    where
-        F: FnMut(f64, &[f64; N]) -> [f64; N],
-    {
-        let interval = self.t_bound - self.t;
-        if interval <= 0.0 {
-            return 0.0;
-        }
-        let mut scale = [0.0; N];
-        for i in 0..N {
-            scale[i] = self.tol.atol[i] + self.y[i].abs() * self.tol.rtol;
-        }
-        let d0 = rms_norm(&self.y, &scale);
-        let d1 = rms_norm(&self.f, &scale);
-        let negligible_rate = d1 * interval < 1e-5;
-        let h0 = if d0 < 1e-5 || negligible_rate {
-            1e-6 * interval
-        } else {
-            0.01 * d0 / d1
-        };
-        let h0 = h0.min(interval);
-        let mut y1 = [0.0; N];
-        for i in 0..N {
-            y1[i] = self.y[i] + h0 * self.f[i];
-        }
-        let f1 = f(self.t + h0, &y1);
-        self.nfev += 1;
-        let mut diff = [0.0; N];
-        for i in 0..N {
-            diff[i] = f1[i] - self.f[i];
-        }
-        let d2 = rms_norm(&diff, &scale) / h0;
-        let h1 = if negligible_rate && d2 * interval * interval <= 1e-15 {
-            (h0 * 1e-3).max(1e-6 * interval)
-        } else {
-            let rate = if negligible_rate { d2.sqrt() } else { d2 / d1 };
-            (0.01 / (d2 * rate.powi(3))).powf(1.0 / 5.0)
-        };
-        let h = (100.0 * h0).min(h1).min(self.tol.max_step).min(interval);
-        if h.is_finite() && h > 0.0 {
-            h
-        } else {
-            interval.min(self.tol.max_step)
+/// `Σ_j w_j k_j` over the stages with a non-zero weight, in stage order (zero weights add
+/// nothing to a finite sum and are skipped).
+#[inline]
+fn combine<const N: usize>(weights: &[f64], k: &[[f64; N]]) -> [f64; N] {
+    let mut acc = [0.0; N];
+    for (w, k) in weights.iter().zip(k) {
+        if *w != 0.0 {
+            for (acc, k) in acc.iter_mut().zip(k) {
+                *acc += w * k;
+            }
         }
     }
+    acc
+}
 
+impl<const N: usize, F> RungeKutta<N, F> {
     /// Sets a stop time: steps end exactly there (without restarting) so that no step
     /// straddles a kink of the right-hand side (e.g. a thrust-curve knot). A stop at or
-    /// before the current time, or past the bound, has no effect.
+    /// before the current time, closer to it than the smallest step, or past the bound, has no
+    /// effect.
     pub fn set_stop(&mut self, t_stop: f64) {
         self.stop = t_stop;
+    }
+
+    /// The pair that steps.
+    #[inline]
+    #[must_use]
+    pub fn pair(&self) -> Pair {
+        self.pair
     }
 
     /// Current time.
@@ -262,7 +622,7 @@ impl<const N: usize> DormandPrince<N> {
         &self.y
     }
 
-    /// Derivative at the current point (FSAL stage).
+    /// Derivative at the current point (the reused last evaluation of the step).
     #[inline]
     #[must_use]
     pub fn f(&self) -> &[f64; N] {
@@ -281,6 +641,13 @@ impl<const N: usize> DormandPrince<N> {
     #[must_use]
     pub fn y_old(&self) -> &[f64; N] {
         &self.y_old
+    }
+
+    /// Derivative at the start of the last accepted step.
+    #[inline]
+    #[must_use]
+    pub fn f_old(&self) -> &[f64; N] {
+        &self.k[0]
     }
 
     /// Length of the last accepted step.
@@ -304,11 +671,110 @@ impl<const N: usize> DormandPrince<N> {
         self.rejected
     }
 
-    /// Right-hand-side evaluations so far.
+    /// Right-hand-side evaluations so far (dense-output stages included).
     #[inline]
     #[must_use]
     pub fn evaluations(&self) -> usize {
         self.nfev
+    }
+}
+
+impl<const N: usize, F> RungeKutta<N, F>
+where
+    F: FnMut(f64, &[f64; N]) -> [f64; N],
+{
+    /// Starts an integration of `y' = rhs(t, y)` with `pair` at `(t0, y0)` towards
+    /// `t_bound > t0`.
+    ///
+    /// Evaluates `rhs(t0, y0)` and selects the first step (HNW I, §II.4), capped by
+    /// `tol.max_step` and the interval length.
+    ///
+    /// # Errors
+    /// [`DynamicsError::NonFinite`] when the initial state or derivative is not finite.
+    pub fn new(
+        pair: Pair,
+        mut rhs: F,
+        t0: f64,
+        y0: [f64; N],
+        t_bound: f64,
+        tol: Tolerances<N>,
+    ) -> Result<Self, DynamicsError> {
+        let f0 = rhs(t0, &y0);
+        if y0.iter().chain(f0.iter()).any(|v| !v.is_finite()) {
+            return Err(DynamicsError::NonFinite { t: t0 });
+        }
+        let mut integ = Self {
+            pair,
+            rhs,
+            tol,
+            t: t0,
+            y: y0,
+            f: f0,
+            t_old: t0,
+            y_old: y0,
+            h_last: 0.0,
+            h: 0.0,
+            t_bound,
+            stop: f64::INFINITY,
+            k: [[0.0; N]; SLOTS],
+            rows: [[0.0; N]; 7],
+            rows_made: false,
+            steps: 0,
+            rejected: 0,
+            nfev: 1,
+        };
+        integ.h = integ.initial_step();
+        Ok(integ)
+    }
+
+    /// Initial step of HNW I, §II.4 (as SciPy's `select_initial_step`) for an error estimate
+    /// of order `q`, in a dimensionally consistent form: with the tolerance-weighted norms
+    /// `d0 = ‖y‖`, `d1 = ‖f‖` (1/time) and `d2 ≈ ‖f′‖` (1/time²), "negligible" is judged over
+    /// the interval `T = t_bound − t`, the fall-back steps are fractions of `T`, and the
+    /// `(q+1)`-th derivative is estimated as `d2·ω^(q−1)` with the rate `ω = d2/d1` (`√d2` when
+    /// `d1` is negligible), so the step follows the unit of time (dimensional-analysis tests).
+    fn initial_step(&mut self) -> f64 {
+        let interval = self.t_bound - self.t;
+        if interval <= 0.0 {
+            return 0.0;
+        }
+        let mut scale = [0.0; N];
+        for i in 0..N {
+            scale[i] = self.tol.atol[i] + self.y[i].abs() * self.tol.rtol;
+        }
+        let d0 = rms_norm(&self.y, &scale);
+        let d1 = rms_norm(&self.f, &scale);
+        let negligible_rate = d1 * interval < 1e-5;
+        let h0 = if d0 < 1e-5 || negligible_rate {
+            1e-6 * interval
+        } else {
+            0.01 * d0 / d1
+        };
+        let h0 = h0.min(interval);
+        let mut y1 = [0.0; N];
+        for i in 0..N {
+            y1[i] = self.y[i] + h0 * self.f[i];
+        }
+        let f1 = (self.rhs)(self.t + h0, &y1);
+        self.nfev += 1;
+        let mut diff = [0.0; N];
+        for i in 0..N {
+            diff[i] = f1[i] - self.f[i];
+        }
+        let d2 = rms_norm(&diff, &scale) / h0;
+        let h1 = if negligible_rate && d2 * interval * interval <= 1e-15 {
+            (h0 * 1e-3).max(1e-6 * interval)
+        } else {
+            let rate = if negligible_rate { d2.sqrt() } else { d2 / d1 };
+            let q = self.pair.error_order();
+            (0.01 / (d2 * rate.powi(q - 1))).powf(1.0 / f64::from(q + 1))
+        };
+        let h = (100.0 * h0).min(h1).min(self.tol.max_step).min(interval);
+        if h.is_finite() && h > 0.0 {
+            h
+        } else {
+            interval.min(self.tol.max_step)
+        }
     }
 
     /// Takes one accepted step (retrying with smaller steps after rejections), never past
@@ -318,10 +784,7 @@ impl<const N: usize> DormandPrince<N> {
     /// [`DynamicsError::StepTooSmall`] when the step falls below the minimum,
     /// [`DynamicsError::TooManySteps`] past `max_steps`, [`DynamicsError::NonFinite`] when the
     /// derivative is not finite even at the minimum step.
-    pub fn step<F>(&mut self, f: &mut F) -> Result<StepStatus, DynamicsError>
-    where
-        F: FnMut(f64, &[f64; N]) -> [f64; N],
-    {
+    pub fn step(&mut self) -> Result<StepStatus, DynamicsError> {
         let t = self.t;
         let min_step = self.tol.min_step.max(10.0 * f64::EPSILON * t.abs());
         let mut h = self.h.min(self.tol.max_step).max(min_step);
@@ -336,7 +799,9 @@ impl<const N: usize> DormandPrince<N> {
             if h < min_step {
                 return Err(DynamicsError::StepTooSmall { t, step: h });
             }
-            let t_end = if self.stop > t {
+            // A stop closer than the smallest step (the round-off of a sum of steps that was
+            // meant to land on it) is treated as reached.
+            let t_end = if self.stop - t > min_step {
                 self.t_bound.min(self.stop)
             } else {
                 self.t_bound
@@ -344,8 +809,12 @@ impl<const N: usize> DormandPrince<N> {
             let truncated = t + h >= t_end;
             let t_new = if truncated { t_end } else { t + h };
             let h_eff = t_new - t;
-            let y_new = self.stages(f, h_eff, t_new);
-            let finite = y_new.iter().chain(self.k[6].iter()).all(|v| v.is_finite());
+            let y_new = self.stages(h_eff, t_new);
+            let last = self.pair.last();
+            let finite = y_new
+                .iter()
+                .chain(self.k[last].iter())
+                .all(|v| v.is_finite());
             let error_norm = if finite {
                 self.error_norm(h_eff, &y_new)
             } else {
@@ -355,7 +824,7 @@ impl<const N: usize> DormandPrince<N> {
                 let factor = if error_norm <= 0.0 {
                     MAX_FACTOR
                 } else {
-                    (SAFETY * error_norm.powf(ERROR_EXPONENT)).min(MAX_FACTOR)
+                    (SAFETY * error_norm.powf(self.pair.error_exponent())).min(MAX_FACTOR)
                 };
                 let factor = if step_rejected {
                     factor.min(1.0)
@@ -372,8 +841,9 @@ impl<const N: usize> DormandPrince<N> {
                 self.y_old = self.y;
                 self.t = t_new;
                 self.y = y_new;
-                self.f = self.k[6];
+                self.f = self.k[last];
                 self.h_last = h_eff;
+                self.rows_made = false;
                 self.steps += 1;
                 return Ok(if t_new >= self.t_bound {
                     StepStatus::Finished
@@ -387,7 +857,7 @@ impl<const N: usize> DormandPrince<N> {
                 return Err(DynamicsError::NonFinite { t });
             }
             let factor = if finite {
-                (SAFETY * error_norm.powf(ERROR_EXPONENT)).max(MIN_FACTOR)
+                (SAFETY * error_norm.powf(self.pair.error_exponent())).max(MIN_FACTOR)
             } else {
                 MIN_FACTOR
             };
@@ -395,65 +865,147 @@ impl<const N: usize> DormandPrince<N> {
         }
     }
 
-    /// Evaluates the seven stages for a step `h` from the current point to `t_new`; returns
-    /// `y_new` and leaves `f(t_new, y_new)` in `k[6]`. The last stage is taken at `t_new`
-    /// itself, not at `t + h` (which may differ from it in the last bit), so the FSAL
+    /// Evaluates the stages of a step `h` from the current point to `t_new`; returns `y_new`
+    /// and leaves `f(t_new, y_new)` in slot [`Pair::last`]. The last evaluation is taken at
+    /// `t_new` itself, not at `t + h` (which may differ from it in the last bit), so the reused
     /// derivative is the derivative at the stored point: a step ending on a stop (burn-out)
     /// sees the equations that hold there, and callers may use it as the point's derivative.
     #[inline]
-    fn stages<F>(&mut self, f: &mut F, h: f64, t_new: f64) -> [f64; N]
-    where
-        F: FnMut(f64, &[f64; N]) -> [f64; N],
-    {
+    fn stages(&mut self, h: f64, t_new: f64) -> [f64; N] {
         self.k[0] = self.f;
         let mut y_stage = [0.0; N];
-        for s in 1..7 {
-            // Stage-major loops (vectorised over the components); each component still sums
-            // its terms in stage order, so the result is the same to the bit. A zero
-            // coefficient (a_62) adds nothing to a finite sum and is skipped.
-            let mut acc = [0.0; N];
-            for (a, k) in A[s].iter().zip(&self.k).take(s) {
-                if *a != 0.0 {
-                    for (acc, k) in acc.iter_mut().zip(k) {
-                        *acc += a * k;
+        // Stage-major sums (vectorised over the components), each component summing its
+        // terms in stage order.
+        let (a, c, stages): (&[[f64; 11]], &[f64], usize) = match self.pair {
+            Pair::Dopri5 => {
+                for s in 1..7 {
+                    let acc = combine(&dopri5::A[s][..s], &self.k[..s]);
+                    for i in 0..N {
+                        y_stage[i] = self.y[i] + h * acc[i];
                     }
+                    let t_stage = if s == 6 {
+                        t_new
+                    } else {
+                        self.t + dopri5::C[s] * h
+                    };
+                    self.k[s] = (self.rhs)(t_stage, &y_stage);
                 }
+                self.nfev += 6;
+                // Row 6 of A holds b, so the last stage point is the fifth-order solution.
+                return y_stage;
             }
+            Pair::Dop853 => (&dop853::A, &dop853::C, dop853::STAGES),
+        };
+        for s in 1..stages {
+            let acc = combine(&a[s][..s], &self.k[..s]);
             for i in 0..N {
                 y_stage[i] = self.y[i] + h * acc[i];
             }
-            let t_stage = if s == 6 { t_new } else { self.t + C[s] * h };
-            self.k[s] = f(t_stage, &y_stage);
-            self.nfev += 1;
+            let t_stage = if s == stages - 1 {
+                t_new
+            } else {
+                self.t + c[s] * h
+            };
+            self.k[s] = (self.rhs)(t_stage, &y_stage);
         }
-        // Row 6 of A holds b, so the last stage point is the fifth-order solution.
-        y_stage
+        let acc = combine(&dop853::B, &self.k[..stages]);
+        let mut y_new = [0.0; N];
+        for i in 0..N {
+            y_new[i] = self.y[i] + h * acc[i];
+        }
+        self.k[stages] = (self.rhs)(t_new, &y_new);
+        self.nfev += stages;
+        y_new
     }
 
-    /// Scaled max norm of the embedded error estimate, in one pass over the components (the
-    /// zero weight `e_2` skipped as in [`DormandPrince::stages`]).
+    /// The scaled max norm of the step's error: DOPRI5's embedded estimate, or DOP853's
+    /// combination `h · err₅² / √(err₅² + 0.01 err₃²)` of the norms of its two estimates
+    /// (HNW I, §II.10).
     #[inline]
     fn error_norm(&self, h: f64, y_new: &[f64; N]) -> f64 {
-        let mut acc = [0.0; N];
-        for (e, k) in E.iter().zip(&self.k) {
-            if *e != 0.0 {
-                for (acc, k) in acc.iter_mut().zip(k) {
-                    *acc += e * k;
+        let scale =
+            |i: usize| self.tol.atol[i] + self.y[i].abs().max(y_new[i].abs()) * self.tol.rtol;
+        match self.pair {
+            Pair::Dopri5 => {
+                let e = combine(&dopri5::E, &self.k[..7]);
+                let mut m: f64 = 0.0;
+                for i in 0..N {
+                    m = m.max((h * e[i] / scale(i)).abs());
+                }
+                m
+            }
+            Pair::Dop853 => {
+                let e5 = combine(&dop853::E5, &self.k[..=dop853::STAGES]);
+                let e3 = combine(&dop853::E3, &self.k[..=dop853::STAGES]);
+                let (mut err5, mut err3): (f64, f64) = (0.0, 0.0);
+                for i in 0..N {
+                    let sc = scale(i);
+                    err5 = err5.max((e5[i] / sc).abs());
+                    err3 = err3.max((e3[i] / sc).abs());
+                }
+                if err5 == 0.0 && err3 == 0.0 {
+                    return 0.0;
+                }
+                h.abs() * err5 * err5 / (err5 * err5 + 0.01 * err3 * err3).sqrt()
+            }
+        }
+    }
+
+    /// The dense-output rows `F₀…F₆` of the last accepted step, made on first use: `F₀ = Δy`,
+    /// `F₁ = h f₀ − Δy`, then for DOPRI5 `F₂ = Δy − h f₁ − F₁`, `F₃ = h Σ d_i k_i` (HNW I,
+    /// §II.6), for DOP853 `F₂ = 2Δy − h (f₁ + f₀)`, `F₃…F₆ = h Σ d_ij k_j` after three extra
+    /// evaluations (HNW I, §II.10; `dop853.f`'s `contd8`).
+    fn dense_rows(&mut self) -> &[[f64; N]; 7] {
+        if self.rows_made {
+            return &self.rows;
+        }
+        let h = self.h_last;
+        let last = self.pair.last();
+        if self.pair == Pair::Dop853 {
+            let mut y_stage = [0.0; N];
+            for (e, (a, c)) in dop853::A_EXTRA.iter().zip(dop853::C_EXTRA).enumerate() {
+                let s = last + 1 + e;
+                let acc = combine(&a[..s], &self.k[..s]);
+                for i in 0..N {
+                    y_stage[i] = self.y_old[i] + h * acc[i];
+                }
+                self.k[s] = (self.rhs)(self.t_old + c * h, &y_stage);
+                self.nfev += 1;
+            }
+        }
+        let rows = &mut self.rows;
+        for i in 0..N {
+            let dy = self.y[i] - self.y_old[i];
+            rows[0][i] = dy;
+            rows[1][i] = h * self.k[0][i] - dy;
+            rows[2][i] = match self.pair {
+                Pair::Dopri5 => dy - h * self.k[last][i] - rows[1][i],
+                Pair::Dop853 => 2.0 * dy - h * (self.k[last][i] + self.k[0][i]),
+            };
+        }
+        match self.pair {
+            Pair::Dopri5 => {
+                let acc = combine(&dopri5::D, &self.k[..7]);
+                for i in 0..N {
+                    rows[3][i] = h * acc[i];
+                }
+            }
+            Pair::Dop853 => {
+                for (row, d) in rows[3..].iter_mut().zip(&dop853::D) {
+                    let acc = combine(d, &self.k);
+                    for i in 0..N {
+                        row[i] = h * acc[i];
+                    }
                 }
             }
         }
-        let mut m: f64 = 0.0;
-        for i in 0..N {
-            let scale = self.tol.atol[i] + self.y[i].abs().max(y_new[i].abs()) * self.tol.rtol;
-            m = m.max((h * acc[i] / scale).abs());
-        }
-        m
+        self.rows_made = true;
+        &self.rows
     }
 
     /// Dense output of the last accepted step at `t` (`t_old ≤ t ≤ t`; extrapolates
-    /// outside), fourth order (HNW I, §II.6).
-    #[must_use]
-    pub fn dense(&self, t: f64) -> [f64; N] {
+    /// outside): fourth order for DOPRI5, seventh for DOP853.
+    pub fn dense(&mut self, t: f64) -> [f64; N] {
         let mut out = [0.0; N];
         for (i, o) in out.iter_mut().enumerate() {
             *o = self.dense_component(t, i);
@@ -461,10 +1013,10 @@ impl<const N: usize> DormandPrince<N> {
         out
     }
 
-    /// One component of [`DormandPrince::dense`].
+    /// One component of [`RungeKutta::dense`]:
+    /// `y₀ + θ(F₀ + (1−θ)(F₁ + θ(F₂ + (1−θ)(F₃ + θ(F₄ + (1−θ)(F₅ + θF₆))))))`, `θ = (t − t₀)/h`.
     #[inline]
-    #[must_use]
-    pub fn dense_component(&self, t: f64, i: usize) -> f64 {
+    pub fn dense_component(&mut self, t: f64, i: usize) -> f64 {
         let h = self.h_last;
         if h <= 0.0 {
             return self.y[i];
@@ -472,28 +1024,28 @@ impl<const N: usize> DormandPrince<N> {
         let theta = (t - self.t_old) / h;
         let theta1 = 1.0 - theta;
         let y0 = self.y_old[i];
-        let ydiff = self.y[i] - y0;
-        let bspl = h * self.k[0][i] - ydiff;
-        let r4 = ydiff - h * self.k[6][i] - bspl;
-        let mut acc = 0.0;
-        for (j, d) in D.iter().enumerate() {
-            acc += d * self.k[j][i];
-        }
-        let r5 = h * acc;
-        y0 + theta * (ydiff + theta1 * (bspl + theta * (r4 + theta1 * r5)))
-    }
-
-    /// Derivative at the start of the last accepted step.
-    #[inline]
-    #[must_use]
-    pub fn f_old(&self) -> &[f64; N] {
-        &self.k[0]
+        let pair = self.pair;
+        let r = self.dense_rows();
+        let inner = match pair {
+            Pair::Dopri5 => r[3][i],
+            Pair::Dop853 => {
+                let inner = r[5][i] + theta * r[6][i];
+                let inner = r[4][i] + theta1 * inner;
+                r[3][i] + theta * inner
+            }
+        };
+        let inner = r[2][i] + theta1 * inner;
+        let inner = r[1][i] + theta * inner;
+        let inner = r[0][i] + theta1 * inner;
+        y0 + theta * inner
     }
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    const PAIRS: [Pair; 2] = [Pair::Dopri5, Pair::Dop853];
 
     fn tol<const N: usize>(rtol: f64, atol: f64) -> Tolerances<N> {
         Tolerances {
@@ -505,100 +1057,169 @@ mod tests {
         }
     }
 
+    /// Integrates to the bound; returns the integrator.
+    fn run<const N: usize, F>(mut rk: RungeKutta<N, F>) -> RungeKutta<N, F>
+    where
+        F: FnMut(f64, &[f64; N]) -> [f64; N],
+    {
+        while rk.step().unwrap() == StepStatus::Running {}
+        rk
+    }
+
     #[test]
     fn tableau_rows_sum_to_nodes() {
-        // Consistency condition Σ_j a_ij = c_i of every explicit RK tableau (HNW I, eq. 1.9).
+        // Consistency condition Σ_j a_ij = c_i of every explicit RK tableau (HNW I, eq. 1.9);
+        // the weights of each solution sum to 1 and those of each error estimate to 0.
         for s in 1..6 {
-            let sum: f64 = A[s].iter().sum();
-            assert!((sum - C[s]).abs() < 1e-15, "row {s}: {sum} vs {}", C[s]);
+            let sum: f64 = dopri5::A[s].iter().sum();
+            assert!((sum - dopri5::C[s]).abs() < 1e-15, "DOPRI5 row {s}");
         }
-        // The fifth-order weights sum to 1 and the error weights to 0.
-        assert!((A[6].iter().sum::<f64>() - 1.0).abs() < 1e-15);
-        assert!(E.iter().sum::<f64>().abs() < 1e-15);
+        assert!((dopri5::A[6].iter().sum::<f64>() - 1.0).abs() < 1e-15);
+        assert!(dopri5::E.iter().sum::<f64>().abs() < 1e-15);
+        for s in 1..dop853::STAGES {
+            let sum: f64 = dop853::A[s].iter().sum();
+            assert!((sum - dop853::C[s]).abs() < 1e-14, "DOP853 row {s}");
+        }
+        for (a, c) in dop853::A_EXTRA.iter().zip(dop853::C_EXTRA) {
+            assert!((a.iter().sum::<f64>() - c).abs() < 1e-14);
+        }
+        assert!((dop853::B.iter().sum::<f64>() - 1.0).abs() < 1e-14);
+        assert!(dop853::E5.iter().sum::<f64>().abs() < 1e-14);
+        assert!(dop853::E3.iter().sum::<f64>().abs() < 1e-14);
+    }
+
+    #[test]
+    fn fixed_steps_converge_at_the_order_of_each_pair() {
+        // y' = y cos t, y(0) = 1: y = exp(sin t). Steps fixed by max_step (the tolerance is
+        // loose); halving the step divides the global error by 2^p, p = 5 or 8.
+        let error = |pair: Pair, h: f64| {
+            let f = |t: f64, y: &[f64; 1]| [y[0] * t.cos()];
+            let mut t = tol::<1>(1.0, 1.0);
+            t.max_step = h;
+            let rk = run(RungeKutta::new(pair, f, 0.0, [1.0], 4.0, t).unwrap());
+            (rk.y()[0] - 4.0f64.sin().exp()).abs()
+        };
+        for (pair, order, h) in [(Pair::Dopri5, 5.0, 0.1), (Pair::Dop853, 8.0, 0.4)] {
+            let observed = (error(pair, h) / error(pair, h / 2.0)).log2();
+            assert!(
+                (observed - order).abs() < 0.6,
+                "{pair:?}: observed order {observed}"
+            );
+        }
     }
 
     #[test]
     fn exponential_decay_matches_closed_form() {
-        let mut f = |_t: f64, y: &[f64; 1]| [-y[0]];
-        let mut dp = DormandPrince::new(&mut f, 0.0, [1.0], 5.0, tol(1e-9, 1e-12)).unwrap();
-        while dp.step(&mut f).unwrap() == StepStatus::Running {}
-        assert!((dp.t() - 5.0).abs() < 1e-15);
-        let exact = (-5.0f64).exp();
-        assert!(
-            (dp.y()[0] - exact).abs() / exact < 1e-7,
-            "{} vs {exact}",
-            dp.y()[0]
-        );
+        for pair in PAIRS {
+            let f = |_t: f64, y: &[f64; 1]| [-y[0]];
+            let rk = run(RungeKutta::new(pair, f, 0.0, [1.0], 5.0, tol(1e-9, 1e-12)).unwrap());
+            assert!((rk.t() - 5.0).abs() < 1e-15);
+            let exact = (-5.0f64).exp();
+            assert!(
+                (rk.y()[0] - exact).abs() / exact < 1e-7,
+                "{pair:?}: {} vs {exact}",
+                rk.y()[0]
+            );
+        }
     }
 
     #[test]
     fn harmonic_oscillator_dense_output_is_accurate() {
         // y'' = −y: dense output inside steps must match sin/cos to the tolerance level.
-        let mut f = |_t: f64, y: &[f64; 2]| [y[1], -y[0]];
-        let mut dp = DormandPrince::new(&mut f, 0.0, [0.0, 1.0], 10.0, tol(1e-8, 1e-10)).unwrap();
-        let mut worst: f64 = 0.0;
-        loop {
-            let status = dp.step(&mut f).unwrap();
-            for k in 1..4 {
-                let t = dp.t_old() + dp.last_step() * f64::from(k) / 4.0;
-                let y = dp.dense(t);
-                worst = worst
-                    .max((y[0] - t.sin()).abs())
-                    .max((y[1] - t.cos()).abs());
+        for pair in PAIRS {
+            let f = |_t: f64, y: &[f64; 2]| [y[1], -y[0]];
+            let mut rk = RungeKutta::new(pair, f, 0.0, [0.0, 1.0], 10.0, tol(1e-8, 1e-10)).unwrap();
+            let mut worst: f64 = 0.0;
+            loop {
+                let status = rk.step().unwrap();
+                for k in 1..4 {
+                    let t = rk.t_old() + rk.last_step() * f64::from(k) / 4.0;
+                    let y = rk.dense(t);
+                    worst = worst
+                        .max((y[0] - t.sin()).abs())
+                        .max((y[1] - t.cos()).abs());
+                }
+                // Dense output reproduces both step ends.
+                let (y0, y1) = (*rk.y_old(), *rk.y());
+                let (t0, t1) = (rk.t_old(), rk.t());
+                assert!((rk.dense(t0)[0] - y0[0]).abs() < 1e-14);
+                assert!((rk.dense(t1)[0] - y1[0]).abs() < 1e-14);
+                if status == StepStatus::Finished {
+                    break;
+                }
             }
-            if status == StepStatus::Finished {
-                break;
-            }
+            assert!(worst < 1e-6, "{pair:?}: dense output error {worst}");
         }
-        assert!(worst < 1e-6, "dense output error {worst}");
-        // Dense output reproduces both step ends exactly.
-        let y_end = dp.dense(dp.t());
-        assert!((y_end[0] - dp.y()[0]).abs() < 1e-14);
+    }
+
+    #[test]
+    fn dop853_dense_output_costs_three_evaluations_once_per_step() {
+        let f = |_t: f64, y: &[f64; 2]| [y[1], -y[0]];
+        let mut rk =
+            RungeKutta::new(Pair::Dop853, f, 0.0, [0.0, 1.0], 10.0, tol(1e-8, 1e-10)).unwrap();
+        rk.step().unwrap();
+        let before = rk.evaluations();
+        let (a, b) = (rk.dense(0.3 * rk.t()), rk.dense(0.6 * rk.t()));
+        assert_eq!(rk.evaluations(), before + 3);
+        assert!((a[0] - b[0]).abs() > 1e-3, "two instants, two values");
+        rk.step().unwrap();
+        let before = rk.evaluations();
+        rk.dense_component(rk.t_old(), 0);
+        assert_eq!(rk.evaluations(), before + 3);
     }
 
     #[test]
     fn zero_derivative_start_grows_steps_geometrically() {
         // physics.md §10.4: a zero derivative gives a zero error estimate; the controller grows
         // the step by MAX_FACTOR per step, which the max_step cap must bound.
-        let mut f = |_t: f64, _y: &[f64; 1]| [0.0];
-        let mut t = tol::<1>(1e-6, 1e-3);
-        t.max_step = 0.01;
-        let mut dp = DormandPrince::new(&mut f, 0.0, [0.0], 1.0, t).unwrap();
-        let mut largest: f64 = 0.0;
-        while dp.step(&mut f).unwrap() == StepStatus::Running {
-            largest = largest.max(dp.last_step());
+        for pair in PAIRS {
+            let f = |_t: f64, _y: &[f64; 1]| [0.0];
+            let mut t = tol::<1>(1e-6, 1e-3);
+            t.max_step = 0.01;
+            let mut rk = RungeKutta::new(pair, f, 0.0, [0.0], 1.0, t).unwrap();
+            let mut largest: f64 = 0.0;
+            while rk.step().unwrap() == StepStatus::Running {
+                largest = largest.max(rk.last_step());
+            }
+            assert!(largest <= 0.01 + 1e-15);
         }
-        assert!(largest <= 0.01 + 1e-15);
     }
 
     #[test]
     fn blow_up_ends_with_an_error_not_a_hang() {
         // y' = y², y(0) = 1 blows up at t = 1; integrating to 2 must fail in bounded steps.
-        let mut f = |_t: f64, y: &[f64; 1]| [y[0] * y[0]];
-        let mut dp = DormandPrince::new(&mut f, 0.0, [1.0], 2.0, tol(1e-6, 1e-6)).unwrap();
-        let result = loop {
-            match dp.step(&mut f) {
-                Ok(StepStatus::Running) => {}
-                Ok(StepStatus::Finished) => break Ok(()),
-                Err(e) => break Err(e),
-            }
-        };
-        assert!(result.is_err(), "integration past a singularity must fail");
+        for pair in PAIRS {
+            let f = |_t: f64, y: &[f64; 1]| [y[0] * y[0]];
+            let mut rk = RungeKutta::new(pair, f, 0.0, [1.0], 2.0, tol(1e-6, 1e-6)).unwrap();
+            let result = loop {
+                match rk.step() {
+                    Ok(StepStatus::Running) => {}
+                    Ok(StepStatus::Finished) => break Ok(()),
+                    Err(e) => break Err(e),
+                }
+            };
+            assert!(
+                result.is_err(),
+                "{pair:?}: integration past a singularity must fail"
+            );
+        }
     }
 
     #[test]
     fn step_budget_is_enforced() {
-        let mut f = |_t: f64, y: &[f64; 2]| [y[1], -1e6 * y[0]];
-        let mut t = tol::<2>(1e-10, 1e-12);
-        t.max_steps = 50;
-        let mut dp = DormandPrince::new(&mut f, 0.0, [1.0, 0.0], 100.0, t).unwrap();
-        let err = loop {
-            match dp.step(&mut f) {
-                Ok(StepStatus::Running) => {}
-                Ok(StepStatus::Finished) => panic!("cannot finish in 50 steps"),
-                Err(e) => break e,
-            }
-        };
-        assert!(matches!(err, DynamicsError::TooManySteps { .. }));
+        for pair in PAIRS {
+            let f = |_t: f64, y: &[f64; 2]| [y[1], -1e6 * y[0]];
+            let mut t = tol::<2>(1e-10, 1e-12);
+            t.max_steps = 50;
+            let mut rk = RungeKutta::new(pair, f, 0.0, [1.0, 0.0], 100.0, t).unwrap();
+            let err = loop {
+                match rk.step() {
+                    Ok(StepStatus::Running) => {}
+                    Ok(StepStatus::Finished) => panic!("cannot finish in 50 steps"),
+                    Err(e) => break e,
+                }
+            };
+            assert!(matches!(err, DynamicsError::TooManySteps { .. }));
+        }
     }
 }

@@ -4,7 +4,8 @@
 //! phases, events, and the adaptive Runge–Kutta integrator with dense output. It reproduces
 //! RocketPy 1.13's `Flight` (physics.md §2–§3, §8–§11).
 //!
-//! - [`integrator`]: Dormand–Prince 5(4) with dense output, fixed-size state, no allocation.
+//! - [`integrator`]: the Dormand–Prince pairs DOPRI5 and DOP853 with dense output, fixed-size
+//!   state, no allocation.
 //! - [`equations`]: rail, 6-DOF variable-mass and parachute right-hand sides.
 //! - [`model`]: the [`AtmosphereModel`] / [`VehicleModel`] traits the engine evaluates
 //!   (implemented for karman-atmos' `Environment` and karman-airframe's `Rocket` in

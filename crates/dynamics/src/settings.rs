@@ -40,7 +40,7 @@ pub struct FlightSettings {
     /// End integration steps on every thrust-curve knot during the burn and at burn-out
     /// (default true): the right-hand side has a kink at each knot and a jump at burn-out.
     /// RocketPy has no nodes there (its LSODA absorbs them in many short max-norm-controlled
-    /// steps); without them a Dormand–Prince step at the default tolerances can straddle a
+    /// steps); without them a DOPRI5 step at the default tolerances can straddle a
     /// kink and the apogee of a rocket with a jagged thrust curve drifts by ~0.1 %.
     pub stop_at_thrust_knots: bool,
 }

@@ -3,7 +3,7 @@
 //! the real models (karman-atmos' `Environment`, karman-airframe's `Rocket` through the
 //! karman-dynamics adapters); then, under `allocation_counter::measure` (which counts the
 //! current thread's allocations), the right-hand side of the phase of every stored point is
-//! re-evaluated at that point, and the Dormand–Prince integrator is stepped through the
+//! re-evaluated at that point, and the integrator is stepped (dense output included) through the
 //! 6-DOF phase and the parachute descent (everything but the storing of solution points,
 //! which `simulate` does into a `Vec`).
 
@@ -12,7 +12,7 @@ use karman_mission::build::flight::flight_settings;
 use karman_mission::build::motor::build_motor;
 use karman_mission::build::rocket::build_rocket;
 use karman_mission::dynamics::equations::{CanopyState, Equations};
-use karman_mission::dynamics::integrator::{DormandPrince, StepStatus, Tolerances};
+use karman_mission::dynamics::integrator::{Pair, RungeKutta, StepStatus, Tolerances};
 use karman_mission::dynamics::{PhaseKind, SolutionPoint, simulate};
 
 use crate::common::{flight_name, validation_missions};
@@ -82,12 +82,12 @@ fn equations_and_steps_do_not_allocate() {
             }
             // The integrator loop of the 6-DOF phase, to apogee or 60 s at most.
             if let Some(p) = six_dof_start {
-                let mut f = |t: f64, u: &[f64; 13]| eq.six_dof(t, u).u_dot;
+                let f = |t: f64, u: &[f64; 13]| eq.six_dof(t, u).u_dot;
                 let bound = p.t + 60.0;
-                let mut dp =
-                    DormandPrince::new(&mut f, p.t, p.state, bound, tol).expect("6-DOF starts");
+                let mut dp = RungeKutta::new(Pair::Dop853, f, p.t, p.state, bound, tol)
+                    .expect("6-DOF starts");
                 while dp.y()[5] > 0.0 {
-                    match dp.step(&mut f).expect("6-DOF steps") {
+                    match dp.step().expect("6-DOF steps") {
                         StepStatus::Running => steps += 1,
                         StepStatus::Finished => break,
                     }
@@ -100,11 +100,12 @@ fn equations_and_steps_do_not_allocate() {
                     return;
                 };
                 let canopy: CanopyState = canopy;
-                let mut f = |t: f64, u: &[f64; 13]| eq.parachute(t, u, &canopy).u_dot;
-                let mut dp = DormandPrince::new(&mut f, p.t, p.state, p.t + 30.0, tol)
+                let f = |t: f64, u: &[f64; 13]| eq.parachute(t, u, &canopy).u_dot;
+                let mut dp = RungeKutta::new(Pair::Dopri5, f, p.t, p.state, p.t + 30.0, tol)
                     .expect("descent starts");
-                while let StepStatus::Running = dp.step(&mut f).expect("descent steps") {
+                while let StepStatus::Running = dp.step().expect("descent steps") {
                     steps += 1;
+                    sum += dp.dense(0.5 * (dp.t_old() + dp.t()))[2];
                 }
             }
         });
