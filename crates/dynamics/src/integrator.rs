@@ -873,49 +873,55 @@ where
     #[inline]
     fn stages(&mut self, h: f64, t_new: f64) -> [f64; N] {
         self.k[0] = self.f;
-        let mut y_stage = [0.0; N];
-        // Stage-major sums (vectorised over the components), each component summing its
-        // terms in stage order.
-        let (a, c, stages): (&[[f64; 11]], &[f64], usize) = match self.pair {
+        match self.pair {
             Pair::Dopri5 => {
+                let mut y_stage = [0.0; N];
                 for s in 1..7 {
-                    let acc = combine(&dopri5::A[s][..s], &self.k[..s]);
-                    for i in 0..N {
-                        y_stage[i] = self.y[i] + h * acc[i];
-                    }
                     let t_stage = if s == 6 {
                         t_new
                     } else {
                         self.t + dopri5::C[s] * h
                     };
-                    self.k[s] = (self.rhs)(t_stage, &y_stage);
+                    y_stage = self.stage(s, &dopri5::A[s][..s], h, t_stage);
                 }
                 self.nfev += 6;
                 // Row 6 of A holds b, so the last stage point is the fifth-order solution.
-                return y_stage;
+                y_stage
             }
-            Pair::Dop853 => (&dop853::A, &dop853::C, dop853::STAGES),
-        };
-        for s in 1..stages {
-            let acc = combine(&a[s][..s], &self.k[..s]);
-            for i in 0..N {
-                y_stage[i] = self.y[i] + h * acc[i];
+            Pair::Dop853 => {
+                let stages = dop853::STAGES;
+                for s in 1..stages {
+                    let t_stage = if s == stages - 1 {
+                        t_new
+                    } else {
+                        self.t + dop853::C[s] * h
+                    };
+                    self.stage(s, &dop853::A[s][..s], h, t_stage);
+                }
+                let acc = combine(&dop853::B, &self.k[..stages]);
+                let mut y_new = [0.0; N];
+                for i in 0..N {
+                    y_new[i] = self.y[i] + h * acc[i];
+                }
+                self.k[stages] = (self.rhs)(t_new, &y_new);
+                self.nfev += stages;
+                y_new
             }
-            let t_stage = if s == stages - 1 {
-                t_new
-            } else {
-                self.t + c[s] * h
-            };
-            self.k[s] = (self.rhs)(t_stage, &y_stage);
         }
-        let acc = combine(&dop853::B, &self.k[..stages]);
-        let mut y_new = [0.0; N];
+    }
+
+    /// Stage `s`: `k_s = f(t_stage, y + h Σ_j a_j k_j)` with the row `a` of its coupling
+    /// coefficients, summed stage-major (vectorised over the components, each component
+    /// summing its terms in stage order); returns the stage point.
+    #[inline]
+    fn stage(&mut self, s: usize, a: &[f64], h: f64, t_stage: f64) -> [f64; N] {
+        let acc = combine(a, &self.k[..s]);
+        let mut y_stage = [0.0; N];
         for i in 0..N {
-            y_new[i] = self.y[i] + h * acc[i];
+            y_stage[i] = self.y[i] + h * acc[i];
         }
-        self.k[stages] = (self.rhs)(t_new, &y_new);
-        self.nfev += stages;
-        y_new
+        self.k[s] = (self.rhs)(t_stage, &y_stage);
+        y_stage
     }
 
     /// The scaled max norm of the step's error: DOPRI5's embedded estimate, or DOP853's
