@@ -24,9 +24,11 @@
 //! and bounds over the step prove it without evaluating the instants (see `sample_parachutes`):
 //! - noise-free parachutes skip steps with `v_z > 0`, or well above a height trigger's threshold
 //!   height, as if they had no instants there;
-//! - a noisy height trigger still advances its noise stream once per instant (the AR(1)
-//!   sequence it sees is what matters), but its instants are only evaluated when the step's
-//!   highest possible noisy pressure could reach the trigger pressure;
+//! - a noisy height trigger still advances its noise stream through every instant, but its
+//!   instants are only evaluated when the step's highest possible noisy pressure could reach
+//!   the trigger pressure; otherwise the stream jumps over them with the exact law of the
+//!   skipped AR(1) steps, one draw per step ([`NoiseStream::skip`]; "possible" meaning within
+//!   [`crate::noise::EXCLUSION_SIGMAS`] standard deviations of the noise);
 //! - an apogee trigger never reads the noise, so its stream is never drawn (its draws would
 //!   change nothing: every parachute has its own stream).
 //!
@@ -277,6 +279,8 @@ struct Run {
     instants: Vec<Instants>,
     /// Per parachute: the ASL height below which a noise-free height trigger fires.
     thresholds: Vec<Option<f64>>,
+    /// [`FlightSettings::trigger_band`], m.
+    band: f64,
     stats: IntegrationStats,
     sampling: Sampling,
 }
@@ -286,6 +290,10 @@ struct Run {
 enum Sampling {
     /// Steps in which no trigger can fire are passed over with bounds ([`Run::sample_parachutes`]).
     Bounded,
+    /// [`Sampling::Bounded`] with the noise streams drawn at every skipped instant instead of
+    /// jumping over them (the tests compare it with [`Sampling::Direct`] bit for bit).
+    #[cfg(test)]
+    BoundedStepwise,
     /// Every instant of every pending parachute evaluated directly, as a sorted node list
     /// (the tests' reference).
     #[cfg(test)]
@@ -305,8 +313,12 @@ struct Instants {
     last: i64,
     /// The noise stream is advanced at every instant (a noisy height trigger).
     draws: bool,
-    /// The trigger may fire at one of the instants; false when the step bounds exclude it.
-    may_fire: bool,
+    /// First instant at which the trigger may fire: the bounds exclude the instants before
+    /// it (`last + 1` when they exclude the whole step).
+    first_candidate: i64,
+    /// Instants passed over whose noise has not been drawn yet ([`NoiseStream::skip`] jumps
+    /// over them in one draw when the stream is next read, or when the step ends).
+    undrawn: usize,
 }
 
 impl Instants {
@@ -321,11 +333,13 @@ impl Instants {
     fn count(&self) -> usize {
         usize::try_from(self.last - self.next + 1).unwrap_or(0)
     }
-}
 
-/// Half-width of the band around a height threshold inside which the trigger is evaluated
-/// exactly (barometric height of the pressure), m.
-const THRESHOLD_BAND: f64 = 1.0;
+    /// Whether the trigger may fire at one of the instants left.
+    #[inline]
+    fn may_fire(&self) -> bool {
+        self.first_candidate <= self.last
+    }
+}
 
 /// The ASL height `z` where a noise-free height trigger switches, `h_baro(P(z)) − elevation =
 /// height_agl`, by bisection (both functions are monotone); `None` if not bracketed.
@@ -343,6 +357,38 @@ fn trigger_height<A: AtmosphereModel>(atm: &A, elevation: f64, height_agl: f64) 
         if g(mid) < 0.0 { lo = mid } else { hi = mid }
     }
     Some(0.5 * (lo + hi))
+}
+
+/// Resolution of the height above which a noisy height trigger is out of reach within a step,
+/// as a fraction of [`FlightSettings::trigger_band`].
+const REACH_RESOLUTION: f64 = 0.01;
+
+/// The lowest height in `(low, high]`, to `resolution`, at which the monotone predicate
+/// `out_of_reach` (false at `low`, and once true, true at every greater height) holds; `None`
+/// if it does not hold at `high`. Bisection: the answer is a height where the predicate was
+/// evaluated true, so every height at or above it is out of reach.
+fn reach_height(
+    low: f64,
+    high: f64,
+    resolution: f64,
+    out_of_reach: impl Fn(f64) -> bool,
+) -> Option<f64> {
+    if !out_of_reach(high) {
+        return None;
+    }
+    let (mut lo, mut hi) = (low, high);
+    while hi - lo > resolution {
+        let mid = 0.5 * (lo + hi);
+        if mid <= lo || mid >= hi {
+            break;
+        }
+        if out_of_reach(mid) {
+            hi = mid
+        } else {
+            lo = mid
+        }
+    }
+    Some(hi)
 }
 
 /// Flies a rocket from the rail to the ground (or apogee / `max_time`).
@@ -406,7 +452,16 @@ fn fly<A: AtmosphereModel, V: VehicleModel>(
     let streams = specs
         .iter()
         .enumerate()
-        .map(|(i, p)| NoiseStream::new(p.noise, settings.noise_seed, i as u64))
+        .map(|(i, p)| {
+            let stream = NoiseStream::new(p.noise, settings.noise_seed, i as u64);
+            #[cfg(test)]
+            let stream = if sampling == Sampling::BoundedStepwise {
+                stream.stepwise()
+            } else {
+                stream
+            };
+            stream
+        })
         .collect();
     let mut run = Run {
         points: vec![SolutionPoint {
@@ -443,6 +498,7 @@ fn fly<A: AtmosphereModel, V: VehicleModel>(
                 TriggerKind::HeightAboveGround(h) => trigger_height(atmosphere, elevation, h),
             })
             .collect(),
+        band: settings.trigger_band,
         stats: IntegrationStats::default(),
         sampling,
     };
@@ -712,6 +768,10 @@ impl Run {
                 Ok(self.sample_parachutes(integ, eq, specs, index, phase, kind, elevation))
             }
             #[cfg(test)]
+            Sampling::BoundedStepwise => {
+                Ok(self.sample_parachutes(integ, eq, specs, index, phase, kind, elevation))
+            }
+            #[cfg(test)]
             Sampling::Direct => {
                 Ok(self.sample_every_instant(integ, eq, specs, index, phase, kind, elevation))
             }
@@ -729,6 +789,12 @@ impl Run {
         (vz_low, z_low)
     }
 
+    /// Upper bound of `z` over the last step, the counterpart of [`Run::step_lows`].
+    fn step_top<F>(integ: &RungeKutta<13, F>) -> f64 {
+        let (y0, y1) = (integ.y_old(), integ.y());
+        y0[2].max(y1[2]) + integ.last_step() * y0[5].abs().max(y1[5].abs())
+    }
+
     /// Whether a silent (noise-free) parachute certainly cannot fire inside the last step, so
     /// that it has no sampling instants there: both triggers need `v_z < 0`, a height trigger
     /// also `z` below its threshold ([`Run::step_lows`]).
@@ -741,7 +807,7 @@ impl Run {
             return true;
         }
         match self.thresholds[p] {
-            Some(z_threshold) => z_low > z_threshold + THRESHOLD_BAND,
+            Some(z_threshold) => z_low > z_threshold + self.band,
             None => false,
         }
     }
@@ -756,12 +822,13 @@ impl Run {
     /// sorted, merged node list. Before any instant is evaluated each parachute's trigger is
     /// bounded over the step: it cannot fire if `v_z > 0` throughout ([`Run::step_lows`]), and a
     /// noisy height trigger cannot fire if even the highest possible pressure, `P(z_low)` plus
-    /// the largest noise value its instants will see (drawn ahead, [`NoiseStream::peek_max`]),
-    /// reads a barometric height at least [`THRESHOLD_BAND`] above its threshold (`h_baro` and
-    /// `P` decrease with their arguments; the band absorbs round-off and interpolation
-    /// wiggles). When no parachute can fire the noisy streams are advanced past the step's
-    /// instants and nothing else is evaluated; otherwise the instants are evaluated in order,
-    /// those of excluded parachutes only advancing their streams.
+    /// the noise stream's bound on its coming values ([`NoiseStream::upper_bound`]), reads a
+    /// barometric height at least the band ([`FlightSettings::trigger_band`]) above its threshold (`h_baro` and `P`
+    /// decrease with their arguments; the band absorbs round-off and interpolation wiggles).
+    /// When no parachute can fire the noisy streams jump past the step's instants
+    /// ([`NoiseStream::skip`], one draw each) and nothing else is evaluated; otherwise the
+    /// instants are evaluated in order, those of excluded parachutes only advancing their
+    /// streams.
     #[allow(clippy::too_many_arguments)]
     fn sample_parachutes<A: AtmosphereModel, V: VehicleModel, F: FnMut(f64, &State) -> State>(
         &mut self,
@@ -799,7 +866,8 @@ impl Run {
                 last: 0,
                 draws: matches!(specs[p].trigger, TriggerKind::HeightAboveGround(_))
                     && !self.streams[p].is_silent(),
-                may_fire: false,
+                first_candidate: 0,
+                undrawn: 0,
             };
             // The keys grow with j: the instants in the window form one run of j.
             range.next = (t_start / range.interval).floor() as i64 - 1;
@@ -823,9 +891,16 @@ impl Run {
         let first_key = node_key(first);
         let skip_first = phase.clear && (first - phase.t).abs() < 1e-9;
         let (vz_low, z_low) = Self::step_lows(integ);
+        let z_high = Self::step_top(integ);
         let descending = vz_low <= 0.0 || vz_low.is_nan();
         let atm = eq.atmosphere();
-        let mut highest_pressure = None;
+        // A noisy height trigger cannot fire where even the highest possible noisy pressure
+        // (the clean pressure at `z` plus the stream's bound) reads a barometric height at
+        // least the band above the trigger height.
+        let band = self.band;
+        let out_of_reach = |z: f64, bound: f64, h: f64| {
+            atm.barometric_height(atm.pressure(z) + bound) - elevation >= h + band
+        };
         let mut any_may_fire = false;
         for range in &mut self.instants {
             while skip_first
@@ -837,22 +912,39 @@ impl Run {
             while range.last >= range.next && node_key(range.time(range.last)) == k_end {
                 range.last -= 1;
             }
-            let count = range.count();
-            range.may_fire = count > 0
-                && descending
-                && match specs[range.p].trigger {
-                    TriggerKind::Apogee => true,
+            range.first_candidate = if !descending {
+                range.last + 1
+            } else {
+                match specs[range.p].trigger {
                     TriggerKind::HeightAboveGround(h) if range.draws => {
-                        let p_high = *highest_pressure.get_or_insert_with(|| atm.pressure(z_low));
-                        let noise_high = self.streams[range.p].peek_max(count);
-                        let height_low = atm.barometric_height(p_high + noise_high) - elevation;
-                        let excluded = height_low >= h + THRESHOLD_BAND;
-                        !excluded
+                        let bound = self.streams[range.p].upper_bound();
+                        if out_of_reach(z_low, bound, h) {
+                            range.last + 1
+                        } else {
+                            // The step reaches down to the band: pass over the instants that
+                            // are still out of reach at their own height, i.e. above the
+                            // lowest height `z_reach` found out of reach (the predicate grows
+                            // with `z`: `P` and `h_baro` both decrease).
+                            let mut j = range.next;
+                            let resolution = REACH_RESOLUTION * band;
+                            if let Some(z_reach) = reach_height(z_low, z_high, resolution, |z| {
+                                out_of_reach(z, bound, h)
+                            }) {
+                                while j <= range.last
+                                    && integ.dense_component(range.time(j), 2) >= z_reach
+                                {
+                                    j += 1;
+                                }
+                            }
+                            j
+                        }
                     }
-                    // Noise-free: `cannot_fire` has already bounded it.
-                    TriggerKind::HeightAboveGround(_) => true,
-                };
-            any_may_fire |= range.may_fire;
+                    // Apogee triggers, and noise-free height triggers that `cannot_fire` has
+                    // already bounded.
+                    _ => range.next,
+                }
+            };
+            any_may_fire |= range.may_fire();
         }
         if !any_may_fire {
             for range in &self.instants {
@@ -865,7 +957,7 @@ impl Run {
         let mut group_key = None;
         let mut t_node = 0.0;
         let (mut z, mut vz, mut pressure) = (None, None, None);
-        loop {
+        let fired = loop {
             // The earliest instant left; ties go to the earlier parachute.
             let mut earliest: Option<(usize, f64)> = None;
             for (k, range) in self.instants.iter().enumerate() {
@@ -878,9 +970,12 @@ impl Run {
                 }
             }
             // None once every instant is evaluated: nothing fired.
-            let (k, t) = earliest?;
-            let range = self.instants[k];
-            self.instants[k].next += 1;
+            let Some((k, t)) = earliest else {
+                break None;
+            };
+            let range = &mut self.instants[k];
+            let j = range.next;
+            range.next += 1;
             let key = node_key(t);
             if group_key != Some(key) {
                 group_key = Some(key);
@@ -888,25 +983,28 @@ impl Run {
                 (z, vz, pressure) = (None, None, None);
             }
             let p = range.p;
+            if j < range.first_candidate {
+                if range.draws {
+                    range.undrawn += 1;
+                }
+                continue;
+            }
             let noise = if range.draws {
-                self.streams[p].next_value()
+                let stream = &mut self.streams[p];
+                stream.skip(std::mem::take(&mut range.undrawn));
+                stream.next_value()
             } else {
                 0.0
             };
-            if !range.may_fire {
-                continue;
-            }
             let vz_node = *vz.get_or_insert_with(|| integ.dense_component(t_node, 5));
-            let fired = vz_node < 0.0
+            let fires = vz_node < 0.0
                 && match specs[p].trigger {
                     TriggerKind::Apogee => true,
                     TriggerKind::HeightAboveGround(h) => {
                         let z_node = *z.get_or_insert_with(|| integ.dense_component(t_node, 2));
                         match self.thresholds[p] {
                             // Noise-free: compare heights directly, away from the threshold.
-                            Some(zt) if noise == 0.0 && (z_node - zt).abs() > THRESHOLD_BAND => {
-                                z_node < zt
-                            }
+                            Some(zt) if noise == 0.0 && (z_node - zt).abs() > band => z_node < zt,
                             _ => {
                                 let p_clean = *pressure.get_or_insert_with(|| atm.pressure(z_node));
                                 atm.barometric_height(p_clean + noise) - elevation < h
@@ -914,10 +1012,16 @@ impl Run {
                         }
                     }
                 };
-            if fired {
-                return Some(self.fire(integ, specs, p, index, kind, t_node));
+            if fires {
+                break Some(p);
             }
+        };
+        // The noise of the instants passed over is drawn (as one jump per stream) up to the
+        // instant that fired, or to the step end.
+        for range in &mut self.instants {
+            self.streams[range.p].skip(std::mem::take(&mut range.undrawn));
         }
+        fired.map(|p| self.fire(integ, specs, p, index, kind, t_node))
     }
 
     /// Deploys parachute `p` at `t_node` inside the last step and cuts the step there.
@@ -1234,7 +1338,7 @@ mod tests {
         let mut high_triggers = Vec::new();
         for (name, chutes) in &cases {
             for seed in 0..6 {
-                let bounded = fly_with(chutes.clone(), seed, Sampling::Bounded);
+                let bounded = fly_with(chutes.clone(), seed, Sampling::BoundedStepwise);
                 let direct = fly_with(chutes.clone(), seed, Sampling::Direct);
                 assert!(
                     !bounded.parachute_events.is_empty(),

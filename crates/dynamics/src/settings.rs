@@ -43,6 +43,12 @@ pub struct FlightSettings {
     /// steps); without them a DOPRI5 step at the default tolerances can straddle a
     /// kink and the apogee of a rocket with a jagged thrust curve drifts by ~0.1 %.
     pub stop_at_thrust_knots: bool,
+    /// Height margin of the bounds that pass over parachute sampling instants where a height
+    /// trigger cannot fire, m (default 1; a numerical parameter, not a physical one: it
+    /// absorbs round-off in the barometric height of a pressure). It changes no deployment of
+    /// a noise-free trigger; with trigger noise it moves where the noise stream jumps over
+    /// skipped instants, which changes the drawn noise as a different seed would.
+    pub trigger_band: f64,
 }
 
 impl FlightSettings {
@@ -63,6 +69,7 @@ impl FlightSettings {
             max_steps_per_phase: 200_000,
             noise_seed: 0,
             stop_at_thrust_knots: true,
+            trigger_band: 1.0,
         }
     }
 
@@ -127,6 +134,13 @@ impl FlightSettings {
             s,
             s.is_finite() && s >= 0.0,
             "must be non-negative",
+        )?;
+        let b = self.trigger_band;
+        check(
+            "trigger_band",
+            b,
+            b.is_finite() && b > 0.0,
+            "must be a positive length",
         )?;
         Ok(())
     }

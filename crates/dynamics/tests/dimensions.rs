@@ -208,6 +208,7 @@ fn settings(u: &Units) -> FlightSettings {
     s.max_time_step = u.scale(s.max_time_step, T);
     s.rail_max_time_step = u.scale(s.rail_max_time_step, T);
     s.min_time_step = u.scale(s.min_time_step, T);
+    s.trigger_band = u.scale(s.trigger_band, L);
     // State: position (m), velocity (m/s), quaternion (1), angular velocity (1/s).
     let dims = [L, L, L, V, V, V]
         .into_iter()
