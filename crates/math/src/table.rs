@@ -471,19 +471,27 @@ impl Table1 {
         } else if n == 1 {
             Location::Interval(0)
         } else {
-            let j = cursor.0.min(n - 2);
-            let i = if self.interval_holds(j, x) {
-                j
-            } else if j + 2 < n && self.interval_holds(j + 1, x) {
-                j + 1
-            } else if j > 0 && self.interval_holds(j - 1, x) {
-                j - 1
-            } else {
-                self.interval(x)
-            };
-            cursor.0 = i;
-            Location::Interval(i)
+            Location::Interval(self.interval_with(x, cursor))
         }
+    }
+
+    /// [`Table1::interval`] starting from `cursor` (and updating it): the remembered interval
+    /// and its neighbours, then the search. Needs at least two samples.
+    #[inline(always)]
+    fn interval_with(&self, x: f64, cursor: &mut Cursor) -> usize {
+        let n = self.xs.len();
+        let j = cursor.0.min(n - 2);
+        let i = if self.interval_holds(j, x) {
+            j
+        } else if j + 2 < n && self.interval_holds(j + 1, x) {
+            j + 1
+        } else if j > 0 && self.interval_holds(j - 1, x) {
+            j - 1
+        } else {
+            self.interval(x)
+        };
+        cursor.0 = i;
+        i
     }
 
     /// The piece that evaluates `at`, or the value itself where extrapolation is constant or
@@ -640,8 +648,22 @@ impl Table1 {
     /// Exact definite integral of the interpolant (with its extrapolation) from `a` to `b`.
     #[must_use]
     pub fn integral(&self, a: f64, b: f64) -> f64 {
+        self.integral_by(a, b, &mut |x| self.interval(x))
+    }
+
+    /// [`Table1::integral`] with the intervals of the ends searched from `cursor` (and the
+    /// cursor left at the interval of the upper end): the same number, cheaper along
+    /// consecutive intervals of integration `[t_0, t_1], [t_1, t_2], …`.
+    #[must_use]
+    pub fn integral_with(&self, a: f64, b: f64, cursor: &mut Cursor) -> f64 {
+        self.integral_by(a, b, &mut |x| self.interval_with(x, cursor))
+    }
+
+    /// The integral from `a` to `b`, with `interval` finding the interval of a point of the
+    /// domain (either search: they agree).
+    fn integral_by(&self, a: f64, b: f64, interval: &mut impl FnMut(f64) -> usize) -> f64 {
         if b < a {
-            return -self.integral(b, a);
+            return -self.integral_by(b, a, interval);
         }
         let n = self.xs.len();
         let (x0, x1) = self.domain();
@@ -667,12 +689,14 @@ impl Table1 {
         if n > 1 && hi > lo {
             match &self.pieces {
                 Pieces::Cubic(coeffs) => {
-                    let (first, last) = (self.interval(lo), self.interval(hi));
-                    for (i, &piece) in coeffs.iter().enumerate().take(last + 1).skip(first) {
-                        let s = lo.max(self.xs[i]);
-                        let e = hi.min(self.xs[i + 1]);
+                    let first = interval(lo);
+                    let last = interval(hi);
+                    let ends = self.xs[first..=last + 1].windows(2);
+                    for (&piece, x) in coeffs[first..=last].iter().zip(ends) {
+                        let s = lo.max(x[0]);
+                        let e = hi.min(x[1]);
                         if e > s {
-                            total += piece_integral(piece, s - self.xs[i], e - self.xs[i]);
+                            total += piece_integral(piece, s - x[0], e - x[0]);
                         }
                     }
                 }
@@ -1281,5 +1305,35 @@ mod tests {
         assert!(!base.same_abscissae(&single));
         // A location of a longer table is clamped, not a panic.
         assert!(single.eval_at(base.locate(3.5), 2.0).is_finite());
+    }
+
+    #[test]
+    fn integral_with_a_cursor_is_the_integral() {
+        let xs = vec![0.0, 0.5, 1.5, 1.7, 3.0, 4.0];
+        let ys: Vec<f64> = xs.iter().map(|x: &f64| (2.0 * x).cos()).collect();
+        let kinds = [
+            Interpolation::Linear,
+            Interpolation::Spline,
+            Interpolation::Akima,
+            Interpolation::Polynomial,
+        ];
+        let same = |a: f64, b: f64| a.to_bits() == b.to_bits();
+        for kind in kinds {
+            for e in [Extrapolation::Natural, Extrapolation::Constant] {
+                let t = Table1::new(xs.clone(), ys.clone(), kind, e).unwrap();
+                // Consecutive intervals of a grid (nodes included), as the propellant tables
+                // integrate the thrust, then bounds in any order, reversed or outside.
+                let mut cursor = Cursor::default();
+                let grid: Vec<f64> = (0..=40).map(|k| 0.1 * f64::from(k)).collect();
+                for w in grid.windows(2) {
+                    let with = t.integral_with(w[0], w[1], &mut cursor);
+                    assert!(same(with, t.integral(w[0], w[1])), "{kind:?} {w:?}");
+                }
+                for (a, b) in [(3.9, 0.2), (-1.0, 5.0), (1.5, 1.5), (0.5, 1.7), (4.5, 6.0)] {
+                    let with = t.integral_with(a, b, &mut cursor);
+                    assert!(same(with, t.integral(a, b)), "{kind:?} {a} {b}");
+                }
+            }
+        }
     }
 }
