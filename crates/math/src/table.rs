@@ -167,25 +167,30 @@ impl Guide {
         let n = xs.len();
         let buckets = n.max(2) - 1;
         let scale = buckets as f64 / (xs[n - 1] - xs[0]);
-        let mut guide = Guide {
-            start: vec![0; buckets + 1],
-            scale,
-        };
-        for &x in xs {
-            let k = guide.key(xs[0], x);
-            guide.start[k + 1] += 1;
+        // The keys of the (sorted) samples do not decrease: the count below bucket `b` is the
+        // index of the first sample with a key of at least `b`, found in one pass.
+        let mut start = Vec::with_capacity(buckets + 1);
+        for (i, &x) in xs.iter().enumerate() {
+            let k = bucket(x - xs[0], scale, buckets - 1);
+            while start.len() <= k {
+                start.push(i);
+            }
         }
-        for b in 1..=buckets {
-            guide.start[b] += guide.start[b - 1];
-        }
-        guide
+        start.resize(buckets + 1, n);
+        Guide { start, scale }
     }
 
     #[inline]
     fn key(&self, x0: f64, x: f64) -> usize {
-        // `as usize` saturates (negative and NaN give 0), which keeps the key monotone.
-        (((x - x0) * self.scale) as usize).min(self.start.len() - 2)
+        bucket(x - x0, self.scale, self.start.len() - 2)
     }
+}
+
+/// The bucket `⌊offset·scale⌋` clamped to `[0, last]`. `as usize` saturates (negative and NaN
+/// give 0), which keeps the key monotone.
+#[inline]
+fn bucket(offset: f64, scale: f64, last: usize) -> usize {
+    ((offset * scale) as usize).min(last)
 }
 
 /// The interpolant between the samples.
