@@ -21,6 +21,13 @@
 //! Evaluation finds the interval through a bucket index (O(1) for evenly spread samples, a
 //! binary search of one bucket otherwise) or a [`Cursor`] hunt, then takes a Horner step: no
 //! allocation.
+//!
+//! A table never changes once built, so its columns (abscissae, values, pieces, bucket index)
+//! are reference counted: a clone copies no sample, and tables on the same abscissae
+//! ([`Table1::on_same_abscissae`], e.g. the mass, centre of mass and inertia of a motor on its
+//! time grid) share the abscissae and their bucket index instead of copying and rebuilding them.
+
+use std::sync::Arc;
 
 use nalgebra::{DMatrix, DVector};
 
@@ -158,7 +165,7 @@ impl Polynomial {
 /// `[start[key(x)], start[key(x) + 1]]` exactly, and a search of that (short) range finds it.
 #[derive(Debug, Clone, PartialEq)]
 struct Guide {
-    start: Vec<usize>,
+    start: Arc<[usize]>,
     scale: f64,
 }
 
@@ -169,14 +176,17 @@ impl Guide {
         let scale = buckets as f64 / (xs[n - 1] - xs[0]);
         // The keys of the (sorted) samples do not decrease: the count below bucket `b` is the
         // index of the first sample with a key of at least `b`, found in one pass.
-        let mut start = Vec::with_capacity(buckets + 1);
-        for (i, &x) in xs.iter().enumerate() {
-            let k = bucket(x - xs[0], scale, buckets - 1);
-            while start.len() <= k {
-                start.push(i);
-            }
-        }
-        start.resize(buckets + 1, n);
+        let key = |i: usize| bucket(xs[i] - xs[0], scale, buckets - 1);
+        let (mut i, mut k) = (0, key(0));
+        let start = (0..=buckets)
+            .map(|b| {
+                while k < b {
+                    i += 1;
+                    k = if i < n { key(i) } else { usize::MAX };
+                }
+                i
+            })
+            .collect();
         Guide { start, scale }
     }
 
@@ -197,7 +207,7 @@ fn bucket(offset: f64, scale: f64, last: usize) -> usize {
 #[derive(Debug, Clone, PartialEq)]
 enum Pieces {
     /// Per-interval cubic coefficients `[a, b, c, e]` in `d = x − x_i`.
-    Cubic(Vec<[f64; 4]>),
+    Cubic(Arc<[[f64; 4]]>),
     /// One polynomial through all samples.
     Polynomial(Polynomial),
 }
@@ -205,12 +215,31 @@ enum Pieces {
 /// A tabulated function of one variable with allocation-free evaluation.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Table1 {
-    xs: Vec<f64>,
-    ys: Vec<f64>,
+    xs: Arc<[f64]>,
+    ys: Arc<[f64]>,
     pieces: Pieces,
     guide: Guide,
     interpolation: Interpolation,
     extrapolation: Extrapolation,
+}
+
+/// The interpolant of validated, strictly increasing samples.
+fn pieces(xs: &[f64], ys: &[f64], interpolation: Interpolation) -> Result<Pieces, MathError> {
+    Ok(match interpolation {
+        Interpolation::Linear => Pieces::Cubic(linear_coeffs(xs, ys)),
+        Interpolation::Spline => Pieces::Cubic(natural_spline_coeffs(xs, ys)),
+        Interpolation::Akima => Pieces::Cubic(hermite_coeffs(xs, ys, &akima_slopes(xs, ys))),
+        Interpolation::RocketPyAkima => {
+            Pieces::Cubic(hermite_coeffs(xs, ys, &weighted_mean_slopes(xs, ys)))
+        }
+        Interpolation::Polynomial => {
+            if xs.len() == 1 {
+                Pieces::Cubic(Arc::from([]))
+            } else {
+                Pieces::Polynomial(polynomial(xs, ys)?)
+            }
+        }
+    })
 }
 
 /// Checks lengths and finiteness; `strict` demands strictly increasing x, otherwise
@@ -255,29 +284,38 @@ impl Table1 {
         extrapolation: Extrapolation,
     ) -> Result<Self, MathError> {
         validate(&xs, &ys, true)?;
-        let pieces = match interpolation {
-            Interpolation::Linear => Pieces::Cubic(linear_coeffs(&xs, &ys)),
-            Interpolation::Spline => Pieces::Cubic(natural_spline_coeffs(&xs, &ys)),
-            Interpolation::Akima => {
-                Pieces::Cubic(hermite_coeffs(&xs, &ys, &akima_slopes(&xs, &ys)))
-            }
-            Interpolation::RocketPyAkima => {
-                Pieces::Cubic(hermite_coeffs(&xs, &ys, &weighted_mean_slopes(&xs, &ys)))
-            }
-            Interpolation::Polynomial => {
-                if xs.len() == 1 {
-                    Pieces::Cubic(Vec::new())
-                } else {
-                    Pieces::Polynomial(polynomial(&xs, &ys)?)
-                }
-            }
-        };
+        let pieces = pieces(&xs, &ys, interpolation)?;
         let guide = Guide::new(&xs);
         Ok(Table1 {
-            xs,
-            ys,
+            xs: xs.into(),
+            ys: ys.into(),
             pieces,
             guide,
+            interpolation,
+            extrapolation,
+        })
+    }
+
+    /// The table of `ys` on the abscissae of `like`: equal to [`Table1::new`] with a copy of
+    /// `like.xs()` (and the same errors), but sharing `like`'s abscissae and bucket index
+    /// instead of copying and rebuilding them. Several quantities sampled on one grid are
+    /// tabulated so, and [`Table1::same_abscissae`] of such tables is immediate.
+    ///
+    /// # Errors
+    /// As [`Table1::new`] with `like.xs()`: `like` may be a [`Table1::linear_stepwise`] table
+    /// with repeated abscissae, which no table built here accepts.
+    pub fn on_same_abscissae(
+        like: &Table1,
+        ys: Vec<f64>,
+        interpolation: Interpolation,
+        extrapolation: Extrapolation,
+    ) -> Result<Self, MathError> {
+        validate(&like.xs, &ys, true)?;
+        Ok(Table1 {
+            xs: Arc::clone(&like.xs),
+            pieces: pieces(&like.xs, &ys, interpolation)?,
+            ys: ys.into(),
+            guide: like.guide.clone(),
             interpolation,
             extrapolation,
         })
@@ -309,8 +347,8 @@ impl Table1 {
         let pieces = Pieces::Cubic(linear_coeffs(&xs, &ys));
         let guide = Guide::new(&xs);
         Ok(Table1 {
-            xs,
-            ys,
+            xs: xs.into(),
+            ys: ys.into(),
             pieces,
             guide,
             interpolation: Interpolation::Linear,
@@ -435,12 +473,13 @@ impl Table1 {
     /// one is valid for the other.
     #[must_use]
     pub fn same_abscissae(&self, other: &Table1) -> bool {
-        self.xs.len() == other.xs.len()
-            && self
-                .xs
-                .iter()
-                .zip(&other.xs)
-                .all(|(a, b)| a.to_bits() == b.to_bits())
+        Arc::ptr_eq(&self.xs, &other.xs)
+            || (self.xs.len() == other.xs.len()
+                && self
+                    .xs
+                    .iter()
+                    .zip(other.xs.iter())
+                    .all(|(a, b)| a.to_bits() == b.to_bits()))
     }
 
     /// Where `x` falls among the samples: the search that [`Table1::eval`] does, done once for
@@ -653,7 +692,7 @@ impl Table1 {
     /// Exact definite integral of the interpolant (with its extrapolation) from `a` to `b`.
     #[must_use]
     pub fn integral(&self, a: f64, b: f64) -> f64 {
-        self.integral_by(a, b, &mut |x| self.interval(x))
+        self.integral_by(a, b, |x| self.interval(x))
     }
 
     /// [`Table1::integral`] with the intervals of the ends searched from `cursor` (and the
@@ -661,15 +700,14 @@ impl Table1 {
     /// consecutive intervals of integration `[t_0, t_1], [t_1, t_2], …`.
     #[must_use]
     pub fn integral_with(&self, a: f64, b: f64, cursor: &mut Cursor) -> f64 {
-        self.integral_by(a, b, &mut |x| self.interval_with(x, cursor))
+        self.integral_by(a, b, |x| self.interval_with(x, cursor))
     }
 
     /// The integral from `a` to `b`, with `interval` finding the interval of a point of the
     /// domain (either search: they agree).
-    fn integral_by(&self, a: f64, b: f64, interval: &mut impl FnMut(f64) -> usize) -> f64 {
-        if b < a {
-            return -self.integral_by(b, a, interval);
-        }
+    fn integral_by(&self, a: f64, b: f64, mut interval: impl FnMut(f64) -> usize) -> f64 {
+        let reversed = b < a;
+        let (a, b) = if reversed { (b, a) } else { (a, b) };
         let n = self.xs.len();
         let (x0, x1) = self.domain();
         let mut total = 0.0;
@@ -708,7 +746,7 @@ impl Table1 {
                 Pieces::Polynomial(p) => total += p.integral(lo, hi),
             }
         }
-        total
+        if reversed { -total } else { total }
     }
 
     /// The inverse function of a table with strictly monotone values: the samples with x and
@@ -731,7 +769,7 @@ impl Table1 {
                 return Err(MathError::NotMonotone { index, y, previous });
             }
         }
-        let (mut xs, mut ys) = (self.ys.clone(), self.xs.clone());
+        let (mut xs, mut ys) = (self.ys.to_vec(), self.xs.to_vec());
         if !increasing {
             xs.reverse();
             ys.reverse();
@@ -767,7 +805,7 @@ impl Table1 {
             }),
         };
         Table1 {
-            xs: self.xs.clone(),
+            xs: Arc::clone(&self.xs),
             ys: self.ys.iter().map(|&y| scale * y + offset).collect(),
             pieces,
             guide: self.guide.clone(),
@@ -863,26 +901,24 @@ pub fn linspace(a: f64, b: f64, n: usize) -> Vec<f64> {
 /// Linear pieces. A zero-width interval (repeated x) is never used inside the samples; it holds
 /// its left value, except the last interval, whose value is the last sample so that natural
 /// extrapolation to the right continues from it.
-fn linear_coeffs(xs: &[f64], ys: &[f64]) -> Vec<[f64; 4]> {
+fn linear_coeffs(xs: &[f64], ys: &[f64]) -> Arc<[[f64; 4]]> {
     let last = xs.len().saturating_sub(2);
-    xs.windows(2)
-        .zip(ys.windows(2))
-        .enumerate()
-        .map(|(i, (x, y))| {
-            let h = x[1] - x[0];
+    (0..xs.len().saturating_sub(1))
+        .map(|i| {
+            let h = xs[i + 1] - xs[i];
             if h > 0.0 {
-                [y[0], (y[1] - y[0]) / h, 0.0, 0.0]
+                [ys[i], (ys[i + 1] - ys[i]) / h, 0.0, 0.0]
             } else if i == last {
-                [y[1], 0.0, 0.0, 0.0]
+                [ys[i + 1], 0.0, 0.0, 0.0]
             } else {
-                [y[0], 0.0, 0.0, 0.0]
+                [ys[i], 0.0, 0.0, 0.0]
             }
         })
         .collect()
 }
 
 /// Natural cubic spline: solve for the second derivatives `M_i` (M_0 = M_{n-1} = 0).
-fn natural_spline_coeffs(xs: &[f64], ys: &[f64]) -> Vec<[f64; 4]> {
+fn natural_spline_coeffs(xs: &[f64], ys: &[f64]) -> Arc<[[f64; 4]]> {
     let n = xs.len();
     if n < 3 {
         return linear_coeffs(xs, ys);
@@ -925,7 +961,7 @@ fn natural_spline_coeffs(xs: &[f64], ys: &[f64]) -> Vec<[f64; 4]> {
 }
 
 /// Cubic Hermite pieces with node slopes `t` (C¹ by construction).
-fn hermite_coeffs(xs: &[f64], ys: &[f64], t: &[f64]) -> Vec<[f64; 4]> {
+fn hermite_coeffs(xs: &[f64], ys: &[f64], t: &[f64]) -> Arc<[[f64; 4]]> {
     (0..xs.len() - 1)
         .map(|i| {
             let h = xs[i + 1] - xs[i];
@@ -1310,6 +1346,52 @@ mod tests {
         assert!(!base.same_abscissae(&single));
         // A location of a longer table is clamped, not a panic.
         assert!(single.eval_at(base.locate(3.5), 2.0).is_finite());
+    }
+
+    #[test]
+    fn tables_on_the_same_abscissae_are_the_tables_on_a_copy() {
+        let xs = vec![0.0, 0.5, 1.5, 1.7, 3.0, 4.0];
+        let like = Table1::linear(xs.clone(), vec![0.0; xs.len()]).unwrap();
+        let ys: Vec<f64> = xs.iter().map(|x: &f64| x.sin() + 0.1 * x * x).collect();
+        let kinds = [
+            Interpolation::Linear,
+            Interpolation::Spline,
+            Interpolation::Akima,
+            Interpolation::RocketPyAkima,
+            Interpolation::Polynomial,
+        ];
+        for kind in kinds {
+            for e in [Extrapolation::Natural, Extrapolation::Zero] {
+                let shared = Table1::on_same_abscissae(&like, ys.clone(), kind, e).unwrap();
+                let copied = Table1::new(xs.clone(), ys.clone(), kind, e).unwrap();
+                assert_eq!(shared, copied, "{kind:?} {e:?}");
+                assert!(shared.same_abscissae(&like) && like.same_abscissae(&shared));
+                let mut cursor = Cursor::default();
+                for x in [-1.0, 0.0, 0.2, 1.5, 1.6, 3.9, 4.0, 5.0] {
+                    assert_eq!(shared.locate(x), copied.locate(x));
+                    assert_eq!(shared.locate_with(x, &mut cursor), copied.locate(x));
+                }
+            }
+        }
+        // The same errors as a table built on a copy of the abscissae.
+        let nan = vec![0.0, 1.0, f64::NAN, 0.0, 0.0, 0.0];
+        let linear = (Interpolation::Linear, Extrapolation::Constant);
+        for ys in [vec![0.0; 3], nan] {
+            let shared = Table1::on_same_abscissae(&like, ys.clone(), linear.0, linear.1);
+            let copied = Table1::new(xs.clone(), ys, linear.0, linear.1);
+            assert_eq!(format!("{shared:?}"), format!("{copied:?}"));
+            assert!(shared.is_err());
+        }
+        let repeated = vec![0.0, 1.0, 1.0, 2.0];
+        let stepwise =
+            Table1::linear_stepwise(repeated.clone(), vec![0.0; 4], Extrapolation::Zero).unwrap();
+        let shared = Table1::on_same_abscissae(&stepwise, vec![1.0; 4], linear.0, linear.1);
+        let copied = Table1::new(repeated, vec![1.0; 4], linear.0, linear.1);
+        assert!(matches!(
+            shared,
+            Err(MathError::NotIncreasing { index: 2, .. })
+        ));
+        assert_eq!(format!("{shared:?}"), format!("{copied:?}"));
     }
 
     #[test]
