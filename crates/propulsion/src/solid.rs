@@ -325,20 +325,18 @@ impl PropellantModel for BatesGrains {
             i33.push(c);
         }
         let com = vec![self.center_of_mass_position; times.len()];
+        let (lin, hold) = (Interpolation::Linear, Extrapolation::Constant);
+        let mass = Table1::new(times, masses, lin, hold)
+            .map_err(PropulsionError::table("propellant mass"))?;
+        // The other quantities share the mass table's time grid.
         let table = |what, ys| {
-            Table1::new(
-                times.clone(),
-                ys,
-                Interpolation::Linear,
-                Extrapolation::Constant,
-            )
-            .map_err(PropulsionError::table(what))
+            Table1::on_same_abscissae(&mass, ys, lin, hold).map_err(PropulsionError::table(what))
         };
         Ok(PropellantTables {
-            mass: table("propellant mass", masses)?,
             center_of_mass: table("propellant centre of mass", com)?,
             i11: table("propellant I11", i11)?,
             i33: table("propellant I33", i33)?,
+            mass,
         })
     }
 }
