@@ -80,12 +80,7 @@ pub(crate) struct MassModel {
 /// Whether two tables share their abscissae exactly, strictly increasing (RocketPy's
 /// node-wise arithmetic; a table with a repeated abscissa is evaluated pointwise instead).
 fn same_grid(a: &Table1, b: &Table1) -> bool {
-    a.xs().windows(2).all(|w| w[0] < w[1])
-        && a.xs().len() == b.xs().len()
-        && a.xs()
-            .iter()
-            .zip(b.xs())
-            .all(|(x, y)| x.to_bits() == y.to_bits())
+    a.xs().windows(2).all(|w| w[0] < w[1]) && a.same_abscissae(b)
 }
 
 impl MassModel {
@@ -154,17 +149,12 @@ impl MassModel {
             let masses = m.propellant_mass.ys();
             let positions: Vec<f64> = cpm.ys().iter().map(|&z| model.motor_to_user(z)).collect();
             let nodal = |ys: Vec<f64>, like: &Table1, quantity: &'static str| {
-                Table1::new(
-                    like.xs().to_vec(),
-                    ys,
-                    like.interpolation(),
-                    like.extrapolation(),
-                )
-                .map_err(|source| AirframeError::Table {
-                    component: "rocket".to_owned(),
-                    quantity,
-                    source,
-                })
+                Table1::on_same_abscissae(like, ys, like.interpolation(), like.extrapolation())
+                    .map_err(|source| AirframeError::Table {
+                        component: "rocket".to_owned(),
+                        quantity,
+                        source,
+                    })
             };
             let each = |f: &dyn Fn(f64, f64) -> f64| -> Vec<f64> {
                 masses

@@ -21,6 +21,13 @@
 //! Evaluation finds the interval through a bucket index (O(1) for evenly spread samples, a
 //! binary search of one bucket otherwise) or a [`Cursor`] hunt, then takes a Horner step: no
 //! allocation.
+//!
+//! A table never changes once built, so its columns (abscissae, values, pieces, bucket index)
+//! are reference counted: a clone copies no sample, and tables on the same abscissae
+//! ([`Table1::on_same_abscissae`], e.g. the mass, centre of mass and inertia of a motor on its
+//! time grid) share the abscissae and their bucket index instead of copying and rebuilding them.
+
+use std::sync::Arc;
 
 use nalgebra::{DMatrix, DVector};
 
@@ -158,7 +165,7 @@ impl Polynomial {
 /// `[start[key(x)], start[key(x) + 1]]` exactly, and a search of that (short) range finds it.
 #[derive(Debug, Clone, PartialEq)]
 struct Guide {
-    start: Vec<usize>,
+    start: Arc<[usize]>,
     scale: f64,
 }
 
@@ -167,32 +174,40 @@ impl Guide {
         let n = xs.len();
         let buckets = n.max(2) - 1;
         let scale = buckets as f64 / (xs[n - 1] - xs[0]);
-        let mut guide = Guide {
-            start: vec![0; buckets + 1],
-            scale,
-        };
-        for &x in xs {
-            let k = guide.key(xs[0], x);
-            guide.start[k + 1] += 1;
-        }
-        for b in 1..=buckets {
-            guide.start[b] += guide.start[b - 1];
-        }
-        guide
+        // The keys of the (sorted) samples do not decrease: the count below bucket `b` is the
+        // index of the first sample with a key of at least `b`, found in one pass.
+        let key = |i: usize| bucket(xs[i] - xs[0], scale, buckets - 1);
+        let (mut i, mut k) = (0, key(0));
+        let start = (0..=buckets)
+            .map(|b| {
+                while k < b {
+                    i += 1;
+                    k = if i < n { key(i) } else { usize::MAX };
+                }
+                i
+            })
+            .collect();
+        Guide { start, scale }
     }
 
     #[inline]
     fn key(&self, x0: f64, x: f64) -> usize {
-        // `as usize` saturates (negative and NaN give 0), which keeps the key monotone.
-        (((x - x0) * self.scale) as usize).min(self.start.len() - 2)
+        bucket(x - x0, self.scale, self.start.len() - 2)
     }
+}
+
+/// The bucket `⌊offset·scale⌋` clamped to `[0, last]`. `as usize` saturates (negative and NaN
+/// give 0), which keeps the key monotone.
+#[inline]
+fn bucket(offset: f64, scale: f64, last: usize) -> usize {
+    ((offset * scale) as usize).min(last)
 }
 
 /// The interpolant between the samples.
 #[derive(Debug, Clone, PartialEq)]
 enum Pieces {
     /// Per-interval cubic coefficients `[a, b, c, e]` in `d = x − x_i`.
-    Cubic(Vec<[f64; 4]>),
+    Cubic(Arc<[[f64; 4]]>),
     /// One polynomial through all samples.
     Polynomial(Polynomial),
 }
@@ -200,12 +215,31 @@ enum Pieces {
 /// A tabulated function of one variable with allocation-free evaluation.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Table1 {
-    xs: Vec<f64>,
-    ys: Vec<f64>,
+    xs: Arc<[f64]>,
+    ys: Arc<[f64]>,
     pieces: Pieces,
     guide: Guide,
     interpolation: Interpolation,
     extrapolation: Extrapolation,
+}
+
+/// The interpolant of validated, strictly increasing samples.
+fn pieces(xs: &[f64], ys: &[f64], interpolation: Interpolation) -> Result<Pieces, MathError> {
+    Ok(match interpolation {
+        Interpolation::Linear => Pieces::Cubic(linear_coeffs(xs, ys)),
+        Interpolation::Spline => Pieces::Cubic(natural_spline_coeffs(xs, ys)),
+        Interpolation::Akima => Pieces::Cubic(hermite_coeffs(xs, ys, &akima_slopes(xs, ys))),
+        Interpolation::RocketPyAkima => {
+            Pieces::Cubic(hermite_coeffs(xs, ys, &weighted_mean_slopes(xs, ys)))
+        }
+        Interpolation::Polynomial => {
+            if xs.len() == 1 {
+                Pieces::Cubic(Arc::from([]))
+            } else {
+                Pieces::Polynomial(polynomial(xs, ys)?)
+            }
+        }
+    })
 }
 
 /// Checks lengths and finiteness; `strict` demands strictly increasing x, otherwise
@@ -250,29 +284,38 @@ impl Table1 {
         extrapolation: Extrapolation,
     ) -> Result<Self, MathError> {
         validate(&xs, &ys, true)?;
-        let pieces = match interpolation {
-            Interpolation::Linear => Pieces::Cubic(linear_coeffs(&xs, &ys)),
-            Interpolation::Spline => Pieces::Cubic(natural_spline_coeffs(&xs, &ys)),
-            Interpolation::Akima => {
-                Pieces::Cubic(hermite_coeffs(&xs, &ys, &akima_slopes(&xs, &ys)))
-            }
-            Interpolation::RocketPyAkima => {
-                Pieces::Cubic(hermite_coeffs(&xs, &ys, &weighted_mean_slopes(&xs, &ys)))
-            }
-            Interpolation::Polynomial => {
-                if xs.len() == 1 {
-                    Pieces::Cubic(Vec::new())
-                } else {
-                    Pieces::Polynomial(polynomial(&xs, &ys)?)
-                }
-            }
-        };
+        let pieces = pieces(&xs, &ys, interpolation)?;
         let guide = Guide::new(&xs);
         Ok(Table1 {
-            xs,
-            ys,
+            xs: xs.into(),
+            ys: ys.into(),
             pieces,
             guide,
+            interpolation,
+            extrapolation,
+        })
+    }
+
+    /// The table of `ys` on the abscissae of `like`: equal to [`Table1::new`] with a copy of
+    /// `like.xs()` (and the same errors), but sharing `like`'s abscissae and bucket index
+    /// instead of copying and rebuilding them. Several quantities sampled on one grid are
+    /// tabulated so, and [`Table1::same_abscissae`] of such tables is immediate.
+    ///
+    /// # Errors
+    /// As [`Table1::new`] with `like.xs()`: `like` may be a [`Table1::linear_stepwise`] table
+    /// with repeated abscissae, which no table built here accepts.
+    pub fn on_same_abscissae(
+        like: &Table1,
+        ys: Vec<f64>,
+        interpolation: Interpolation,
+        extrapolation: Extrapolation,
+    ) -> Result<Self, MathError> {
+        validate(&like.xs, &ys, true)?;
+        Ok(Table1 {
+            xs: Arc::clone(&like.xs),
+            pieces: pieces(&like.xs, &ys, interpolation)?,
+            ys: ys.into(),
+            guide: like.guide.clone(),
             interpolation,
             extrapolation,
         })
@@ -304,8 +347,8 @@ impl Table1 {
         let pieces = Pieces::Cubic(linear_coeffs(&xs, &ys));
         let guide = Guide::new(&xs);
         Ok(Table1 {
-            xs,
-            ys,
+            xs: xs.into(),
+            ys: ys.into(),
             pieces,
             guide,
             interpolation: Interpolation::Linear,
@@ -430,12 +473,13 @@ impl Table1 {
     /// one is valid for the other.
     #[must_use]
     pub fn same_abscissae(&self, other: &Table1) -> bool {
-        self.xs.len() == other.xs.len()
-            && self
-                .xs
-                .iter()
-                .zip(&other.xs)
-                .all(|(a, b)| a.to_bits() == b.to_bits())
+        Arc::ptr_eq(&self.xs, &other.xs)
+            || (self.xs.len() == other.xs.len()
+                && self
+                    .xs
+                    .iter()
+                    .zip(other.xs.iter())
+                    .all(|(a, b)| a.to_bits() == b.to_bits()))
     }
 
     /// Where `x` falls among the samples: the search that [`Table1::eval`] does, done once for
@@ -471,19 +515,27 @@ impl Table1 {
         } else if n == 1 {
             Location::Interval(0)
         } else {
-            let j = cursor.0.min(n - 2);
-            let i = if self.interval_holds(j, x) {
-                j
-            } else if j + 2 < n && self.interval_holds(j + 1, x) {
-                j + 1
-            } else if j > 0 && self.interval_holds(j - 1, x) {
-                j - 1
-            } else {
-                self.interval(x)
-            };
-            cursor.0 = i;
-            Location::Interval(i)
+            Location::Interval(self.interval_with(x, cursor))
         }
+    }
+
+    /// [`Table1::interval`] starting from `cursor` (and updating it): the remembered interval
+    /// and its neighbours, then the search. Needs at least two samples.
+    #[inline(always)]
+    fn interval_with(&self, x: f64, cursor: &mut Cursor) -> usize {
+        let n = self.xs.len();
+        let j = cursor.0.min(n - 2);
+        let i = if self.interval_holds(j, x) {
+            j
+        } else if j + 2 < n && self.interval_holds(j + 1, x) {
+            j + 1
+        } else if j > 0 && self.interval_holds(j - 1, x) {
+            j - 1
+        } else {
+            self.interval(x)
+        };
+        cursor.0 = i;
+        i
     }
 
     /// The piece that evaluates `at`, or the value itself where extrapolation is constant or
@@ -640,9 +692,22 @@ impl Table1 {
     /// Exact definite integral of the interpolant (with its extrapolation) from `a` to `b`.
     #[must_use]
     pub fn integral(&self, a: f64, b: f64) -> f64 {
-        if b < a {
-            return -self.integral(b, a);
-        }
+        self.integral_by(a, b, |x| self.interval(x))
+    }
+
+    /// [`Table1::integral`] with the intervals of the ends searched from `cursor` (and the
+    /// cursor left at the interval of the upper end): the same number, cheaper along
+    /// consecutive intervals of integration `[t_0, t_1], [t_1, t_2], …`.
+    #[must_use]
+    pub fn integral_with(&self, a: f64, b: f64, cursor: &mut Cursor) -> f64 {
+        self.integral_by(a, b, |x| self.interval_with(x, cursor))
+    }
+
+    /// The integral from `a` to `b`, with `interval` finding the interval of a point of the
+    /// domain (either search: they agree).
+    fn integral_by(&self, a: f64, b: f64, mut interval: impl FnMut(f64) -> usize) -> f64 {
+        let reversed = b < a;
+        let (a, b) = if reversed { (b, a) } else { (a, b) };
         let n = self.xs.len();
         let (x0, x1) = self.domain();
         let mut total = 0.0;
@@ -667,19 +732,21 @@ impl Table1 {
         if n > 1 && hi > lo {
             match &self.pieces {
                 Pieces::Cubic(coeffs) => {
-                    let (first, last) = (self.interval(lo), self.interval(hi));
-                    for (i, &piece) in coeffs.iter().enumerate().take(last + 1).skip(first) {
-                        let s = lo.max(self.xs[i]);
-                        let e = hi.min(self.xs[i + 1]);
+                    let first = interval(lo);
+                    let last = interval(hi);
+                    let ends = self.xs[first..=last + 1].windows(2);
+                    for (&piece, x) in coeffs[first..=last].iter().zip(ends) {
+                        let s = lo.max(x[0]);
+                        let e = hi.min(x[1]);
                         if e > s {
-                            total += piece_integral(piece, s - self.xs[i], e - self.xs[i]);
+                            total += piece_integral(piece, s - x[0], e - x[0]);
                         }
                     }
                 }
                 Pieces::Polynomial(p) => total += p.integral(lo, hi),
             }
         }
-        total
+        if reversed { -total } else { total }
     }
 
     /// The inverse function of a table with strictly monotone values: the samples with x and
@@ -702,7 +769,7 @@ impl Table1 {
                 return Err(MathError::NotMonotone { index, y, previous });
             }
         }
-        let (mut xs, mut ys) = (self.ys.clone(), self.xs.clone());
+        let (mut xs, mut ys) = (self.ys.to_vec(), self.xs.to_vec());
         if !increasing {
             xs.reverse();
             ys.reverse();
@@ -738,7 +805,7 @@ impl Table1 {
             }),
         };
         Table1 {
-            xs: self.xs.clone(),
+            xs: Arc::clone(&self.xs),
             ys: self.ys.iter().map(|&y| scale * y + offset).collect(),
             pieces,
             guide: self.guide.clone(),
@@ -834,26 +901,24 @@ pub fn linspace(a: f64, b: f64, n: usize) -> Vec<f64> {
 /// Linear pieces. A zero-width interval (repeated x) is never used inside the samples; it holds
 /// its left value, except the last interval, whose value is the last sample so that natural
 /// extrapolation to the right continues from it.
-fn linear_coeffs(xs: &[f64], ys: &[f64]) -> Vec<[f64; 4]> {
+fn linear_coeffs(xs: &[f64], ys: &[f64]) -> Arc<[[f64; 4]]> {
     let last = xs.len().saturating_sub(2);
-    xs.windows(2)
-        .zip(ys.windows(2))
-        .enumerate()
-        .map(|(i, (x, y))| {
-            let h = x[1] - x[0];
+    (0..xs.len().saturating_sub(1))
+        .map(|i| {
+            let h = xs[i + 1] - xs[i];
             if h > 0.0 {
-                [y[0], (y[1] - y[0]) / h, 0.0, 0.0]
+                [ys[i], (ys[i + 1] - ys[i]) / h, 0.0, 0.0]
             } else if i == last {
-                [y[1], 0.0, 0.0, 0.0]
+                [ys[i + 1], 0.0, 0.0, 0.0]
             } else {
-                [y[0], 0.0, 0.0, 0.0]
+                [ys[i], 0.0, 0.0, 0.0]
             }
         })
         .collect()
 }
 
 /// Natural cubic spline: solve for the second derivatives `M_i` (M_0 = M_{n-1} = 0).
-fn natural_spline_coeffs(xs: &[f64], ys: &[f64]) -> Vec<[f64; 4]> {
+fn natural_spline_coeffs(xs: &[f64], ys: &[f64]) -> Arc<[[f64; 4]]> {
     let n = xs.len();
     if n < 3 {
         return linear_coeffs(xs, ys);
@@ -896,7 +961,7 @@ fn natural_spline_coeffs(xs: &[f64], ys: &[f64]) -> Vec<[f64; 4]> {
 }
 
 /// Cubic Hermite pieces with node slopes `t` (C¹ by construction).
-fn hermite_coeffs(xs: &[f64], ys: &[f64], t: &[f64]) -> Vec<[f64; 4]> {
+fn hermite_coeffs(xs: &[f64], ys: &[f64], t: &[f64]) -> Arc<[[f64; 4]]> {
     (0..xs.len() - 1)
         .map(|i| {
             let h = xs[i + 1] - xs[i];
@@ -1281,5 +1346,81 @@ mod tests {
         assert!(!base.same_abscissae(&single));
         // A location of a longer table is clamped, not a panic.
         assert!(single.eval_at(base.locate(3.5), 2.0).is_finite());
+    }
+
+    #[test]
+    fn tables_on_the_same_abscissae_are_the_tables_on_a_copy() {
+        let xs = vec![0.0, 0.5, 1.5, 1.7, 3.0, 4.0];
+        let like = Table1::linear(xs.clone(), vec![0.0; xs.len()]).unwrap();
+        let ys: Vec<f64> = xs.iter().map(|x: &f64| x.sin() + 0.1 * x * x).collect();
+        let kinds = [
+            Interpolation::Linear,
+            Interpolation::Spline,
+            Interpolation::Akima,
+            Interpolation::RocketPyAkima,
+            Interpolation::Polynomial,
+        ];
+        for kind in kinds {
+            for e in [Extrapolation::Natural, Extrapolation::Zero] {
+                let shared = Table1::on_same_abscissae(&like, ys.clone(), kind, e).unwrap();
+                let copied = Table1::new(xs.clone(), ys.clone(), kind, e).unwrap();
+                assert_eq!(shared, copied, "{kind:?} {e:?}");
+                assert!(shared.same_abscissae(&like) && like.same_abscissae(&shared));
+                let mut cursor = Cursor::default();
+                for x in [-1.0, 0.0, 0.2, 1.5, 1.6, 3.9, 4.0, 5.0] {
+                    assert_eq!(shared.locate(x), copied.locate(x));
+                    assert_eq!(shared.locate_with(x, &mut cursor), copied.locate(x));
+                }
+            }
+        }
+        // The same errors as a table built on a copy of the abscissae.
+        let nan = vec![0.0, 1.0, f64::NAN, 0.0, 0.0, 0.0];
+        let linear = (Interpolation::Linear, Extrapolation::Constant);
+        for ys in [vec![0.0; 3], nan] {
+            let shared = Table1::on_same_abscissae(&like, ys.clone(), linear.0, linear.1);
+            let copied = Table1::new(xs.clone(), ys, linear.0, linear.1);
+            assert_eq!(format!("{shared:?}"), format!("{copied:?}"));
+            assert!(shared.is_err());
+        }
+        let repeated = vec![0.0, 1.0, 1.0, 2.0];
+        let stepwise =
+            Table1::linear_stepwise(repeated.clone(), vec![0.0; 4], Extrapolation::Zero).unwrap();
+        let shared = Table1::on_same_abscissae(&stepwise, vec![1.0; 4], linear.0, linear.1);
+        let copied = Table1::new(repeated, vec![1.0; 4], linear.0, linear.1);
+        assert!(matches!(
+            shared,
+            Err(MathError::NotIncreasing { index: 2, .. })
+        ));
+        assert_eq!(format!("{shared:?}"), format!("{copied:?}"));
+    }
+
+    #[test]
+    fn integral_with_a_cursor_is_the_integral() {
+        let xs = vec![0.0, 0.5, 1.5, 1.7, 3.0, 4.0];
+        let ys: Vec<f64> = xs.iter().map(|x: &f64| (2.0 * x).cos()).collect();
+        let kinds = [
+            Interpolation::Linear,
+            Interpolation::Spline,
+            Interpolation::Akima,
+            Interpolation::Polynomial,
+        ];
+        let same = |a: f64, b: f64| a.to_bits() == b.to_bits();
+        for kind in kinds {
+            for e in [Extrapolation::Natural, Extrapolation::Constant] {
+                let t = Table1::new(xs.clone(), ys.clone(), kind, e).unwrap();
+                // Consecutive intervals of a grid (nodes included), as the propellant tables
+                // integrate the thrust, then bounds in any order, reversed or outside.
+                let mut cursor = Cursor::default();
+                let grid: Vec<f64> = (0..=40).map(|k| 0.1 * f64::from(k)).collect();
+                for w in grid.windows(2) {
+                    let with = t.integral_with(w[0], w[1], &mut cursor);
+                    assert!(same(with, t.integral(w[0], w[1])), "{kind:?} {w:?}");
+                }
+                for (a, b) in [(3.9, 0.2), (-1.0, 5.0), (1.5, 1.5), (0.5, 1.7), (4.5, 6.0)] {
+                    let with = t.integral_with(a, b, &mut cursor);
+                    assert!(same(with, t.integral(a, b)), "{kind:?} {a} {b}");
+                }
+            }
+        }
     }
 }

@@ -21,7 +21,7 @@
 //! `I11_p = N m_g [(R_o² + r²)/4 + h²/12] + m_g Σ d_i²`, `d_i = (i − (N−1)/2)(h_0 + s_g)`;
 //! `I33_p = ½ m_p (R_o² + r²)`.
 
-use karman_math::{Extrapolation, Interpolation, PhysicalConstants, Table1};
+use karman_math::{Cursor, Extrapolation, Interpolation, PhysicalConstants, Table1};
 
 use crate::propellant::{finite, non_negative, positive};
 use crate::{PropellantModel, PropellantTables, PropulsionError, ThrustCurve};
@@ -178,15 +178,26 @@ impl BatesGrains {
     /// `s` holding `propellant_mass` kg.
     #[must_use]
     pub fn inertia(&self, s: GrainState, propellant_mass: f64) -> (f64, f64) {
+        self.inertia_with_spread(s, propellant_mass, self.spread())
+    }
+
+    /// `Σ d_i²` over the grain centres, `d_i = (i − (N−1)/2)(h_0 + s_g)`, m²: the
+    /// parallel-axis part of `I11_p` per kilogram of one grain. The centres stay where they
+    /// are while the grains burn, so the tables compute it once.
+    fn spread(&self) -> f64 {
+        let pitch = self.initial_height + self.separation;
+        let half = (f64::from(self.number) - 1.0) / 2.0;
+        (0..self.number)
+            .map(|i| ((f64::from(i) - half) * pitch).powi(2))
+            .sum()
+    }
+
+    /// [`BatesGrains::inertia`] with the grains' [`BatesGrains::spread`] given.
+    fn inertia_with_spread(&self, s: GrainState, propellant_mass: f64, spread: f64) -> (f64, f64) {
         let n = f64::from(self.number);
         let grain_mass = propellant_mass / n;
         let (ro2, r2) = (self.outer_radius.powi(2), s.inner_radius.powi(2));
         let one_grain = grain_mass * ((ro2 + r2) / 4.0 + s.height.powi(2) / 12.0);
-        let pitch = self.initial_height + self.separation;
-        let half = (n - 1.0) / 2.0;
-        let spread: f64 = (0..self.number)
-            .map(|i| ((f64::from(i) - half) * pitch).powi(2))
-            .sum();
         (
             n * one_grain + grain_mass * spread,
             0.5 * propellant_mass * (ro2 + r2),
@@ -238,24 +249,33 @@ impl PropellantModel for BatesGrains {
     ) -> Result<PropellantTables, PropulsionError> {
         let m0 = self.initial_mass();
         let curve = thrust.table();
-        let mass_at = |t_prev: f64, m_prev: f64, t: f64| {
-            m_prev - curve.integral(t_prev, t) / exhaust_velocity
+        // The grid advances through the thrust curve, so its intervals are found from the
+        // previous one's.
+        let mut cursor = Cursor::default();
+        let mut mass_at = |t_prev: f64, m_prev: f64, t: f64| {
+            m_prev - curve.integral_with(t_prev, t, &mut cursor) / exhaust_velocity
         };
-        let mut times = Vec::new();
-        let mut masses = Vec::new();
         let nodes = curve.xs();
         let (start, end) = curve.domain();
         let step = constants
             .propellant_grid_step
             .max((end - start) / MAX_GRID_POINTS);
+        // An interval that is a whole number of steps up to rounding gets that number of
+        // pieces: the count must not depend on the rounding of (b − a)/step, which differs
+        // between unit systems (found by the dimensional-analysis tests).
+        let pieces_of =
+            |a: f64, b: f64| ((b - a) / step * (1.0 - PIECE_ROUNDING)).ceil().max(1.0) as usize;
+        let points = 1 + nodes
+            .windows(2)
+            .map(|w| pieces_of(w[0], w[1]))
+            .sum::<usize>();
+        let mut times = Vec::with_capacity(points);
+        let mut masses = Vec::with_capacity(points);
         times.push(nodes[0]);
         masses.push(m0);
         'nodes: for pair in nodes.windows(2) {
             let (a, b) = (pair[0], pair[1]);
-            // An interval that is a whole number of steps up to rounding gets that number of
-            // pieces: the count must not depend on the rounding of (b − a)/step, which differs
-            // between unit systems (found by the dimensional-analysis tests).
-            let pieces = ((b - a) / step * (1.0 - PIECE_ROUNDING)).ceil().max(1.0) as usize;
+            let pieces = pieces_of(a, b);
             for k in 1..=pieces {
                 let t = if k == pieces {
                     b
@@ -296,28 +316,27 @@ impl PropellantModel for BatesGrains {
         let mut i11 = Vec::with_capacity(times.len());
         let mut i33 = Vec::with_capacity(times.len());
         let mut bore = None;
+        let spread = self.spread();
         for &m in &masses {
             let state = self.state_for_mass_near(m, bore);
             bore = Some(state.inner_radius);
-            let (a, c) = self.inertia(state, m);
+            let (a, c) = self.inertia_with_spread(state, m, spread);
             i11.push(a);
             i33.push(c);
         }
         let com = vec![self.center_of_mass_position; times.len()];
+        let (lin, hold) = (Interpolation::Linear, Extrapolation::Constant);
+        let mass = Table1::new(times, masses, lin, hold)
+            .map_err(PropulsionError::table("propellant mass"))?;
+        // The other quantities share the mass table's time grid.
         let table = |what, ys| {
-            Table1::new(
-                times.clone(),
-                ys,
-                Interpolation::Linear,
-                Extrapolation::Constant,
-            )
-            .map_err(PropulsionError::table(what))
+            Table1::on_same_abscissae(&mass, ys, lin, hold).map_err(PropulsionError::table(what))
         };
         Ok(PropellantTables {
-            mass: table("propellant mass", masses)?,
             center_of_mass: table("propellant centre of mass", com)?,
             i11: table("propellant I11", i11)?,
             i33: table("propellant I33", i33)?,
+            mass,
         })
     }
 }
@@ -383,6 +402,30 @@ mod tests {
         let r2 = 0.033f64.powi(2) + 0.02f64.powi(2);
         assert!((i11 - 2.0 * (r2 / 4.0 + 0.01 / 12.0)).abs() < 1e-15);
         assert!((i33 - r2).abs() < 1e-15);
+        assert!(
+            g.spread().abs() < 1e-300,
+            "one grain sits at the stack centre"
+        );
+    }
+
+    #[test]
+    fn spread_sums_the_squared_grain_offsets() {
+        // Five grains spaced h0 + s_g = 0.125 m: offsets −2..2 pitches, Σ i² = 10.
+        let g = calisto();
+        assert!((g.spread() - 10.0 * 0.125f64.powi(2)).abs() < 1e-16);
+        // Four grains: offsets ±0.5 and ±1.5 pitches, Σ = 5 pitches².
+        let g = BatesGrains {
+            number: 4,
+            ..calisto()
+        };
+        assert!((g.spread() - 5.0 * 0.125f64.powi(2)).abs() < 1e-16);
+        let s = GrainState {
+            inner_radius: 0.02,
+            height: 0.1,
+        };
+        let (with, without) = (g.inertia_with_spread(s, 2.0, g.spread()), g.inertia(s, 2.0));
+        assert_eq!(with.0.to_bits(), without.0.to_bits());
+        assert_eq!(with.1.to_bits(), without.1.to_bits());
     }
 
     #[test]
