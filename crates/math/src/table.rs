@@ -692,7 +692,7 @@ impl Table1 {
     /// Exact definite integral of the interpolant (with its extrapolation) from `a` to `b`.
     #[must_use]
     pub fn integral(&self, a: f64, b: f64) -> f64 {
-        self.integral_by(a, b, |x| self.interval(x))
+        self.integral_with(a, b, &mut Cursor::default())
     }
 
     /// [`Table1::integral`] with the intervals of the ends searched from `cursor` (and the
@@ -700,12 +700,6 @@ impl Table1 {
     /// consecutive intervals of integration `[t_0, t_1], [t_1, t_2], …`.
     #[must_use]
     pub fn integral_with(&self, a: f64, b: f64, cursor: &mut Cursor) -> f64 {
-        self.integral_by(a, b, |x| self.interval_with(x, cursor))
-    }
-
-    /// The integral from `a` to `b`, with `interval` finding the interval of a point of the
-    /// domain (either search: they agree).
-    fn integral_by(&self, a: f64, b: f64, mut interval: impl FnMut(f64) -> usize) -> f64 {
         let reversed = b < a;
         let (a, b) = if reversed { (b, a) } else { (a, b) };
         let n = self.xs.len();
@@ -732,8 +726,8 @@ impl Table1 {
         if n > 1 && hi > lo {
             match &self.pieces {
                 Pieces::Cubic(coeffs) => {
-                    let first = interval(lo);
-                    let last = interval(hi);
+                    let first = self.interval_with(lo, cursor);
+                    let last = self.interval_with(hi, cursor);
                     let ends = self.xs[first..=last + 1].windows(2);
                     for (&piece, x) in coeffs[first..=last].iter().zip(ends) {
                         let s = lo.max(x[0]);
