@@ -727,7 +727,12 @@ impl Table1 {
             match &self.pieces {
                 Pieces::Cubic(coeffs) => {
                     let first = self.interval_with(lo, cursor);
-                    let last = self.interval_with(hi, cursor);
+                    // `hi` in the interval of `lo` (the usual short integral) needs no search.
+                    let last = if hi <= self.xs[first + 1] {
+                        first
+                    } else {
+                        self.interval_with(hi, cursor)
+                    };
                     let ends = self.xs[first..=last + 1].windows(2);
                     for (&piece, x) in coeffs[first..=last].iter().zip(ends) {
                         let s = lo.max(x[0]);
