@@ -916,15 +916,17 @@ pub fn linspace(a: f64, b: f64, n: usize) -> Vec<f64> {
 /// extrapolation to the right continues from it.
 fn linear_coeffs(xs: &[f64], ys: &[f64]) -> Arc<[[f64; 4]]> {
     let last = xs.len().saturating_sub(2);
-    (0..xs.len().saturating_sub(1))
-        .map(|i| {
-            let h = xs[i + 1] - xs[i];
+    xs.windows(2)
+        .zip(ys.windows(2))
+        .enumerate()
+        .map(|(i, (x, y))| {
+            let h = x[1] - x[0];
             if h > 0.0 {
-                [ys[i], (ys[i + 1] - ys[i]) / h, 0.0, 0.0]
+                [y[0], (y[1] - y[0]) / h, 0.0, 0.0]
             } else if i == last {
-                [ys[i + 1], 0.0, 0.0, 0.0]
+                [y[1], 0.0, 0.0, 0.0]
             } else {
-                [ys[i], 0.0, 0.0, 0.0]
+                [y[0], 0.0, 0.0, 0.0]
             }
         })
         .collect()
