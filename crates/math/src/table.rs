@@ -176,18 +176,18 @@ impl Guide {
         let scale = buckets as f64 / (xs[n - 1] - xs[0]);
         // The keys of the (sorted) samples do not decrease: the count below bucket `b` is the
         // index of the first sample with a key of at least `b`, found in one pass.
-        let key = |i: usize| bucket(xs[i] - xs[0], scale, buckets - 1);
-        let (mut i, mut k) = (0, key(0));
-        let start = (0..=buckets)
-            .map(|b| {
-                while k < b {
-                    i += 1;
-                    k = if i < n { key(i) } else { usize::MAX };
-                }
-                i
-            })
-            .collect();
-        Guide { start, scale }
+        let mut start = Vec::with_capacity(buckets + 1);
+        for (i, &x) in xs.iter().enumerate() {
+            let k = bucket(x - xs[0], scale, buckets - 1);
+            while start.len() <= k {
+                start.push(i);
+            }
+        }
+        start.resize(buckets + 1, n);
+        Guide {
+            start: start.into(),
+            scale,
+        }
     }
 
     #[inline]
@@ -196,11 +196,12 @@ impl Guide {
     }
 }
 
-/// The bucket `⌊offset·scale⌋` clamped to `[0, last]`. `as usize` saturates (negative and NaN
-/// give 0), which keeps the key monotone.
+/// The bucket `⌊offset·scale⌋` clamped to `[0, last]`. `as i64` saturates (NaN gives 0), which
+/// keeps the key monotone; it is cheaper than the unsigned conversion, with the same clamped
+/// result.
 #[inline]
 fn bucket(offset: f64, scale: f64, last: usize) -> usize {
-    ((offset * scale) as usize).min(last)
+    ((offset * scale) as i64).clamp(0, last as i64) as usize
 }
 
 /// The interpolant between the samples.
