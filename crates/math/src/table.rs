@@ -1365,6 +1365,60 @@ mod tests {
     }
 
     #[test]
+    fn errors_name_the_first_offending_point() {
+        let nan_first = Table1::linear(vec![0.0, 1.0, 1.0, 2.0], vec![0.0, f64::NAN, 0.0, 0.0]);
+        assert!(matches!(
+            nan_first,
+            Err(MathError::NotFinite { index: 1, .. })
+        ));
+        let order_first = Table1::linear(vec![0.0, 2.0, 1.0, f64::NAN], vec![0.0; 4]);
+        assert!(matches!(
+            order_first,
+            Err(MathError::NotIncreasing { index: 2, .. })
+        ));
+        // At one index a non-finite value comes before the order.
+        let same = Table1::linear(vec![0.0, 2.0, 1.0], vec![0.0, 0.0, f64::INFINITY]);
+        assert!(matches!(same, Err(MathError::NotFinite { index: 2, .. })));
+        let stepwise =
+            Table1::linear_stepwise(vec![0.0, 1.0, 1.0, 0.5], vec![0.0; 4], Extrapolation::Zero);
+        assert!(matches!(
+            stepwise,
+            Err(MathError::NotIncreasing { index: 3, .. })
+        ));
+    }
+
+    #[test]
+    fn bucket_is_the_clamped_floor() {
+        // The saturating unsigned floor clamped to `last`, which it replaces.
+        let reference = |v: f64, last: usize| (v as usize).min(last);
+        let values = [
+            f64::NAN,
+            f64::NEG_INFINITY,
+            -1e300,
+            -1.0,
+            -0.5,
+            -0.0,
+            0.0,
+            0.999_999,
+            1.0,
+            6.5,
+            7.0,
+            7.5,
+            1e10,
+            9.3e18,
+            2e19,
+            f64::INFINITY,
+        ];
+        for last in [0, 1, 7, 1000] {
+            for v in values {
+                assert_eq!(bucket(v, 1.0, last), reference(v, last), "{v} {last}");
+            }
+        }
+        // A degenerate span (one sample, or all samples equal): 0·∞ is NaN, bucket 0.
+        assert_eq!(bucket(0.0, f64::INFINITY, 0), 0);
+    }
+
+    #[test]
     fn tables_on_the_same_abscissae_are_the_tables_on_a_copy() {
         let xs = vec![0.0, 0.5, 1.5, 1.7, 3.0, 4.0];
         let like = Table1::linear(xs.clone(), vec![0.0; xs.len()]).unwrap();
