@@ -22,10 +22,12 @@
 //! binary search of one bucket otherwise) or a [`Cursor`] hunt, then takes a Horner step: no
 //! allocation.
 //!
-//! A table never changes once built, so its columns (abscissae, values, pieces, bucket index)
-//! are reference counted: a clone copies no sample, and tables on the same abscissae
+//! A table never changes once built, so its abscissae, pieces and bucket index are reference
+//! counted: a clone copies only the sample values, and tables on the same abscissae
 //! ([`Table1::on_same_abscissae`], e.g. the mass, centre of mass and inertia of a motor on its
 //! time grid) share the abscissae and their bucket index instead of copying and rebuilding them.
+//! The values stay a vector, moved in without a copy (sharing them too made evaluation
+//! measurably slower).
 
 use std::sync::Arc;
 
@@ -217,7 +219,7 @@ enum Pieces {
 #[derive(Debug, Clone, PartialEq)]
 pub struct Table1 {
     xs: Arc<[f64]>,
-    ys: Arc<[f64]>,
+    ys: Vec<f64>,
     pieces: Pieces,
     guide: Guide,
     interpolation: Interpolation,
@@ -303,7 +305,7 @@ impl Table1 {
         let guide = Guide::new(&xs);
         Ok(Table1 {
             xs: xs.into(),
-            ys: ys.into(),
+            ys,
             pieces,
             guide,
             interpolation,
@@ -329,7 +331,7 @@ impl Table1 {
         Ok(Table1 {
             xs: Arc::clone(&like.xs),
             pieces: pieces(&like.xs, &ys, interpolation)?,
-            ys: ys.into(),
+            ys,
             guide: like.guide.clone(),
             interpolation,
             extrapolation,
@@ -363,7 +365,7 @@ impl Table1 {
         let guide = Guide::new(&xs);
         Ok(Table1 {
             xs: xs.into(),
-            ys: ys.into(),
+            ys,
             pieces,
             guide,
             interpolation: Interpolation::Linear,
