@@ -222,6 +222,9 @@ pub struct Table1 {
     ys: Vec<f64>,
     pieces: Pieces,
     guide: Guide,
+    /// Whether `xs` strictly increases: always, but for a stepwise table with a repeated
+    /// abscissa.
+    increasing: bool,
     interpolation: Interpolation,
     extrapolation: Extrapolation,
 }
@@ -287,6 +290,24 @@ fn validate(xs: &[f64], ys: &[f64], strict: bool) -> Result<(), MathError> {
     Ok(())
 }
 
+/// [`validate`] of `ys` against `n` abscissae known to be finite and strictly increasing: the
+/// same errors, without another look at the abscissae.
+fn validate_values(n: usize, ys: &[f64]) -> Result<(), MathError> {
+    if ys.len() != n {
+        return Err(MathError::LengthMismatch { x: n, y: ys.len() });
+    }
+    if ys.iter().fold(true, |ok, y| ok & y.is_finite()) {
+        return Ok(());
+    }
+    match ys.iter().position(|y| !y.is_finite()) {
+        Some(index) => Err(MathError::NotFinite {
+            index,
+            value: ys[index],
+        }),
+        None => Ok(()),
+    }
+}
+
 impl Table1 {
     /// Builds a table from strictly increasing, finite `xs` and finite `ys`.
     ///
@@ -308,6 +329,7 @@ impl Table1 {
             ys,
             pieces,
             guide,
+            increasing: true,
             interpolation,
             extrapolation,
         })
@@ -327,12 +349,17 @@ impl Table1 {
         interpolation: Interpolation,
         extrapolation: Extrapolation,
     ) -> Result<Self, MathError> {
-        validate(&like.xs, &ys, true)?;
+        if like.increasing {
+            validate_values(like.xs.len(), &ys)?;
+        } else {
+            validate(&like.xs, &ys, true)?;
+        }
         Ok(Table1 {
             xs: Arc::clone(&like.xs),
             pieces: pieces(&like.xs, &ys, interpolation)?,
             ys,
             guide: like.guide.clone(),
+            increasing: true,
             interpolation,
             extrapolation,
         })
@@ -364,6 +391,7 @@ impl Table1 {
         let pieces = Pieces::Cubic(linear_coeffs(&xs, &ys));
         let guide = Guide::new(&xs);
         Ok(Table1 {
+            increasing: xs.windows(2).all(|w| w[0] < w[1]),
             xs: xs.into(),
             ys,
             pieces,
@@ -451,6 +479,12 @@ impl Table1 {
     #[must_use]
     pub fn extrapolation(&self) -> Extrapolation {
         self.extrapolation
+    }
+    /// Whether the abscissae strictly increase: always, but for a
+    /// [`Table1::linear_stepwise`] table with a repeated abscissa.
+    #[must_use]
+    pub fn strictly_increasing(&self) -> bool {
+        self.increasing
     }
     /// The domain `[x_first, x_last]` of the samples.
     #[must_use]
@@ -825,6 +859,7 @@ impl Table1 {
             ys: self.ys.iter().map(|&y| scale * y + offset).collect(),
             pieces,
             guide: self.guide.clone(),
+            increasing: self.increasing,
             interpolation: self.interpolation,
             extrapolation: self.extrapolation,
         }
@@ -1464,6 +1499,16 @@ mod tests {
             Err(MathError::NotIncreasing { index: 2, .. })
         ));
         assert_eq!(format!("{shared:?}"), format!("{copied:?}"));
+        assert!(like.strictly_increasing() && !stepwise.strictly_increasing());
+        // A stepwise table without repeats lends its abscissae like any other.
+        let distinct =
+            Table1::linear_stepwise(xs.clone(), vec![0.0; xs.len()], Extrapolation::Zero).unwrap();
+        assert!(distinct.strictly_increasing());
+        let shared = Table1::on_same_abscissae(&distinct, ys.clone(), linear.0, linear.1);
+        assert_eq!(
+            shared.unwrap(),
+            Table1::new(xs, ys, linear.0, linear.1).unwrap()
+        );
     }
 
     #[test]
