@@ -784,14 +784,16 @@ impl Table1 {
                     } else {
                         self.interval_with(hi, cursor)
                     };
-                    let ends = self.xs[first..=last + 1].windows(2);
-                    for (&piece, x) in coeffs[first..=last].iter().zip(ends) {
-                        let s = lo.max(x[0]);
-                        let e = hi.min(x[1]);
+                    total = (first..=last).fold(total, |total, i| {
+                        let (left, right) = (self.xs[i], self.xs[i + 1]);
+                        let s = lo.max(left);
+                        let e = hi.min(right);
                         if e > s {
-                            total += piece_integral(piece, s - x[0], e - x[0]);
+                            total + piece_integral(coeffs[i], s - left, e - left)
+                        } else {
+                            total
                         }
-                    }
+                    });
                 }
                 Pieces::Polynomial(p) => total += p.integral(lo, hi),
             }
