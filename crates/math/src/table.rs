@@ -22,12 +22,12 @@
 //! binary search of one bucket otherwise) or a [`Cursor`] hunt, then takes a Horner step: no
 //! allocation.
 //!
-//! A table never changes once built, so its abscissae, pieces and bucket index are reference
-//! counted: a clone copies only the sample values, and tables on the same abscissae
-//! ([`Table1::on_same_abscissae`], e.g. the mass, centre of mass and inertia of a motor on its
-//! time grid) share the abscissae and their bucket index instead of copying and rebuilding them.
-//! The values stay a vector, moved in without a copy (sharing them too made evaluation
-//! measurably slower).
+//! A table never changes once built, so its abscissae, cubic pieces and bucket index are
+//! reference counted: a clone copies only the sample values (and a polynomial's coefficients),
+//! and tables on the same abscissae ([`Table1::on_same_abscissae`], e.g. the mass, centre of
+//! mass and inertia of a motor on its time grid) share the abscissae and their bucket index
+//! instead of copying and rebuilding them. The values stay a vector, moved in without a copy
+//! (sharing them too made evaluation measurably slower).
 
 use std::sync::Arc;
 
