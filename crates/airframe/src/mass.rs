@@ -80,7 +80,7 @@ pub(crate) struct MassModel {
 /// Whether two tables share their abscissae exactly, strictly increasing (RocketPy's
 /// node-wise arithmetic; a table with a repeated abscissa is evaluated pointwise instead).
 fn same_grid(a: &Table1, b: &Table1) -> bool {
-    a.xs().windows(2).all(|w| w[0] < w[1]) && a.same_abscissae(b)
+    a.strictly_increasing() && a.same_abscissae(b)
 }
 
 impl MassModel {

@@ -222,8 +222,10 @@ impl Rocket {
         };
         rocket.check_layout();
         if burn_out > 0.0 {
+            // The CP at Mach 0 does not depend on time: located once for all the samples.
+            let cp = rocket.cp_position(0.0);
             let table = Table1::sample(
-                |t| rocket.margin_at(t, 0.0),
+                |t| rocket.margin_from(t, cp),
                 0.0,
                 burn_out,
                 STATIC_MARGIN_SAMPLES,
@@ -563,7 +565,12 @@ impl Rocket {
     }
 
     fn margin_at(&self, t: f64, mach: f64) -> f64 {
-        self.csys * (self.center_of_mass(t) - self.cp_position(mach)) / (2.0 * self.radius)
+        self.margin_from(t, self.cp_position(mach))
+    }
+
+    /// Margin (calibres) at time `t` of the CP at `cp` (user coordinates).
+    fn margin_from(&self, t: f64, cp: f64) -> f64 {
+        self.csys * (self.center_of_mass(t) - cp) / (2.0 * self.radius)
     }
 
     /// Static margin (calibres) at time `t`: CP at Mach 0; RocketPy's 200-point spline on
