@@ -823,8 +823,9 @@ impl Run {
     /// bounded over the step: it cannot fire if `v_z > 0` throughout ([`Run::step_lows`]), and a
     /// noisy height trigger cannot fire if even the highest possible pressure, `P(z_low)` plus
     /// the noise stream's bound on its coming values ([`NoiseStream::upper_bound`]), reads a
-    /// barometric height at least the band ([`FlightSettings::trigger_band`]) above its threshold (`h_baro` and `P`
-    /// decrease with their arguments; the band absorbs round-off and interpolation wiggles).
+    /// barometric height at least the band ([`FlightSettings::trigger_band`]) above its
+    /// threshold (`h_baro` and `P` decrease with their arguments; the band absorbs round-off and
+    /// interpolation wiggles).
     /// When no parachute can fire the noisy streams jump past the step's instants
     /// ([`NoiseStream::skip`], one draw each) and nothing else is evaluated; otherwise the
     /// instants are evaluated in order, those of excluded parachutes only advancing their

@@ -480,6 +480,7 @@ impl Table1 {
     pub fn extrapolation(&self) -> Extrapolation {
         self.extrapolation
     }
+
     /// Whether the abscissae strictly increase: always, but for a
     /// [`Table1::linear_stepwise`] table with a repeated abscissa.
     #[must_use]
