@@ -135,13 +135,11 @@ impl BatesGrains {
             return state(r_end);
         }
         // Newton's method on the decreasing cubic g(r) = V(r) − V, safeguarded by the bracket
-        // [lo, hi] it keeps (a step leaving it bisects instead). Convergence is quadratic, so
-        // once a Newton step is below a few units in the last place, the point it lands on is
-        // the root to rounding.
+        // [lo, hi] it keeps (a step leaving it bisects instead). Near the root a Newton step s
+        // leaves an error of about |g″/(2g′)|·s², so the iteration stops once that is below
+        // half an ulp of r, without the confirming step that would only measure rounding
+        // noise; a step that rounds to no change at all means the same.
         let excess = |r: f64| self.grain_volume(state(r)) - volume;
-        // g′(r) = π[−2r·h(r) − 2(R_o² − r²)] with h(r) = h_0 − 2(r − r_0).
-        let slope =
-            |r: f64| -2.0 * std::f64::consts::PI * (r * (h0 - 2.0 * (r - r0)) + (ro * ro - r * r));
         let (mut lo, mut hi) = (r0, r_end);
         let full = self.grain_volume(initial);
         let mut r = match guess {
@@ -157,11 +155,19 @@ impl BatesGrains {
             } else {
                 break;
             }
-            let step = g / slope(r);
+            // g′(r) = −2π[r·h(r) + R_o² − r²] and g″(r) = −2π[h(r) − 4r], h(r) = h_0 − 2(r − r_0).
+            let h = h0 - 2.0 * (r - r0);
+            let slope = -2.0 * std::f64::consts::PI * (r * h + (ro * ro - r * r));
+            let curvature = -2.0 * std::f64::consts::PI * (h - 4.0 * r);
+            let step = g / slope;
             let newton = r - step;
+            #[allow(clippy::float_cmp)] // a step below half an ulp: r is the root to rounding.
+            if newton == r {
+                break;
+            }
             if newton > lo && newton < hi {
                 r = newton;
-                if step.abs() <= 4.0 * f64::EPSILON * r {
+                if (curvature * step * step).abs() <= (slope * f64::EPSILON * r).abs() {
                     break;
                 }
             } else {
