@@ -12,6 +12,7 @@
 //!   constant temperature.
 
 use crate::AtmosError;
+use crate::column::{AirColumn, AirRow, ColumnTables};
 use crate::curve::{Curve, sorted_unique};
 use crate::earth::{Datum, earth_rotation_enu, somigliana_gravity};
 use crate::isa::IsaTables;
@@ -75,11 +76,34 @@ pub struct AtmosphereSample {
     pub gravity: f64,
 }
 
+/// The quantities the equations of motion read at one height ([`Environment::air_near`]).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct AirSample {
+    /// Pressure (Pa).
+    pub pressure: f64,
+    /// Density (kg/m³).
+    pub density: f64,
+    /// Speed of sound (m/s).
+    pub speed_of_sound: f64,
+    /// Gravity (m/s²).
+    pub gravity: f64,
+}
+
 /// A quantity derived from pressure and temperature: a table, or computed at each query.
 #[derive(Debug, Clone, PartialEq)]
 enum Derived {
     Table(Table1),
     Pointwise,
+}
+
+impl Derived {
+    /// The table, if node-wise.
+    fn table(&self) -> Option<&Table1> {
+        match self {
+            Derived::Table(t) => Some(t),
+            Derived::Pointwise => None,
+        }
+    }
 }
 
 /// The launch environment (contracts.md "karman-atmos").
@@ -101,9 +125,8 @@ pub struct Environment {
     /// The wind when it is the same at every height ([`Environment::uniform_wind`]).
     uniform_wind: Option<[f64; 2]>,
     gravity: Table1,
-    /// Whether gravity is tabulated on the pressure heights (ISA pressure and Somigliana
-    /// gravity both are): [`Environment::sample`] then finds the height once for both.
-    gravity_on_pressure_grid: bool,
+    /// The tables above re-cut on the union of their heights ([`Environment::sample_near`]).
+    column: AirColumn,
     barometric_height: Table1,
     gas_constant: f64,
     gamma: f64,
@@ -264,7 +287,19 @@ impl Environment {
             error,
         })?;
 
-        let gravity_on_pressure_grid = gravity.same_abscissae(&pressure);
+        let column = AirColumn::new(&ColumnTables {
+            pressure: &pressure,
+            temperature: &temperature,
+            density: density.table(),
+            speed_of_sound: speed_of_sound.table(),
+            viscosity: viscosity.table(),
+            gravity: &gravity,
+        })
+        .ok_or_else(|| AtmosError::InvalidValue {
+            what: "atmosphere tables".into(),
+            value: f64::NAN,
+            reason: "must be piecewise with held or extended ends".into(),
+        })?;
         let uniform_wind = uniform_wind(&wind_u, &wind_v);
         Ok(Environment {
             elevation: config.elevation,
@@ -282,7 +317,7 @@ impl Environment {
             wind_v,
             uniform_wind,
             gravity,
-            gravity_on_pressure_grid,
+            column,
             barometric_height,
             gas_constant: r,
             gamma,
@@ -391,54 +426,63 @@ impl Environment {
         self.gravity.eval(z)
     }
 
-    /// Every height-dependent quantity at once, equal to the individual methods: pressure and
-    /// temperature looked up once and shared by the pointwise-derived quantities, and the
-    /// height located once per grid (the node-wise density is on the pressure heights, the
-    /// speed of sound and viscosity on the temperature heights, gravity where it coincides).
+    /// Every height-dependent quantity at once, equal to the individual methods (the pointwise
+    /// derived quantities from the same pressure and temperature).
     #[inline]
     #[must_use]
     pub fn sample(&self, z: f64) -> AtmosphereSample {
-        self.sample_near(z, &mut [Cursor::default(); 3])
+        self.sample_near(z, &mut Cursor::default())
     }
 
-    /// [`Environment::sample`] with the height located from `cursors` (on the pressure,
-    /// temperature and gravity heights, in that order; updated): the same values, found faster
-    /// when successive heights are close, as along an integration.
+    /// [`Environment::sample`] with the height located from `cursor` (updated): the same
+    /// values, found faster when successive heights are close, as along an integration.
     #[inline]
     #[must_use]
-    pub fn sample_near(&self, z: f64, cursors: &mut [Cursor; 3]) -> AtmosphereSample {
-        let [on_p, on_t, on_g] = cursors;
-        let on_pressure = self.pressure.locate_with(z, on_p);
-        let on_temperature = self.temperature.locate_with(z, on_t);
-        let pressure = self.pressure.eval_at(on_pressure, z);
-        let temperature = self.temperature.eval_at(on_temperature, z);
-        let density = match &self.density {
-            Derived::Table(t) => t.eval_at(on_pressure, z),
-            Derived::Pointwise => pressure / (self.gas_constant * temperature),
-        };
-        let speed_of_sound = match &self.speed_of_sound {
-            Derived::Table(t) => t.eval_at(on_temperature, z),
-            Derived::Pointwise => (self.gamma * self.gas_constant * temperature).sqrt(),
-        };
-        let gravity = if self.gravity_on_pressure_grid {
-            self.gravity.eval_at(on_pressure, z)
-        } else {
-            self.gravity.eval_with(z, on_g)
-        };
+    pub fn sample_near(&self, z: f64, cursor: &mut Cursor) -> AtmosphereSample {
+        let row = self.column.row_near(z, cursor);
+        let temperature = row.temperature.eval(z);
         let dynamic_viscosity = match &self.viscosity {
-            Derived::Table(t) => t.eval_at(on_temperature, z),
+            Derived::Table(_) => row.viscosity.eval(z),
             Derived::Pointwise => {
                 self.sutherland_b * temperature.powf(1.5) / (temperature + self.sutherland_s)
             }
         };
+        let air = self.air_in(row, z, temperature);
         AtmosphereSample {
-            pressure,
+            pressure: air.pressure,
             temperature,
-            density,
-            speed_of_sound,
+            density: air.density,
+            speed_of_sound: air.speed_of_sound,
             dynamic_viscosity,
             wind: self.wind(z),
-            gravity,
+            gravity: air.gravity,
+        }
+    }
+
+    /// What the equations of motion read at height `z` (pressure, density, speed of sound and
+    /// gravity, equal to [`Environment::sample`]'s), located from `cursor` (updated).
+    #[inline]
+    #[must_use]
+    pub fn air_near(&self, z: f64, cursor: &mut Cursor) -> AirSample {
+        let row = self.column.row_near(z, cursor);
+        self.air_in(row, z, row.temperature.eval(z))
+    }
+
+    /// [`Environment::air_near`] on a located row, given the temperature there.
+    #[inline(always)]
+    fn air_in(&self, row: &AirRow, z: f64, temperature: f64) -> AirSample {
+        let pressure = row.pressure.eval(z);
+        AirSample {
+            pressure,
+            density: match &self.density {
+                Derived::Table(_) => row.density.eval(z),
+                Derived::Pointwise => pressure / (self.gas_constant * temperature),
+            },
+            speed_of_sound: match &self.speed_of_sound {
+                Derived::Table(_) => row.speed_of_sound.eval(z),
+                Derived::Pointwise => (self.gamma * self.gas_constant * temperature).sqrt(),
+            },
+            gravity: row.gravity.eval(z),
         }
     }
 
@@ -589,15 +633,17 @@ mod tests {
     #[test]
     fn sample_equals_the_individual_queries() {
         let isa = isa_env();
-        // ISA pressure and Somigliana gravity share their heights: one search for both.
-        assert!(isa.gravity_on_pressure_grid);
         let profiles = Profiles {
             source_name: "inline".into(),
             pressure: Some(Curve::Points(vec![[0.0, 100_000.0], [1000.0, 90_000.0]])),
-            temperature: Some(Curve::Points(vec![[0.0, 290.0], [1000.0, 280.0]])),
+            temperature: Some(Curve::Points(vec![
+                [-200.0, 291.0],
+                [0.0, 290.0],
+                [1000.0, 280.0],
+            ])),
             ..Profiles::wind_only("inline", Curve::Constant(1.0), Curve::Constant(2.0))
         };
-        let custom = |gravity| {
+        let custom = |gravity, profiles: &Profiles| {
             Environment::new(
                 &EnvironmentConfig {
                     atmosphere: Atmosphere::Profiles(profiles.clone()),
@@ -608,25 +654,56 @@ mod tests {
             )
             .expect("environment")
         };
-        let (constant, somigliana) = (custom(Gravity::Constant(9.8)), custom(Gravity::Somigliana));
-        assert!(!constant.gravity_on_pressure_grid && !somigliana.gravity_on_pressure_grid);
-        let heights = [
-            -500.0, 0.0, 500.0, 1000.0, 1400.0, 9000.0, 11_019.004, 90_000.0,
+        let same_heights = Profiles {
+            temperature: Some(Curve::Points(vec![[0.0, 290.0], [1000.0, 280.0]])),
+            ..profiles.clone()
+        };
+        let environments = [
+            isa,
+            custom(Gravity::Constant(9.8), &profiles),
+            custom(Gravity::Somigliana, &profiles),
+            custom(Gravity::Somigliana, &same_heights),
         ];
-        for e in [isa, constant, somigliana] {
-            // Cursors carried up and down the heights change nothing.
-            let mut cursors = [Cursor::default(); 3];
+        for e in environments {
+            // Every sample height of every table (where the air column's pieces change),
+            // points between them and beyond both ends.
+            let mut knots: Vec<f64> = [&e.pressure, &e.temperature, &e.gravity]
+                .into_iter()
+                .chain(
+                    [&e.density, &e.speed_of_sound, &e.viscosity]
+                        .map(Derived::table)
+                        .into_iter()
+                        .flatten(),
+                )
+                .flat_map(|t| t.xs().to_vec())
+                .collect();
+            knots.sort_by(f64::total_cmp);
+            let between: Vec<f64> = knots.windows(2).map(|w| 0.5 * (w[0] + w[1])).collect();
+            let (low, high) = (knots[0], knots[knots.len() - 1]);
+            let heights: Vec<f64> = knots
+                .iter()
+                .chain(&between)
+                .copied()
+                .chain([low - 700.0, low - 1e-9, high + 1e-6, high + 9000.0])
+                .collect();
+            // A cursor carried up, down and across the heights changes nothing.
+            let mut cursor = Cursor::default();
             for &z in heights.iter().chain(heights.iter().rev()) {
                 let s = e.sample(z);
-                assert_eq!(e.sample_near(z, &mut cursors), s);
-                // Bit for bit: the equations of motion use `sample`, post-processing the rest.
+                assert_eq!(e.sample_near(z, &mut cursor), s);
+                // Bit for bit: the equations of motion use `air_near`, post-processing the rest.
                 let same = |a: f64, b: f64| a.to_bits() == b.to_bits();
-                assert!(same(s.pressure, e.pressure(z)) && same(s.density, e.density(z)));
-                assert!(same(s.temperature, e.temperature(z)));
-                assert!(same(s.speed_of_sound, e.speed_of_sound(z)));
-                assert!(same(s.dynamic_viscosity, e.dynamic_viscosity(z)));
-                assert!(same(s.gravity, e.gravity(z)));
+                assert!(same(s.pressure, e.pressure(z)), "{z}");
+                assert!(same(s.density, e.density(z)), "{z}");
+                assert!(same(s.temperature, e.temperature(z)), "{z}");
+                assert!(same(s.speed_of_sound, e.speed_of_sound(z)), "{z}");
+                assert!(same(s.dynamic_viscosity, e.dynamic_viscosity(z)), "{z}");
+                assert!(same(s.gravity, e.gravity(z)), "{z}");
                 assert!(s.wind.iter().zip(e.wind(z)).all(|(a, b)| same(*a, b)));
+                let air = e.air_near(z, &mut cursor);
+                assert!(same(air.pressure, s.pressure) && same(air.density, s.density));
+                assert!(same(air.speed_of_sound, s.speed_of_sound));
+                assert!(same(air.gravity, s.gravity));
             }
         }
     }

@@ -15,6 +15,7 @@
 //! - [`time`]: calendar and CF time units.
 //! - `fetch` (cargo feature `fetch`): live download of soundings and forecasts.
 
+mod column;
 pub mod curve;
 pub mod earth;
 mod environment;
@@ -29,7 +30,9 @@ pub mod time;
 
 pub use curve::{Curve, parse_table};
 pub use earth::Datum;
-pub use environment::{Atmosphere, AtmosphereSample, Environment, EnvironmentConfig, Gravity};
+pub use environment::{
+    AirSample, Atmosphere, AtmosphereSample, Environment, EnvironmentConfig, Gravity,
+};
 pub use error::AtmosError;
 pub use grid::{GridDictionary, GridRequest, WeatherGrid};
 pub use profile::{LevelProfile, Profiles};

@@ -61,11 +61,11 @@ impl AtmosphereModel for Environment {
     }
     #[inline]
     fn air(&self, z: f64) -> Air {
-        self.air_near(z, &mut [Cursor::default(); 3])
+        AtmosphereModel::air_near(self, z, &mut Cursor::default())
     }
     #[inline]
-    fn air_near(&self, z: f64, cursors: &mut [Cursor; 3]) -> Air {
-        let s = Environment::sample_near(self, z, cursors);
+    fn air_near(&self, z: f64, cursor: &mut Cursor) -> Air {
+        let s = Environment::air_near(self, z, cursor);
         Air {
             pressure: s.pressure,
             density: s.density,

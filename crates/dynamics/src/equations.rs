@@ -66,7 +66,7 @@ pub struct Equations<'a, A, V> {
 #[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
 struct Cursors {
     /// Heights ([`AtmosphereModel::air_near`]).
-    height: [Cursor; 3],
+    height: Cursor,
     /// Mach number ([`VehicleModel::drag_coefficient_near`]).
     mach: Cursor,
     /// Times ([`VehicleModel::mass_sample_near`], [`VehicleModel::net_thrust_near`]).

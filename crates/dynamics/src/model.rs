@@ -58,12 +58,12 @@ pub trait AtmosphereModel {
             gravity: self.gravity(z),
         }
     }
-    /// [`AtmosphereModel::air`] with the height located from `cursors`, which the engine
-    /// keeps between evaluations (updated): the same values whatever they hold. A model with
-    /// tables overrides it to start its searches where the last ones ended; the default
-    /// ignores them.
+    /// [`AtmosphereModel::air`] with the height located from `cursor`, which the engine
+    /// keeps between evaluations (updated): the same values whatever it holds. A model with
+    /// tables overrides it to start its search where the last one ended; the default
+    /// ignores it.
     #[inline]
-    fn air_near(&self, z: f64, _cursors: &mut [Cursor; 3]) -> Air {
+    fn air_near(&self, z: f64, _cursor: &mut Cursor) -> Air {
         self.air(z)
     }
     /// Earth rotation vector in the ENU launch frame, rad/s (once).

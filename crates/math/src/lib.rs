@@ -66,4 +66,6 @@ pub use error::{CsvError, MathError};
 pub use function::{Extremum, Function};
 pub use grid::{MAX_GRID_DIMENSIONS, RegularGrid, ScatteredTable};
 pub use quadrature::{Quadrature, QuadratureOptions, integrate};
-pub use table::{Cursor, Extrapolation, Interpolation, Location, PointOrder, Table1, linspace};
+pub use table::{
+    Cursor, Extrapolation, Interpolation, Location, Piece, PointOrder, Table1, linspace,
+};

@@ -101,6 +101,48 @@ pub enum Location {
     Interval(usize),
 }
 
+/// One cubic piece of a [`Table1`], detached from it: `a + d(b + d(c + d·e))` with
+/// `d = x − x0` ([`Table1::piece`]). It evaluates bit for bit as the table does wherever the
+/// table uses that piece, so that a caller may gather the pieces of several tables over a
+/// common interval and evaluate them without any lookup.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Piece {
+    x0: f64,
+    coeffs: [f64; 4],
+}
+
+impl Piece {
+    /// The constant `value` (a held or zero extrapolation, a one-sample table).
+    #[must_use]
+    pub const fn constant(value: f64) -> Self {
+        Self {
+            x0: 0.0,
+            coeffs: [value, 0.0, 0.0, 0.0],
+        }
+    }
+
+    /// Value at `x` (finite).
+    #[inline(always)]
+    #[must_use]
+    pub fn eval(&self, x: f64) -> f64 {
+        cubic_value(self.x0, self.coeffs, x)
+    }
+}
+
+/// The cubic `[a, b, c, e]` in `d = x − x0` at `x`; the one evaluation of every cubic piece.
+#[inline(always)]
+fn cubic_value(x0: f64, [a, b, c, e]: [f64; 4], x: f64) -> f64 {
+    let d = x - x0;
+    // A straight piece (c and e both ±0, as every linear table's): `a + d·b` is the same
+    // number as the full Horner form, without its two dependent multiply-adds on the
+    // critical path.
+    if (c.to_bits() | e.to_bits()) << 1 == 0 {
+        a + d * b
+    } else {
+        a + d * (b + d * (c + d * e))
+    }
+}
+
 /// The single interpolating polynomial, in the scaled variable `t = (x − center)/half_width`.
 #[derive(Debug, Clone, PartialEq)]
 struct Polynomial {
@@ -651,19 +693,25 @@ impl Table1 {
     #[inline(always)]
     fn piece_value(&self, i: usize, x: f64) -> f64 {
         match &self.pieces {
-            Pieces::Cubic(coeffs) => {
-                let [a, b, c, e] = coeffs[i];
-                let d = x - self.xs[i];
-                // A straight piece (c and e both ±0, as every linear table's): `a + d·b` is
-                // the same number as the full Horner form, without its two dependent
-                // multiply-adds on the critical path.
-                if (c.to_bits() | e.to_bits()) << 1 == 0 {
-                    a + d * b
-                } else {
-                    a + d * (b + d * (c + d * e))
-                }
-            }
+            Pieces::Cubic(coeffs) => cubic_value(self.xs[i], coeffs[i], x),
             Pieces::Polynomial(p) => p.eval(x),
+        }
+    }
+
+    /// The piece that [`Table1::eval_at`] evaluates at `at`, as a [`Piece`]: a constant where
+    /// the table holds or zeroes its ends or has one sample; `None` for a single polynomial.
+    #[must_use]
+    pub fn piece(&self, at: Location) -> Option<Piece> {
+        match self.piece_at(at) {
+            Err(v) => Some(Piece::constant(v)),
+            Ok(_) if self.xs.len() == 1 => Some(Piece::constant(self.ys[0])),
+            Ok(i) => match &self.pieces {
+                Pieces::Cubic(coeffs) => Some(Piece {
+                    x0: self.xs[i],
+                    coeffs: coeffs[i],
+                }),
+                Pieces::Polynomial(_) => None,
+            },
         }
     }
 
@@ -1542,5 +1590,55 @@ mod tests {
                 }
             }
         }
+    }
+
+    #[test]
+    fn a_detached_piece_evaluates_as_its_table() {
+        let xs = vec![0.0, 0.5, 1.5, 1.7, 3.0, 4.0];
+        let ys: Vec<f64> = xs.iter().map(|x: &f64| (2.0 * x).cos()).collect();
+        let kinds = [
+            Interpolation::Linear,
+            Interpolation::Spline,
+            Interpolation::Akima,
+            Interpolation::RocketPyAkima,
+        ];
+        let ends = [
+            Extrapolation::Natural,
+            Extrapolation::Constant,
+            Extrapolation::Zero,
+        ];
+        // Knots, points between them and outside on both sides.
+        let probes: Vec<f64> = (-10..=50)
+            .map(|k| 0.1 * f64::from(k))
+            .chain(xs.clone())
+            .collect();
+        for kind in kinds {
+            for e in ends {
+                let t = Table1::new(xs.clone(), ys.clone(), kind, e).unwrap();
+                for &x in &probes {
+                    let piece = t.piece(t.locate(x)).unwrap();
+                    assert_eq!(
+                        piece.eval(x).to_bits(),
+                        t.eval(x).to_bits(),
+                        "{kind:?} {e:?} {x}"
+                    );
+                }
+            }
+        }
+        let one = Table1::new(
+            vec![2.0],
+            vec![7.5],
+            Interpolation::Linear,
+            Extrapolation::Natural,
+        );
+        let one = one.unwrap();
+        for x in [-3.0, 2.0, 9.0] {
+            assert_eq!(
+                one.piece(one.locate(x)).unwrap().eval(x).to_bits(),
+                7.5f64.to_bits()
+            );
+        }
+        let polynomial = Table1::new(xs, ys, Interpolation::Polynomial, Extrapolation::Natural);
+        assert_eq!(polynomial.unwrap().piece(Location::Interval(1)), None);
     }
 }

@@ -521,8 +521,8 @@ impl AtmosphereModel for WindAdjusted<'_> {
         self.environment.air(z)
     }
     #[inline]
-    fn air_near(&self, z: f64, cursors: &mut [Cursor; 3]) -> Air {
-        self.environment.air_near(z, cursors)
+    fn air_near(&self, z: f64, cursor: &mut Cursor) -> Air {
+        AtmosphereModel::air_near(self.environment, z, cursor)
     }
     #[inline]
     fn gravity(&self, z: f64) -> f64 {
@@ -645,9 +645,9 @@ mod tests {
             assert_eq!(uniform.map(f64::to_bits), [u, v].map(f64::to_bits));
         }
         // The thermodynamics pass through untouched, with or without cursors.
-        let mut cursors = [Cursor::default(); 3];
+        let mut cursor = Cursor::default();
         for z in [1500.0, 3000.0, 1400.0] {
-            let (a, b) = (adjusted.air_near(z, &mut cursors), environment.air(z));
+            let (a, b) = (adjusted.air_near(z, &mut cursor), environment.air(z));
             assert_eq!(
                 [a.pressure, a.density, a.speed_of_sound, a.gravity].map(f64::to_bits),
                 [b.pressure, b.density, b.speed_of_sound, b.gravity].map(f64::to_bits)
