@@ -275,7 +275,7 @@ fn rms_norm<const N: usize>(v: &[f64; N], scale: &[f64; N]) -> f64 {
 
 /// `Σ_j w_j k_j` over the stages with a non-zero weight, in stage order (zero weights add
 /// nothing to a finite sum and are skipped).
-#[inline]
+#[inline(always)]
 fn combine<const N: usize>(weights: &[f64], k: &[[f64; N]]) -> [f64; N] {
     let mut acc = [0.0; N];
     for (w, k) in weights.iter().zip(k) {
@@ -569,31 +569,26 @@ where
     #[inline]
     fn stages(&mut self, h: f64, t_new: f64) -> [f64; N] {
         self.k[0] = self.f;
+        // The stages are written out one by one so that each sees its row of coefficients as
+        // constants: the zero entries drop out at compile time and the sums unroll.
+        macro_rules! stages {
+            ($tableau:ident, [$($s:literal),*], $last:literal) => {{
+                $(
+                    self.stage($s, &$tableau::A[$s][..$s], h, self.t + $tableau::C[$s] * h);
+                )*
+                self.stage($last, &$tableau::A[$last][..$last], h, t_new)
+            }};
+        }
         match self.pair {
             Pair::Dopri5 => {
-                let mut y_stage = [0.0; N];
-                for s in 1..7 {
-                    let t_stage = if s == 6 {
-                        t_new
-                    } else {
-                        self.t + dopri5::C[s] * h
-                    };
-                    y_stage = self.stage(s, &dopri5::A[s][..s], h, t_stage);
-                }
+                let y_stage = stages!(dopri5, [1, 2, 3, 4, 5], 6);
                 self.nfev += 6;
                 // Row 6 of A holds b, so the last stage point is the fifth-order solution.
                 y_stage
             }
             Pair::Dop853 => {
                 let stages = dop853::STAGES;
-                for s in 1..stages {
-                    let t_stage = if s == stages - 1 {
-                        t_new
-                    } else {
-                        self.t + dop853::C[s] * h
-                    };
-                    self.stage(s, &dop853::A[s][..s], h, t_stage);
-                }
+                stages!(dop853, [1, 2, 3, 4, 5, 6, 7, 8, 9, 10], 11);
                 let acc = combine(&dop853::B, &self.k[..stages]);
                 let mut y_new = [0.0; N];
                 for i in 0..N {
@@ -609,7 +604,7 @@ where
     /// Stage `s`: `k_s = f(t_stage, y + h Σ_j a_j k_j)` with the row `a` of its coupling
     /// coefficients, summed stage-major (vectorised over the components, each component
     /// summing its terms in stage order); returns the stage point.
-    #[inline]
+    #[inline(always)]
     fn stage(&mut self, s: usize, a: &[f64], h: f64, t_stage: f64) -> [f64; N] {
         let acc = combine(a, &self.k[..s]);
         let mut y_stage = [0.0; N];
