@@ -257,11 +257,21 @@ fn insert_phase(phases: &mut Vec<Phase>, mut index: usize, mut phase: Phase) {
     }
 }
 
-/// Key of a sampling instant rounded to 1e-7 s (RocketPy's `TimeNodes.merge`).
+/// Key of a sampling instant rounded to 1e-7 s (RocketPy's `TimeNodes.merge`): `(t·1e7)`
+/// rounded half away from zero, as `f64::round` does, without its libm call (x86-64 has no
+/// rounding instruction before SSE4.1, and the noisy triggers key every sampling instant).
 #[inline]
 fn node_key(t: f64) -> i64 {
-    // Flight times are far below 2^63 · 1e-7 s; the cast saturates otherwise.
-    (t * 1e7).round() as i64
+    let x = t * 1e7;
+    if x.abs() >= 4_503_599_627_370_496.0 {
+        // Already an integer (or infinite: the cast saturates, as after `round`).
+        return x as i64;
+    }
+    // Below 2^52 the truncation and the fraction it leaves are exact. Branch-free: the
+    // fraction's side of ±0.5 is as unpredictable as a coin (a NaN's key stays 0).
+    let whole = x as i64;
+    let fraction = x - whole as f64;
+    whole + i64::from(fraction >= 0.5) - i64::from(fraction <= -0.5)
 }
 
 /// Mutable bookkeeping of a flight in progress.
@@ -1097,6 +1107,36 @@ impl Run {
 
 #[cfg(test)]
 mod tests {
+    #[test]
+    fn node_keys_round_as_f64_round() {
+        let mut times = vec![
+            0.0,
+            -0.0,
+            1e-8,
+            5e-8,
+            1.5e-7,
+            2.5e-7,
+            -2.5e-7,
+            0.123_456_75,
+            1e300,
+        ];
+        times.extend([
+            f64::NAN,
+            f64::INFINITY,
+            f64::NEG_INFINITY,
+            4.503_599_627_370_497e8,
+        ]);
+        // Halves and their neighbours at many scales, and a dense sweep.
+        for k in 0..2000 {
+            let half = (f64::from(k) + 0.5) * 1e-7 * 1.37f64.powi(k % 60);
+            times.extend([half, f64::from_bits(half.to_bits() + 1), -half]);
+            times.push(f64::from(k) * 0.012_345_678_9);
+        }
+        for t in times {
+            assert_eq!(super::node_key(t), (t * 1e7).round() as i64, "{t}");
+        }
+    }
+
     use super::*;
 
     /// The reference the bounded sampling must agree with: every instant of every pending
