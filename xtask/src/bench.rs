@@ -1,5 +1,7 @@
 //! `cargo xtask bench [FILTER]`: run every criterion benchmark of the workspace in release and
-//! print one line per benchmark with its median time, read from criterion's
+//! print one line per benchmark with its median time (and, where the benchmark declares a
+//! throughput in elements, the rate and the time per element: right-hand-side evaluations of
+//! a flight, flights of a Monte Carlo run), read from criterion's
 //! `target/criterion/**/new/estimates.json` written by this run (older files, of benchmarks
 //! since renamed or removed, are left out). Speed targets live here, never in timed tests.
 
@@ -26,7 +28,10 @@ pub fn run(root: &Path, args: &[String]) -> Result<()> {
             .is_ok_and(|modified| modified >= started)
     });
     found.sort();
-    println!("{:<50} {:>14} {:>18}", "benchmark", "median", "throughput");
+    println!(
+        "{:<42} {:>14} {:>18} {:>14}",
+        "benchmark", "median", "throughput", "per element"
+    );
     for path in found {
         let text = std::fs::read_to_string(&path)?;
         let v: Value = serde_json::from_str(&text).with_context(|| path.display().to_string())?;
@@ -40,12 +45,15 @@ pub fn run(root: &Path, args: &[String]) -> Result<()> {
             .map_or_else(String::new, |p| p.display().to_string());
         // Elements per second where the bench declares a throughput (criterion's
         // benchmark.json beside the estimates).
-        let rate = std::fs::read_to_string(path.with_file_name("benchmark.json"))
+        let elements = std::fs::read_to_string(path.with_file_name("benchmark.json"))
             .ok()
             .and_then(|t| serde_json::from_str::<Value>(&t).ok())
-            .and_then(|b| b["throughput"]["Elements"].as_f64())
-            .map_or_else(String::new, |n| format!("{:.0} /s", n / (ns * 1e-9)));
-        println!("{name:<50} {:>14} {rate:>18}", human(ns));
+            .and_then(|b| b["throughput"]["Elements"].as_f64());
+        let (rate, each) = elements.map_or_else(
+            || (String::new(), String::new()),
+            |n| (format!("{:.0} /s", n / (ns * 1e-9)), human(ns / n)),
+        );
+        println!("{name:<42} {:>14} {rate:>18} {each:>14}", human(ns));
     }
     Ok(())
 }
