@@ -6,6 +6,7 @@
 //! same `f64`. Fields with a comma or a quote are quoted with `"` (quotes doubled); line
 //! breaks inside a message become spaces, so every row is exactly one line.
 
+use std::borrow::Cow;
 use std::fmt::Write as _;
 
 /// A field as it appears in a row.
@@ -75,46 +76,40 @@ pub enum RowError {
     Quoting,
 }
 
-/// Splits one line (without its newline) into fields.
-pub fn split(line: &str) -> Result<Vec<String>, RowError> {
+/// Splits one line (without its newline) into fields: unquoted fields borrowed from the line,
+/// quoted ones unescaped (a summary reads every field of every row).
+pub fn split(line: &str) -> Result<Vec<Cow<'_, str>>, RowError> {
     let mut fields = Vec::new();
-    let mut chars = line.chars().peekable();
+    let mut rest = line;
     loop {
-        let mut field = String::new();
-        if chars.peek() == Some(&'"') {
-            chars.next();
-            loop {
+        if let Some(quoted) = rest.strip_prefix('"') {
+            let mut field = String::new();
+            let mut chars = quoted.char_indices();
+            let after = loop {
                 match chars.next() {
-                    Some('"') if chars.peek() == Some(&'"') => {
+                    Some((i, '"')) if quoted[i + 1..].starts_with('"') => {
                         chars.next();
                         field.push('"');
                     }
-                    Some('"') => break,
-                    Some(c) => field.push(c),
+                    Some((i, '"')) => break &quoted[i + 1..],
+                    Some((_, c)) => field.push(c),
                     None => return Err(RowError::Quoting),
                 }
-            }
-            match chars.next() {
-                Some(',') => fields.push(field),
-                None => {
-                    fields.push(field);
-                    return Ok(fields);
-                }
-                Some(_) => return Err(RowError::Quoting),
+            };
+            fields.push(Cow::Owned(field));
+            match after.strip_prefix(',') {
+                Some(next) => rest = next,
+                None if after.is_empty() => return Ok(fields),
+                None => return Err(RowError::Quoting),
             }
         } else {
-            loop {
-                match chars.next() {
-                    Some(',') => break,
-                    Some('"') => return Err(RowError::Quoting),
-                    Some(c) => field.push(c),
-                    None => {
-                        fields.push(field);
-                        return Ok(fields);
-                    }
-                }
+            let end = rest.find([',', '"']).unwrap_or(rest.len());
+            fields.push(Cow::Borrowed(&rest[..end]));
+            match rest[end..].chars().next() {
+                Some(',') => rest = &rest[end + 1..],
+                Some(_) => return Err(RowError::Quoting),
+                None => return Ok(fields),
             }
-            fields.push(field);
         }
     }
 }
@@ -143,13 +138,13 @@ pub fn parse(line: &str, inputs: usize, outputs: usize) -> Result<Row, String> {
     let index = fields[0]
         .parse::<u64>()
         .map_err(|_| format!("index {:?} is not a number", fields[0]))?;
-    let error = match fields[1].as_str() {
+    let error = match fields[1].as_ref() {
         "ok" if fields[2].is_empty() => None,
         "ok" => return Err("status ok with an error message".to_owned()),
-        "failed" => Some(fields[2].clone()),
+        "failed" => Some(fields[2].clone().into_owned()),
         other => return Err(format!("status {other:?} is neither ok nor failed")),
     };
-    let value = |text: &String| -> Result<Option<f64>, String> {
+    let value = |text: &Cow<'_, str>| -> Result<Option<f64>, String> {
         if text.is_empty() {
             Ok(None)
         } else {
