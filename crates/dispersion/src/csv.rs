@@ -204,7 +204,10 @@ mod tests {
         assert!(parse("1,failed,\"unterminated,2", 1, 0).is_err());
         assert!(parse("1,failed,e,2,3", 1, 1).is_err());
         assert_eq!(split("a,\"b,c\",").expect("valid"), ["a", "b,c", ""]);
-        assert_eq!(split("\"say \"\"hi\"\"\",é,").expect("valid"), ["say \"hi\"", "é", ""]);
+        assert_eq!(
+            split("\"say \"\"hi\"\"\",é,").expect("valid"),
+            ["say \"hi\"", "é", ""]
+        );
         assert_eq!(split("").expect("valid"), [""]);
         for bad in ["a\"b", "\"ab", "\"a\"b,c", "x,\"y"] {
             assert!(split(bad).is_err(), "{bad}");
