@@ -11,7 +11,7 @@ use serde::Serialize;
 
 use crate::equations::Equations;
 use crate::flight::{Flight, PhaseKind, Termination, evaluate};
-use crate::model::{AtmosphereModel, VehicleModel};
+use crate::model::{AtmosphereModel, Cursor, VehicleModel};
 use crate::state::{State, norm, rotation};
 
 /// One named event of the summary.
@@ -226,13 +226,15 @@ impl Flight {
         let mut max_speed: f64 = 0.0;
         let mut max_mach: f64 = 0.0;
         let mut max_q: f64 = 0.0;
+        // The points follow the trajectory: each height search starts where the last ended.
+        let mut cursor = Cursor::default();
         for p in &self.points {
             let u = &p.state;
             let z = u[2];
             let v = [u[3], u[4], u[5]];
             let wind = atmosphere.wind(z);
             let free = norm([wind[0] - v[0], wind[1] - v[1], -v[2]]);
-            let air = atmosphere.air(z);
+            let air = atmosphere.air_near(z, &mut cursor);
             max_speed = max_speed.max(norm(v));
             max_mach = max_mach.max(free / air.speed_of_sound);
             max_q = max_q.max(0.5 * air.density * free * free);
