@@ -1562,10 +1562,16 @@ mod tests {
         );
     }
 
+    /// Samples of `cos 2x` on uneven abscissae.
+    fn cosine_samples() -> (Vec<f64>, Vec<f64>) {
+        let xs = vec![0.0, 0.5, 1.5, 1.7, 3.0, 4.0];
+        let ys = xs.iter().map(|x: &f64| (2.0 * x).cos()).collect();
+        (xs, ys)
+    }
+
     #[test]
     fn integral_with_a_cursor_is_the_integral() {
-        let xs = vec![0.0, 0.5, 1.5, 1.7, 3.0, 4.0];
-        let ys: Vec<f64> = xs.iter().map(|x: &f64| (2.0 * x).cos()).collect();
+        let (xs, ys) = cosine_samples();
         let kinds = [
             Interpolation::Linear,
             Interpolation::Spline,
@@ -1594,8 +1600,7 @@ mod tests {
 
     #[test]
     fn a_detached_piece_evaluates_as_its_table() {
-        let xs = vec![0.0, 0.5, 1.5, 1.7, 3.0, 4.0];
-        let ys: Vec<f64> = xs.iter().map(|x: &f64| (2.0 * x).cos()).collect();
+        let (xs, ys) = cosine_samples();
         let kinds = [
             Interpolation::Linear,
             Interpolation::Spline,
