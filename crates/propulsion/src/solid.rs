@@ -135,10 +135,8 @@ impl BatesGrains {
         let excess = |r: f64| self.grain_volume(state(r)) - volume;
         let (mut lo, mut hi) = (r0, r_end);
         let full = self.grain_volume(initial);
-        // Started from the bore where the burnt volume fraction would put it if the volume
-        // fell linearly, the iteration takes two or three steps: as many as from the previous
-        // grid point's bore, and independent of it, so that the roots of successive grid
-        // points overlap in the processor instead of waiting for each other.
+        // The bore where the burnt volume fraction would put it if the volume fell linearly:
+        // two or three Newton steps away, and independent of the neighbouring grid points'.
         let guess = r0 + (r_end - r0) * (1.0 - volume / full);
         // g′(r) = −2π[r·h(r) + R_o² − r²] and g″(r) = −2π[h(r) − 4r], h(r) = h_0 − 2(r − r_0).
         let derivatives = |r: f64| {
@@ -147,6 +145,11 @@ impl BatesGrains {
                 -2.0 * std::f64::consts::PI * (r * h + (ro * ro - r * r)),
                 -2.0 * std::f64::consts::PI * (h - 4.0 * r),
             )
+        };
+        // The error left by a Newton step `step` taken at `r`, |g″/(2g′)|·step², below half an
+        // ulp of `r`.
+        let converged = |step: f64, slope: f64, curvature: f64, r: f64| {
+            (curvature * step * step).abs() <= (slope * f64::EPSILON * r).abs()
         };
         // The usual case first: three plain Newton steps, without the exits that depend on the
         // data (mispredicted branches kept successive grid points from overlapping), accepted
@@ -160,7 +163,7 @@ impl BatesGrains {
             last = (step, slope, curvature);
         }
         let (step, slope, curvature) = last;
-        if r > lo && r < hi && (curvature * step * step).abs() <= (slope * f64::EPSILON * r).abs() {
+        if r > lo && r < hi && converged(step, slope, curvature, r) {
             return state(r);
         }
         let mut r = guess;
@@ -182,7 +185,7 @@ impl BatesGrains {
             }
             if newton > lo && newton < hi {
                 r = newton;
-                if (curvature * step * step).abs() <= (slope * f64::EPSILON * r).abs() {
+                if converged(step, slope, curvature, r) {
                     break;
                 }
             } else {
