@@ -4,7 +4,9 @@
 //! [`RungeKutta`] integrator from its start to the next phase's start (a hard time node): DOPRI5
 //! on the rail, through the burn and under parachutes, DOP853 for the unpowered 6-DOF flight
 //! from burn-out (restarted there) unless its steps keep being rejected, a sign of kinks in the
-//! right-hand side such as linearly interpolated atmosphere profiles, where DOPRI5 takes over
+//! right-hand side such as linearly interpolated atmosphere profiles, where DOPRI5 takes over;
+//! under a parachute, once DOPRI5's steps are held back by stability (three steps in a row
+//! with `h|λ| ≥ 3`), the Runge–Kutta–Chebyshev method takes over for the rest of the phase
 //! (see [`crate::integrator`] for the measurements). After every
 //! accepted step the engine stores the point and checks, in RocketPy's order, (a) rail exit
 //! (§9.2, Hermite root of `|Δr|² − L₁²`), (b) apogee (§9.3, linear root of `v_z`), (c) impact
@@ -51,6 +53,14 @@ use crate::state::{State, euler313_to_quaternion};
 /// DOP853 gives way to DOPRI5 for the rest of a phase once more than one in this many of
 /// its attempted steps were rejected (a right-hand side with kinks).
 const KINK_WINDOW: usize = 8;
+
+/// Under a parachute DOPRI5 gives way to the Runge–Kutta–Chebyshev method once this many
+/// accepted steps in a row had `h |λ|` ([`RungeKutta::stiffness`]) of at least
+/// [`STIFF_BOUND`]…
+const STIFF_STEPS: usize = 3;
+/// …90 % of the reach of DOPRI5's stability region along the negative real axis (≈ 3.3): the
+/// steps are then held back by stability, not accuracy.
+const STIFF_BOUND: f64 = 3.0;
 
 /// Which equations of motion a phase integrates.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -120,6 +130,9 @@ pub struct IntegrationStats {
     pub evaluations: usize,
     /// Flight phases integrated.
     pub phases: usize,
+    /// Accepted steps of the Runge–Kutta–Chebyshev method (stiff parachute descents), among
+    /// `steps`.
+    pub chebyshev_steps: usize,
 }
 
 impl IntegrationStats {
@@ -128,6 +141,9 @@ impl IntegrationStats {
         self.steps += integ.steps();
         self.rejected_steps += integ.rejected_steps();
         self.evaluations += integ.evaluations();
+        if integ.pair() == Pair::Rkc2 {
+            self.chebyshev_steps += integ.steps();
+        }
     }
 }
 
@@ -552,15 +568,16 @@ fn fly<A: AtmosphereModel, V: VehicleModel>(
             max_steps: settings.max_steps_per_phase,
         };
         let rhs = |tt: f64, uu: &State| evaluate(&eq, &kind, tt, uu).u_dot;
-        // DOPRI5 on the rail, through the burn and under parachutes, DOP853 for the unpowered
-        // 6-DOF flight (see the integrator's overview for why).
+        // DOPRI5 on the rail, through the burn and under parachutes until its steps are bound
+        // by stability, then RKC; DOP853 for the unpowered 6-DOF flight (see the integrator's
+        // overview for why).
         let mut burning = kind == PhaseKind::SixDof && t < burn_out;
-        let pair = if kind == PhaseKind::SixDof && !burning {
-            Pair::Dop853
-        } else {
-            Pair::Dopri5
+        let pair = match kind {
+            PhaseKind::SixDof if !burning => Pair::Dop853,
+            _ => Pair::Dopri5,
         };
         let mut integ = RungeKutta::new(pair, rhs, t, y, t_bound, tol)?;
+        let mut stiff_steps = 0;
         run.stats.phases += 1;
         // The phase's equations at its first point (the last point of the previous phase).
         max_acceleration = max_acceleration.max(acceleration(integ.f()));
@@ -579,6 +596,11 @@ fn fly<A: AtmosphereModel, V: VehicleModel>(
                     run.stats.add(&integ);
                     integ = RungeKutta::new(Pair::Dopri5, rhs, t, y, t_bound, tol)?;
                 }
+            } else if stiff_steps >= STIFF_STEPS && t < t_bound {
+                // The rest of the descent goes on with the stabilized pair.
+                stiff_steps = 0;
+                run.stats.add(&integ);
+                integ = RungeKutta::new(Pair::Rkc2, rhs, t, y, t_bound, tol)?;
             }
             integ.set_stop(
                 knots
@@ -588,6 +610,13 @@ fn fly<A: AtmosphereModel, V: VehicleModel>(
                     .unwrap_or(f64::INFINITY),
             );
             let status = integ.step()?;
+            if matches!(kind, PhaseKind::Parachute(_)) && integ.pair() == Pair::Dopri5 {
+                stiff_steps = if integ.stiffness() >= STIFF_BOUND {
+                    stiff_steps + 1
+                } else {
+                    0
+                };
+            }
             t = integ.t();
             y = *integ.y();
             run.points.push(SolutionPoint {
@@ -799,10 +828,15 @@ impl Run {
         (vz_low, z_low)
     }
 
-    /// Upper bound of `z` over the last step, the counterpart of [`Run::step_lows`].
-    fn step_top<F>(integ: &RungeKutta<13, F>) -> f64 {
+    /// Upper bounds of `v_z` and `z` over the last step, the counterparts of
+    /// [`Run::step_lows`].
+    fn step_tops<F>(integ: &RungeKutta<13, F>) -> (f64, f64) {
         let (y0, y1) = (integ.y_old(), integ.y());
-        y0[2].max(y1[2]) + integ.last_step() * y0[5].abs().max(y1[5].abs())
+        let (f0, f1) = (integ.f_old(), integ.f());
+        let h = integ.last_step();
+        let vz_high = y0[5].max(y1[5]) + h * f0[5].abs().max(f1[5].abs());
+        let z_high = y0[2].max(y1[2]) + h * y0[5].abs().max(y1[5].abs());
+        (vz_high, z_high)
     }
 
     /// Whether a silent (noise-free) parachute certainly cannot fire inside the last step, so
@@ -902,7 +936,7 @@ impl Run {
         let first_key = node_key(first);
         let skip_first = phase.clear && (first - phase.t).abs() < 1e-9;
         let (vz_low, z_low) = Self::step_lows(integ);
-        let z_high = Self::step_top(integ);
+        let (vz_high, z_high) = Self::step_tops(integ);
         let descending = vz_low <= 0.0 || vz_low.is_nan();
         let atm = eq.atmosphere();
         // A noisy height trigger cannot fire where even the highest possible noisy pressure
@@ -941,10 +975,25 @@ impl Run {
                             if let Some(z_reach) = reach_height(z_low, z_high, resolution, |z| {
                                 out_of_reach(z, bound, h)
                             }) {
-                                while j <= range.last
-                                    && integ.dense_component(range.time(j), 2) >= z_reach
-                                {
-                                    j += 1;
+                                if vz_high < 0.0 {
+                                    // Falling throughout: the dense heights decrease with j,
+                                    // so the first instant below `z_reach` is found by
+                                    // bisection (a long step holds hundreds of instants).
+                                    let mut end = range.last + 1;
+                                    while j < end {
+                                        let mid = j + (end - j) / 2;
+                                        if integ.dense_component(range.time(mid), 2) >= z_reach {
+                                            j = mid + 1;
+                                        } else {
+                                            end = mid;
+                                        }
+                                    }
+                                } else {
+                                    while j <= range.last
+                                        && integ.dense_component(range.time(j), 2) >= z_reach
+                                    {
+                                        j += 1;
+                                    }
                                 }
                             }
                             j
@@ -964,6 +1013,17 @@ impl Run {
                 }
             }
             return None;
+        }
+        if let [range] = self.instants.as_mut_slice() {
+            // One parachute: the instants before its first candidate are passed over at once
+            // (with several, they still take part in the grouping of the instants by key).
+            let passed = range.first_candidate.min(range.last + 1) - range.next;
+            if passed > 0 {
+                range.next += passed;
+                if range.draws {
+                    range.undrawn += usize::try_from(passed).unwrap_or(0);
+                }
+            }
         }
         let mut group_key = None;
         let mut t_node = 0.0;
@@ -1266,6 +1326,31 @@ mod tests {
 
     /// Calisto's trigger noise, Pa.
     const CALISTO_NOISE: [f64; 3] = [0.0, 8.3, 0.5];
+
+    #[test]
+    fn stiff_descent_is_finished_by_chebyshev_steps_at_terminal_speed() {
+        // The 10 kg rocket under a 2 m² canopy from apogee: the drag relaxes the descent speed
+        // at 2g/v ≈ 2/s, which holds DOPRI5 to ≈ 1.5 s steps; RKC takes over and lands at the
+        // terminal speed √(2mg/(ρ C_dS)) (the wind is constant, so the canopy drifts with it),
+        // up to the lag of the speed behind the density change (≈ 3e-4 of it here).
+        let main = ParachuteSpec {
+            cd_s: 2.0,
+            ..chute("main", TriggerKind::Apogee, 100.0, 0.0, [0.0; 3])
+        };
+        let flight = fly_with(vec![main], 1, Sampling::BoundedStepwise);
+        assert!(flight.stats.chebyshev_steps > 0, "{:?}", flight.stats);
+        let (_, state) = flight.impact.expect("lands");
+        let (atm, body) = (air(), MockRocket::stable());
+        let terminal = (2.0 * body.dry_mass * atm.g / (atm.density(state[2]) * 2.0)).sqrt();
+        assert!(
+            (-state[5] / terminal - 1.0).abs() < 1e-3,
+            "{} vs {terminal}",
+            -state[5]
+        );
+        for (v, w) in state[3..5].iter().zip(atm.wind) {
+            assert!((v - w).abs() < 1e-3 * terminal, "drift {v} vs wind {w}");
+        }
+    }
 
     #[test]
     fn max_acceleration_is_the_largest_at_the_stored_points() {

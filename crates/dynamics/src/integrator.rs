@@ -1,5 +1,5 @@
 //! Adaptive embedded Runge–Kutta integrators with dense output: the Dormand–Prince pairs
-//! DOPRI5 and DOP853.
+//! DOPRI5 and DOP853, and a Runge–Kutta–Chebyshev method for stiff stretches.
 //!
 //! - **DOPRI5**, the pair RK5(4)7M of Dormand & Prince (1980), *A family of embedded
 //!   Runge–Kutta formulae*, J. Comput. Appl. Math. 6(1), 19–26, as in Hairer, Nørsett &
@@ -14,10 +14,24 @@
 //!   solution, `err = err₅² / √(err₅² + 0.01 err₃²)`, and a continuous extension of order 7
 //!   that needs three more evaluations, made only for the steps where a dense value is asked
 //!   for. Its coefficients are those of `dop853.f`, written as the nearest doubles.
+//! - **RKC2**, the damped second-order Runge–Kutta–Chebyshev method of van der Houwen &
+//!   Sommeijer (1980) in the form of Sommeijer, Shampine & Verwer (1997), *RKC: an explicit
+//!   solver for parabolic PDEs*, J. Comput. Appl. Math. 88, 315–326: `s` stages built on the
+//!   Chebyshev recursion, whose stability interval grows like `0.65 s²` along the negative real
+//!   axis, so a step costs `s ≈ √(1.54 hρ)` evaluations for a spectral radius `ρ` instead of
+//!   `hρ/3.3` DOPRI5 steps of six. The radius comes from a nonlinear power method (re-run
+//!   every 25 steps and after a rejection), the error estimate from the step's ends, the dense
+//!   output is the cubic Hermite interpolant of those ends (DOPRI5's form without `F₃`).
 //!
 //! Which pair where ([`crate::flight`]): DOPRI5 on the rail (steps capped), through the burn
-//! (steps end on every thrust-curve knot) and under parachutes (steps bounded by the stability
-//! of the drag relaxation), where a cheaper step wins; DOP853 for the unpowered 6-DOF flight,
+//! (steps end on every thrust-curve knot) and under parachutes, where a cheaper step wins,
+//! until its steps are bounded by the stability of the drag relaxation (`h·2k|v| ≈ 3.3`, the
+//! step's [`RungeKutta::stiffness`] estimate, HNW II §IV.2): the descent then goes on with RKC
+//! (Calisto under its main canopy: DOPRI5 ~1.3 s steps, 4.6 evaluations per second of flight;
+//! RKC steps growing to ~24 s with 5 stages, 0.8 per second). RKC is only second order, so
+//! the transient after a canopy opens stays with DOPRI5 (RKC from the opening needed ~4× its
+//! evaluations there). ODEPACK's LSODA, which RocketPy integrates with, answers the same
+//! stiffness by switching from Adams to BDF formulas. DOP853 for the unpowered 6-DOF flight,
 //! where accuracy sets the step: the attitude quaternion of a rolling rocket turns at half the
 //! roll rate (Calisto: ~9 rad/s), and DOPRI5 needed ~410 steps (2,450 evaluations) for its 22 s
 //! coast at the default tolerances, DOP853 ~100 steps (1,200 evaluations). Where the right-hand
@@ -41,7 +55,8 @@
 //! algorithm of HNW I, §II.4 ("Starting step size"), as in SciPy.
 //!
 //! The state is a fixed `[f64; N]`; the stages live inside the integrator, which owns the
-//! right-hand side, so neither a step nor a dense value allocates.
+//! right-hand side, so neither a step nor a dense value allocates. The same controller drives
+//! RKC with its error exponent −1/3.
 
 // Index loops over several parallel fixed-size arrays read closer to the formulas.
 #![allow(clippy::needless_range_loop, clippy::unreadable_literal)]
@@ -165,6 +180,27 @@ mod dop853 {
     ];
 }
 
+/// Constants of the second-order Runge–Kutta–Chebyshev method (Sommeijer, Shampine & Verwer
+/// 1997, §2 and the RKC code).
+mod rkc {
+    /// Damping `ε` of the shifted Chebyshev polynomials, `w₀ = 1 + ε/s²`: the stability
+    /// region then stays at least ~0.95 wide along the negative real axis.
+    pub const DAMPING: f64 = 2.0 / 13.0;
+    /// With that damping the region reaches `β(s) ≈ 0.653 (s² − 1)`, so a step `h` of a
+    /// problem of spectral radius `ρ` needs `s² ≥ 1 + 1.54 h ρ`.
+    pub const STAGE_FACTOR: f64 = 1.54;
+    /// The radius used is the power method's estimate times this margin, to err on the side
+    /// of more stages.
+    pub const RADIUS_MARGIN: f64 = 1.2;
+    /// The radius is estimated again after this many accepted steps, and after a rejected
+    /// step that did not start from a fresh estimate.
+    pub const REESTIMATE_AFTER: usize = 25;
+    /// Iterations of the power method before it settles for the largest ratio it met.
+    pub const POWER_ITERATIONS: usize = 20;
+    /// The power method stops when two successive ratios agree to this fraction.
+    pub const POWER_TOLERANCE: f64 = 0.01;
+}
+
 /// Safety factor of the step-size controller.
 const SAFETY: f64 = 0.9;
 /// Smallest step-size reduction factor after a rejected step.
@@ -181,6 +217,9 @@ pub enum Pair {
     Dopri5,
     /// Dormand–Prince 8(5,3), twelve evaluations per step.
     Dop853,
+    /// Second-order Runge–Kutta–Chebyshev, `s` evaluations per step with `s` set by the step
+    /// and the spectral radius of the Jacobian.
+    Rkc2,
 }
 
 impl Pair {
@@ -189,6 +228,7 @@ impl Pair {
         match self {
             Pair::Dopri5 => 4,
             Pair::Dop853 => 7,
+            Pair::Rkc2 => 2,
         }
     }
 
@@ -197,6 +237,7 @@ impl Pair {
         match self {
             Pair::Dopri5 => -1.0 / 5.0,
             Pair::Dop853 => -1.0 / 8.0,
+            Pair::Rkc2 => -1.0 / 3.0,
         }
     }
 
@@ -205,6 +246,7 @@ impl Pair {
         match self {
             Pair::Dopri5 => 6,
             Pair::Dop853 => dop853::STAGES,
+            Pair::Rkc2 => 1,
         }
     }
 }
@@ -257,6 +299,13 @@ pub struct RungeKutta<const N: usize, F> {
     rows: [[f64; N]; 7],
     /// …valid once made for that step.
     rows_made: bool,
+    /// RKC: the estimated spectral radius of the Jacobian (with its margin), NaN before the
+    /// first estimate…
+    radius: f64,
+    /// …the accepted steps since that estimate…
+    radius_age: usize,
+    /// …and the power method's last direction, its start at the next estimate.
+    eigen: [f64; N],
     steps: usize,
     rejected: usize,
     nfev: usize,
@@ -367,6 +416,36 @@ impl<const N: usize, F> RungeKutta<N, F> {
         self.rejected
     }
 
+    /// DOPRI5's estimate of `h |λ|` for the last accepted step, the step times the dominant
+    /// eigenvalue of the Jacobian along the step's last correction (0 for the other pairs):
+    /// stages 6 and 7 are both taken at `t + h`, and the ratio of the differences of their
+    /// derivatives and of their points estimates that eigenvalue (HNW II, §IV.2, the
+    /// "stiffness detection" of DOPRI5), here in the tolerance-weighted norm so that it follows
+    /// the units. Near DOPRI5's stability boundary (≈ 3.3 on the negative real axis) the steps
+    /// are bound by stability, not accuracy: the problem is stiff for the pair. Computed on
+    /// demand from the stored stages, without evaluations.
+    #[must_use]
+    pub fn stiffness(&self) -> f64 {
+        if self.pair != Pair::Dopri5 || self.h_last <= 0.0 {
+            return 0.0;
+        }
+        let h = self.h_last;
+        let acc = combine(&dopri5::A[5][..5], &self.k[..5]);
+        let mut weight = [0.0; N];
+        let (mut dk, mut dy) = ([0.0; N], [0.0; N]);
+        for i in 0..N {
+            weight[i] = self.tol.atol[i] + self.tol.rtol * self.y[i].abs();
+            dk[i] = self.k[6][i] - self.k[5][i];
+            dy[i] = self.y[i] - (self.y_old[i] + h * acc[i]);
+        }
+        let spread = rms_norm(&dy, &weight);
+        if spread > 0.0 {
+            h * rms_norm(&dk, &weight) / spread
+        } else {
+            0.0
+        }
+    }
+
     /// Right-hand-side evaluations so far (dense-output stages included).
     #[inline]
     #[must_use]
@@ -415,6 +494,9 @@ where
             k: [[0.0; N]; SLOTS],
             rows: [[0.0; N]; 7],
             rows_made: false,
+            radius: f64::NAN,
+            radius_age: 0,
+            eigen: [0.0; N],
             steps: 0,
             rejected: 0,
             nfev: 1,
@@ -492,6 +574,15 @@ where
                     steps: self.steps + self.rejected,
                 });
             }
+            if self.pair == Pair::Rkc2 {
+                if self.radius.is_nan()
+                    || self.radius_age >= rkc::REESTIMATE_AFTER
+                    || (step_rejected && self.radius_age > 0)
+                {
+                    self.estimate_radius();
+                }
+                h = h.min(self.chebyshev_step_limit());
+            }
             if h < min_step {
                 return Err(DynamicsError::StepTooSmall { t, step: h });
             }
@@ -541,6 +632,7 @@ where
                 self.h_last = h_eff;
                 self.rows_made = false;
                 self.steps += 1;
+                self.radius_age += 1;
                 return Ok(if t_new >= self.t_bound {
                     StepStatus::Finished
                 } else {
@@ -572,23 +664,23 @@ where
         // The stages are written out one by one so that each sees its row of coefficients as
         // constants: the zero entries drop out at compile time and the sums unroll.
         macro_rules! stages {
-            ($tableau:ident, [$($s:literal),*], $last:literal) => {{
+            ($tableau:ident, [$($s:literal),*]) => {{
                 $(
                     self.stage($s, &$tableau::A[$s][..$s], h, self.t + $tableau::C[$s] * h);
                 )*
-                self.stage($last, &$tableau::A[$last][..$last], h, t_new)
             }};
         }
         match self.pair {
             Pair::Dopri5 => {
-                let y_stage = stages!(dopri5, [1, 2, 3, 4, 5], 6);
+                stages!(dopri5, [1, 2, 3, 4, 5]);
                 self.nfev += 6;
                 // Row 6 of A holds b, so the last stage point is the fifth-order solution.
-                y_stage
+                self.stage(6, &dopri5::A[6][..6], h, t_new)
             }
             Pair::Dop853 => {
                 let stages = dop853::STAGES;
-                stages!(dop853, [1, 2, 3, 4, 5, 6, 7, 8, 9, 10], 11);
+                stages!(dop853, [1, 2, 3, 4, 5, 6, 7, 8, 9, 10]);
+                self.stage(11, &dop853::A[11][..11], h, t_new);
                 let acc = combine(&dop853::B, &self.k[..stages]);
                 let mut y_new = [0.0; N];
                 for i in 0..N {
@@ -598,7 +690,167 @@ where
                 self.nfev += stages;
                 y_new
             }
+            Pair::Rkc2 => self.chebyshev_stages(h, t_new),
         }
+    }
+
+    /// The stage count `s = 1 + ⌊√(1 + 1.54 h ρ)⌋` (at least 2) that keeps a step `h` inside
+    /// the stability region for the estimated spectral radius `ρ` (Sommeijer, Shampine &
+    /// Verwer 1997, §2).
+    fn chebyshev_stage_count(&self, h: f64) -> usize {
+        let s = 1.0 + (1.0 + rkc::STAGE_FACTOR * h * self.radius).sqrt().floor();
+        // A float-to-integer cast saturates; the step limit keeps `s` below the cap anyway.
+        (s as usize).max(2)
+    }
+
+    /// The longest RKC step whose stage count stays within `√(rtol / (10 ε))`: the round-off
+    /// of the stage recursion grows like `s²ε`, which must stay well below the tolerance (the
+    /// cap of the RKC code).
+    fn chebyshev_step_limit(&self) -> f64 {
+        let cap = (self.tol.rtol / (10.0 * f64::EPSILON))
+            .sqrt()
+            .round()
+            .max(2.0);
+        (cap * cap - 1.0) / (rkc::STAGE_FACTOR * self.radius)
+    }
+
+    /// One step of the damped second-order Runge–Kutta–Chebyshev method (Sommeijer, Shampine
+    /// & Verwer 1997, eqs. 2.1–2.6; van der Houwen & Sommeijer 1980): with the shifted
+    /// Chebyshev polynomials `T_j` of the first kind, `w₀ = 1 + ε/s²`, `w₁ = T_s′(w₀)/T_s″(w₀)`
+    /// and `b_j = T_j″(w₀)/T_j′(w₀)²` (`b₀ = b₁ = b₂`), the stages are `Y₁ = y + b₁w₁ h f(y)` and
+    /// `Y_j = (1 − μ_j − ν_j) y + μ_j Y_{j−1} + ν_j Y_{j−2} + μ̃_j h (f(Y_{j−1}) − a_{j−1} f(y))`
+    /// with `μ_j = 2 b_j w₀/b_{j−1}`, `ν_j = −b_j/b_{j−2}`, `μ̃_j = 2 b_j w₁/b_{j−1}` and
+    /// `a_j = 1 − b_j T_j(w₀)`; `Y_s` is the new point. `T_j`, `T_j′` and `T_j″` at `w₀` follow
+    /// from the three-term recurrence and the stage instants `c_j` from the same combination
+    /// of the earlier ones. `s − 1` evaluations, plus `f(t_new, y_new)` in slot 1.
+    fn chebyshev_stages(&mut self, h: f64, t_new: f64) -> [f64; N] {
+        let s = self.chebyshev_stage_count(h);
+        let sf = s as f64;
+        let w0 = 1.0 + rkc::DAMPING / (sf * sf);
+        let w0_sq_1 = w0 * w0 - 1.0;
+        let root = w0_sq_1.sqrt();
+        // arccosh(w₀) · s: T_s(w₀) = cosh(s θ), from which T_s′ and T_s″.
+        let arg = sf * (w0 + root).ln();
+        let w1 = arg.sinh() * w0_sq_1 / (arg.cosh() * sf * root - w0 * arg.sinh());
+        let (t, y0, f0) = (self.t, self.y, self.f);
+        // T_{j−2}, T_{j−1} and their first and second derivatives at w₀, from T₀ = 1, T₁ = w₀.
+        let (mut cheb, mut cheb_prev) = (w0, 1.0);
+        let (mut slope, mut slope_prev) = (1.0, 0.0);
+        let (mut curv, mut curv_prev) = (0.0, 0.0);
+        let b_first = 1.0 / (4.0 * w0 * w0);
+        let (mut b, mut b_prev) = (b_first, b_first);
+        let mu1 = w1 * b_first;
+        let mut y_prev = y0;
+        let mut y_cur = [0.0; N];
+        for i in 0..N {
+            y_cur[i] = y0[i] + h * mu1 * f0[i];
+        }
+        let (mut c, mut c_prev) = (mu1, 0.0);
+        for _ in 2..=s {
+            let cheb_next = 2.0 * w0 * cheb - cheb_prev;
+            let slope_next = 2.0 * w0 * slope - slope_prev + 2.0 * cheb;
+            let curv_next = 2.0 * w0 * curv - curv_prev + 4.0 * slope;
+            let b_next = curv_next / (slope_next * slope_next);
+            let a = 1.0 - cheb * b;
+            let mu = 2.0 * w0 * b_next / b;
+            let nu = -b_next / b_prev;
+            let mu_tilde = mu * w1 / w0;
+            let f = (self.rhs)(t + c * h, &y_cur);
+            let mut y_next = [0.0; N];
+            for i in 0..N {
+                y_next[i] = (1.0 - mu - nu) * y0[i]
+                    + mu * y_cur[i]
+                    + nu * y_prev[i]
+                    + mu_tilde * h * (f[i] - a * f0[i]);
+            }
+            let c_next = mu * c + nu * c_prev + mu_tilde * (1.0 - a);
+            (y_prev, y_cur) = (y_cur, y_next);
+            (c_prev, c) = (c, c_next);
+            (cheb_prev, cheb) = (cheb, cheb_next);
+            (slope_prev, slope) = (slope, slope_next);
+            (curv_prev, curv) = (curv, curv_next);
+            (b_prev, b) = (b, b_next);
+        }
+        self.k[1] = (self.rhs)(t_new, &y_cur);
+        self.nfev += s;
+        y_cur
+    }
+
+    /// The spectral radius of the Jacobian at the current point, by the nonlinear power
+    /// method of the RKC code (Sommeijer, Shampine & Verwer 1997, §3.2): a perturbation `d` of
+    /// fixed size is replaced by `f(t, y + d) − f(t, y)` rescaled to that size until the ratio
+    /// of the two sizes settles to 1 %. Sizes are taken in the tolerance-weighted norm
+    /// `‖x‖ = rms(x_i / (atol_i + rtol |y_i|))` (the eigenvalues are those of the Jacobian in any
+    /// norm, and the perturbation follows the state's units); the perturbation is `√ε ‖y‖` (at
+    /// least `√ε`), it starts from the last direction found (else the derivative, else the
+    /// state) and the result carries a 20 % margin. Ratios below `1/(t_bound − t)` are not
+    /// told apart, as they cannot constrain the step. Without convergence (complex dominant
+    /// eigenvalues) the largest ratio met is used. Evaluations count as the method's.
+    fn estimate_radius(&mut self) {
+        let (t, y, f) = (self.t, self.y, self.f);
+        let mut weight = [0.0; N];
+        for i in 0..N {
+            weight[i] = self.tol.atol[i] + self.tol.rtol * y[i].abs();
+        }
+        let size = f64::EPSILON.sqrt() * rms_norm(&y, &weight).max(1.0);
+        // A direction with a share of every component (signs in an irregular pattern), so that
+        // no eigenvector is missing from the start for want of round-off.
+        let spread: [f64; N] = std::array::from_fn(|i| {
+            if (i * 7 + 3) % 5 < 2 {
+                -weight[i]
+            } else {
+                weight[i]
+            }
+        });
+        let unit = |d: &[f64; N]| {
+            let norm = rms_norm(d, &weight);
+            d.map(|v| if norm > 0.0 { v / norm } else { 0.0 })
+        };
+        let mut d = if rms_norm(&self.eigen, &weight) > 0.0 {
+            unit(&self.eigen)
+        } else {
+            let (f_unit, spread_unit) = (unit(&f), unit(&spread));
+            std::array::from_fn(|i| f_unit[i] + spread_unit[i])
+        };
+        d = unit(&d).map(|v| v * size);
+        let interval = self.t_bound - t;
+        let small = if interval > 0.0 { 1.0 / interval } else { 0.0 };
+        let (mut ratio, mut largest) = (0.0_f64, 0.0_f64);
+        let mut converged = false;
+        for iteration in 0..rkc::POWER_ITERATIONS {
+            let mut probe = [0.0; N];
+            for i in 0..N {
+                probe[i] = y[i] + d[i];
+            }
+            let fp = (self.rhs)(t, &probe);
+            self.nfev += 1;
+            let mut diff = [0.0; N];
+            for i in 0..N {
+                diff[i] = fp[i] - f[i];
+            }
+            let norm = rms_norm(&diff, &weight);
+            if !norm.is_finite() {
+                break;
+            }
+            let previous = ratio;
+            ratio = norm / size;
+            largest = largest.max(ratio);
+            if iteration > 0 && (ratio - previous).abs() <= rkc::POWER_TOLERANCE * ratio.max(small)
+            {
+                converged = true;
+                break;
+            }
+            if norm > 0.0 {
+                d = diff.map(|v| v * (size / norm));
+            } else {
+                // The perturbation vanished in f: turn the direction by flipping one component.
+                let i = iteration % N;
+                d[i] = -d[i];
+            }
+        }
+        self.eigen = d;
+        self.radius = rkc::RADIUS_MARGIN * if converged { ratio } else { largest };
+        self.radius_age = 0;
     }
 
     /// Stage `s`: `k_s = f(t_stage, y + h Σ_j a_j k_j)` with the row `a` of its coupling
@@ -645,6 +897,15 @@ where
                 }
                 h.abs() * err5 * err5 / (err5 * err5 + 0.01 * err3 * err3).sqrt()
             }
+            Pair::Rkc2 => {
+                // Sommeijer, Shampine & Verwer 1997, eq. 2.7: (12 (yₙ − yₙ₊₁) + 6h (fₙ + fₙ₊₁)) / 15.
+                let mut m: f64 = 0.0;
+                for i in 0..N {
+                    let e = 0.8 * (self.y[i] - y_new[i]) + 0.4 * h * (self.k[0][i] + self.k[1][i]);
+                    m = m.max((e / scale(i)).abs());
+                }
+                m
+            }
         }
     }
 
@@ -676,7 +937,7 @@ where
             rows[0][i] = dy;
             rows[1][i] = h * self.k[0][i] - dy;
             rows[2][i] = match self.pair {
-                Pair::Dopri5 => dy - h * self.k[last][i] - rows[1][i],
+                Pair::Dopri5 | Pair::Rkc2 => dy - h * self.k[last][i] - rows[1][i],
                 Pair::Dop853 => 2.0 * dy - h * (self.k[last][i] + self.k[0][i]),
             };
         }
@@ -687,6 +948,7 @@ where
                     rows[3][i] = h * acc[i];
                 }
             }
+            Pair::Rkc2 => rows[3] = [0.0; N],
             Pair::Dop853 => {
                 for (row, d) in rows[3..].iter_mut().zip(&dop853::D) {
                     let acc = combine(d, &self.k);
@@ -724,7 +986,7 @@ where
         let pair = self.pair;
         let r = self.dense_rows();
         let inner = match pair {
-            Pair::Dopri5 => r[3][i],
+            Pair::Dopri5 | Pair::Rkc2 => r[3][i],
             Pair::Dop853 => {
                 let inner = r[5][i] + theta * r[6][i];
                 let inner = r[4][i] + theta1 * inner;
@@ -742,7 +1004,8 @@ where
 mod tests {
     use super::*;
 
-    const PAIRS: [Pair; 2] = [Pair::Dopri5, Pair::Dop853];
+    /// Every method; the accuracy tests of the two high-order pairs use the first two.
+    const PAIRS: [Pair; 3] = [Pair::Dopri5, Pair::Dop853, Pair::Rkc2];
 
     fn tol<const N: usize>(rtol: f64, atol: f64) -> Tolerances<N> {
         Tolerances {
@@ -788,7 +1051,7 @@ mod tests {
     #[test]
     fn fixed_steps_converge_at_the_order_of_each_pair() {
         // y' = y cos t, y(0) = 1: y = exp(sin t). Steps fixed by max_step (the tolerance is
-        // loose); halving the step divides the global error by 2^p, p = 5 or 8.
+        // loose); halving the step divides the global error by 2^p, p = 5, 8 or 2.
         let error = |pair: Pair, h: f64| {
             let f = |t: f64, y: &[f64; 1]| [y[0] * t.cos()];
             let mut t = tol::<1>(1.0, 1.0);
@@ -796,7 +1059,11 @@ mod tests {
             let rk = run(RungeKutta::new(pair, f, 0.0, [1.0], 4.0, t).unwrap());
             (rk.y()[0] - 4.0f64.sin().exp()).abs()
         };
-        for (pair, order, h) in [(Pair::Dopri5, 5.0, 0.1), (Pair::Dop853, 8.0, 0.4)] {
+        for (pair, order, h) in [
+            (Pair::Dopri5, 5.0, 0.1),
+            (Pair::Dop853, 8.0, 0.4),
+            (Pair::Rkc2, 2.0, 0.05),
+        ] {
             let observed = (error(pair, h) / error(pair, h / 2.0)).log2();
             assert!(
                 (observed - order).abs() < 0.6,
@@ -807,7 +1074,7 @@ mod tests {
 
     #[test]
     fn exponential_decay_matches_closed_form() {
-        for pair in PAIRS {
+        for &pair in &PAIRS[..2] {
             let f = |_t: f64, y: &[f64; 1]| [-y[0]];
             let rk = run(RungeKutta::new(pair, f, 0.0, [1.0], 5.0, tol(1e-9, 1e-12)).unwrap());
             assert!((rk.t() - 5.0).abs() < 1e-15);
@@ -823,7 +1090,7 @@ mod tests {
     #[test]
     fn harmonic_oscillator_dense_output_is_accurate() {
         // y'' = −y: dense output inside steps must match sin/cos to the tolerance level.
-        for pair in PAIRS {
+        for &pair in &PAIRS[..2] {
             let f = |_t: f64, y: &[f64; 2]| [y[1], -y[0]];
             let mut rk = RungeKutta::new(pair, f, 0.0, [0.0, 1.0], 10.0, tol(1e-8, 1e-10)).unwrap();
             let mut worst: f64 = 0.0;
@@ -863,6 +1130,175 @@ mod tests {
         let before = rk.evaluations();
         rk.dense_component(rk.t_old(), 0);
         assert_eq!(rk.evaluations(), before + 3);
+    }
+
+    /// The semi-discrete heat equation `u_t = u_xx` on (0, 1), `u = 0` at both ends, on
+    /// `M` interior points: eigenvalues `λ_k = −(4/Δx²) sin²(kπΔx/2)`, spectral radius ≈
+    /// `4/Δx²`, eigenvectors `sin(kπx_i)`.
+    fn heat<const M: usize>(_t: f64, u: &[f64; M]) -> [f64; M] {
+        let dx = 1.0 / (M as f64 + 1.0);
+        let mut du = [0.0; M];
+        for i in 0..M {
+            let left = if i == 0 { 0.0 } else { u[i - 1] };
+            let right = if i + 1 == M { 0.0 } else { u[i + 1] };
+            du[i] = (left - 2.0 * u[i] + right) / (dx * dx);
+        }
+        du
+    }
+
+    /// Mode `k` of [`heat`] on `M` points, and its exact decay rate.
+    fn heat_mode<const M: usize>(k: f64) -> ([f64; M], f64) {
+        let dx = 1.0 / (M as f64 + 1.0);
+        let shape = std::array::from_fn(|i| (k * std::f64::consts::PI * (i + 1) as f64 * dx).sin());
+        let rate = -(4.0 / (dx * dx)) * (k * std::f64::consts::PI * dx / 2.0).sin().powi(2);
+        (shape, rate)
+    }
+
+    #[test]
+    fn chebyshev_steps_follow_a_stiff_problem_stably_and_cheaply() {
+        // Three modes of the heat equation on 40 points (spectral radius ≈ 6.7e3): the fast
+        // modes die out, the slow one decays over the interval. RKC must follow the exact
+        // solution to about the tolerance with steps far beyond explicit stability limits
+        // (DOPRI5: hρ ≲ 3.3), and in far fewer evaluations than DOPRI5.
+        const M: usize = 40;
+        let modes = [(1.0, 1.0), (3.0, 0.5), (17.0, 0.25)].map(|(k, a)| (heat_mode::<M>(k), a));
+        let exact = |t: f64| -> [f64; M] {
+            std::array::from_fn(|i| {
+                modes
+                    .iter()
+                    .map(|((shape, rate), a)| a * shape[i] * (rate * t).exp())
+                    .sum()
+            })
+        };
+        let t_end = 0.3;
+        let evaluations = |pair: Pair| {
+            let mut rk =
+                RungeKutta::new(pair, heat::<M>, 0.0, exact(0.0), t_end, tol(1e-6, 1e-6)).unwrap();
+            let mut longest: f64 = 0.0;
+            while rk.step().unwrap() == StepStatus::Running {
+                longest = longest.max(rk.last_step());
+            }
+            let worst = rk
+                .y()
+                .iter()
+                .zip(exact(t_end))
+                .map(|(y, e)| (y - e).abs())
+                .fold(0.0, f64::max);
+            (rk.evaluations(), rk.steps(), longest, worst)
+        };
+        let (rkc, steps, longest, worst) = evaluations(Pair::Rkc2);
+        let (dopri, _, _, _) = evaluations(Pair::Dopri5);
+        // The slow mode is ≈ 0.05 at the end; the second-order global error stays below the
+        // local tolerance summed over the steps.
+        assert!(
+            worst < 1e-6 * steps as f64,
+            "error {worst} after {steps} steps"
+        );
+        // Once the fast modes have died out the step is limited by accuracy alone.
+        let radius = -heat_mode::<M>(M as f64).1;
+        assert!(longest * radius > 5.0 * 3.3, "h ρ = {}", longest * radius);
+        assert!(3 * rkc < dopri, "RKC {rkc} evaluations, DOPRI5 {dopri}");
+    }
+
+    #[test]
+    fn dopri5_stiffness_is_h_lambda_and_reaches_the_stability_boundary() {
+        // y' = −100 y: the estimate is exactly h·100 (up to rounding); once the solution has
+        // decayed below the tolerance the steps are held at DOPRI5's stability boundary (≈ 3.3
+        // on the negative real axis).
+        let f = |_t: f64, y: &[f64; 1]| [-100.0 * y[0]];
+        let mut rk = RungeKutta::new(Pair::Dopri5, f, 0.0, [1.0], 2.0, tol(1e-6, 1e-9)).unwrap();
+        let mut largest: f64 = 0.0;
+        while rk.step().unwrap() == StepStatus::Running {
+            let expected = 100.0 * rk.last_step();
+            assert!(
+                (rk.stiffness() / expected - 1.0).abs() < 1e-9,
+                "{} vs {expected}",
+                rk.stiffness()
+            );
+            largest = largest.max(rk.stiffness());
+        }
+        // The accepted steps straddle the boundary (|R(hλ)| grows slowly past it, so a few
+        // steps slightly beyond it pass the error test before the controller pulls back).
+        assert!((3.0..4.0).contains(&largest), "{largest}");
+        // The other methods report none.
+        let rk = run(RungeKutta::new(Pair::Dop853, f, 0.0, [1.0], 0.1, tol(1e-6, 1e-9)).unwrap());
+        assert!(rk.stiffness() == 0.0, "DOP853 reports no stiffness");
+    }
+
+    #[test]
+    fn power_method_finds_the_dominant_eigenvalue() {
+        // A diagonal system with eigenvalues −1, −10, −400, −1000: the estimate (without its
+        // margin) is the largest magnitude to the power method's 1 %.
+        let rates = [-1.0, -10.0, -400.0, -1000.0];
+        let f = move |_t: f64, y: &[f64; 4]| std::array::from_fn(|i| rates[i] * y[i]);
+        let mut rk = RungeKutta::new(
+            Pair::Rkc2,
+            f,
+            0.0,
+            [1.0, 2.0, 3.0, 4.0],
+            1.0,
+            tol(1e-6, 1e-9),
+        )
+        .unwrap();
+        rk.step().unwrap();
+        let estimate = rk.radius / rkc::RADIUS_MARGIN;
+        assert!((estimate / 1000.0 - 1.0).abs() < 0.01, "{estimate}");
+        // The heat equation from its slowest mode: the derivative is that eigenvector, but
+        // the first direction tried also has a share of every component, so the estimate
+        // reaches the fastest rate (to the 1 % of the iteration, which cannot tell the
+        // closely spaced top rates apart in a few steps).
+        const M: usize = 40;
+        let ((shape, _), (_, fast)) = (heat_mode::<M>(1.0), heat_mode::<M>(M as f64));
+        let mut rk =
+            RungeKutta::new(Pair::Rkc2, heat::<M>, 0.0, shape, 0.2, tol(1e-6, 1e-9)).unwrap();
+        rk.step().unwrap();
+        let estimate = rk.radius / rkc::RADIUS_MARGIN;
+        assert!(
+            (0.85..=1.01).contains(&(estimate / -fast)),
+            "{estimate} vs {fast}"
+        );
+    }
+
+    #[test]
+    fn chebyshev_accuracy_and_dense_output() {
+        // Exponential decay: the second-order global error is bounded by the local tolerance
+        // summed over the steps.
+        let f = |_t: f64, y: &[f64; 1]| [-y[0]];
+        let rk = run(RungeKutta::new(Pair::Rkc2, f, 0.0, [1.0], 5.0, tol(1e-7, 1e-12)).unwrap());
+        let exact = (-5.0f64).exp();
+        let relative = (rk.y()[0] / exact - 1.0).abs();
+        assert!((rk.t() - 5.0).abs() < 1e-15);
+        assert!(
+            relative < 1e-7 * rk.steps() as f64,
+            "{relative} in {} steps",
+            rk.steps()
+        );
+        // Harmonic oscillator: the cubic Hermite dense output between two step ends is no
+        // further from the exact solution than those ends are, plus a local-error allowance.
+        let f = |_t: f64, y: &[f64; 2]| [y[1], -y[0]];
+        let mut rk =
+            RungeKutta::new(Pair::Rkc2, f, 0.0, [0.0, 1.0], 10.0, tol(1e-8, 1e-10)).unwrap();
+        let error = |t: f64, y: [f64; 2]| (y[0] - t.sin()).abs().max((y[1] - t.cos()).abs());
+        loop {
+            let status = rk.step().unwrap();
+            let (t0, t1) = (rk.t_old(), rk.t());
+            let ends = error(t0, *rk.y_old()).max(error(t1, *rk.y()));
+            for (t, y) in [(t0, *rk.y_old()), (t1, *rk.y())] {
+                let d = rk.dense(t);
+                assert!((d[0] - y[0]).abs() < 1e-14 && (d[1] - y[1]).abs() < 1e-14);
+            }
+            for k in 1..4 {
+                let t = t0 + rk.last_step() * f64::from(k) / 4.0;
+                let inside = error(t, rk.dense(t));
+                assert!(
+                    inside <= ends + 1e-8,
+                    "{inside} inside, {ends} at the ends, t = {t}"
+                );
+            }
+            if status == StepStatus::Finished {
+                break;
+            }
+        }
     }
 
     #[test]

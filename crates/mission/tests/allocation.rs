@@ -94,18 +94,20 @@ fn equations_and_steps_do_not_allocate() {
                     sum += dp.dense(0.5 * (dp.t_old() + dp.t()))[2];
                 }
             }
-            // The parachute descent for 30 s.
+            // The parachute descent for 30 s, with both of its methods.
             if let Some(p) = parachute_start {
                 let PhaseKind::Parachute(canopy) = p.phase else {
                     return;
                 };
                 let canopy: CanopyState = canopy;
                 let f = |t: f64, u: &[f64; 13]| eq.parachute(t, u, &canopy).u_dot;
-                let mut dp = RungeKutta::new(Pair::Dopri5, f, p.t, p.state, p.t + 30.0, tol)
-                    .expect("descent starts");
-                while let StepStatus::Running = dp.step().expect("descent steps") {
-                    steps += 1;
-                    sum += dp.dense(0.5 * (dp.t_old() + dp.t()))[2];
+                for pair in [Pair::Dopri5, Pair::Rkc2] {
+                    let mut dp = RungeKutta::new(pair, f, p.t, p.state, p.t + 30.0, tol)
+                        .expect("descent starts");
+                    while let StepStatus::Running = dp.step().expect("descent steps") {
+                        steps += 1;
+                        sum += dp.dense(0.5 * (dp.t_old() + dp.t()))[2] + dp.stiffness();
+                    }
                 }
             }
         });

@@ -46,8 +46,13 @@ pub fn run(args: &SimulateArgs) -> Result<()> {
         let stats = run.flight.stats;
         writeln!(
             out,
-            "Integration: {} steps ({} rejected), {} right-hand-side evaluations, {} phases",
-            stats.steps, stats.rejected_steps, stats.evaluations, stats.phases
+            "Integration: {} steps ({} rejected, {} Runge–Kutta–Chebyshev), {} right-hand-side \
+             evaluations, {} phases",
+            stats.steps,
+            stats.rejected_steps,
+            stats.chebyshev_steps,
+            stats.evaluations,
+            stats.phases
         )?;
     }
     if let Some(dir) = &args.out {
