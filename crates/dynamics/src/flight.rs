@@ -817,36 +817,28 @@ impl Run {
         }
     }
 
-    /// Lower bounds of `v_z` and `z` over the last step: the end values less a generous
-    /// allowance (`h · max|derivative|` at the ends) for the dense output between them.
-    fn step_lows<F>(integ: &RungeKutta<13, F>) -> (f64, f64) {
+    /// Bounds `[low, high]` of `v_z` and of `z` over the last step: the end values widened by a
+    /// generous allowance (`h · max|derivative|` at the ends) for the dense output between
+    /// them.
+    fn step_bounds<F>(integ: &RungeKutta<13, F>) -> ([f64; 2], [f64; 2]) {
         let (y0, y1) = (integ.y_old(), integ.y());
         let (f0, f1) = (integ.f_old(), integ.f());
         let h = integ.last_step();
-        let vz_low = y0[5].min(y1[5]) - h * f0[5].abs().max(f1[5].abs());
-        let z_low = y0[2].min(y1[2]) - h * y0[5].abs().max(y1[5].abs());
-        (vz_low, z_low)
-    }
-
-    /// Upper bounds of `v_z` and `z` over the last step, the counterparts of
-    /// [`Run::step_lows`].
-    fn step_tops<F>(integ: &RungeKutta<13, F>) -> (f64, f64) {
-        let (y0, y1) = (integ.y_old(), integ.y());
-        let (f0, f1) = (integ.f_old(), integ.f());
-        let h = integ.last_step();
-        let vz_high = y0[5].max(y1[5]) + h * f0[5].abs().max(f1[5].abs());
-        let z_high = y0[2].max(y1[2]) + h * y0[5].abs().max(y1[5].abs());
-        (vz_high, z_high)
+        let bounds = |a: f64, b: f64, slope: f64| [a.min(b) - h * slope, a.max(b) + h * slope];
+        (
+            bounds(y0[5], y1[5], f0[5].abs().max(f1[5].abs())),
+            bounds(y0[2], y1[2], y0[5].abs().max(y1[5].abs())),
+        )
     }
 
     /// Whether a silent (noise-free) parachute certainly cannot fire inside the last step, so
     /// that it has no sampling instants there: both triggers need `v_z < 0`, a height trigger
-    /// also `z` below its threshold ([`Run::step_lows`]).
+    /// also `z` below its threshold ([`Run::step_bounds`]).
     fn cannot_fire<F>(&self, p: usize, integ: &RungeKutta<13, F>) -> bool {
         if !self.streams[p].is_silent() {
             return false;
         }
-        let (vz_low, z_low) = Self::step_lows(integ);
+        let ([vz_low, _], [z_low, _]) = Self::step_bounds(integ);
         if vz_low > 0.0 {
             return true;
         }
@@ -864,7 +856,7 @@ impl Run {
     /// group at the step end is left to the next step. They are merged in time order (ties in
     /// parachute order) and grouped by key, which is the order and grouping of RocketPy's
     /// sorted, merged node list. Before any instant is evaluated each parachute's trigger is
-    /// bounded over the step: it cannot fire if `v_z > 0` throughout ([`Run::step_lows`]), and a
+    /// bounded over the step: it cannot fire if `v_z > 0` throughout ([`Run::step_bounds`]), and a
     /// noisy height trigger cannot fire if even the highest possible pressure, `P(z_low)` plus
     /// the noise stream's bound on its coming values ([`NoiseStream::upper_bound`]), reads a
     /// barometric height at least the band ([`FlightSettings::trigger_band`]) above its
@@ -935,8 +927,7 @@ impl Run {
         // at the step end is evaluated with the next step.
         let first_key = node_key(first);
         let skip_first = phase.clear && (first - phase.t).abs() < 1e-9;
-        let (vz_low, z_low) = Self::step_lows(integ);
-        let (vz_high, z_high) = Self::step_tops(integ);
+        let ([vz_low, vz_high], [z_low, z_high]) = Self::step_bounds(integ);
         let descending = vz_low <= 0.0 || vz_low.is_nan();
         let atm = eq.atmosphere();
         // A noisy height trigger cannot fire where even the highest possible noisy pressure

@@ -338,6 +338,12 @@ fn combine<const N: usize>(weights: &[f64], k: &[[f64; N]]) -> [f64; N] {
 }
 
 impl<const N: usize, F> RungeKutta<N, F> {
+    /// The tolerance scale `atol_i + rtol |y_i|` of each component of `y`.
+    #[inline]
+    fn tolerance_scale(&self, y: &[f64; N]) -> [f64; N] {
+        std::array::from_fn(|i| self.tol.atol[i] + self.tol.rtol * y[i].abs())
+    }
+
     /// Sets a stop time: steps end exactly there (without restarting) so that no step
     /// straddles a kink of the right-hand side (e.g. a thrust-curve knot). A stop at or
     /// before the current time, closer to it than the smallest step, or past the bound, has no
@@ -431,10 +437,9 @@ impl<const N: usize, F> RungeKutta<N, F> {
         }
         let h = self.h_last;
         let acc = combine(&dopri5::A[5][..5], &self.k[..5]);
-        let mut weight = [0.0; N];
+        let weight = self.tolerance_scale(&self.y);
         let (mut dk, mut dy) = ([0.0; N], [0.0; N]);
         for i in 0..N {
-            weight[i] = self.tol.atol[i] + self.tol.rtol * self.y[i].abs();
             dk[i] = self.k[6][i] - self.k[5][i];
             dy[i] = self.y[i] - (self.y_old[i] + h * acc[i]);
         }
@@ -516,10 +521,7 @@ where
         if interval <= 0.0 {
             return 0.0;
         }
-        let mut scale = [0.0; N];
-        for i in 0..N {
-            scale[i] = self.tol.atol[i] + self.y[i].abs() * self.tol.rtol;
-        }
+        let scale = self.tolerance_scale(&self.y);
         let d0 = rms_norm(&self.y, &scale);
         let d1 = rms_norm(&self.f, &scale);
         let negligible_rate = d1 * interval < 1e-5;
@@ -788,10 +790,7 @@ where
     /// eigenvalues) the largest ratio met is used. Evaluations count as the method's.
     fn estimate_radius(&mut self) {
         let (t, y, f) = (self.t, self.y, self.f);
-        let mut weight = [0.0; N];
-        for i in 0..N {
-            weight[i] = self.tol.atol[i] + self.tol.rtol * y[i].abs();
-        }
+        let weight = self.tolerance_scale(&y);
         let size = f64::EPSILON.sqrt() * rms_norm(&y, &weight).max(1.0);
         // A direction with a share of every component (signs in an irregular pattern), so that
         // no eigenvector is missing from the start for want of round-off.
