@@ -784,8 +784,9 @@ where
     /// of the two sizes settles to 1 %. Sizes are taken in the tolerance-weighted norm
     /// `‖x‖ = rms(x_i / (atol_i + rtol |y_i|))` (the eigenvalues are those of the Jacobian in any
     /// norm, and the perturbation follows the state's units); the perturbation is `√ε ‖y‖` (at
-    /// least `√ε`), it starts from the last direction found (else the derivative, else the
-    /// state) and the result carries a 20 % margin. Ratios below `1/(t_bound − t)` are not
+    /// least `√ε`), it starts from the last direction found (at the first estimate, the
+    /// derivative plus a direction with a share of every component) and the result carries a
+    /// 20 % margin. Ratios below `1/(t_bound − t)` are not
     /// told apart, as they cannot constrain the step. Without convergence (complex dominant
     /// eigenvalues) the largest ratio met is used. Evaluations count as the method's.
     fn estimate_radius(&mut self) {
