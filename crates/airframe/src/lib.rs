@@ -67,6 +67,7 @@
 //! # }
 //! ```
 
+pub mod air_brakes;
 mod error;
 mod mass;
 mod motor;
@@ -74,6 +75,7 @@ mod recovery;
 mod rocket;
 pub mod surfaces;
 
+pub use air_brakes::{AirBrakes, AirBrakesDrag, AirBrakesSpec};
 pub use error::AirframeError;
 pub use mass::MassProperties;
 pub use motor::MotorProperties;
