@@ -36,3 +36,10 @@ fn every_state_name_reads_its_component() {
         assert!(expression.evaluate(&inputs), "{name}");
     }
 }
+
+proptest! {
+    #[test]
+    fn arbitrary_scripts_never_panic_the_compiler(text in "(fn|let|const|\\{|\\}|\\(|\\)|;|=|x|1\\.0|\\[|\\]|#|\"|loop|while|import|controller_function|,| |\n|\\.|::){0,40}") {
+        let _ = karman_script::ControllerScript::compile(std::path::Path::new("p.rhai"), &text);
+    }
+}
