@@ -37,11 +37,7 @@ pub fn build_motor(mission: &Mission) -> Result<Motor, MissionError> {
 }
 
 fn model_err(mission: &Mission, section: &'static str) -> impl Fn(PropulsionError) -> MissionError {
-    move |e: PropulsionError| MissionError::Model {
-        file: mission.path.clone(),
-        section: section.to_owned(),
-        source: Box::new(e),
-    }
+    move |e: PropulsionError| mission.model_error(section, e)
 }
 
 /// Builds the motor of `mission` from an already read thrust `source` (the Monte Carlo reads
@@ -116,11 +112,10 @@ pub fn build_motor_with(mission: &Mission, source: &ThrustSource) -> Result<Moto
 /// The error for a motor kind the format names but karman does not model yet (`load`
 /// rejects it already; a hand-made [`Mission`] gets the same answer here).
 fn unsupported(mission: &Mission) -> MissionError {
-    MissionError::Model {
-        file: mission.path.clone(),
-        section: "motor.kind".to_owned(),
-        source: format!("a {} motor is not supported yet", mission.spec.motor.kind).into(),
-    }
+    mission.model_error(
+        "motor.kind",
+        format!("a {} motor is not supported yet", mission.spec.motor.kind),
+    )
 }
 
 /// The thrust source named by `motor.thrust`: a constant, inline points or a file read now.
