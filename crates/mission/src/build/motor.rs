@@ -48,7 +48,6 @@ fn model_err(mission: &Mission, section: &'static str) -> impl Fn(PropulsionErro
 /// As [`build_motor`], except for reading the thrust data.
 pub fn build_motor_with(mission: &Mission, source: &ThrustSource) -> Result<Motor, MissionError> {
     let spec = &mission.spec.motor;
-    let model_err = |section: &'static str| model_err(mission, section);
     let options = ThrustOptions {
         burn_time: spec.burn_time.map(|b| BurnTime::Interval(b.start, b.end)),
         reshape: spec
@@ -56,7 +55,18 @@ pub fn build_motor_with(mission: &Mission, source: &ThrustSource) -> Result<Moto
             .map(|[time, impulse]| (BurnTime::End(time), impulse)),
         interpolation: spec.interpolation.into(),
     };
-    let thrust = ThrustCurve::new(source, &options).map_err(model_err("motor"))?;
+    let thrust = ThrustCurve::new(source, &options).map_err(|e| {
+        let key = match &e {
+            PropulsionError::InvalidBurnTime { .. } if spec.reshape_thrust_curve.is_some() => {
+                "motor.reshape_thrust_curve"
+            }
+            PropulsionError::InvalidBurnTime { .. } | PropulsionError::MissingBurnTime => {
+                "motor.burn_time"
+            }
+            _ => "motor.thrust",
+        };
+        mission.model_error(key, e)
+    })?;
     let chamber_position = spec.chamber_position.unwrap_or(0.0);
     let structure = MotorStructure {
         dry_mass: spec.dry_mass,
@@ -106,7 +116,13 @@ pub fn build_motor_with(mission: &Mission, source: &ThrustSource) -> Result<Moto
             },
         ),
     };
-    motor.map_err(model_err("motor"))
+    motor.map_err(|e| match &e {
+        // A parameter named as in RocketPy is the mission key of the same name.
+        PropulsionError::InvalidParameter { name, .. } => {
+            mission.model_error(&format!("motor.{name}"), e)
+        }
+        _ => mission.model_error("motor", e),
+    })
 }
 
 /// The error for a motor kind the format names but karman does not model yet (`load`

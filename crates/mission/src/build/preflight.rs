@@ -273,20 +273,17 @@ fn check_rail(
     let axis = [cos_i * sin_h, cos_i * cos_h, sin_i];
     let area = rocket.reference_area();
     let burn_out = rocket.burn_out();
-    let steps = ((burn_out * RAIL_STEPS_PER_SECOND).ceil() as usize)
-        .clamp(RAIL_MIN_STEPS, RAIL_MAX_STEPS);
+    let steps =
+        ((burn_out * RAIL_STEPS_PER_SECOND).ceil() as usize).clamp(RAIL_MIN_STEPS, RAIL_MAX_STEPS);
     let dt = burn_out / steps as f64;
     let acceleration = |t: f64, s: f64, v: f64| {
         let z = env.elevation() + s * sin_i;
         let wind = env.wind(z);
-        let free = [
-            wind[0] - v * axis[0],
-            wind[1] - v * axis[1],
-            -v * axis[2],
-        ];
+        let free = [wind[0] - v * axis[0], wind[1] - v * axis[1], -v * axis[2]];
         let speed = (free[0] * free[0] + free[1] * free[1] + free[2] * free[2]).sqrt();
         let mach = speed / env.speed_of_sound(z);
-        let drag = 0.5 * env.density(z) * speed * speed * area * rocket.drag_coefficient(true, mach);
+        let drag =
+            0.5 * env.density(z) * speed * speed * area * rocket.drag_coefficient(true, mach);
         let thrust = rocket.net_thrust(t, env.pressure(z));
         let a = (thrust - drag) / rocket.total_mass(t) - sin_i * env.gravity(z);
         (a.max(0.0), thrust)
