@@ -115,7 +115,7 @@ pub enum ProblemKind {
     #[error("invalid controller script")]
     Script {
         /// The script's file, line, column and message.
-        source: karman_script::ScriptError,
+        source: Box<karman_script::ScriptError>,
     },
     /// A `[dispersion.vary]` entry does not fit its target.
     #[error("{reason}")]

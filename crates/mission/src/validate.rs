@@ -575,19 +575,24 @@ fn air_brakes(c: &mut Checker<'_, '_>, spec: &MissionSpec) {
                     c.report(
                         &format!("rocket.air_brakes.constants.{name}"),
                         ProblemKind::Script {
-                            source: karman_script::ScriptError {
+                            source: Box::new(karman_script::ScriptError {
                                 file: file.clone(),
                                 position: None,
                                 message: format!(
                                     "the script declares no top-level `const {name} = <number>;`"
                                 ),
-                            },
+                            }),
                         },
                     );
                 }
             }
         }
-        Err(source) => c.report(&key("controller"), ProblemKind::Script { source }),
+        Err(source) => c.report(
+            &key("controller"),
+            ProblemKind::Script {
+                source: Box::new(source),
+            },
+        ),
     }
 }
 
