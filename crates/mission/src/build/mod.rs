@@ -3,4 +3,5 @@ pub mod drag;
 pub mod environment;
 pub mod flight;
 pub mod motor;
+pub mod preflight;
 pub mod rocket;
