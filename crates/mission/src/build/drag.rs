@@ -59,14 +59,13 @@ pub fn launch_air(elevation: f64, c: &PhysicalConstants) -> FlowReference {
 }
 
 fn geometry_error(mission: &Mission, reason: String) -> MissionError {
-    MissionError::Model {
-        file: mission.path.clone(),
-        section: SECTION.to_owned(),
-        source: Box::new(airframe::AirframeError::Geometry {
+    mission.model_error(
+        SECTION,
+        airframe::AirframeError::Geometry {
             component: SECTION.to_owned(),
             reason,
-        }),
-    }
+        },
+    )
 }
 
 /// The drag geometry of `mission`'s rocket, whose surfaces are `surfaces` (as built for the
@@ -97,10 +96,8 @@ pub fn drag_geometry(
         schema::RocketCoordinateSystem::NoseToTail => -1.0,
     };
     let constants = PhysicalConstants::SI;
-    let model = |name: &str, e: airframe::AirframeError| MissionError::Model {
-        file: mission.path.clone(),
-        section: format!("rocket.surfaces.{name}"),
-        source: Box::new(e),
+    let model = |name: &str, e: airframe::AirframeError| {
+        mission.model_error(&format!("rocket.surfaces.{name}"), e)
     };
 
     let mut nose = None;
@@ -284,10 +281,7 @@ pub fn estimate(
 ) -> Result<DragEstimate, MissionError> {
     let geometry = drag_geometry(mission, surfaces, nozzle_radius)?;
     let constants = PhysicalConstants::SI;
-    let model = DragModel::new(&geometry, &constants).map_err(|e| MissionError::Model {
-        file: mission.path.clone(),
-        section: SECTION.to_owned(),
-        source: Box::new(e),
-    })?;
+    let model =
+        DragModel::new(&geometry, &constants).map_err(|e| mission.model_error(SECTION, e))?;
     Ok(model.estimate(&launch_air(mission.spec.environment.elevation, &constants)))
 }
