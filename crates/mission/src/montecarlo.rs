@@ -32,9 +32,9 @@ use crate::build::flight::flight_settings;
 use crate::build::motor::{build_motor_with, thrust_source};
 use crate::build::rocket::build_rocket;
 use crate::paths::{self, DerivedKnob, Input};
-use crate::schema::{Curve, Distribution, MissionSpec};
+use crate::schema::{AirBrakesCurve, Curve, Distribution, MissionSpec};
 use crate::{Mission, MissionError};
-use karman_airframe::Rocket;
+use karman_airframe::{AirBrakesDrag, Rocket};
 use karman_atmos::Environment;
 use karman_dispersion::sampling::{flight_seed, fnv1a64};
 use karman_dispersion::{
@@ -98,6 +98,8 @@ enum Apply {
     Number { path: String, nominal: f64 },
     /// A curve at this path, with its nominal points.
     Curve { path: String, points: Vec<[f64; 2]> },
+    /// The air brakes' drag table, with its nominal rows (the Cd column varies).
+    Rows { rows: Vec<[f64; 3]> },
     /// A derived knob, with its nominal value.
     Knob { knob: DerivedKnob, nominal: f64 },
 }
@@ -256,6 +258,16 @@ impl MonteCarlo {
                     };
                     (Target::Curve, apply)
                 }
+                Input::Table(curve) => {
+                    let rows = match curve
+                        .to_drag(&mission.dir)
+                        .map_err(|e| invalid(format!("`{path}`: {e}")))?
+                    {
+                        AirBrakesDrag::Table(rows) => rows,
+                        AirBrakesDrag::Constant(cd) => vec![[0.0, 0.0, cd]],
+                    };
+                    (Target::Curve, Apply::Rows { rows })
+                }
                 Input::Knob(knob) => {
                     let nominal = match knob {
                         DerivedKnob::TotalImpulse => motor.total_impulse(),
@@ -333,6 +345,12 @@ impl MonteCarlo {
                         .ok_or_else(|| format!("`{path}` is not a curve"))?;
                     *slot = Curve::Points(scaled);
                 }
+                Apply::Rows { rows } => {
+                    let scaled = rows.iter().map(|&[l, m, cd]| [l, m, combine(cd)]).collect();
+                    if let Some(ab) = spec.rocket.air_brakes.as_mut() {
+                        ab.drag_coefficient_curve = AirBrakesCurve::Rows(scaled);
+                    }
+                }
                 Apply::Knob { knob, nominal } => match knob {
                     DerivedKnob::TotalImpulse => reshape[1] = Some(combine(*nominal)),
                     DerivedKnob::BurnTime => reshape[0] = Some(combine(*nominal)),
@@ -402,6 +420,22 @@ fn inline_rocket_curves(mission: &mut Mission) -> Result<(), MissionError> {
     let dir = mission.dir.clone();
     let path = mission.path.clone();
     let rocket = &mut mission.spec.rocket;
+    if let Some(ab) = rocket.air_brakes.as_mut()
+        && matches!(ab.drag_coefficient_curve, AirBrakesCurve::File(_))
+    {
+        let rows = match ab.drag_coefficient_curve.to_drag(&dir) {
+            Ok(AirBrakesDrag::Table(rows)) => rows,
+            Ok(AirBrakesDrag::Constant(cd)) => vec![[0.0, 0.0, cd]],
+            Err(source) => {
+                return Err(MissionError::Curve {
+                    file: path.clone(),
+                    key: paths::AIR_BRAKES_CURVE.into(),
+                    source,
+                });
+            }
+        };
+        ab.drag_coefficient_curve = AirBrakesCurve::Rows(rows);
+    }
     let mut curves: Vec<(String, &mut Curve)> = vec![
         ("rocket.power_off_drag".into(), &mut rocket.power_off_drag),
         ("rocket.power_on_drag".into(), &mut rocket.power_on_drag),

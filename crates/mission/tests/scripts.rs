@@ -142,3 +142,21 @@ fn air_brake_inputs_are_checked() {
         assert!(keys.iter().any(|k| k == key), "{key} not in {keys:?}");
     }
 }
+
+#[test]
+fn the_air_brake_table_takes_factor_and_offset_only() {
+    use karman_mission::schema::Distribution;
+    let m = load(&mission("200", BRAKES), &[]).unwrap_or_else(|e| panic!("{e}"));
+    let input = paths::resolve(&m.spec, paths::AIR_BRAKES_CURVE).expect("resolves");
+    assert!(matches!(input, paths::Input::Table(_)));
+    let factor = Distribution::Factor(Box::new(Distribution::Normal([1.0, 0.05])));
+    assert!(paths::check_distribution(&input, &factor).is_ok());
+    assert!(paths::check_distribution(&input, &Distribution::Std(0.1)).is_err());
+    let constant = BRAKES.replace(
+        "drag_coefficient_curve = [[0.0, 0.1, 0.0], [1.0, 0.1, 0.8], [0.0, 0.9, 0.0], [1.0, 0.9, 1.1]]",
+        "drag_coefficient_curve = 0.9",
+    );
+    let m = load(&mission("200", &constant), &[]).unwrap_or_else(|e| panic!("{e}"));
+    let input = paths::resolve(&m.spec, paths::AIR_BRAKES_CURVE).expect("resolves");
+    assert!(matches!(input, paths::Input::Number { .. }));
+}
