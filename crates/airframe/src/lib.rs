@@ -70,6 +70,7 @@
 pub mod drag;
 mod error;
 mod mass;
+mod model;
 mod motor;
 mod recovery;
 mod rocket;
