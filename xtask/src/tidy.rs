@@ -16,6 +16,7 @@ pub const ALLOWED: &[(&str, &[&str])] = &[
     ("karman-airframe", &["karman-math", "karman-model"]),
     ("karman-dynamics", &["karman-math", "karman-model"]),
     ("karman-dispersion", &["karman-math"]),
+    ("karman-script", &[]),
     (
         "karman-mission",
         &[
@@ -26,6 +27,7 @@ pub const ALLOWED: &[(&str, &[&str])] = &[
             "karman-airframe",
             "karman-dynamics",
             "karman-dispersion",
+            "karman-script",
         ],
     ),
     ("karman", &["karman-mission"]),
