@@ -77,7 +77,7 @@ mod recovery;
 mod rocket;
 pub mod surfaces;
 
-pub use air_brakes::{AirBrakes, AirBrakesDrag, AirBrakesSpec};
+pub use air_brakes::{AIR_BRAKES_CONTROL, AirBrakes, AirBrakesDrag, AirBrakesSpec};
 pub use drag::{
     BodySegment, DragComponents, DragEstimate, DragGeometry, DragModel, FinCrossSection,
     FinSetDrag, FlowReference, LaunchLug, Profile, RailButtonDrag,

@@ -14,7 +14,8 @@ use crate::state::{
     quaternion_rate, rotation, scale, sub, tensor,
 };
 use karman_model::{
-    Air, AtmosphereModel, BodyFlow, Configuration, Cursor, LocalFlow, SurfaceModel, VehicleModel,
+    Air, AtmosphereModel, BodyFlow, Configuration, Cursor, LocalFlow, MAX_CONTROLS, SurfaceModel,
+    VehicleModel,
 };
 
 /// State derivative and the loads behind it (body axes, about the CDM).
@@ -218,7 +219,12 @@ impl<'a, A: AtmosphereModel, V: VehicleModel> Equations<'a, A, V> {
             mach,
             density: air.density,
         };
-        let r3 = veh.axial_load(&flow, configuration, &mut cursors.mach);
+        // Control inputs (air brakes) do not act on the rail (RocketPy's rail equations).
+        let on_rail = Configuration {
+            controls: [0.0; MAX_CONTROLS],
+            ..*configuration
+        };
+        let r3 = veh.axial_load(&flow, &on_rail, &mut cursors.mach);
         let net_thrust = veh.thrust(t, air.pressure, &mut cursors.time[0]);
         let mass = veh.mass(t, &mut cursors.time).total_mass;
         let a3 = (r3 + net_thrust) / mass - (e0 * e0 - e1 * e1 - e2 * e2 + e3 * e3) * air.gravity;

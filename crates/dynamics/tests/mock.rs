@@ -180,6 +180,7 @@ impl VehicleModel for MockRocket {
             nozzle_to_cdm: 1.0,
             nozzle_gyration: [0.25, 0.25, 0.0005],
             static_margins: [0.0; 2],
+            initial_controls: [0.0; karman_model::MAX_CONTROLS],
         }
     }
     fn surfaces(&self) -> &[MockSurface] {

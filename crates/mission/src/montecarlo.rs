@@ -28,9 +28,10 @@
 //! apart, about 1 m per km of drift).
 
 use crate::build::environment::build_environment;
-use crate::build::flight::flight_settings;
+use crate::build::flight::{flight_settings, fly};
 use crate::build::motor::{build_motor_with, thrust_source};
 use crate::build::rocket::build_rocket;
+use crate::build::scripts::{ControllerEnvironment, compile_controller};
 use crate::paths::{self, DerivedKnob, Input};
 use crate::schema::{AirBrakesCurve, Curve, Distribution, MissionSpec};
 use crate::{Mission, MissionError};
@@ -44,6 +45,8 @@ use karman_dispersion::{
 use karman_dynamics::{Air, AtmosphereModel, Summary};
 use karman_math::Cursor;
 use karman_propulsion::{Motor, ThrustSource};
+use karman_script::ControllerScript;
+use std::sync::Arc;
 
 /// The outputs of every sample: the scalar keys of the flight summary (mission-format.md
 /// "The summary").
@@ -137,7 +140,9 @@ pub struct MonteCarlo {
     applies: Vec<Apply>,
     reach: Reach,
     /// The nominal environment, shared by the samples when no stored environment input varies.
-    environment: Option<Environment>,
+    environment: Option<Arc<Environment>>,
+    /// The air-brake controller script, compiled once.
+    controller: Option<ControllerScript>,
     /// The nominal thrust data, read once.
     thrust: ThrustSource,
     /// The nominal motor and rocket, shared by the samples that do not vary them.
@@ -309,7 +314,8 @@ impl MonteCarlo {
             study,
             applies,
             reach,
-            environment: (!reach.environment).then_some(environment),
+            environment: (!reach.environment).then(|| Arc::new(environment)),
+            controller: compile_controller(mission)?,
             thrust,
             nominal_reshape: [motor.burn_out(), motor.total_impulse()],
             motor,
@@ -377,13 +383,9 @@ impl MonteCarlo {
             spec,
             keys: self.mission.keys.clone(),
         };
-        let built;
         let environment = match &self.environment {
-            Some(environment) => environment,
-            None => {
-                built = build_environment(&mission).map_err(|e| chain(&e))?;
-                &built
-            }
+            Some(environment) => Arc::clone(environment),
+            None => Arc::new(build_environment(&mission).map_err(|e| chain(&e))?),
         };
         let (sample_motor, sample_rocket);
         let rocket = if self.reach.rocket {
@@ -407,9 +409,22 @@ impl MonteCarlo {
         };
         let noise_seed = flight_seed(self.study.seed, index);
         let settings = flight_settings(&mission, noise_seed);
-        let atmosphere = WindAdjusted::new(environment, factor, offset_deg);
-        let flight =
-            karman_dynamics::simulate(&atmosphere, rocket, &settings).map_err(|e| chain(&e))?;
+        let atmosphere = WindAdjusted::new(&environment, factor, offset_deg);
+        let (flight, _) = fly(
+            &mission,
+            &atmosphere,
+            rocket,
+            &settings,
+            self.controller.as_ref(),
+            || {
+                Arc::new(ControllerEnvironment::new(
+                    Arc::clone(&environment),
+                    factor,
+                    offset_deg,
+                ))
+            },
+        )
+        .map_err(|e| chain(&e))?;
         Ok(outcome(&flight.summary(&atmosphere, rocket)))
     }
 }

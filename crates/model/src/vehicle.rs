@@ -1,8 +1,11 @@
 //! The vehicle the engine flies (physics.md §5–§7, §9.4).
 
+use std::fmt;
+use std::sync::Arc;
+
 use karman_math::Cursor;
 
-use crate::{Configuration, SurfaceModel};
+use crate::{Configuration, MAX_CONTROLS, SurfaceModel};
 
 /// Rail-button geometry in the rocket's user coordinates (physics.md §2.5, §8.1).
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -15,13 +18,39 @@ pub struct RailButtonGeometry {
     pub angular_position_rad: f64,
 }
 
-/// What fires a parachute (physics.md §9.4).
-#[derive(Debug, Clone, Copy, PartialEq)]
+/// A parachute trigger decided from the whole sampled state, as RocketPy's callable trigger
+/// `trigger(p, h, y)` (physics.md §17): sampled at every instant while the parachute is
+/// pending, ascent included.
+pub trait TriggerCondition: fmt::Debug + Send + Sync {
+    /// Whether the parachute fires at sampling instant `t` (s), with the noisy pressure
+    /// signal `pressure` (Pa), the barometric height above ground derived from it `height`
+    /// (m, physics.md §4.4) and the 13-component `state` there.
+    fn fires(&self, t: f64, pressure: f64, height: f64, state: &[f64; 13]) -> bool;
+}
+
+/// What fires a parachute (physics.md §9.4, §17).
+#[derive(Debug, Clone)]
 pub enum TriggerKind {
     /// Vertical velocity negative.
     Apogee,
     /// Descending and barometric height above ground below this value, m.
     HeightAboveGround(f64),
+    /// A condition evaluated at every sampling instant, ascent included.
+    Custom(Arc<dyn TriggerCondition>),
+}
+
+impl PartialEq for TriggerKind {
+    /// Built-in triggers compare by value, custom conditions by identity.
+    fn eq(&self, other: &Self) -> bool {
+        match (self, other) {
+            (TriggerKind::Apogee, TriggerKind::Apogee) => true,
+            (TriggerKind::HeightAboveGround(a), TriggerKind::HeightAboveGround(b)) => {
+                a.to_bits() == b.to_bits()
+            }
+            (TriggerKind::Custom(a), TriggerKind::Custom(b)) => Arc::ptr_eq(a, b),
+            _ => false,
+        }
+    }
 }
 
 /// A parachute as the flight engine needs it (resolved defaults, physics.md §1, §8.4, §9.4).
@@ -74,6 +103,8 @@ pub struct VehicleSetup {
     pub nozzle_gyration: [f64; 3],
     /// Static margin (CP at Mach 0) at `t = 0` and at burn-out, calibers (post-processing).
     pub static_margins: [f64; 2],
+    /// The control inputs at launch (e.g. an air brake's initial deployment level).
+    pub initial_controls: [f64; MAX_CONTROLS],
 }
 
 /// Every time-dependent mass quantity at one instant ([`VehicleModel::mass`]).

@@ -305,6 +305,25 @@ pub struct ControllerRecord {
     pub levels: Vec<LevelRecord>,
 }
 
+impl ControllerRecord {
+    /// The record as JSON: `{"calls": [[time, level], ...], "observed_variables": [...]}`,
+    /// one `calls` row per call with the level it left, the observed variables in record
+    /// order (what `simulate --json` and `controller.json` hold).
+    #[must_use]
+    pub fn to_json(&self) -> serde_json::Value {
+        let number =
+            |v: f64| serde_json::Number::from_f64(v).map_or(serde_json::Value::Null, Into::into);
+        serde_json::json!({
+            "calls": self
+                .levels
+                .iter()
+                .map(|r| serde_json::Value::Array(vec![number(r.time), number(r.level)]))
+                .collect::<Vec<_>>(),
+            "observed_variables": self.observed_variables,
+        })
+    }
+}
+
 /// A flight's controller: the compiled script bound to its air brakes and environment.
 pub struct Controller {
     engine: Engine,

@@ -2,9 +2,11 @@
 //!
 //! Warnings about the mission (physical sanity, odd data files) go to stderr. Without `--json`
 //! a readable summary (RocketPy's `flight.info()`); with `--json` the summary object of the
-//! mission contract with the warnings under `warnings`. `--out DIR` writes `summary.json`,
-//! `trajectory.csv` (every post-processed series, units in the header), `flight.kml` (the path
-//! in latitude/longitude/altitude for Google Earth) and SVG plots.
+//! mission contract with the warnings under `warnings` (and, with air brakes, the controller's
+//! record under `controller`). `--out DIR` writes `summary.json`, `trajectory.csv` (every
+//! post-processed series, units in the header), `controller.json` (with air brakes: the level
+//! after each controller call and the observed variables), `flight.kml` (the path in
+//! latitude/longitude/altitude for Google Earth) and SVG plots.
 
 use std::fmt::Write as _;
 use std::io::Write;
@@ -44,6 +46,9 @@ pub fn run(args: &SimulateArgs) -> Result<()> {
     if args.json {
         let mut json = serde_json::to_value(&summary)?;
         json["warnings"] = serde_json::to_value(&run.warnings)?;
+        if let Some(record) = &run.controller {
+            json["controller"] = record.to_json();
+        }
         writeln!(out, "{}", serde_json::to_string_pretty(&json)?)?;
     } else {
         writeln!(out, "{summary}")?;
@@ -97,6 +102,12 @@ fn write_outputs(run: &FlightRun, name: &str, seed: u64, dir: &Path) -> Result<(
         dir.join("summary.json"),
         serde_json::to_string_pretty(&json)?,
     )?;
+    if let Some(record) = &run.controller {
+        std::fs::write(
+            dir.join("controller.json"),
+            serde_json::to_string_pretty(&record.to_json())?,
+        )?;
+    }
     let samples = run.samples();
     std::fs::write(dir.join("trajectory.csv"), trajectory_csv(run, &samples))?;
     std::fs::write(dir.join("flight.kml"), kml(run, name, &samples))?;
