@@ -6,6 +6,7 @@ mod common;
 mod drag_estimate;
 mod fuzz;
 mod load;
+mod openrocket;
 mod overrides;
 mod paths;
 mod validate_environment;
