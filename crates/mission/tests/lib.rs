@@ -7,6 +7,7 @@ mod drag_estimate;
 mod fuzz;
 mod load;
 mod openrocket;
+mod ork;
 mod overrides;
 mod paths;
 mod validate_environment;

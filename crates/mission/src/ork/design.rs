@@ -170,7 +170,10 @@ impl Component {
             element: element.to_owned(),
             problem: p.to_owned(),
         };
-        let text = self.fields.get(element).ok_or_else(|| problem("is missing"))?;
+        let text = self
+            .fields
+            .get(element)
+            .ok_or_else(|| problem("is missing"))?;
         let v = number(text).ok_or_else(|| problem(&format!("{text:?} is not a number")))?;
         if v.is_finite() {
             Ok(v)
@@ -399,7 +402,10 @@ fn component(
                 line_material = e.attribute("density").and_then(|d| d.parse::<f64>().ok());
             }
             "axialoffset" => {
-                axial = Some((e.attribute("method").unwrap_or("top").to_owned(), text.clone()));
+                axial = Some((
+                    e.attribute("method").unwrap_or("top").to_owned(),
+                    text.clone(),
+                ));
             }
             "finpoints" => {
                 for p in e.children().filter(|p| p.has_tag_name("point")) {
@@ -473,7 +479,8 @@ fn component(
     let (method, value) = match &axial {
         Some((m, v)) => (
             m.as_str(),
-            number(v).ok_or_else(|| c.value_error("axialoffset", &format!("{v:?} is not a number")))?,
+            number(v)
+                .ok_or_else(|| c.value_error("axialoffset", &format!("{v:?} is not a number")))?,
         ),
         None => ("after", 0.0),
     };
@@ -505,7 +512,8 @@ fn component(
 }
 
 fn is_auto(c: &Component, element: &str) -> bool {
-    c.text(element).is_some_and(|t| t.trim_start().starts_with("auto"))
+    c.text(element)
+        .is_some_and(|t| t.trim_start().starts_with("auto"))
 }
 
 /// OpenRocket's automatic radii of the body: a tube or a transition end marked `auto` takes

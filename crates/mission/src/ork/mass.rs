@@ -45,7 +45,11 @@ impl MassProps {
     }
 
     fn scaled(self, mass: f64) -> MassProps {
-        let k = if self.mass > 0.0 { mass / self.mass } else { 0.0 };
+        let k = if self.mass > 0.0 {
+            mass / self.mass
+        } else {
+            0.0
+        };
         MassProps {
             mass,
             cg: self.cg,
@@ -162,7 +166,12 @@ fn fins(c: &Component, body_radius: f64) -> Result<MassProps, OrkError> {
 
 /// Mass properties of `c` alone (not its children); `parent_inner` is the inner radius of
 /// the tube it sits in, `mount_outer` the outer radius of a sibling inner tube.
-fn own(c: &Component, parent_inner: f64, body_radius: f64, mount_outer: f64) -> Result<MassProps, OrkError> {
+fn own(
+    c: &Component,
+    parent_inner: f64,
+    body_radius: f64,
+    mount_outer: f64,
+) -> Result<MassProps, OrkError> {
     let x = c.x;
     Ok(match c.kind {
         Kind::Stage => MassProps::default(),
@@ -191,7 +200,8 @@ fn own(c: &Component, parent_inner: f64, body_radius: f64, mount_outer: f64) -> 
             let shape = c.text("shape").unwrap_or("conical");
             let parameter = c.num_or("shapeparameter", 1.0)?;
             // A filled (solid) part stores "filled" as its thickness.
-            let wall = if c.text("thickness") == Some("filled") || c.text("filled") == Some("true") {
+            let wall = if c.text("thickness") == Some("filled") || c.text("filled") == Some("true")
+            {
                 f64::INFINITY
             } else {
                 c.dim("thickness")?
@@ -236,7 +246,8 @@ fn own(c: &Component, parent_inner: f64, body_radius: f64, mount_outer: f64) -> 
             let base = c.num_or("baseheight", 0.0)?;
             let flange = c.num_or("flangeheight", 0.0)?;
             let n = c.num_or("instancecount", 1.0)?;
-            let v = PI * 0.25 * (od * od * (base + flange) + id * id * (h - base - flange).max(0.0));
+            let v =
+                PI * 0.25 * (od * od * (base + flange) + id * id * (h - base - flange).max(0.0));
             let m = n * v * c.density()?;
             let separation = c.num_or("instanceseparation", 0.0)?;
             MassProps {
@@ -253,9 +264,7 @@ fn own(c: &Component, parent_inner: f64, body_radius: f64, mount_outer: f64) -> 
                     let lines = c.num_or("linecount", 0.0)? * c.num_or("linelength", 0.0)?;
                     c.density()? * PI * 0.25 * d * d + lines * c.line_material.unwrap_or(0.0)
                 }
-                Kind::Streamer => {
-                    c.density()? * c.num("striplength")? * c.num("stripwidth")?
-                }
+                Kind::Streamer => c.density()? * c.num("striplength")? * c.num("stripwidth")?,
                 Kind::ShockCord => c.density()? * c.dim("cordlength")?,
                 _ => c.dim("mass")?,
             };
@@ -288,12 +297,20 @@ pub fn subtree(c: &Component, parent_inner: f64, body_radius: f64) -> Result<Mas
         .map_or(Ok(0.0), |k| k.num_or("outerradius", 0.0))?;
     let mut p = own(c, parent_inner, body_radius, mount_outer)?;
     let subs_override = flag(c, "overridesubcomponentsmass");
-    if let Some(m) = c.fields.get("overridemass").and_then(|t| super::design::number(t)) {
+    if let Some(m) = c
+        .fields
+        .get("overridemass")
+        .and_then(|t| super::design::number(t))
+    {
         if !subs_override {
             p = p.scaled(m);
         }
     }
-    if let Some(cg) = c.fields.get("overridecg").and_then(|t| super::design::number(t)) {
+    if let Some(cg) = c
+        .fields
+        .get("overridecg")
+        .and_then(|t| super::design::number(t))
+    {
         if !flag(c, "overridesubcomponentscg") {
             p.cg = c.x + cg;
         }
@@ -321,12 +338,20 @@ pub fn subtree(c: &Component, parent_inner: f64, body_radius: f64) -> Result<Mas
         p = p.add(subtree(k, inner, radius)?);
     }
     if subs_override {
-        if let Some(m) = c.fields.get("overridemass").and_then(|t| super::design::number(t)) {
+        if let Some(m) = c
+            .fields
+            .get("overridemass")
+            .and_then(|t| super::design::number(t))
+        {
             p = p.scaled(m);
         }
     }
     if flag(c, "overridesubcomponentscg") {
-        if let Some(cg) = c.fields.get("overridecg").and_then(|t| super::design::number(t)) {
+        if let Some(cg) = c
+            .fields
+            .get("overridecg")
+            .and_then(|t| super::design::number(t))
+        {
             p.cg = c.x + cg;
         }
     }

@@ -38,7 +38,13 @@ fn quoted(s: &str) -> String {
 fn key(name: &str, used: &mut BTreeSet<String>) -> String {
     let mut k: String = name
         .chars()
-        .map(|c| if c.is_ascii_alphanumeric() { c.to_ascii_lowercase() } else { '_' })
+        .map(|c| {
+            if c.is_ascii_alphanumeric() {
+                c.to_ascii_lowercase()
+            } else {
+                '_'
+            }
+        })
         .collect();
     k = k.trim_matches('_').to_owned();
     while k.contains("__") {
@@ -99,7 +105,10 @@ fn same_designation(a: &str, b: &str) -> bool {
             .collect()
     };
     let (a, b) = (norm(a), norm(b));
-    a == b || (a.len() < b.len() && b.starts_with(&a) && !b[a.len()..].starts_with(|c: char| c.is_ascii_alphabetic()))
+    a == b
+        || (a.len() < b.len()
+            && b.starts_with(&a)
+            && !b[a.len()..].starts_with(|c: char| c.is_ascii_alphabetic()))
 }
 
 fn find_motor(
@@ -108,7 +117,9 @@ fn find_motor(
     options: &ImportOptions,
 ) -> Result<(PathBuf, EngHeader), OrkError> {
     let mut places: Vec<PathBuf> = options.motors.clone();
-    let design_dir = file.parent().map_or_else(|| PathBuf::from("."), Path::to_path_buf);
+    let design_dir = file
+        .parent()
+        .map_or_else(|| PathBuf::from("."), Path::to_path_buf);
     places.push(design_dir);
     let mut candidates = Vec::new();
     for p in &places {
@@ -118,7 +129,9 @@ fn find_motor(
                 .unwrap_or_default();
             entries.sort();
             candidates.extend(entries.into_iter().filter(|e| {
-                e.extension().and_then(|x| x.to_str()).is_some_and(|x| x.eq_ignore_ascii_case("eng"))
+                e.extension()
+                    .and_then(|x| x.to_str())
+                    .is_some_and(|x| x.eq_ignore_ascii_case("eng"))
             }));
         } else {
             candidates.push(p.clone());
@@ -220,7 +233,9 @@ pub(super) fn mission(
     let Some(nose) = body.first().filter(|c| c.kind == Kind::NoseCone) else {
         return Err(OrkError::Unsupported {
             file: file.to_owned(),
-            component: body.first().map_or_else(|| stage.name.clone(), |c| c.name.clone()),
+            component: body
+                .first()
+                .map_or_else(|| stage.name.clone(), |c| c.name.clone()),
             what: "a body that does not start with a nose cone".to_owned(),
         });
     };
@@ -272,7 +287,11 @@ pub(super) fn mission(
     if mounts.len() > 1 {
         return Err(OrkError::Unsupported {
             file: file.to_owned(),
-            component: mounts.iter().map(|m| m.name.clone()).collect::<Vec<_>>().join(", "),
+            component: mounts
+                .iter()
+                .map(|m| m.name.clone())
+                .collect::<Vec<_>>()
+                .join(", "),
             what: "several motors in one flight".to_owned(),
         });
     }
@@ -285,16 +304,37 @@ pub(super) fn mission(
     };
     let motor = &mount.motors[&sim.config];
     let (eng_path, eng) = find_motor(file, motor, options)?;
-    let motor_length = if motor.length.is_finite() { motor.length } else { eng.length };
-    let motor_diameter = if motor.diameter.is_finite() { motor.diameter } else { eng.diameter };
+    let motor_length = if motor.length.is_finite() {
+        motor.length
+    } else {
+        eng.length
+    };
+    let motor_diameter = if motor.diameter.is_finite() {
+        motor.diameter
+    } else {
+        eng.diameter
+    };
     let nozzle_at = mount.x + mount.length + mount.overhang;
     let dry = (eng.total - eng.propellant).max(0.0);
 
     let mut t = String::new();
     let w = &mut t;
-    let _ = writeln!(w, "# {} — imported from {} by `karman import`.", design.name, file.file_name().map_or_else(String::new, |f| f.to_string_lossy().into_owned()));
-    let _ = writeln!(w, "# Simulation {:?}: motor {} {}; OpenRocket's masses, overrides and launch", sim.name, motor.manufacturer, motor.designation);
-    let _ = writeln!(w, "# conditions; drag estimated from the geometry. Rocket coordinates: nose tip at 0,");
+    let _ = writeln!(
+        w,
+        "# {} — imported from {} by `karman import`.",
+        design.name,
+        file.file_name()
+            .map_or_else(String::new, |f| f.to_string_lossy().into_owned())
+    );
+    let _ = writeln!(
+        w,
+        "# Simulation {:?}: motor {} {}; OpenRocket's masses, overrides and launch",
+        sim.name, motor.manufacturer, motor.designation
+    );
+    let _ = writeln!(
+        w,
+        "# conditions; drag estimated from the geometry. Rocket coordinates: nose tip at 0,"
+    );
     let _ = writeln!(w, "# positions grow toward the tail (m).");
     let _ = writeln!(w, "name = {}", quoted(&design.name));
     let _ = writeln!(w);
@@ -302,31 +342,106 @@ pub(super) fn mission(
     let lat = condition(sim, "launchlatitude", 0.0);
     let lon = condition(sim, "launchlongitude", 0.0);
     let alt = condition(sim, "launchaltitude", 0.0);
-    let _ = writeln!(w, "[environment]\nlatitude = {}\nlongitude = {}\nelevation = {}\n", n(lat), n(lon), n(alt));
+    let _ = writeln!(
+        w,
+        "[environment]\nlatitude = {}\nlongitude = {}\nelevation = {}\n",
+        n(lat),
+        n(lon),
+        n(alt)
+    );
     let speed = condition(sim, "windaverage", 0.0);
     let from = condition(sim, "winddirection", 0.0);
     let (u, v) = (-speed * from.sin(), -speed * from.cos());
-    let _ = writeln!(w, "# OpenRocket's average wind, {speed} m/s from {:.1}° (its gusts are not modelled).", from.to_degrees());
-    let _ = writeln!(w, "[environment.atmosphere]\nmodel = \"custom\"\nwind_u = {}\nwind_v = {}\n", n(u), n(v));
+    let _ = writeln!(
+        w,
+        "# OpenRocket's average wind, {speed} m/s from {:.1}° (its gusts are not modelled).",
+        from.to_degrees()
+    );
+    let _ = writeln!(
+        w,
+        "[environment.atmosphere]\nmodel = \"custom\"\nwind_u = {}\nwind_v = {}\n",
+        n(u),
+        n(v)
+    );
 
-    let _ = writeln!(w, "# {} {} from {}: RASP masses {} kg propellant, {} kg total; the propellant is", motor.manufacturer, motor.designation, eng_path.display(), eng.propellant, eng.total);
-    let _ = writeln!(w, "# a cylinder filling the motor case, and leaves in proportion to the impulse.");
-    let _ = writeln!(w, "[motor]\nkind = \"generic\"\nthrust = {}", quoted(&relative(&eng_path, options.output_dir.as_deref())));
-    let _ = writeln!(w, "dry_mass = {}\ncenter_of_dry_mass_position = {}", n(dry), n(0.5 * motor_length));
-    let _ = writeln!(w, "nozzle_radius = {}\npropellant_initial_mass = {}", n(0.25 * motor_diameter), n(eng.propellant));
-    let _ = writeln!(w, "chamber_radius = {}\nchamber_height = {}\nchamber_position = {}", n(0.5 * motor_diameter), n(motor_length), n(0.5 * motor_length));
+    let _ = writeln!(
+        w,
+        "# {} {} from {}: RASP masses {} kg propellant, {} kg total; the propellant is",
+        motor.manufacturer,
+        motor.designation,
+        eng_path.display(),
+        eng.propellant,
+        eng.total
+    );
+    let _ = writeln!(
+        w,
+        "# a cylinder filling the motor case, and leaves in proportion to the impulse."
+    );
+    let _ = writeln!(
+        w,
+        "[motor]\nkind = \"generic\"\nthrust = {}",
+        quoted(&relative(&eng_path, options.output_dir.as_deref()))
+    );
+    let _ = writeln!(
+        w,
+        "dry_mass = {}\ncenter_of_dry_mass_position = {}",
+        n(dry),
+        n(0.5 * motor_length)
+    );
+    let _ = writeln!(
+        w,
+        "nozzle_radius = {}\npropellant_initial_mass = {}",
+        n(0.25 * motor_diameter),
+        n(eng.propellant)
+    );
+    let _ = writeln!(
+        w,
+        "chamber_radius = {}\nchamber_height = {}\nchamber_position = {}",
+        n(0.5 * motor_diameter),
+        n(motor_length),
+        n(0.5 * motor_length)
+    );
     let _ = writeln!(w, "coordinate_system = \"nozzle_to_combustion_chamber\"\n");
 
-    let _ = writeln!(w, "# Mass properties without motor, summed over the components (with OpenRocket's overrides).");
-    let _ = writeln!(w, "[rocket]\nradius = {}\nmass = {}", n(radius), n(props.mass));
-    let _ = writeln!(w, "inertia = [{}, {}, {}]", n(props.i_long), n(props.i_long), n(props.i_rot));
-    let _ = writeln!(w, "center_of_mass_without_motor = {}\ncoordinate_system = \"nose_to_tail\"", n(props.cg));
-    let _ = writeln!(w, "power_off_drag = \"estimate\"\npower_on_drag = \"estimate\"");
-    let _ = writeln!(w, "motor_position = {}                # nozzle exit: the mount's aft end plus overhang\n", n(nozzle_at));
+    let _ = writeln!(
+        w,
+        "# Mass properties without motor, summed over the components (with OpenRocket's overrides)."
+    );
+    let _ = writeln!(
+        w,
+        "[rocket]\nradius = {}\nmass = {}",
+        n(radius),
+        n(props.mass)
+    );
+    let _ = writeln!(
+        w,
+        "inertia = [{}, {}, {}]",
+        n(props.i_long),
+        n(props.i_long),
+        n(props.i_rot)
+    );
+    let _ = writeln!(
+        w,
+        "center_of_mass_without_motor = {}\ncoordinate_system = \"nose_to_tail\"",
+        n(props.cg)
+    );
+    let _ = writeln!(
+        w,
+        "power_off_drag = \"estimate\"\npower_on_drag = \"estimate\""
+    );
+    let _ = writeln!(
+        w,
+        "motor_position = {}                # nozzle exit: the mount's aft end plus overhang\n",
+        n(nozzle_at)
+    );
 
     // Drag-estimate geometry.
     let finishes: Vec<&str> = body.iter().filter_map(|b| b.text("finish")).collect();
-    let finish = finishes.iter().copied().max_by_key(|f| finishes.iter().filter(|g| *g == f).count()).unwrap_or("normal");
+    let finish = finishes
+        .iter()
+        .copied()
+        .max_by_key(|f| finishes.iter().filter(|g| *g == f).count())
+        .unwrap_or("normal");
     let mut used = BTreeSet::new();
     let mut surfaces = String::new();
     let mut fins = String::new();
@@ -334,17 +449,28 @@ pub(super) fn mission(
     let mut buttons = None;
     let mut overrides = String::new();
     let nose_key = key(&nose.name, &mut used);
-    if let Some(cd) = nose.fields.get("overridecd").and_then(|t| super::design::number(t)) {
+    if let Some(cd) = nose
+        .fields
+        .get("overridecd")
+        .and_then(|t| super::design::number(t))
+    {
         let _ = writeln!(overrides, "{nose_key} = {}", n(cd));
     }
-    let _ = write!(surfaces, "[rocket.surfaces.{nose_key}]\ntype = \"nose\"\nlength = {}\n", n(nose.length));
+    let _ = write!(
+        surfaces,
+        "[rocket.surfaces.{nose_key}]\ntype = \"nose\"\nlength = {}\n",
+        n(nose.length)
+    );
     let shape = nose.text("shape").unwrap_or("conical");
     let parameter = nose.num_or("shapeparameter", 1.0)?;
     let kind = match shape {
         "conical" => "conical".to_owned(),
         "ogive" => {
             if parameter < 0.999 {
-                warnings.push(format!("`{}`: a secant ogive (parameter {parameter}) is flown as a tangent ogive", nose.name));
+                warnings.push(format!(
+                    "`{}`: a secant ogive (parameter {parameter}) is flown as a tangent ogive",
+                    nose.name
+                ));
             }
             "tangent".to_owned()
         }
@@ -352,12 +478,19 @@ pub(super) fn mission(
         "power" => "powerseries".to_owned(),
         "parabolic" => {
             if parameter < 0.999 {
-                warnings.push(format!("`{}`: a {parameter} parabolic series is flown as a full parabola", nose.name));
+                warnings.push(format!(
+                    "`{}`: a {parameter} parabolic series is flown as a full parabola",
+                    nose.name
+                ));
             }
             "parabolic".to_owned()
         }
         "haack" => {
-            if parameter > 1.0 / 6.0 { "lvhaack".to_owned() } else { "von karman".to_owned() }
+            if parameter > 1.0 / 6.0 {
+                "lvhaack".to_owned()
+            } else {
+                "von karman".to_owned()
+            }
         }
         other => return Err(nose.value_error("shape", &format!("unknown shape {other:?}"))),
     };
@@ -365,17 +498,36 @@ pub(super) fn mission(
     if kind == "powerseries" {
         let _ = writeln!(surfaces, "power = {}", n(parameter));
     }
-    let _ = write!(surfaces, "position = 0.0\nbase_radius = {}\n\n", n(nose.dim("aftradius")?));
+    let _ = write!(
+        surfaces,
+        "position = 0.0\nbase_radius = {}\n\n",
+        n(nose.dim("aftradius")?)
+    );
     for b in &body[1..] {
         if b.kind == Kind::Transition {
             if b.text("shape") != Some("conical") {
-                warnings.push(format!("`{}`: a {} transition is flown (normal force, CP and drag) as a conical one", b.name, b.text("shape").unwrap_or("?")));
+                warnings.push(format!(
+                    "`{}`: a {} transition is flown (normal force, CP and drag) as a conical one",
+                    b.name,
+                    b.text("shape").unwrap_or("?")
+                ));
             }
             let tail_key = key(&b.name, &mut used);
-            if let Some(cd) = b.fields.get("overridecd").and_then(|t| super::design::number(t)) {
+            if let Some(cd) = b
+                .fields
+                .get("overridecd")
+                .and_then(|t| super::design::number(t))
+            {
                 let _ = writeln!(overrides, "{tail_key} = {}", n(cd));
             }
-            let _ = write!(surfaces, "[rocket.surfaces.{tail_key}]\ntype = \"tail\"\ntop_radius = {}\nbottom_radius = {}\nlength = {}\nposition = {}\n\n", n(b.dim("foreradius")?), n(b.dim("aftradius")?), n(b.length), n(b.x));
+            let _ = write!(
+                surfaces,
+                "[rocket.surfaces.{tail_key}]\ntype = \"tail\"\ntop_radius = {}\nbottom_radius = {}\nlength = {}\nposition = {}\n\n",
+                n(b.dim("foreradius")?),
+                n(b.dim("aftradius")?),
+                n(b.length),
+                n(b.x)
+            );
         }
     }
     for parent in &body {
@@ -386,21 +538,51 @@ pub(super) fn mission(
                     let name = key(&c.name, &mut used);
                     let count = c.num_or("fincount", 1.0)?;
                     let cant = c.num_or("cant", 0.0)?;
-                    let common = format!("n = {}\nposition = {}\ncant_angle = {}\nradius = {}\n", count as u32, n(c.x), n(cant), n(tube_radius));
+                    let common = format!(
+                        "n = {}\nposition = {}\ncant_angle = {}\nradius = {}\n",
+                        count as u32,
+                        n(c.x),
+                        n(cant),
+                        n(tube_radius)
+                    );
                     match c.kind {
                         Kind::TrapezoidFins => {
-                            let _ = write!(surfaces, "[rocket.surfaces.{name}]\ntype = \"trapezoidal_fins\"\nroot_chord = {}\ntip_chord = {}\nspan = {}\nsweep_length = {}\n{common}\n", n(c.dim("rootchord")?), n(c.dim("tipchord")?), n(c.dim("height")?), n(c.num("sweeplength")?));
+                            let _ = write!(
+                                surfaces,
+                                "[rocket.surfaces.{name}]\ntype = \"trapezoidal_fins\"\nroot_chord = {}\ntip_chord = {}\nspan = {}\nsweep_length = {}\n{common}\n",
+                                n(c.dim("rootchord")?),
+                                n(c.dim("tipchord")?),
+                                n(c.dim("height")?),
+                                n(c.num("sweeplength")?)
+                            );
                         }
                         Kind::EllipticalFins => {
-                            let _ = write!(surfaces, "[rocket.surfaces.{name}]\ntype = \"elliptical_fins\"\nroot_chord = {}\nspan = {}\n{common}\n", n(c.dim("rootchord")?), n(c.dim("height")?));
+                            let _ = write!(
+                                surfaces,
+                                "[rocket.surfaces.{name}]\ntype = \"elliptical_fins\"\nroot_chord = {}\nspan = {}\n{common}\n",
+                                n(c.dim("rootchord")?),
+                                n(c.dim("height")?)
+                            );
                         }
                         _ => {
-                            let points: Vec<String> = c.points.iter().map(|p| format!("[{}, {}]", n(p[0]), n(p[1]))).collect();
-                            let _ = write!(surfaces, "[rocket.surfaces.{name}]\ntype = \"free_form_fins\"\nshape_points = [{}]\n{common}\n", points.join(", "));
+                            let points: Vec<String> = c
+                                .points
+                                .iter()
+                                .map(|p| format!("[{}, {}]", n(p[0]), n(p[1])))
+                                .collect();
+                            let _ = write!(
+                                surfaces,
+                                "[rocket.surfaces.{name}]\ntype = \"free_form_fins\"\nshape_points = [{}]\n{common}\n",
+                                points.join(", ")
+                            );
                         }
                     }
                     let section = c.text("crosssection").unwrap_or("square");
-                    let _ = write!(fins, "[rocket.drag_estimate.fins.{name}]\nthickness = {}\ncross_section = \"{section}\"\n", n(c.dim("thickness")?));
+                    let _ = write!(
+                        fins,
+                        "[rocket.drag_estimate.fins.{name}]\nthickness = {}\ncross_section = \"{section}\"\n",
+                        n(c.dim("thickness")?)
+                    );
                     if let Some(f) = c.text("finish") {
                         if f != finish {
                             let _ = writeln!(fins, "finish = \"{f}\"");
@@ -410,34 +592,73 @@ pub(super) fn mission(
                 }
                 Kind::LaunchLug => {
                     let r = c.dim("radius")?;
-                    let _ = write!(lugs, "[rocket.drag_estimate.launch_lugs.{}]\nouter_radius = {}\ninner_radius = {}\nlength = {}\ncount = {}\n\n", key(&c.name, &mut used), n(r), n((r - c.dim("thickness")?).max(0.0)), n(c.length), c.num_or("instancecount", 1.0)? as u32);
+                    let _ = write!(
+                        lugs,
+                        "[rocket.drag_estimate.launch_lugs.{}]\nouter_radius = {}\ninner_radius = {}\nlength = {}\ncount = {}\n\n",
+                        key(&c.name, &mut used),
+                        n(r),
+                        n((r - c.dim("thickness")?).max(0.0)),
+                        n(c.length),
+                        c.num_or("instancecount", 1.0)? as u32
+                    );
                 }
                 Kind::RailButton => {
                     if buttons.is_some() {
-                        warnings.push(format!("`{}`: only the first rail-button set is modelled", c.name));
+                        warnings.push(format!(
+                            "`{}`: only the first rail-button set is modelled",
+                            c.name
+                        ));
                         continue;
                     }
                     let od = c.dim("outerdiameter")?;
                     let h = c.dim("height")?;
-                    let inner = (h - c.num_or("baseheight", 0.0)? - c.num_or("flangeheight", 0.0)?).max(0.0);
+                    let inner =
+                        (h - c.num_or("baseheight", 0.0)? - c.num_or("flangeheight", 0.0)?)
+                            .max(0.0);
                     let separation = c.num_or("instanceseparation", 0.0)?;
                     let upper = c.x + 0.5 * od;
-                    buttons = Some((upper, upper + separation, od, c.dim("innerdiameter")?, h, inner));
+                    buttons = Some((
+                        upper,
+                        upper + separation,
+                        od,
+                        c.dim("innerdiameter")?,
+                        h,
+                        inner,
+                    ));
                 }
                 _ => {}
             }
         }
     }
-    let _ = writeln!(w, "[rocket.drag_estimate]\nbody_length = {}\nfinish = \"{finish}\"\n", n(body_length));
+    let _ = writeln!(
+        w,
+        "[rocket.drag_estimate]\nbody_length = {}\nfinish = \"{finish}\"\n",
+        n(body_length)
+    );
     if !overrides.is_empty() {
-        let _ = writeln!(w, "# OpenRocket's drag-coefficient overrides (on the reference area).");
+        let _ = writeln!(
+            w,
+            "# OpenRocket's drag-coefficient overrides (on the reference area)."
+        );
         let _ = writeln!(w, "[rocket.drag_estimate.overrides]\n{overrides}");
     }
     w.push_str(&fins);
     w.push_str(&lugs);
     if let Some((upper, lower, od, id, h, inner)) = buttons {
-        let _ = writeln!(w, "[rocket.drag_estimate.rail_buttons]\nouter_diameter = {}\ninner_diameter = {}\nheight = {}\ninner_height = {}\n", n(od), n(id), n(h), n(inner));
-        let _ = writeln!(w, "[rocket.rail_buttons]\nupper_position = {}\nlower_position = {}\n", n(upper), n(lower.max(upper + 1e-3)));
+        let _ = writeln!(
+            w,
+            "[rocket.drag_estimate.rail_buttons]\nouter_diameter = {}\ninner_diameter = {}\nheight = {}\ninner_height = {}\n",
+            n(od),
+            n(id),
+            n(h),
+            n(inner)
+        );
+        let _ = writeln!(
+            w,
+            "[rocket.rail_buttons]\nupper_position = {}\nlower_position = {}\n",
+            n(upper),
+            n(lower.max(upper + 1e-3))
+        );
     }
     w.push_str(&surfaces);
 
@@ -463,11 +684,20 @@ pub(super) fn mission(
                         "\"apogee\"".to_owned()
                     }
                     other => {
-                        warnings.push(format!("`{}`: deployment event {other:?} flown as apogee", c.name));
+                        warnings.push(format!(
+                            "`{}`: deployment event {other:?} flown as apogee",
+                            c.name
+                        ));
                         "\"apogee\"".to_owned()
                     }
                 };
-                let _ = write!(w, "[rocket.parachutes.{}]\ncd_s = {}              # Cd {cd} × π ({d} m)² / 4\ntrigger = {trigger}\nlag = {}\nsampling_rate = 100\n\n", key(&c.name, &mut used), n(cd * area), n(delay));
+                let _ = write!(
+                    w,
+                    "[rocket.parachutes.{}]\ncd_s = {}              # Cd {cd} × π ({d} m)² / 4\ntrigger = {trigger}\nlag = {}\nsampling_rate = 100\n\n",
+                    key(&c.name, &mut used),
+                    n(cd * area),
+                    n(delay)
+                );
             }
             Kind::Streamer => warnings.push(format!("`{}`: streamers are not modelled", c.name)),
             _ => {}
@@ -478,14 +708,25 @@ pub(super) fn mission(
     let angle = condition(sim, "launchrodangle", 0.0);
     let heading = condition(sim, "launchroddirection", 90.0);
     let max_time = condition(sim, "maxtime", 600.0);
-    let _ = writeln!(w, "[flight]\nrail_length = {}\ninclination = {}\nheading = {}\nmax_time = {}", n(rod), n(90.0 - angle), n(heading), n(max_time));
+    let _ = writeln!(
+        w,
+        "[flight]\nrail_length = {}\ninclination = {}\nheading = {}\nmax_time = {}",
+        n(rod),
+        n(90.0 - angle),
+        n(heading),
+        n(max_time)
+    );
     let _ = writeln!(w, "terminate_on_apogee = true");
     if !warnings.is_empty() {
         let mut head = String::new();
         for warning in &warnings {
             let _ = writeln!(head, "# note: {warning}");
         }
-        t = t.replacen(&format!("name = {}", quoted(&design.name)), &format!("{head}name = {}", quoted(&design.name)), 1);
+        t = t.replacen(
+            &format!("name = {}", quoted(&design.name)),
+            &format!("{head}name = {}", quoted(&design.name)),
+            1,
+        );
     }
     Ok(Imported {
         mission: t,

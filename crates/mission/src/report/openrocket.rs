@@ -129,7 +129,9 @@ pub fn compare_design(design_dir: &Path) -> Result<Vec<OpenRocketComparison>, St
             column(ascent, "thrust_n"),
         );
         let stability = column(ascent, "stability_cal");
-        let rod = branch["launch"]["first_finite_cp"]["time_s"].as_f64().unwrap_or(0.0);
+        let rod = branch["launch"]["first_finite_cp"]["time_s"]
+            .as_f64()
+            .unwrap_or(0.0);
         let (mut sub, mut sup) = (0.0_f64, f64::NAN);
         for i in 0..t.len() {
             if t[i] < rod || !cd[i].is_finite() {
