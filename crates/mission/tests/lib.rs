@@ -10,6 +10,7 @@ mod openrocket;
 mod ork;
 mod overrides;
 mod paths;
+mod scripts;
 mod validate_environment;
 mod validate_flight;
 mod validate_motor;
