@@ -7,7 +7,7 @@
 //!   surfaces, and trapezoidal, elliptical and free-form fin sets onto fin surfaces;
 //! - every component's mass, centre of mass and inertia, with OpenRocket's mass and CG
 //!   overrides, onto the rocket's mass, centre of mass and inertia without motor
-//!   ([`mass`]);
+//!   (module `mass`);
 //! - parachutes onto `[rocket.parachutes]`, the chosen simulation's launch conditions onto
 //!   `[environment]` and `[flight]`, its motor onto a generic `[motor]` whose thrust curve is
 //!   found by designation among the given files and folders;
