@@ -4,7 +4,7 @@
 use karman_math::{Cursor, Extrapolation, Interpolation, QuadratureOptions, Table1, quadrature};
 use proptest::prelude::*;
 
-const PIECEWISE: [Interpolation; 4] = [
+const PIECEWISE: [Interpolation; 3] = [
     Interpolation::Linear,
     Interpolation::Spline,
     Interpolation::Akima,
