@@ -67,6 +67,7 @@
 //! # }
 //! ```
 
+pub mod drag;
 mod error;
 mod mass;
 mod motor;
@@ -74,6 +75,10 @@ mod recovery;
 mod rocket;
 pub mod surfaces;
 
+pub use drag::{
+    BodySegment, DragComponents, DragEstimate, DragGeometry, DragModel, FinCrossSection,
+    FinSetDrag, FlowReference, LaunchLug, Profile, RailButtonDrag,
+};
 pub use error::AirframeError;
 pub use mass::MassProperties;
 pub use motor::MotorProperties;

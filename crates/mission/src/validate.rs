@@ -6,7 +6,9 @@
 use crate::document::Document;
 use crate::error::{Problem, ProblemKind};
 use crate::paths;
-use crate::schema::{AtmosphereModel, Curve, MissionSpec, MotorKind, SurfaceSpec, Sweep, Trigger};
+use crate::schema::{
+    AtmosphereModel, Curve, MissionSpec, MotorKind, RocketSpec, SurfaceSpec, Sweep, Trigger,
+};
 use karman_math::{Extrapolation, Interpolation};
 use std::path::Path;
 
@@ -401,23 +403,77 @@ fn motor(c: &mut Checker<'_, '_>, spec: &MissionSpec) {
     }
 }
 
+/// `[rocket.drag_estimate]`: dimensions in range, every fin table names a fin set.
+fn drag_estimate(c: &mut Checker<'_, '_>, d: &crate::schema::DragEstimateSpec, r: &RocketSpec) {
+    const K: &str = "rocket.drag_estimate";
+    if let Some(l) = d.body_length {
+        c.positive(&format!("{K}.body_length"), l);
+    }
+    if let Some(k) = d.roughness {
+        c.non_negative(&format!("{K}.roughness"), k);
+    }
+    for (name, f) in &d.fins {
+        let key = format!("{K}.fins.{name}");
+        let is_fin_set = r.surfaces.get(name).is_some_and(|s| {
+            matches!(
+                s,
+                SurfaceSpec::TrapezoidalFins(_)
+                    | SurfaceSpec::EllipticalFins(_)
+                    | SurfaceSpec::FreeFormFins(_)
+            )
+        });
+        if !is_fin_set {
+            c.report(
+                &key,
+                ProblemKind::UnknownPath {
+                    path: key.clone(),
+                    reason: format!("there is no fin set [rocket.surfaces.{name}]"),
+                },
+            );
+        }
+        c.non_negative(&format!("{key}.thickness"), f.thickness);
+    }
+    for (name, l) in &d.launch_lugs {
+        let key = format!("{K}.launch_lugs.{name}");
+        c.positive(&format!("{key}.outer_radius"), l.outer_radius);
+        c.non_negative(&format!("{key}.inner_radius"), l.inner_radius);
+        c.non_negative(&format!("{key}.length"), l.length);
+    }
+    if let Some(b) = &d.rail_buttons {
+        let key = format!("{K}.rail_buttons");
+        c.required(
+            &key,
+            "rocket.rail_buttons",
+            r.rail_buttons.as_ref(),
+            "the rail-button drag",
+        );
+        for (k, v) in [
+            ("outer_diameter", b.outer_diameter),
+            ("inner_diameter", b.inner_diameter),
+            ("height", b.height),
+            ("inner_height", b.inner_height),
+        ] {
+            c.non_negative(&format!("{key}.{k}"), v);
+        }
+    }
+}
+
 fn rocket(c: &mut Checker<'_, '_>, spec: &MissionSpec) {
     let r = &spec.rocket;
     c.positive("rocket.radius", r.radius);
     c.positive("rocket.mass", r.mass);
     let (interpolation, extrapolation) = (r.interpolation.into(), r.extrapolation.into());
-    c.curve_as(
-        "rocket.power_off_drag",
-        &r.power_off_drag,
-        interpolation,
-        extrapolation,
-    );
-    c.curve_as(
-        "rocket.power_on_drag",
-        &r.power_on_drag,
-        interpolation,
-        extrapolation,
-    );
+    for (key, curve) in [
+        ("rocket.power_off_drag", &r.power_off_drag),
+        ("rocket.power_on_drag", &r.power_on_drag),
+    ] {
+        if !curve.is_estimate() {
+            c.curve_as(key, curve, interpolation, extrapolation);
+        }
+    }
+    if let Some(d) = &r.drag_estimate {
+        drag_estimate(c, d, r);
+    }
     for (name, surface) in &r.surfaces {
         let key = |k: &str| format!("rocket.surfaces.{name}.{k}");
         match surface {

@@ -11,6 +11,7 @@
 //! [`IndexMap`]s: they keep the file order, which RocketPy's results depend on (surfaces and
 //! parachutes are added in that order).
 
+mod drag;
 pub mod names;
 pub(crate) mod surfaces;
 pub mod values;
@@ -19,16 +20,18 @@ use indexmap::IndexMap;
 use serde::{Deserialize, Serialize};
 use std::path::PathBuf;
 
+pub use drag::{DragEstimateSpec, FinDragSpec, LaunchLugSpec, RailButtonSizeSpec};
 pub use names::{
-    AngleUnit, AtmosphereModel, Datum, ExtrapolationKind, InterpolationKind, MotorCoordinateSystem,
-    MotorKind, NoseKind, RocketCoordinateSystem, SoundingFormat, SurfaceType,
+    AngleUnit, AtmosphereModel, Datum, ExtrapolationKind, FinCrossSection, InterpolationKind,
+    MotorCoordinateSystem, MotorKind, NoseKind, RocketCoordinateSystem, SoundingFormat,
+    SurfaceFinish, SurfaceType,
 };
 pub use surfaces::{
     AirfoilSpec, EllipticalFinsSpec, FreeFormFinsSpec, NoseSpec, SurfaceSpec, Sweep, TailSpec,
     TrapezoidalFinsSpec,
 };
 pub use toml::value::Datetime;
-pub use values::{Atol, BurnTime, Curve, Inertia, STATE_SIZE, Trigger};
+pub use values::{Atol, BurnTime, Curve, ESTIMATE, Inertia, STATE_SIZE, Trigger};
 
 /// A whole mission file.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
@@ -241,10 +244,13 @@ pub struct RocketSpec {
     /// Direction of the rocket coordinate; RocketPy default tail to nose.
     #[serde(default = "default_tail_to_nose")]
     pub coordinate_system: RocketCoordinateSystem,
-    /// Drag coefficient of Mach, motor off.
+    /// Drag coefficient of Mach, motor off; `"estimate"`: from the geometry.
     pub power_off_drag: Curve,
-    /// Drag coefficient of Mach, motor burning.
+    /// Drag coefficient of Mach, motor burning; `"estimate"`: from the geometry.
     pub power_on_drag: Curve,
+    /// `[rocket.drag_estimate]`: geometry of the drag estimate, optional.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub drag_estimate: Option<DragEstimateSpec>,
     /// How both drag curves interpolate between their points.
     #[serde(default = "default_linear")]
     pub interpolation: InterpolationKind,

@@ -22,7 +22,15 @@ pub enum Curve {
     File(PathBuf),
 }
 
+/// The keyword of a drag curve estimated from the geometry (`power_off_drag = "estimate"`).
+pub const ESTIMATE: &str = "estimate";
+
 impl Curve {
+    /// Whether this is the drag keyword [`ESTIMATE`] rather than a file.
+    pub fn is_estimate(&self) -> bool {
+        matches!(self, Curve::File(path) if path.as_os_str() == ESTIMATE)
+    }
+
     /// The data file of a [`Curve::File`], resolved against `mission_dir`.
     pub fn file_path(&self, mission_dir: &Path) -> Option<PathBuf> {
         match self {
