@@ -67,6 +67,7 @@
 //! # }
 //! ```
 
+pub mod air_brakes;
 pub mod drag;
 mod error;
 mod mass;
@@ -75,6 +76,7 @@ mod recovery;
 mod rocket;
 pub mod surfaces;
 
+pub use air_brakes::{AirBrakes, AirBrakesDrag, AirBrakesSpec};
 pub use drag::{
     BodySegment, DragComponents, DragEstimate, DragGeometry, DragModel, FinCrossSection,
     FinSetDrag, FlowReference, LaunchLug, Profile, RailButtonDrag,

@@ -9,6 +9,7 @@ use crate::paths;
 use crate::schema::{
     AtmosphereModel, Curve, MissionSpec, MotorKind, RocketSpec, SurfaceSpec, Sweep, Trigger,
 };
+use karman_airframe::AirBrakesDrag;
 use karman_math::{Extrapolation, Interpolation};
 use std::path::Path;
 
@@ -147,6 +148,7 @@ pub(crate) fn validate(spec: &MissionSpec, doc: &Document<'_>, dir: &Path) -> Ve
     environment(&mut c, spec);
     motor(&mut c, spec);
     rocket(&mut c, spec);
+    air_brakes(&mut c, spec);
     flight(&mut c, spec);
     dispersion(&mut c, spec);
     c.problems
@@ -547,8 +549,20 @@ fn rocket(c: &mut Checker<'_, '_>, spec: &MissionSpec) {
     for (name, chute) in &r.parachutes {
         let key = |k: &str| format!("rocket.parachutes.{name}.{k}");
         c.positive(&key("cd_s"), chute.cd_s);
-        if let Trigger::HeightAboveGround(h) = chute.trigger {
-            c.non_negative(&key("trigger"), h);
+        match &chute.trigger {
+            Trigger::HeightAboveGround(h) => c.non_negative(&key("trigger"), *h),
+            Trigger::Launch(delay) | Trigger::Burnout(delay) => {
+                c.non_negative(&key("trigger"), *delay);
+            }
+            Trigger::Expression(text) => {
+                if let Err(source) = karman_script::Expression::parse(text) {
+                    c.report(
+                        &key("trigger.expression"),
+                        ProblemKind::Expression { source },
+                    );
+                }
+            }
+            Trigger::Apogee => {}
         }
         c.range(
             &key("sampling_rate"),
@@ -571,6 +585,70 @@ fn rocket(c: &mut Checker<'_, '_>, spec: &MissionSpec) {
                 "must be in [0, 1]",
             );
         }
+    }
+}
+
+fn air_brakes(c: &mut Checker<'_, '_>, spec: &MissionSpec) {
+    let Some(ab) = &spec.rocket.air_brakes else {
+        return;
+    };
+    let key = |k: &str| format!("rocket.air_brakes.{k}");
+    c.positive(&key("sampling_rate"), ab.sampling_rate);
+    if let Some(area) = ab.reference_area {
+        c.positive(&key("reference_area"), area);
+    }
+    match ab.drag_coefficient_curve.to_drag(c.dir) {
+        Ok(AirBrakesDrag::Table(rows)) if rows.is_empty() => c.report(
+            &key("drag_coefficient_curve"),
+            ProblemKind::OutOfRange {
+                value: 0.0,
+                expected: "the table needs at least one [level, mach, cd] row",
+            },
+        ),
+        Ok(_) => {}
+        Err(source) => c.report(
+            &key("drag_coefficient_curve"),
+            ProblemKind::Curve { source },
+        ),
+    }
+    let file = c.dir.join(&ab.controller);
+    let text = karman_math::read_data_file(&file).and_then(|bytes| {
+        String::from_utf8(bytes).map_err(|_| {
+            std::io::Error::new(std::io::ErrorKind::InvalidData, "not a UTF-8 text file")
+        })
+    });
+    let source = match text {
+        Ok(source) => source,
+        Err(source) => {
+            c.report(&key("controller"), ProblemKind::File { path: file, source });
+            return;
+        }
+    };
+    match karman_script::ControllerScript::compile(&file, &source) {
+        Ok(script) => {
+            for name in ab.constants.keys() {
+                if !script.constants().iter().any(|(n, _)| n == name) {
+                    c.report(
+                        &format!("rocket.air_brakes.constants.{name}"),
+                        ProblemKind::Script {
+                            source: Box::new(karman_script::ScriptError {
+                                file: file.clone(),
+                                position: None,
+                                message: format!(
+                                    "the script declares no top-level `const {name} = <number>;`"
+                                ),
+                            }),
+                        },
+                    );
+                }
+            }
+        }
+        Err(source) => c.report(
+            &key("controller"),
+            ProblemKind::Script {
+                source: Box::new(source),
+            },
+        ),
     }
 }
 

@@ -8,6 +8,7 @@ mod fuzz;
 mod load;
 mod overrides;
 mod paths;
+mod scripts;
 mod validate_environment;
 mod validate_flight;
 mod validate_motor;

@@ -51,9 +51,23 @@ pub fn build_rocket(mission: &Mission, motor: &Motor) -> Result<Rocket, MissionE
         let chute = Parachute::new(&airframe::ParachuteSpec {
             name: name.clone(),
             cd_s: p.cd_s,
-            trigger: match p.trigger {
+            trigger: match &p.trigger {
                 schema::Trigger::Apogee => Trigger::Apogee,
-                schema::Trigger::HeightAboveGround(h) => Trigger::HeightAboveGround(h),
+                schema::Trigger::HeightAboveGround(h) => Trigger::HeightAboveGround(*h),
+                schema::Trigger::Launch(_)
+                | schema::Trigger::Burnout(_)
+                | schema::Trigger::Expression(_) => {
+                    return Err(MissionError::Invalid {
+                        file: mission.path.clone(),
+                        problems: vec![crate::Problem {
+                            location: crate::Location::File { line: 1, column: 1 },
+                            key: format!("rocket.parachutes.{name}.trigger"),
+                            kind: crate::ProblemKind::Unsupported {
+                                what: "a timed or expression trigger in flight".into(),
+                            },
+                        }],
+                    });
+                }
             },
             sampling_rate: Some(p.sampling_rate),
             lag: Some(p.lag),
