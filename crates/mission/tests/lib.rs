@@ -3,6 +3,7 @@
 mod allocation;
 mod broken;
 mod common;
+mod fingerprint;
 mod fuzz;
 mod load;
 mod overrides;
