@@ -23,6 +23,7 @@ pub const ALLOWED: &[(&str, &[&str])] = &[
         ],
     ),
     ("karman-dispersion", &["karman-math", "karman-dynamics"]),
+    ("karman-script", &[]),
     (
         "karman-mission",
         &[
@@ -32,6 +33,7 @@ pub const ALLOWED: &[(&str, &[&str])] = &[
             "karman-airframe",
             "karman-dynamics",
             "karman-dispersion",
+            "karman-script",
         ],
     ),
     ("karman", &["karman-mission"]),

@@ -3,11 +3,13 @@
 mod allocation;
 mod broken;
 mod common;
+mod drag_estimate;
 mod fingerprint;
 mod fuzz;
 mod load;
 mod overrides;
 mod paths;
+mod scripts;
 mod validate_environment;
 mod validate_flight;
 mod validate_motor;
