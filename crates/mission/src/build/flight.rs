@@ -15,7 +15,8 @@ use super::preflight::{Models, prepare};
 use crate::{Mission, MissionError};
 
 /// How a flight ended against the end a mission asks for: `None` for a completed flight
-/// (ground impact, or apogee under `terminate_on_apogee`); otherwise the status word and the
+/// (ground impact, apogee under `terminate_on_apogee`, a stop or a stage separation asked
+/// for by a trigger or controller); otherwise the status word and the
 /// explanation: `max_time` (still in the air at `flight.max_time`: it never landed) or
 /// `stuck_on_rail` (it never left the rail). `karman simulate` fails with the explanation and
 /// a Monte Carlo sample records the status, so both count the same flights as failures.
@@ -24,7 +25,10 @@ pub fn early_ending(
     settings: &FlightSettings,
 ) -> Option<(&'static str, String)> {
     match termination {
-        Termination::Impact | Termination::Apogee => None,
+        Termination::Impact
+        | Termination::Apogee
+        | Termination::Terminated
+        | Termination::Separation => None,
         Termination::MaxTime => Some((
             "max_time",
             format!(

@@ -4,7 +4,9 @@
 //! integrating, `check` rejects first; every error names the mission key that is wrong.
 //!
 //! Launch checks (errors, each blamed on the key that decides it):
-//! - the flight settings' ranges ([`FlightSettings::validate`]), blamed on the `[flight]` key;
+//! - the flight settings' ranges ([`FlightSettings::validate`]), blamed on the `[flight]` key
+//!   (steps stop at the thrust-curve knots only for curves of at most [`MAX_KNOT_STOPS`]
+//!   points);
 //! - the nozzle must lie on the airframe (within one airframe length of the span of its
 //!   surfaces, rail buttons and centre of mass): `rocket.motor_position` otherwise;
 //! - the rail must be longer than the nozzle-to-upper-button distance (physics.md §8.1,
@@ -24,7 +26,7 @@
 
 use karman_airframe::Rocket;
 use karman_atmos::Environment;
-use karman_dynamics::{FlightSettings, VehicleModel};
+use karman_dynamics::FlightSettings;
 use karman_propulsion::{Motor, ThrustSource};
 
 use super::environment::build_environment;
@@ -60,6 +62,12 @@ const RAIL_MAX_STEPS: usize = 200_000;
 /// Samples of the static margin over the powered flight.
 const MARGIN_SAMPLES: usize = 200;
 
+/// Most thrust-curve knots the integration steps stop at (each knot ends a step). A denser
+/// curve (a static fire sampled at kHz rates) has kinks far below the step control's
+/// resolution: its steps are left to the error control, so the flight stays within the step
+/// budget of a phase whatever the number of points.
+pub const MAX_KNOT_STOPS: usize = 20_000;
+
 /// The models of a mission, built and checked, with the warnings found on the way.
 #[derive(Debug, Clone)]
 pub struct Models {
@@ -86,7 +94,10 @@ pub fn prepare(mission: &Mission, seed: u64) -> Result<Models, MissionError> {
     let thrust = thrust_source(mission)?;
     let motor = build_motor_with(mission, &thrust)?;
     let rocket = build_rocket(mission, &motor)?;
-    let settings = flight_settings(mission, seed);
+    let mut settings = flight_settings(mission, seed);
+    if rocket.motor().thrust.xs().len() > MAX_KNOT_STOPS {
+        settings.stop_at_thrust_knots = false;
+    }
     settings.validate().map_err(|e| {
         let key = match &e {
             karman_dynamics::DynamicsError::InvalidSetting { name, .. } => format!("flight.{name}"),
@@ -224,7 +235,7 @@ fn check_layout(
     let low = ends.iter().copied().fold(f64::INFINITY, f64::min);
     let high = ends.iter().copied().fold(f64::NEG_INFINITY, f64::max);
     let margin = (high - low).max(20.0 * rocket.radius());
-    let nozzle = VehicleModel::nozzle_position(rocket);
+    let nozzle = rocket.nozzle_position();
     if nozzle < low - margin || nozzle > high + margin {
         return Err(fail(
             mission,
@@ -235,7 +246,7 @@ fn check_layout(
             ),
         ));
     }
-    let upper = VehicleModel::rail_buttons(rocket).map_or(nozzle, |b| {
+    let upper = rocket.rail_buttons().map_or(nozzle, |b| {
         b.lower_position + csys * (b.upper_position - b.lower_position).abs()
     });
     let needed = (nozzle - upper).abs();
@@ -262,8 +273,8 @@ fn check_rail(
     warnings: &mut Vec<String>,
 ) -> Result<(), MissionError> {
     let csys = rocket.csys();
-    let nozzle = VehicleModel::nozzle_position(rocket);
-    let upper = VehicleModel::rail_buttons(rocket).map_or(nozzle, |b| {
+    let nozzle = rocket.nozzle_position();
+    let upper = rocket.rail_buttons().map_or(nozzle, |b| {
         b.lower_position + csys * (b.upper_position - b.lower_position).abs()
     });
     let travel = settings.rail_length - (nozzle - upper).abs();
