@@ -8,6 +8,8 @@ mod drag_estimate;
 mod fingerprint;
 mod fuzz;
 mod load;
+mod openrocket;
+mod ork;
 mod overrides;
 mod paths;
 mod scripts;
