@@ -31,9 +31,7 @@ pub use surfaces::{
     TrapezoidalFinsSpec,
 };
 pub use toml::value::Datetime;
-pub use values::{
-    AirBrakesCurve, Atol, BurnTime, Curve, ESTIMATE, Inertia, STATE_SIZE, Trigger,
-};
+pub use values::{AirBrakesCurve, Atol, BurnTime, Curve, ESTIMATE, Inertia, STATE_SIZE, Trigger};
 
 /// A whole mission file.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
