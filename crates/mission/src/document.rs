@@ -193,11 +193,13 @@ impl<'a> Document<'a> {
         best
     }
 
-    /// The span of the value at a dotted path, or of its deepest existing table.
+    /// The span of the value at a dotted path, or of its deepest existing table. A numeric
+    /// segment indexes an array of tables (`motor.tanks.0.position`).
     pub fn span_of(&self, path: &[&str]) -> Range<usize> {
         let mut span = 0..0;
         let mut table = self.root.get_ref();
-        for segment in path {
+        let mut segments = path.iter();
+        while let Some(segment) = segments.next() {
             let Some((k, v)) = table.get_key_value(&key(segment)) else {
                 break;
             };
@@ -208,6 +210,28 @@ impl<'a> Document<'a> {
             };
             match v.get_ref() {
                 DeValue::Table(inner) => table = inner,
+                DeValue::Array(items) => {
+                    let Some(item) = segments
+                        .next()
+                        .and_then(|i| i.parse::<usize>().ok())
+                        .and_then(|i| items.get(i))
+                    else {
+                        break;
+                    };
+                    match item.get_ref() {
+                        DeValue::Table(inner) => {
+                            span = inner
+                                .iter()
+                                .next()
+                                .map_or_else(|| item.span(), |(k, _)| k.span());
+                            table = inner;
+                        }
+                        _ => {
+                            span = item.span();
+                            break;
+                        }
+                    }
+                }
                 _ => break,
             }
         }
