@@ -24,13 +24,10 @@
 use karman_math::{Cursor, Extrapolation, Interpolation, PhysicalConstants, Table1};
 
 use crate::liquid::{LiquidPropellant, tanks_at, union_grid};
+use crate::solid::{grain_grid, regress};
 use crate::{
     BatesGrains, GrainState, PropellantModel, PropellantTables, PropulsionError, ThrustCurve,
 };
-
-/// Rounding allowance on the grain mass, relative to its initial mass: a grain the thrust
-/// consumes exactly at the end lands within rounding of 0 on either side.
-const MASS_ROUNDING: f64 = 1e-12;
 
 /// Bisection steps that locate the grain's burn-out to the resolution of an `f64`.
 const BISECTION_STEPS: usize = 200;
@@ -108,23 +105,15 @@ impl PropellantModel for HybridPropellant<'_> {
         let tanks = self.tanks.tanks;
         // ∫ ṁ_g over [a, b]: the thrust's share minus the tanks' net outflow.
         let mut cursor = Cursor::default();
-        let mut grain_flow = |a: f64, b: f64| {
+        let grain_flow = |a: f64, b: f64| {
             let tank_flow: f64 = tanks
                 .iter()
                 .map(|p| p.tank.net_mass_flow().integral(a, b))
                 .sum();
             -curve.integral_with(a, b, &mut cursor) / exhaust_velocity - tank_flow
         };
-        let nodes = curve.xs();
-        let step = constants.propellant_grid_step;
-        let mut grid = vec![nodes[0]];
-        for pair in nodes.windows(2) {
-            let (a, b) = (pair[0], pair[1]);
-            let pieces = ((b - a) / step).ceil().max(1.0) as usize;
-            grid.extend((1..pieces).map(|k| a + (b - a) * k as f64 / pieces as f64));
-            grid.push(b);
-        }
-        let (start, end) = (nodes[0], nodes[nodes.len() - 1]);
+        let (start, end) = curve.domain();
+        let mut grid = grain_grid(curve, constants);
         grid.extend(tanks.iter().flat_map(|p| {
             p.tank
                 .mass()
@@ -134,33 +123,7 @@ impl PropellantModel for HybridPropellant<'_> {
                 .filter(move |&t| t > start && t < end)
         }));
         let grid = union_grid(grid.into_iter());
-        // Grain mass at the grid nodes, stopping where the grain is consumed.
-        let mut times = vec![grid[0]];
-        let mut grain_mass = vec![m0];
-        for &t in &grid[1..] {
-            let (t_prev, m_prev) = (times[times.len() - 1], grain_mass[grain_mass.len() - 1]);
-            let m = m_prev + grain_flow(t_prev, t);
-            if m > -MASS_ROUNDING * m0 {
-                times.push(t);
-                grain_mass.push(m.max(0.0));
-                continue;
-            }
-            let (mut lo, mut hi) = (t_prev, t);
-            for _ in 0..BISECTION_STEPS {
-                let mid = 0.5 * (lo + hi);
-                if mid <= lo || mid >= hi {
-                    break;
-                }
-                if m_prev + grain_flow(t_prev, mid) > 0.0 {
-                    lo = mid;
-                } else {
-                    hi = mid;
-                }
-            }
-            times.push(hi);
-            grain_mass.push(0.0);
-            break;
-        }
+        let (mut times, mut grain_mass) = regress(&grid, m0, grain_flow);
         // After the grain is gone the tanks still change: their nodes continue the grid.
         let burnt = times[times.len() - 1];
         let tail: Vec<f64> = grid.iter().copied().filter(|&t| t > burnt).collect();

@@ -28,7 +28,7 @@
 //! errors: a negative liquid mass, a gas mass below −1e-6 kg, a fluid volume outside
 //! `[−1e-6, V_total + 1e-6]` m³ or a height more than 1e-4 m outside the tank.
 
-use karman_math::{Extrapolation, Interpolation, Table1, linspace};
+use karman_math::{Extrapolation, Interpolation, PhysicalConstants, Table1, linspace};
 
 use crate::propellant::{finite, non_negative};
 use crate::{Fluid, PropulsionError, TankGeometry};
@@ -44,12 +44,6 @@ pub const DEFAULT_PRESSURE: f64 = 101_325.0;
 const EMPTY_VOLUME_FRACTION: f64 = 1e-4;
 /// Fraction of the tank's volume of gas below which the tank's centroid is its bottom.
 const EMPTY_MASS_FRACTION: f64 = 1e-3;
-/// Slack of the gas-mass check, kg.
-const GAS_MASS_SLACK: f64 = 1e-6;
-/// Slack of the volume checks, m³.
-const VOLUME_SLACK: f64 = 1e-6;
-/// Slack of the height checks, m.
-const HEIGHT_SLACK: f64 = 1e-4;
 /// Rounding allowance of the liquid-mass check, relative to the largest liquid mass: a tank
 /// that drains exactly at its last node lands within rounding of 0 on either side.
 const MASS_ROUNDING: f64 = 1e-12;
@@ -193,14 +187,15 @@ struct Nodes {
 }
 
 impl Tank {
-    /// Builds the tank's tables (physics.md §15.2).
+    /// Builds the tank's tables (physics.md §15.2), inputs in the unit system of `constants`
+    /// (which holds the slacks of RocketPy's checks).
     ///
     /// # Errors
     /// [`PropulsionError::InvalidParameter`] for a bad flux time, grid size or initial mass;
     /// [`PropulsionError::TankContents`] when the fluids over- or underfill the tank (naming
     /// the tank, the quantity, the time and the limit); [`PropulsionError::Table`] for curves
     /// that do not form tables.
-    pub fn new(spec: TankSpec) -> Result<Tank, PropulsionError> {
+    pub fn new(spec: TankSpec, constants: &PhysicalConstants) -> Result<Tank, PropulsionError> {
         let (ts, te) = spec.flux_time;
         non_negative("flux_time start", ts)?;
         if !(te.is_finite() && te > ts) {
@@ -243,7 +238,7 @@ impl Tank {
         let total = g.total_volume();
         let (nodes, mass_interpolation, net_flow) =
             Self::nodes(&spec, &times, &rho_l, &rho_g, total)?;
-        check(&spec, &times, &nodes, total)?;
+        check(&spec, &times, &nodes, total, constants)?;
         let n = times.len();
         let bottom = g.bottom();
         let max = |v: &[f64]| v.iter().copied().fold(f64::NEG_INFINITY, f64::max);
@@ -495,7 +490,16 @@ impl Tank {
 }
 
 /// RocketPy's consistency checks of a tank's contents at the grid nodes.
-fn check(spec: &TankSpec, times: &[f64], nodes: &Nodes, total: f64) -> Result<(), PropulsionError> {
+fn check(
+    spec: &TankSpec,
+    times: &[f64],
+    nodes: &Nodes,
+    total: f64,
+    constants: &PhysicalConstants,
+) -> Result<(), PropulsionError> {
+    let gas_slack = constants.tank_gas_mass_slack;
+    let volume_slack = constants.tank_volume_slack;
+    let height_slack = constants.tank_height_slack;
     let g = &spec.geometry;
     let fail = |quantity, k: usize, value, limit, reason| PropulsionError::TankContents {
         tank: spec.name.clone(),
@@ -514,8 +518,8 @@ fn check(spec: &TankSpec, times: &[f64], nodes: &Nodes, total: f64) -> Result<()
         if ml < -MASS_ROUNDING * scale {
             return Err(fail("liquid mass (kg)", k, ml, 0.0, "is negative"));
         }
-        if mg < -GAS_MASS_SLACK {
-            return Err(fail("gas mass (kg)", k, mg, -GAS_MASS_SLACK, "is below"));
+        if mg < -gas_slack {
+            return Err(fail("gas mass (kg)", k, mg, -gas_slack, "is below"));
         }
         let volume = nodes.liquid_volume[k] + nodes.gas_volume[k];
         for (quantity, v) in [
@@ -523,21 +527,21 @@ fn check(spec: &TankSpec, times: &[f64], nodes: &Nodes, total: f64) -> Result<()
             ("gas volume (m^3)", nodes.gas_volume[k]),
             ("fluid volume (m^3)", volume),
         ] {
-            if v > total + VOLUME_SLACK {
+            if v > total + volume_slack {
                 return Err(fail(quantity, k, v, total, "exceeds the tank volume"));
             }
-            if v < -VOLUME_SLACK {
-                return Err(fail(quantity, k, v, -VOLUME_SLACK, "is below"));
+            if v < -volume_slack {
+                return Err(fail(quantity, k, v, -volume_slack, "is below"));
             }
         }
         for (quantity, h) in [
             ("liquid height (m)", nodes.liquid_height[k]),
             ("gas height (m)", nodes.gas_height[k]),
         ] {
-            if h > g.top() + HEIGHT_SLACK {
+            if h > g.top() + height_slack {
                 return Err(fail(quantity, k, h, g.top(), "is above the tank top"));
             }
-            if h < g.bottom() - HEIGHT_SLACK {
+            if h < g.bottom() - height_slack {
                 return Err(fail(quantity, k, h, g.bottom(), "is below the tank bottom"));
             }
         }
@@ -551,12 +555,19 @@ mod tests {
     use crate::TankShape;
 
     fn cylinder() -> TankGeometry {
-        TankGeometry::new(TankShape::Cylindrical {
-            radius: 0.07,
-            height: 0.32,
-            spherical_caps: false,
-        })
+        TankGeometry::new(
+            TankShape::Cylindrical {
+                radius: 0.07,
+                height: 0.32,
+                spherical_caps: false,
+            },
+            &PhysicalConstants::SI,
+        )
         .unwrap()
+    }
+
+    fn build(spec: TankSpec) -> Result<Tank, PropulsionError> {
+        Tank::new(spec, &PhysicalConstants::SI)
     }
 
     fn spec(kind: TankKind) -> TankSpec {
@@ -590,7 +601,7 @@ mod tests {
 
     #[test]
     fn a_tank_drained_at_a_known_rate() {
-        let tank = Tank::new(spec(drained(0.84))).unwrap();
+        let tank = build(spec(drained(0.84))).unwrap();
         let area = std::f64::consts::PI * 0.07 * 0.07;
         for t in [0.0, 1.0, 2.5, 4.0] {
             let m = 4.2 - 0.84 * t;
@@ -615,7 +626,7 @@ mod tests {
 
     #[test]
     fn over_and_underfilled_tanks_are_errors() {
-        let err = Tank::new(spec(drained(1.0))).unwrap_err();
+        let err = build(spec(drained(1.0))).unwrap_err();
         assert!(
             matches!(
                 err,
@@ -627,9 +638,9 @@ mod tests {
             "{err}"
         );
         let full = filled(5.0, 0.0, 0.0);
-        let err = Tank::new(spec(full)).unwrap_err();
+        let err = build(spec(full)).unwrap_err();
         assert!(err.to_string().contains("exceeds the tank volume"), "{err}");
-        let err = Tank::new(spec(TankKind::Level(TankCurve::Constant(0.5)))).unwrap_err();
+        let err = build(spec(TankKind::Level(TankCurve::Constant(0.5)))).unwrap_err();
         assert!(err.to_string().contains("above the tank top"), "{err}");
     }
 
@@ -647,10 +658,7 @@ mod tests {
                 gas: TankCurve::Constant(half * 1.9277),
             },
         ];
-        let tanks: Vec<Tank> = kinds
-            .into_iter()
-            .map(|k| Tank::new(spec(k)).unwrap())
-            .collect();
+        let tanks: Vec<Tank> = kinds.into_iter().map(|k| build(spec(k)).unwrap()).collect();
         for tank in &tanks {
             assert!((tank.liquid_mass().eval(1.0) - half * 960.0).abs() < 1e-9);
             assert!((tank.gas_mass().eval(1.0) - half * 1.9277).abs() < 1e-9);

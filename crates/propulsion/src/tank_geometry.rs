@@ -23,19 +23,13 @@
 //! through the quadratic integrand (about 1e-6 relative); other shapes are exact to the
 //! splines' accuracy.
 
-use karman_math::{Extrapolation, Interpolation, Table1, linspace};
+use karman_math::{Extrapolation, Interpolation, PhysicalConstants, Table1, linspace};
 
 use crate::PropulsionError;
 use crate::propellant::positive;
 
 /// Samples per geometry piece and of every derived table (RocketPy's defaults).
 const SAMPLES: usize = 100;
-
-/// A moment table whose range is shorter than this (m) is widened by
-/// [`DEGENERATE_WIDENING`] (RocketPy's guard for an empty liquid or gas column).
-const DEGENERATE_RANGE: f64 = 1e-8;
-/// See [`DEGENERATE_RANGE`].
-const DEGENERATE_WIDENING: f64 = 1e-12;
 
 /// The shape of a tank, in its own height coordinate.
 #[derive(Debug, Clone, PartialEq)]
@@ -76,17 +70,25 @@ pub struct TankGeometry {
     area: Table1,
     volume: Table1,
     inverse_volume: Table1,
+    /// A moment-table range shorter than this is widened by `degenerate_widening`
+    /// (RocketPy's guard for an empty fluid column; lengths of the unit system).
+    degenerate_range: f64,
+    degenerate_widening: f64,
 }
 
 impl TankGeometry {
-    /// Builds the tables of `shape`.
+    /// Builds the tables of `shape`, lengths in the unit system of `constants` (which holds the
+    /// moment tables' degenerate-range guard).
     ///
     /// # Errors
     /// [`PropulsionError::InvalidParameter`] for a non-positive radius or height, caps that do
     /// not fit (`height < 2·radius`), or a custom profile with fewer than two points, negative
     /// radii or heights that do not increase; [`PropulsionError::Table`] when a table cannot
     /// be built.
-    pub fn new(shape: TankShape) -> Result<TankGeometry, PropulsionError> {
+    pub fn new(
+        shape: TankShape,
+        constants: &PhysicalConstants,
+    ) -> Result<TankGeometry, PropulsionError> {
         let pieces = pieces(&shape)?;
         let mut heights: Vec<f64> = Vec::with_capacity(pieces.len() * SAMPLES);
         let mut radii: Vec<f64> = Vec::with_capacity(pieces.len() * SAMPLES);
@@ -117,6 +119,8 @@ impl TankGeometry {
             area,
             volume,
             inverse_volume,
+            degenerate_range: constants.tank_degenerate_range,
+            degenerate_widening: constants.tank_degenerate_widening,
         })
     }
 
@@ -176,7 +180,7 @@ impl TankGeometry {
             Extrapolation::Natural,
         )
         .map_err(PropulsionError::table("tank volume moment"))?;
-        integral_table(&integrand, lo, up, "tank volume moment")
+        self.integral_table(&integrand, lo, up, "tank volume moment")
     }
 
     /// The inertia-volume table `I_x(h) = ∫_lo^h A (h'² + r²/4) dh'` on `[lo, up]` (m⁵).
@@ -195,27 +199,28 @@ impl TankGeometry {
             Extrapolation::Zero,
         )
         .map_err(PropulsionError::table("tank inertia volume"))?;
-        integral_table(&integrand, lo, up, "tank inertia volume")
+        self.integral_table(&integrand, lo, up, "tank inertia volume")
     }
-}
 
-/// The spline through `∫_lo^x f` at 100 heights of `[lo, up]`, constant outside
-/// (RocketPy `Function.integral_function(lo, up)`).
-fn integral_table(
-    integrand: &Table1,
-    lo: f64,
-    up: f64,
-    what: &'static str,
-) -> Result<Table1, PropulsionError> {
-    let up = if up - lo < DEGENERATE_RANGE {
-        up + DEGENERATE_WIDENING
-    } else {
-        up
-    };
-    let xs = linspace(lo, up, SAMPLES);
-    let ys = xs.iter().map(|&x| integrand.integral(lo, x)).collect();
-    Table1::new(xs, ys, Interpolation::Spline, Extrapolation::Constant)
-        .map_err(PropulsionError::table(what))
+    /// The spline through `∫_lo^x f` at 100 heights of `[lo, up]`, constant outside
+    /// (RocketPy `Function.integral_function(lo, up)`).
+    fn integral_table(
+        &self,
+        integrand: &Table1,
+        lo: f64,
+        up: f64,
+        what: &'static str,
+    ) -> Result<Table1, PropulsionError> {
+        let up = if up - lo < self.degenerate_range {
+            up + self.degenerate_widening
+        } else {
+            up
+        };
+        let xs = linspace(lo, up, SAMPLES);
+        let ys = xs.iter().map(|&x| integrand.integral(lo, x)).collect();
+        Table1::new(xs, ys, Interpolation::Spline, Extrapolation::Constant)
+            .map_err(PropulsionError::table(what))
+    }
 }
 
 type Piece = (f64, f64, Box<dyn Fn(f64) -> f64>);
@@ -297,11 +302,14 @@ mod tests {
     #[test]
     fn cylinder_tables_equal_the_closed_forms() {
         let (r, h) = (0.07, 0.32);
-        let g = TankGeometry::new(TankShape::Cylindrical {
-            radius: r,
-            height: h,
-            spherical_caps: false,
-        })
+        let g = TankGeometry::new(
+            TankShape::Cylindrical {
+                radius: r,
+                height: h,
+                spherical_caps: false,
+            },
+            &PhysicalConstants::SI,
+        )
         .unwrap();
         assert_eq!(g.profile().0.len(), 100);
         let a = PI * r * r;
@@ -334,18 +342,22 @@ mod tests {
     #[test]
     fn capped_cylinder_and_sphere_volumes() {
         let (r, h) = (0.0575, 0.573);
-        let g = TankGeometry::new(TankShape::Cylindrical {
-            radius: r,
-            height: h,
-            spherical_caps: true,
-        })
+        let g = TankGeometry::new(
+            TankShape::Cylindrical {
+                radius: r,
+                height: h,
+                spherical_caps: true,
+            },
+            &PhysicalConstants::SI,
+        )
         .unwrap();
         assert_eq!(g.profile().0.len(), 298);
         let exact = PI * r * r * (h - 2.0 * r) + 4.0 / 3.0 * PI * r.powi(3);
         assert!(close(g.total_volume(), exact, 1e-4), "{}", g.total_volume());
         // physics.md §15.5: Hedy's capped tank volume.
         assert!((g.total_volume() - 0.005_553_527_460_220_63).abs() < 1e-15);
-        let s = TankGeometry::new(TankShape::Spherical { radius: 0.1 }).unwrap();
+        let s = TankGeometry::new(TankShape::Spherical { radius: 0.1 }, &PhysicalConstants::SI)
+            .unwrap();
         assert!(close(s.total_volume(), 4.0 / 3.0 * PI * 1e-3, 1e-4));
         // Half the sphere's volume lies below its centre (symmetry of the samples).
         assert!(close(s.volume(0.0), s.total_volume() / 2.0, 1e-3));
@@ -358,10 +370,13 @@ mod tests {
 
     #[test]
     fn custom_profiles_and_bad_shapes() {
-        let cone = TankGeometry::new(TankShape::Custom {
-            heights: vec![0.0, 1.0],
-            radii: vec![0.0, 0.1],
-        })
+        let cone = TankGeometry::new(
+            TankShape::Custom {
+                heights: vec![0.0, 1.0],
+                radii: vec![0.0, 0.1],
+            },
+            &PhysicalConstants::SI,
+        )
         .unwrap();
         assert!(close(cone.total_volume(), PI * 0.01 / 3.0, 1e-3));
         assert!((cone.bottom()).abs() < 1e-300 && (cone.top() - 1.0).abs() < 1e-15);
@@ -386,7 +401,7 @@ mod tests {
             },
         ];
         for shape in bad {
-            assert!(TankGeometry::new(shape).is_err());
+            assert!(TankGeometry::new(shape, &PhysicalConstants::SI).is_err());
         }
     }
 }

@@ -235,17 +235,21 @@ fn build_tank(mission: &Mission, index: usize, spec: &TankSpec) -> Result<Tank, 
         // Validation rejects `false` (no resampling is not modelled).
         Some(Discretize::Flag(false)) => 0,
     };
-    Tank::new(karman_propulsion::TankSpec {
-        name: spec.name.clone().unwrap_or_else(|| format!("tank {index}")),
-        kind,
-        geometry: TankGeometry::new(shape)?,
-        flux_time: (spec.flux_time.start, spec.flux_time.end),
-        liquid: fluid(mission, &spec.liquid)?,
-        gas: fluid(mission, &spec.gas)?,
-        discretize,
-        temperature: curve(&spec.temperature, DEFAULT_TEMPERATURE)?,
-        pressure: curve(&spec.pressure, DEFAULT_PRESSURE)?,
-    })
+    let constants = PhysicalConstants::SI;
+    Tank::new(
+        karman_propulsion::TankSpec {
+            name: spec.name.clone().unwrap_or_else(|| format!("tank {index}")),
+            kind,
+            geometry: TankGeometry::new(shape, &constants)?,
+            flux_time: (spec.flux_time.start, spec.flux_time.end),
+            liquid: fluid(mission, &spec.liquid)?,
+            gas: fluid(mission, &spec.gas)?,
+            discretize,
+            temperature: curve(&spec.temperature, DEFAULT_TEMPERATURE)?,
+            pressure: curve(&spec.pressure, DEFAULT_PRESSURE)?,
+        },
+        &constants,
+    )
 }
 
 /// The thrust source named by `motor.thrust`: a constant, inline points or a file read now.
