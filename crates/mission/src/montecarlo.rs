@@ -156,11 +156,7 @@ pub struct StudyOverrides {
 }
 
 fn dispersion_error(mission: &Mission, e: DispersionError) -> MissionError {
-    MissionError::Model {
-        file: mission.path.clone(),
-        section: "dispersion".into(),
-        source: Box::new(e),
-    }
+    mission.model_error("dispersion", e)
 }
 
 /// The plain distribution of a `[dispersion.vary]` entry (`std` inside `factor` is a normal
@@ -361,6 +357,7 @@ impl MonteCarlo {
             path: self.mission.path.clone(),
             dir: self.mission.dir.clone(),
             spec,
+            keys: self.mission.keys.clone(),
         };
         let built;
         let environment = match &self.environment {

@@ -16,6 +16,25 @@ use std::path::Path;
 /// Keys where `inf` is a valid value.
 pub(crate) const ALLOW_INFINITE: &[&str] = &["flight.max_time_step"];
 
+/// Largest parachute sampling rate, Hz (a barometer at 10 kHz already resolves far more than
+/// any trigger needs; more only multiplies the sampling instants of a flight).
+const MAX_SAMPLING_RATE: f64 = 10_000.0;
+
+/// Longest flight time, s (a day; a descent under a drogue from 100 km takes under an hour).
+const MAX_FLIGHT_TIME: f64 = 86_400.0;
+
+/// Range of the integrator's relative tolerance: below 1e-12 round-off dominates the error
+/// estimate; above 1e-2 the steps no longer resolve the flight (at 1 the step control accepts
+/// anything and the states turn to NaN).
+const RTOL_RANGE: (f64, f64) = (1e-12, 1e-2);
+
+/// Largest absolute tolerance of a state (its SI unit: m, m/s, rad/s; the quaternion is
+/// dimensionless).
+const MAX_ATOL: f64 = 1.0;
+
+/// Smallest `max_time_step`, s: a 600 s flight at 1e-4 s already takes six million steps.
+const MIN_MAX_TIME_STEP: f64 = 1e-4;
+
 /// Extensions a thrust curve file may have (parsing them is the propulsion crate's job).
 const THRUST_EXTENSIONS: &[&str] = &["eng", "rse", "csv", "txt"];
 
@@ -673,7 +692,12 @@ fn rocket(c: &mut Checker<'_, '_>, spec: &MissionSpec) {
         if let Trigger::HeightAboveGround(h) = chute.trigger {
             c.non_negative(&key("trigger"), h);
         }
-        c.positive(&key("sampling_rate"), chute.sampling_rate);
+        c.range(
+            &key("sampling_rate"),
+            chute.sampling_rate,
+            chute.sampling_rate > 0.0 && chute.sampling_rate <= MAX_SAMPLING_RATE,
+            "must be in (0, 10000] Hz",
+        );
         c.non_negative(&key("lag"), chute.lag);
         c.non_negative(&key("noise"), chute.noise[1]);
         for (k, v) in [("radius", chute.radius), ("height", chute.height)] {
@@ -701,14 +725,34 @@ fn flight(c: &mut Checker<'_, '_>, spec: &MissionSpec) {
         f.inclination_deg > 0.0 && f.inclination_deg < 180.0,
         "must be in (0, 180) deg (past 90 the rail leans toward heading + 180)",
     );
-    c.positive("flight.max_time", f.max_time);
-    c.positive("flight.rtol", f.rtol);
+    c.range(
+        "flight.max_time",
+        f.max_time,
+        f.max_time > 0.0 && f.max_time <= MAX_FLIGHT_TIME,
+        "must be in (0, 86400] s",
+    );
+    c.range(
+        "flight.rtol",
+        f.rtol,
+        (RTOL_RANGE.0..=RTOL_RANGE.1).contains(&f.rtol),
+        "must be in [1e-12, 1e-2]",
+    );
     if let Some(atol) = f.atol {
         for value in atol.per_state() {
-            c.positive("flight.atol", value);
+            c.range(
+                "flight.atol",
+                value,
+                value > 0.0 && value <= MAX_ATOL,
+                "every component must be in (0, 1]",
+            );
         }
     }
-    c.positive("flight.max_time_step", f.max_time_step);
+    c.range(
+        "flight.max_time_step",
+        f.max_time_step,
+        f.max_time_step >= MIN_MAX_TIME_STEP,
+        "must be at least 1e-4 s",
+    );
 }
 
 fn dispersion(c: &mut Checker<'_, '_>, spec: &MissionSpec) {

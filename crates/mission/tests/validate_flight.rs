@@ -246,11 +246,31 @@ fn too_heavy_to_leave_the_rail_is_flagged() {
         println!("too_heavy_to_leave_the_rail_is_flagged: skipped, no validation folder");
         return;
     };
+    // The launch check rejects it before the flight, blaming the thrust.
+    match simulate(&mission) {
+        Err(karman_mission::MissionError::Model {
+            section, source, ..
+        }) => {
+            assert_eq!(section, "motor.thrust");
+            assert!(
+                source.to_string().starts_with(
+                    "the rocket is stuck on the rail: its thrust never exceeds its weight"
+                ),
+                "{source}"
+            );
+        }
+        other => panic!("expected the launch check's error, got {other:?}"),
+    }
+    // Flown anyway, the engine ends the flight on the rail in bounded time.
+    let env = karman_mission::build::environment::build_environment(&mission).expect("env");
+    let motor = karman_mission::build::motor::build_motor(&mission).expect("motor");
+    let rocket = karman_mission::build::rocket::build_rocket(&mission, &motor).expect("rocket");
+    let settings = karman_mission::build::flight::flight_settings(&mission, 0);
     let start = std::time::Instant::now();
-    let run = simulate(&mission).expect("the flight ends cleanly");
+    let flight = karman_mission::dynamics::simulate(&env, &rocket, &settings).expect("flight");
     assert!(start.elapsed() < std::time::Duration::from_secs(30));
-    assert_eq!(run.flight.termination, Termination::StuckOnRail);
-    let summary = flight_summary(&run);
+    assert_eq!(flight.termination, Termination::StuckOnRail);
+    let summary = flight.summary(&env, &rocket);
     assert!(summary.out_of_rail_time_s.is_none() && summary.apogee_agl_m.is_none());
     assert!(summary.impact_time_s.is_none());
 }

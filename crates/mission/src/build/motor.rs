@@ -43,11 +43,7 @@ pub fn build_motor(mission: &Mission) -> Result<Motor, MissionError> {
 }
 
 fn model_err(mission: &Mission, section: &'static str) -> impl Fn(PropulsionError) -> MissionError {
-    move |e: PropulsionError| MissionError::Model {
-        file: mission.path.clone(),
-        section: section.to_owned(),
-        source: Box::new(e),
-    }
+    move |e: PropulsionError| mission.model_error(section, e)
 }
 
 /// Builds the motor of `mission` from an already read thrust `source` (the Monte Carlo reads
@@ -58,7 +54,6 @@ fn model_err(mission: &Mission, section: &'static str) -> impl Fn(PropulsionErro
 /// As [`build_motor`], except for reading the thrust data.
 pub fn build_motor_with(mission: &Mission, source: &ThrustSource) -> Result<Motor, MissionError> {
     let spec = &mission.spec.motor;
-    let model_err = |section: &'static str| model_err(mission, section);
     let options = ThrustOptions {
         burn_time: spec.burn_time.map(|b| BurnTime::Interval(b.start, b.end)),
         reshape: spec
@@ -66,7 +61,18 @@ pub fn build_motor_with(mission: &Mission, source: &ThrustSource) -> Result<Moto
             .map(|[time, impulse]| (BurnTime::End(time), impulse)),
         interpolation: spec.interpolation.into(),
     };
-    let thrust = ThrustCurve::new(source, &options).map_err(model_err("motor"))?;
+    let thrust = ThrustCurve::new(source, &options).map_err(|e| {
+        let key = match &e {
+            PropulsionError::InvalidBurnTime { .. } if spec.reshape_thrust_curve.is_some() => {
+                "motor.reshape_thrust_curve"
+            }
+            PropulsionError::InvalidBurnTime { .. } | PropulsionError::MissingBurnTime => {
+                "motor.burn_time"
+            }
+            _ => "motor.thrust",
+        };
+        mission.model_error(key, e)
+    })?;
     let chamber_position = spec.chamber_position.unwrap_or(0.0);
     let structure = MotorStructure {
         dry_mass: spec.dry_mass,
@@ -121,7 +127,13 @@ pub fn build_motor_with(mission: &Mission, source: &ThrustSource) -> Result<Moto
             },
         ),
     };
-    motor.map_err(model_err("motor"))
+    motor.map_err(|e| match &e {
+        // A parameter named as in RocketPy is the mission key of the same name.
+        PropulsionError::InvalidParameter { name, .. } => {
+            mission.model_error(&format!("motor.{name}"), e)
+        }
+        _ => mission.model_error("motor", e),
+    })
 }
 
 /// The `[[motor.tanks]]` of `mission`, built in order (errors name `motor.tanks.<index>`).
@@ -133,18 +145,33 @@ fn build_tanks(mission: &Mission) -> Result<Vec<PositionedTank>, MissionError> {
         .iter()
         .enumerate()
         .map(|(index, spec)| {
-            let section = format!("motor.tanks.{index}");
-            let err = |e: PropulsionError| MissionError::Model {
-                file: mission.path.clone(),
-                section: section.clone(),
-                source: Box::new(e),
-            };
+            let err = |e: PropulsionError| mission.model_error(&tank_key(index, &e), e);
             Ok(PositionedTank {
                 tank: build_tank(mission, index, spec).map_err(err)?,
                 position: spec.position,
             })
         })
         .collect()
+}
+
+/// The mission key a tank's model error belongs to: the parameter's own key where the error
+/// names one, else the tank.
+fn tank_key(index: usize, e: &PropulsionError) -> String {
+    let key = match e {
+        PropulsionError::InvalidParameter { name, .. } => match *name {
+            "tank radius" => "geometry.radius",
+            "tank height" => "geometry.height",
+            "liquid density" => "liquid.density",
+            "gas density" => "gas.density",
+            other => other,
+        },
+        _ => "",
+    };
+    if key.is_empty() || key.contains(' ') {
+        format!("motor.tanks.{index}")
+    } else {
+        format!("motor.tanks.{index}.{key}")
+    }
 }
 
 /// A mission curve of time as a tank curve (files read as two columns, inline points sorted

@@ -16,8 +16,8 @@ use crate::{Mission, MissionError};
 /// Builds the rocket of `mission` with `motor` at `rocket.motor_position`.
 ///
 /// # Errors
-/// [`MissionError::Curve`] for a drag or airfoil curve that is not a table,
-/// [`MissionError::Model`] (section `rocket`, `rocket.surfaces.<name>`,
+/// [`MissionError::Model`] (the curve's key) for a drag or airfoil curve that is not a table,
+/// and (section `rocket`, `rocket.surfaces.<name>`,
 /// `rocket.parachutes.<name>` or `rocket.rail_buttons`) for impossible airframe inputs.
 pub fn build_rocket(mission: &Mission, motor: &Motor) -> Result<Rocket, MissionError> {
     let spec = &mission.spec.rocket;
@@ -25,19 +25,11 @@ pub fn build_rocket(mission: &Mission, motor: &Motor) -> Result<Rocket, MissionE
     // curves follow the rocket's `interpolation` / `extrapolation`.
     let curve = |key: String, c: &schema::Curve, kind: (Interpolation, Extrapolation)| {
         c.to_table(&mission.dir, kind.0, kind.1)
-            .map_err(|source| MissionError::Curve {
-                file: mission.path.clone(),
-                key,
-                source,
-            })
+            .map_err(|source| mission.model_error(&key, source))
     };
     let linear = (Interpolation::Linear, Extrapolation::Constant);
     let drag = (spec.interpolation.into(), spec.extrapolation.into());
-    let model = |section: String, source: AirframeError| MissionError::Model {
-        file: mission.path.clone(),
-        section,
-        source: Box::new(source),
-    };
+    let model = |section: String, source: AirframeError| mission.model_error(&section, source);
 
     let mut surfaces = Vec::with_capacity(spec.surfaces.len());
     for (name, surface) in &spec.surfaces {
