@@ -138,7 +138,9 @@ impl<'a> Document<'a> {
             }));
         };
         let mut table = self.root.get_mut();
-        for (depth, segment) in tables.iter().enumerate() {
+        let mut depth = 0;
+        while depth < tables.len() {
+            let segment = &tables[depth];
             let here = item.path[..=depth].join(".");
             let available: Vec<String> = table.keys().map(|k| k.get_ref().to_string()).collect();
             let entry = table.get_mut(&key(segment)).ok_or_else(|| {
@@ -156,6 +158,30 @@ impl<'a> Document<'a> {
             })?;
             match entry.get_mut() {
                 DeValue::Table(inner) => table = inner,
+                // An array of tables is entered by a 0-based index (`motor.tanks.0.position`).
+                DeValue::Array(items) => {
+                    let count = items.len();
+                    let entry = tables
+                        .get(depth + 1)
+                        .and_then(|i| i.parse::<usize>().ok())
+                        .and_then(|i| items.get_mut(i))
+                        .map(Spanned::get_mut);
+                    match entry {
+                        Some(DeValue::Table(inner)) => {
+                            table = inner;
+                            depth += 1;
+                        }
+                        _ => {
+                            return Err(fail(ProblemKind::UnknownPath {
+                                path: item.path.join("."),
+                                reason: format!(
+                                    "`{here}` holds {count} entries, addressed by their index \
+                                     0..{count} followed by a key"
+                                ),
+                            }));
+                        }
+                    }
+                }
                 _ => {
                     return Err(fail(ProblemKind::UnknownPath {
                         path: item.path.join("."),
@@ -163,6 +189,7 @@ impl<'a> Document<'a> {
                     }));
                 }
             }
+            depth += 1;
         }
         let value = respan(value.into_inner(), &span);
         table.insert(Spanned::new(span, Cow::Borrowed(last.as_str())), value);

@@ -1,6 +1,7 @@
 //! Motor report: the `motor` figures of `reference.json` ([`MotorReport`]) — thrust-curve
 //! figures and, at chosen times, thrust, masses, centre of mass (motor coordinates) and
-//! inertia about the motor's centre of mass.
+//! inertia about the motor's centre of mass — and, for hybrid and liquid motors, each tank's
+//! contents at the same times ([`TankReport`]).
 
 use std::fmt;
 
@@ -44,15 +45,14 @@ pub struct MotorReport {
     /// Axial inertia about the motor's centre of mass, kg·m².
     #[serde(rename = "I33_kgm2")]
     pub i33_kgm2: Vec<f64>,
-    /// Each tank of a hybrid or liquid motor at the same times.
-    #[serde(skip_serializing_if = "Vec::is_empty")]
-    pub tanks: Vec<TankReport>,
 }
 
-/// One tank of a hybrid or liquid motor at the report times (tank frame: `position` is the
-/// motor coordinate of its height origin).
+/// One tank of a hybrid or liquid motor at chosen times (`karman inspect` lists them after
+/// the motor; `reference.json` has no such object).
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct TankReport {
+    /// Sample times, s.
+    pub times_s: Vec<f64>,
     /// The tank's name.
     pub name: String,
     /// RocketPy's class of the tank.
@@ -115,25 +115,62 @@ impl MotorReport {
             center_of_mass_m: column(&|t| motor.center_of_mass(t)),
             i11_kgm2: column(&|t| motor.inertia(t).0),
             i33_kgm2: column(&|t| motor.inertia(t).1),
-            tanks: motor
-                .tanks()
-                .iter()
-                .map(|p| {
-                    let tank = &p.tank;
-                    TankReport {
-                        name: tank.name().to_owned(),
-                        kind: tank.spec().kind.class_name(),
-                        position_m: p.position,
-                        total_volume_m3: tank.spec().geometry.total_volume(),
-                        liquid_mass_kg: column(&|t| tank.liquid_mass().eval(t)),
-                        gas_mass_kg: column(&|t| tank.gas_mass().eval(t)),
-                        liquid_height_m: column(&|t| tank.liquid_height().eval(t)),
-                        center_of_mass_m: column(&|t| p.position + tank.center_of_mass().eval(t)),
-                        i11_kgm2: column(&|t| tank.inertia().eval(t)),
-                    }
-                })
-                .collect(),
         }
+    }
+}
+
+impl TankReport {
+    /// Every tank of `motor` (none for solid and generic motors) at `times`, s.
+    #[must_use]
+    pub fn for_motor(motor: &Motor, times: &[f64]) -> Vec<TankReport> {
+        let column = |f: &dyn Fn(f64) -> f64| times.iter().map(|&t| f(t)).collect::<Vec<_>>();
+        motor
+            .tanks()
+            .iter()
+            .map(|p| {
+                let tank = &p.tank;
+                TankReport {
+                    times_s: times.to_vec(),
+                    name: tank.name().to_owned(),
+                    kind: tank.spec().kind.class_name(),
+                    position_m: p.position,
+                    total_volume_m3: tank.spec().geometry.total_volume(),
+                    liquid_mass_kg: column(&|t| tank.liquid_mass().eval(t)),
+                    gas_mass_kg: column(&|t| tank.gas_mass().eval(t)),
+                    liquid_height_m: column(&|t| tank.liquid_height().eval(t)),
+                    center_of_mass_m: column(&|t| p.position + tank.center_of_mass().eval(t)),
+                    i11_kgm2: column(&|t| tank.inertia().eval(t)),
+                }
+            })
+            .collect()
+    }
+}
+
+impl fmt::Display for TankReport {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        writeln!(
+            f,
+            "Tank '{}' ({}, at {:.6} m, volume {:.6e} m³)",
+            self.name, self.kind, self.position_m, self.total_volume_m3
+        )?;
+        writeln!(
+            f,
+            "  {:>9} {:>12} {:>12} {:>12} {:>12} {:>12}",
+            "t [s]", "liquid [kg]", "gas [kg]", "level [m]", "CM [m]", "I11 [kg·m²]"
+        )?;
+        for (i, t) in self.times_s.iter().enumerate() {
+            let cell = |v: &[f64]| v.get(i).copied().unwrap_or(f64::NAN);
+            writeln!(
+                f,
+                "  {t:>9.4} {:>12.6} {:>12.6} {:>12.6} {:>12.6} {:>12.6e}",
+                cell(&self.liquid_mass_kg),
+                cell(&self.gas_mass_kg),
+                cell(&self.liquid_height_m),
+                cell(&self.center_of_mass_m),
+                cell(&self.i11_kgm2),
+            )?;
+        }
+        Ok(())
     }
 }
 
@@ -180,31 +217,6 @@ impl fmt::Display for MotorReport {
                 cell(&self.i11_kgm2),
                 cell(&self.i33_kgm2),
             )?;
-        }
-        for tank in &self.tanks {
-            writeln!(f)?;
-            writeln!(
-                f,
-                "  Tank '{}' ({}, at {:.6} m, volume {:.6e} m³)",
-                tank.name, tank.kind, tank.position_m, tank.total_volume_m3
-            )?;
-            writeln!(
-                f,
-                "  {:>9} {:>12} {:>12} {:>12} {:>12} {:>12}",
-                "t [s]", "liquid [kg]", "gas [kg]", "level [m]", "CM [m]", "I11 [kg·m²]"
-            )?;
-            for (i, t) in self.times_s.iter().enumerate() {
-                let cell = |v: &[f64]| v.get(i).copied().unwrap_or(f64::NAN);
-                writeln!(
-                    f,
-                    "  {t:>9.4} {:>12.6} {:>12.6} {:>12.6} {:>12.6} {:>12.6e}",
-                    cell(&tank.liquid_mass_kg),
-                    cell(&tank.gas_mass_kg),
-                    cell(&tank.liquid_height_m),
-                    cell(&tank.center_of_mass_m),
-                    cell(&tank.i11_kgm2),
-                )?;
-            }
         }
         Ok(())
     }
