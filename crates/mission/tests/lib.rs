@@ -7,6 +7,7 @@ mod fuzz;
 mod load;
 mod overrides;
 mod paths;
+mod tanks;
 mod validate_environment;
 mod validate_flight;
 mod validate_motor;
