@@ -35,6 +35,17 @@ pub fn read_curve(path: impl AsRef<Path>) -> Result<Vec<[f64; 2]>, CsvError> {
     parse_curve(&text, path)
 }
 
+/// Reads a file of rows of exactly `width` numbers each, in file order (e.g. the
+/// `[level, Mach, Cd]` rows of an air-brake table).
+///
+/// # Errors
+/// As [`read_columns`]; [`CsvError::WrongColumnCount`] for a row of another width.
+pub fn read_rows(path: impl AsRef<Path>, width: usize) -> Result<Vec<Vec<f64>>, CsvError> {
+    let path = path.as_ref();
+    let text = read_text(path)?;
+    parse_rows(&text, path, Some(width))
+}
+
 /// Parses text in the format of the module docs into columns; `origin` names the source in
 /// errors.
 ///

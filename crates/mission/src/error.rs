@@ -104,6 +104,19 @@ pub enum ProblemKind {
         /// What, e.g. `a hybrid motor`.
         what: String,
     },
+    /// A parachute trigger expression is not in the expression language.
+    #[error("invalid trigger expression")]
+    Expression {
+        /// Where in the expression, and why.
+        source: karman_script::ExpressionError,
+    },
+    /// The air-brake controller script does not compile, or the mission sets a constant the
+    /// script does not declare.
+    #[error("invalid controller script")]
+    Script {
+        /// The script's file, line, column and message.
+        source: Box<karman_script::ScriptError>,
+    },
     /// A `[dispersion.vary]` entry does not fit its target.
     #[error("{reason}")]
     Distribution {

@@ -412,7 +412,7 @@ fn inline_rocket_curves(mission: &mut Mission) -> Result<(), MissionError> {
         }
     }
     for (key, curve) in curves {
-        if matches!(curve, Curve::File(_)) {
+        if matches!(curve, Curve::File(_)) && !curve.is_estimate() {
             let points = curve.points(&dir).map_err(|source| MissionError::Curve {
                 file: path.clone(),
                 key,

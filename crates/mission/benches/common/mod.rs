@@ -2,15 +2,10 @@
 
 use std::path::PathBuf;
 
-/// `../shared/validation/<flight>/mission.toml` beside the workspace, or
-/// `$KARMAN_VALIDATION_DATA/<flight>/mission.toml`; `None` when it is absent.
+/// The `mission.toml` of the validation flight `flight` (`fixtures/validation/<flight>`, or
+/// `$KARMAN_VALIDATION_DATA/<flight>`); `None` when it is absent.
 pub fn validation_mission(flight: &str) -> Option<PathBuf> {
-    let dir = std::env::var_os("KARMAN_VALIDATION_DATA").map_or_else(
-        || PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../../../shared/validation"),
-        PathBuf::from,
-    );
-    let path = dir.join(flight).join("mission.toml");
-    path.is_file().then_some(path)
+    Some(karman_validation::folder()?.flight(flight)?.mission())
 }
 
 /// The Calisto validation mission ([`validation_mission`]).

@@ -1,4 +1,5 @@
 //! Building the physics models (environment, motor, rocket) from a validated mission.
+pub mod drag;
 pub mod environment;
 pub mod flight;
 pub mod motor;
