@@ -34,8 +34,7 @@ fn validation_thrust_files_load() {
                 let first: Vec<f64> = text
                     .lines()
                     .map(str::trim)
-                    .filter(|l| l.starts_with(|c: char| c.is_ascii_digit()))
-                    .next()
+                    .find(|l| l.starts_with(|c: char| c.is_ascii_digit()))
                     .map(|l| {
                         l.split_whitespace()
                             .filter_map(|v| v.parse().ok())
