@@ -23,6 +23,7 @@ pub mod csv;
 mod data;
 pub mod eng;
 mod error;
+mod file;
 mod fluid;
 mod generic;
 mod hybrid;
