@@ -3,6 +3,7 @@
 mod allocation;
 mod broken;
 mod common;
+mod dimensions_flight;
 mod drag_estimate;
 mod fuzz;
 mod load;
