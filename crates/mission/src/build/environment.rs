@@ -72,7 +72,8 @@ fn earth_latitude(mission: &Mission) -> f64 {
         .unwrap_or(env.latitude_deg)
 }
 
-/// Unix time (s, UTC) of the mission's date, if it has a full date-time with an offset.
+/// Unix time (s, UTC) of the mission's date, if it has a full date-time with an offset and
+/// the date exists.
 #[must_use]
 pub fn launch_unix_time(mission: &Mission) -> Option<f64> {
     let dt = mission.spec.environment.date.as_ref()?;
@@ -96,7 +97,7 @@ pub fn launch_unix_time(mission: &Mission) -> Option<f64> {
         h,
         m,
         s,
-    );
+    )?;
     Some(local - offset_minutes * 60.0)
 }
 
