@@ -2,7 +2,8 @@
 //! `.cargo/config.toml`, after matklad's cargo-xtask pattern).
 //!
 //! - `ci`: everything CI checks — formatting, clippy with warnings denied, the whole test
-//!   suite, and the validation run when the validation data are present.
+//!   suite, the Python package built into a fresh virtual environment with its pytest suite
+//!   (`python.rs`), and the validation run when the validation data are present.
 //! - `validate [--data DIR]`: fly every validation mission in release and compare with
 //!   RocketPy 1.13 and the measured flights (see `validate.rs`).
 //! - `bench [FILTER]`: run the criterion benchmarks and print their medians.
@@ -10,6 +11,7 @@
 //!   ARCHITECTURE.md, read from `cargo metadata`).
 
 mod bench;
+mod python;
 mod tidy;
 mod validate;
 
@@ -118,6 +120,7 @@ fn ci(root: &Path) -> Result<()> {
         root,
         &["test", "--package", "karman-atmos", "--features", "fetch"],
     )?;
+    python::test_package(root)?;
     let data = validate::data_dir(root, &[])?;
     if data.is_dir() {
         validate::run(root, &[])?;

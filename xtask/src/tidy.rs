@@ -35,6 +35,7 @@ pub const ALLOWED: &[(&str, &[&str])] = &[
         ],
     ),
     ("karman", &["karman-mission"]),
+    ("karman-python", &["karman-mission"]),
     ("xtask", &["karman-mission", "karman-dispersion"]),
 ];
 

@@ -5,3 +5,4 @@ mod common;
 mod inspect;
 mod montecarlo;
 mod simulate;
+mod sweep;

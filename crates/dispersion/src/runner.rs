@@ -218,7 +218,10 @@ where
     let new_failures = written.map_err(DispersionError::io(&samples_path))?;
     let elapsed = started.elapsed();
     drop(out);
-    let rows = *engine.written.lock().unwrap_or_else(PoisonError::into_inner);
+    let rows = *engine
+        .written
+        .lock()
+        .unwrap_or_else(PoisonError::into_inner);
     if rows < total {
         return Err(DispersionError::Interrupted {
             dir: dir.to_owned(),

@@ -115,12 +115,18 @@ fn a_stopped_run_leaves_a_prefix_that_resumes_to_identical_bytes() {
     // Stop from inside the flights once sample 100 is reached, as a Ctrl-C handler would.
     let stopped = tmp.path().join("stopped");
     let stop = AtomicBool::new(false);
-    let result = run_until(&study, &stopped, &options(2, Shard::WHOLE), &stop, |i, v| {
-        if i >= 100 {
-            stop.store(true, Ordering::Relaxed);
-        }
-        fly(i, v)
-    });
+    let result = run_until(
+        &study,
+        &stopped,
+        &options(2, Shard::WHOLE),
+        &stop,
+        |i, v| {
+            if i >= 100 {
+                stop.store(true, Ordering::Relaxed);
+            }
+            fly(i, v)
+        },
+    );
     let Err(DispersionError::Interrupted { written, total, .. }) = result else {
         panic!("expected an interruption, got {result:?}");
     };

@@ -2,7 +2,7 @@
 //! `set`), JSON-shaped reports → Python objects (lists of numbers as numpy arrays).
 
 use numpy::PyArray1;
-use pyo3::exceptions::PyTypeError;
+use pyo3::exceptions::{PyRuntimeError, PyTypeError};
 use pyo3::prelude::*;
 use pyo3::types::{PyBool, PyDict, PyFloat, PyInt, PyList, PyString, PyTuple};
 
@@ -14,9 +14,14 @@ pub fn to_toml(value: &Bound<'_, PyAny>, at: &str) -> PyResult<toml::Value> {
         return Ok(toml::Value::Boolean(value.extract()?));
     }
     if value.is_instance_of::<PyInt>() {
-        return value.extract::<i64>().map(toml::Value::Integer).map_err(|_| {
-            PyTypeError::new_err(format!("`{at}`: the integer {value} does not fit in 64 bits"))
-        });
+        return value
+            .extract::<i64>()
+            .map(toml::Value::Integer)
+            .map_err(|_| {
+                PyTypeError::new_err(format!(
+                    "`{at}`: the integer {value} does not fit in 64 bits"
+                ))
+            });
     }
     if value.is_instance_of::<PyFloat>() {
         return Ok(toml::Value::Float(value.extract()?));
@@ -46,9 +51,12 @@ pub fn to_toml(value: &Bound<'_, PyAny>, at: &str) -> PyResult<toml::Value> {
     }
     if value.hasattr("isoformat")? {
         let text: String = value.call_method0("isoformat")?.extract()?;
-        return text.parse::<toml::value::Datetime>().map(toml::Value::Datetime).map_err(|e| {
-            PyTypeError::new_err(format!("`{at}`: {text} is not a TOML datetime ({e})"))
-        });
+        return text
+            .parse::<toml::value::Datetime>()
+            .map(toml::Value::Datetime)
+            .map_err(|e| {
+                PyTypeError::new_err(format!("`{at}`: {text} is not a TOML datetime ({e})"))
+            });
     }
     if value.is_instance_of::<PyList>() || value.is_instance_of::<PyTuple>() {
         let mut array = Vec::new();
@@ -100,27 +108,48 @@ pub fn from_json<'py>(py: Python<'py>, value: &serde_json::Value) -> PyResult<Bo
     })
 }
 
-/// A JSON value as plain Python data (lists stay lists): what `to_dict` methods return.
-pub fn from_json_plain<'py>(
+/// A serializable value as plain Python data through its JSON text (so objects keep their
+/// fields' order): what `to_dict` methods return.
+pub fn plain<'py, T: serde::Serialize + ?Sized>(
     py: Python<'py>,
-    value: &serde_json::Value,
+    value: &T,
 ) -> PyResult<Bound<'py, PyAny>> {
-    use serde_json::Value;
-    match value {
-        Value::Array(items) => {
+    let text = serde_json::to_string(value).map_err(|e| PyRuntimeError::new_err(e.to_string()))?;
+    py.import("json")?.call_method1("loads", (text,))
+}
+
+/// A TOML value as Python data: tables → dicts (in order), arrays → lists, datetimes →
+/// `datetime` objects (dates and times without a date as their text).
+pub fn from_toml<'py>(py: Python<'py>, value: &toml::Value) -> PyResult<Bound<'py, PyAny>> {
+    Ok(match value {
+        toml::Value::String(s) => PyString::new(py, s).into_any(),
+        toml::Value::Integer(i) => i.into_pyobject(py)?.into_any(),
+        toml::Value::Float(x) => PyFloat::new(py, *x).into_any(),
+        toml::Value::Boolean(b) => PyBool::new(py, *b).to_owned().into_any(),
+        toml::Value::Datetime(d) => {
+            let text = d.to_string();
+            if d.date.is_some() && d.time.is_some() {
+                let iso = text.replace('Z', "+00:00");
+                py.import("datetime")?
+                    .getattr("datetime")?
+                    .call_method1("fromisoformat", (iso,))?
+            } else {
+                PyString::new(py, &text).into_any()
+            }
+        }
+        toml::Value::Array(items) => {
             let list = PyList::empty(py);
             for item in items {
-                list.append(from_json_plain(py, item)?)?;
+                list.append(from_toml(py, item)?)?;
             }
-            Ok(list.into_any())
+            list.into_any()
         }
-        Value::Object(map) => {
+        toml::Value::Table(table) => {
             let dict = PyDict::new(py);
-            for (key, item) in map {
-                dict.set_item(key, from_json_plain(py, item)?)?;
+            for (key, item) in table {
+                dict.set_item(key, from_toml(py, item)?)?;
             }
-            Ok(dict.into_any())
+            dict.into_any()
         }
-        other => from_json(py, other),
-    }
+    })
 }

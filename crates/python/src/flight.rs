@@ -12,7 +12,7 @@ use pyo3::exceptions::{PyAttributeError, PyKeyError, PyOSError, PyRuntimeError};
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 
-use crate::convert::from_json_plain;
+use crate::convert::{from_json, plain};
 
 /// The names of the trajectory series, in the column order of `trajectory.csv`.
 pub fn series_names() -> Vec<&'static str> {
@@ -107,15 +107,13 @@ impl Flight {
     /// The summary as `karman simulate --json` prints it (apogee, rail exit, maxima, impact,
     /// events; SI units, `None` for what did not happen).
     fn to_dict<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
-        from_json_plain(py, &self.summary_json()?)
+        plain(py, self.summary_ref())
     }
 
     /// The flight's events (`rail exit`, `apogee`, parachute triggers, `impact`), each a dict.
     #[getter]
     fn events<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
-        let value = serde_json::to_value(&self.summary_ref().events)
-            .map_err(|e| PyRuntimeError::new_err(e.to_string()))?;
-        from_json_plain(py, &value)
+        plain(py, &self.summary_ref().events)
     }
 
     /// How the flight ended: `"impact"`, `"apogee"`, `"max_time"` or `"stuck_on_rail"`.
@@ -145,9 +143,7 @@ impl Flight {
     /// right-hand-side evaluations, phases.
     #[getter]
     fn integration<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
-        let value = serde_json::to_value(self.run.flight.stats)
-            .map_err(|e| PyRuntimeError::new_err(e.to_string()))?;
-        from_json_plain(py, &value)
+        plain(py, &self.run.flight.stats)
     }
 
     /// The rocket's static margin at time `t` (calibres).
@@ -159,7 +155,7 @@ impl Flight {
     fn __getattr__<'py>(&self, py: Python<'py>, name: &str) -> PyResult<Bound<'py, PyAny>> {
         let summary = self.summary_json()?;
         match summary.get(name) {
-            Some(value) if name != "events" => from_json_plain(py, value),
+            Some(value) if name != "events" => from_json(py, value),
             _ => Err(PyAttributeError::new_err(format!(
                 "'Flight' object has no attribute '{name}'"
             ))),
@@ -168,8 +164,20 @@ impl Flight {
 
     fn __dir__(&self) -> PyResult<Vec<String>> {
         let mut names: Vec<String> = [
-            "t", "series", "units", "to_dict", "events", "termination", "seed", "name",
-            "integration", "static_margin", "to_pandas", "export_csv", "export_kml", "plot",
+            "t",
+            "series",
+            "units",
+            "to_dict",
+            "events",
+            "termination",
+            "seed",
+            "name",
+            "integration",
+            "static_margin",
+            "to_pandas",
+            "export_csv",
+            "export_kml",
+            "plot",
         ]
         .iter()
         .map(|s| (*s).to_owned())

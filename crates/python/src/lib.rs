@@ -14,12 +14,12 @@
 //! print(study.outputs["apogee_agl_m"].std())
 //! ```
 //!
-//! - [`mission`]: `karman.load`, `karman.Mission` (`from_toml`, `from_dict`, `set`, `to_toml`,
+//! - `mission.rs`: `karman.load`, `karman.Mission` (`from_toml`, `from_dict`, `set`, `to_toml`,
 //!   `inspect`, `simulate`, `montecarlo`); every mission error is a `karman.MissionError`
 //!   carrying the command-line interface's located message.
-//! - [`flight`]: `karman.Flight`, the summary of `karman simulate --json` and every
+//! - `flight.rs`: `karman.Flight`, the summary of `karman simulate --json` and every
 //!   trajectory series of `trajectory.csv`.
-//! - [`study`]: `karman.Study`, a Monte Carlo study in memory, run by the same runner as
+//! - `study.rs`: `karman.Study`, a Monte Carlo study in memory, run by the same runner as
 //!   `karman montecarlo` (same samples, same bytes when written with `out=`), with the GIL
 //!   released and Ctrl-C stopping it between samples.
 //!

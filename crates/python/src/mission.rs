@@ -18,7 +18,7 @@ use pyo3::exceptions::{PyRuntimeError, PyValueError};
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 
-use crate::convert::{from_json, from_json_plain, to_toml};
+use crate::convert::{from_json, from_toml, to_toml};
 use crate::flight::Flight;
 use crate::mission_error;
 use crate::study::Study;
@@ -50,8 +50,7 @@ fn overrides_of(overrides: Option<&Bound<'_, PyDict>>) -> PyResult<Vec<Override>
 /// One override: a dotted path and a Python value written as a TOML value.
 fn override_of(path: &str, value: &Bound<'_, PyAny>) -> PyResult<Override> {
     let value = to_toml(value, path)?;
-    Override::new(path, &value.to_string())
-        .map_err(|e| override_error(path, &e))
+    Override::new(path, &value.to_string()).map_err(|e| override_error(path, &e))
 }
 
 /// The exception of an override that is malformed before it reaches the mission.
@@ -61,7 +60,8 @@ fn override_error(path: &str, error: &karman_mission::OverrideError) -> PyErr {
 
 impl Mission {
     fn parse(text: String, path: &Path, overrides: Vec<Override>) -> PyResult<Self> {
-        let inner = karman_mission::parse(&text, path, &overrides).map_err(|e| mission_error(&e))?;
+        let inner =
+            karman_mission::parse(&text, path, &overrides).map_err(|e| mission_error(&e))?;
         Ok(Mission {
             text,
             overrides,
@@ -147,9 +147,9 @@ impl Mission {
 
     /// The mission, overrides applied, as Python data (the shape `from_dict` takes).
     fn to_dict<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
-        let value = serde_json::to_value(&self.inner.spec)
-            .map_err(|e| PyRuntimeError::new_err(e.to_string()))?;
-        from_json_plain(py, &value)
+        let value = toml::Value::try_from(&self.inner.spec)
+            .map_err(|e| PyRuntimeError::new_err(format!("cannot convert the mission: {e}")))?;
+        from_toml(py, &value)
     }
 
     /// The mission's `name`, if it has one.
@@ -214,7 +214,11 @@ impl Mission {
         let run = py
             .detach(|| simulate_with_seed(mission, seed))
             .map_err(|e| mission_error(&e))?;
-        let name = mission.spec.name.clone().unwrap_or_else(|| "karman flight".to_owned());
+        let name = mission
+            .spec
+            .name
+            .clone()
+            .unwrap_or_else(|| "karman flight".to_owned());
         Ok(Flight::new(run, name, seed))
     }
 
@@ -340,7 +344,10 @@ impl Mission {
 
     fn __repr__(&self) -> String {
         match &self.inner.spec.name {
-            Some(name) => format!("<karman.Mission {name:?} from {}>", self.inner.path.display()),
+            Some(name) => format!(
+                "<karman.Mission {name:?} from {}>",
+                self.inner.path.display()
+            ),
             None => format!("<karman.Mission from {}>", self.inner.path.display()),
         }
     }

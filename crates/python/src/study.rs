@@ -4,13 +4,13 @@
 use std::path::{Path, PathBuf};
 use std::time::Duration;
 
-use karman_mission::dispersion::{RunReport, Study as StudyDefinition, parse_row};
+use karman_mission::dispersion::{RunReport, Study as StudyDefinition, Summary, parse_row};
 use numpy::PyArray1;
 use pyo3::exceptions::{PyOSError, PyRuntimeError};
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 
-use crate::convert::{from_json, from_json_plain};
+use crate::convert::{from_json, plain};
 
 /// A finished Monte Carlo study.
 #[pyclass(module = "karman", frozen)]
@@ -20,7 +20,7 @@ pub struct Study {
     inputs: Vec<(String, Vec<f64>)>,
     outputs: Vec<(String, Vec<f64>)>,
     failures: Vec<(u64, String)>,
-    summary: serde_json::Value,
+    summary: Summary,
     threads: usize,
     elapsed: Duration,
     flown: u64,
@@ -46,7 +46,11 @@ impl Study {
         let mut failures = Vec::new();
         for (number, line) in text.lines().enumerate().skip(1) {
             let row = parse_row(line, n_in, n_out).map_err(|reason| {
-                PyRuntimeError::new_err(format!("{}, line {}: {reason}", path.display(), number + 1))
+                PyRuntimeError::new_err(format!(
+                    "{}, line {}: {reason}",
+                    path.display(),
+                    number + 1
+                ))
             })?;
             index.push(row.index);
             for (column, value) in inputs.iter_mut().zip(&row.inputs) {
@@ -59,12 +63,19 @@ impl Study {
                 failures.push((row.index, error));
             }
         }
-        let summary = serde_json::to_value(&report.summary)
-            .map_err(|e| PyRuntimeError::new_err(e.to_string()))?;
+        let summary = report
+            .summary
+            .clone()
+            .ok_or_else(|| PyRuntimeError::new_err("a whole study has a summary"))?;
         Ok(Study {
             seed: study.seed,
             index,
-            inputs: study.inputs.iter().map(|i| i.column()).zip(inputs).collect(),
+            inputs: study
+                .inputs
+                .iter()
+                .map(|i| i.column())
+                .zip(inputs)
+                .collect(),
             outputs: study.outputs.iter().cloned().zip(outputs).collect(),
             failures,
             summary,
@@ -129,7 +140,7 @@ impl Study {
 
     /// `summary.json` of `karman montecarlo` as Python data.
     fn to_dict<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
-        from_json_plain(py, &self.summary)
+        plain(py, &self.summary)
     }
 
     /// Statistics of each input and output column: `{name: {count, mean, std, min, max,
@@ -137,14 +148,8 @@ impl Study {
     #[getter]
     fn statistics<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyDict>> {
         let dict = PyDict::new(py);
-        for part in ["inputs", "outputs"] {
-            for column in self.summary[part].as_array().into_iter().flatten() {
-                let mut stats = column.clone();
-                if let Some(map) = stats.as_object_mut() {
-                    map.remove("name");
-                }
-                dict.set_item(column["name"].as_str().unwrap_or_default(), from_json_plain(py, &stats)?)?;
-            }
+        for column in self.summary.inputs.iter().chain(&self.summary.outputs) {
+            dict.set_item(&column.name, plain(py, &column.statistics)?)?;
         }
         Ok(dict)
     }
@@ -155,8 +160,10 @@ impl Study {
     #[getter]
     fn ellipses<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyDict>> {
         let dict = PyDict::new(py);
-        for ellipse in self.summary["ellipses"].as_array().into_iter().flatten() {
-            dict.set_item(ellipse["name"].as_str().unwrap_or_default(), from_json(py, ellipse)?)?;
+        for ellipse in &self.summary.ellipses {
+            let value = serde_json::to_value(ellipse)
+                .map_err(|e| PyRuntimeError::new_err(e.to_string()))?;
+            dict.set_item(&ellipse.name, from_json(py, &value)?)?;
         }
         Ok(dict)
     }

@@ -55,7 +55,9 @@ pub const SERIES: &[Series] = &[
     series("z_asl", "m", |_, s| s.z),
     series("altitude_agl", "m", |_, s| s.altitude_agl),
     series("latitude", "deg", |r, s| r.environment.geodetic(s.x, s.y).0),
-    series("longitude", "deg", |r, s| r.environment.geodetic(s.x, s.y).1),
+    series("longitude", "deg", |r, s| {
+        r.environment.geodetic(s.x, s.y).1
+    }),
     series("vx", "mps", |_, s| s.vx),
     series("vy", "mps", |_, s| s.vy),
     series("vz", "mps", |_, s| s.vz),
@@ -166,8 +168,14 @@ mod tests {
         names.sort_unstable();
         names.dedup();
         assert_eq!(names.len(), SERIES.len());
-        assert_eq!(series_named("altitude_agl").map(Series::column).as_deref(), Some("altitude_agl_m"));
-        assert_eq!(series_named("mach").map(Series::column).as_deref(), Some("mach"));
+        assert_eq!(
+            series_named("altitude_agl").map(Series::column).as_deref(),
+            Some("altitude_agl_m")
+        );
+        assert_eq!(
+            series_named("mach").map(Series::column).as_deref(),
+            Some("mach")
+        );
         assert!(series_named("nothing").is_none());
     }
 
