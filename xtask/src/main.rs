@@ -3,7 +3,8 @@
 //!
 //! - `ci`: everything CI checks — formatting, clippy with warnings denied, the whole test
 //!   suite, the Python package built into a fresh virtual environment with its pytest suite
-//!   (`python.rs`), and the validation run when the validation data are present.
+//!   (`python.rs`), and the validation run on the repository's `fixtures/validation` (a
+//!   missing or incomplete folder is skipped with a message, and fails when `CI` is set).
 //! - `validate [--data DIR]`: fly every validation mission in release and compare with
 //!   RocketPy 1.13 and the measured flights (see `validate.rs`).
 //! - `bench [FILTER]`: run the criterion benchmarks and print their medians.
@@ -121,14 +122,11 @@ fn ci(root: &Path) -> Result<()> {
         &["test", "--package", "karman-atmos", "--features", "fetch"],
     )?;
     python::test_package(root)?;
-    let data = validate::data_dir(root, &[])?;
-    if data.is_dir() {
-        validate::run(root, &[])?;
-    } else {
-        eprintln!(
-            "xtask: no validation data at {}: validation skipped",
-            data.display()
-        );
+    // The release validation run; with `CI` set an unavailable folder fails (as the tests do).
+    match karman_validation::locate() {
+        Ok(_) => validate::run(root, &[])?,
+        Err(e) if karman_validation::in_ci() => bail!("{e} (CI is set: the validation must run)"),
+        Err(e) => eprintln!("xtask: validation skipped: {e}"),
     }
     Ok(())
 }

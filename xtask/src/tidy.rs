@@ -23,6 +23,7 @@ pub const ALLOWED: &[(&str, &[&str])] = &[
         ],
     ),
     ("karman-dispersion", &["karman-math", "karman-dynamics"]),
+    ("karman-script", &[]),
     (
         "karman-mission",
         &[
@@ -32,14 +33,24 @@ pub const ALLOWED: &[(&str, &[&str])] = &[
             "karman-airframe",
             "karman-dynamics",
             "karman-dispersion",
+            "karman-script",
         ],
     ),
     ("karman", &["karman-mission"]),
     ("karman-python", &["karman-mission"]),
-    ("xtask", &["karman-mission", "karman-dispersion"]),
+    ("karman-validation", &[]),
+    (
+        "xtask",
+        &["karman-mission", "karman-dispersion", "karman-validation"],
+    ),
 ];
 
-/// Every workspace-internal dependency edge `(from, to)` found in `cargo metadata` JSON.
+/// The crate of the validation flights: any crate's tests may use it (a dev-dependency),
+/// outside [`ALLOWED`].
+pub const TEST_DATA: &str = "karman-validation";
+
+/// Every workspace-internal dependency edge `(from, to)` found in `cargo metadata` JSON, but
+/// the dev-dependencies on [`TEST_DATA`].
 pub fn workspace_edges(metadata: &serde_json::Value) -> Result<BTreeSet<(String, String)>> {
     let packages = metadata["packages"]
         .as_array()
@@ -50,7 +61,8 @@ pub fn workspace_edges(metadata: &serde_json::Value) -> Result<BTreeSet<(String,
         let from = p["name"].as_str().context("package without a name")?;
         for d in p["dependencies"].as_array().into_iter().flatten() {
             let to = d["name"].as_str().context("dependency without a name")?;
-            if names.contains(to) {
+            let test_data = to == TEST_DATA && d["kind"].as_str() == Some("dev");
+            if names.contains(to) && !test_data {
                 edges.insert((from.to_owned(), to.to_owned()));
             }
         }
@@ -133,6 +145,22 @@ mod tests {
                 "{name} missing from ALLOWED"
             );
         }
+    }
+
+    #[test]
+    fn only_tests_may_use_the_validation_crate() {
+        let metadata = serde_json::json!({"packages": [
+            {"name": "karman-math", "dependencies": [{"name": TEST_DATA, "kind": "dev"}]},
+            {"name": "karman-atmos", "dependencies": [{"name": TEST_DATA, "kind": null}]},
+            {"name": TEST_DATA, "dependencies": []},
+        ]});
+        let edges = workspace_edges(&metadata).expect("edges");
+        let bad = violations(&edges);
+        assert_eq!(
+            bad,
+            ["karman-atmos must not depend on karman-validation"],
+            "{edges:?}"
+        );
     }
 
     #[test]

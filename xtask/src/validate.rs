@@ -11,19 +11,8 @@ use std::path::{Path, PathBuf};
 use std::process::Command;
 
 use anyhow::{Context, Result, bail};
+use karman_validation::{IMPACT_FRACTION, SUMMARY_PARITY, Tolerance};
 use serde_json::{Value, json};
-
-/// Parity tolerances against RocketPy 1.13 (the `karman simulate` issue's acceptance list).
-const PARITY: &[(&str, f64, &str)] = &[
-    ("apogee_agl_m", 1e-3, "relative"),
-    ("apogee_time_s", 2e-3, "relative"),
-    ("out_of_rail_velocity_mps", 5e-3, "relative"),
-    ("max_speed_mps", 5e-3, "relative"),
-    ("max_mach", 5e-3, "relative"),
-];
-
-/// Impact point tolerance: a fraction of the impact distance from the pad.
-const IMPACT_FRACTION: f64 = 1e-2;
 
 /// Per-flight band on |apogee error| against the measured flight, with its reason. A model
 /// change that moves a flight outside its band must be explained, not absorbed.
@@ -78,26 +67,25 @@ struct Flight {
 
 /// Runs the validation; `args` are the arguments after `validate`.
 pub fn run(root: &Path, args: &[String]) -> Result<()> {
-    let data = data_dir(root, args)?;
+    let data = data_dir(args)?;
+    let folder = karman_validation::open(&data)?;
     crate::cargo(root, &["build", "--release", "--package", "karman"])?;
     let exe = root.join("target/release/karman");
     let out = root.join("target/validation");
     std::fs::create_dir_all(&out)?;
-    let mut dirs: Vec<PathBuf> = std::fs::read_dir(&data)
-        .with_context(|| format!("cannot read {}", data.display()))?
-        .filter_map(|e| e.ok().map(|e| e.path()))
-        .filter(|p| p.join("mission.toml").is_file() && p.join("reference.json").is_file())
-        .collect();
-    dirs.sort();
-    if dirs.is_empty() {
-        bail!(
-            "no flight folders (mission.toml + reference.json) in {}",
-            data.display()
-        );
-    }
     let mut flights = Vec::new();
-    for dir in &dirs {
-        flights.push(fly(&exe, dir, &out).with_context(|| format!("flight {}", dir.display()))?);
+    for flight in &folder.flights {
+        if let Some(pending) = karman_validation::pending(&flight.name) {
+            eprintln!(
+                "xtask: validation flight {} skipped: it needs {}",
+                flight.name, pending.needs
+            );
+            continue;
+        }
+        flights.push(
+            fly(&exe, &flight.dir, &out)
+                .with_context(|| format!("flight {}", flight.dir.display()))?,
+        );
     }
     let report = report_markdown(&flights);
     print!("{report}");
@@ -121,17 +109,14 @@ pub fn run(root: &Path, args: &[String]) -> Result<()> {
     Ok(())
 }
 
-/// `--data DIR`, else `$KARMAN_VALIDATION_DATA`, else `../shared/validation` beside the root.
-pub fn data_dir(root: &Path, args: &[String]) -> Result<PathBuf> {
+/// `--data DIR`, else `$KARMAN_VALIDATION_DATA`, else the repository's `fixtures/validation`
+/// ([`karman_validation::data_dir`]).
+pub fn data_dir(args: &[String]) -> Result<PathBuf> {
     match args {
-        [] => {}
-        [flag, dir] if flag == "--data" => return Ok(PathBuf::from(dir)),
+        [] => Ok(karman_validation::data_dir()),
+        [flag, dir] if flag == "--data" => Ok(PathBuf::from(dir)),
         _ => bail!("unexpected arguments {args:?} (usage: cargo xtask validate [--data DIR])"),
     }
-    if let Some(dir) = std::env::var_os("KARMAN_VALIDATION_DATA") {
-        return Ok(PathBuf::from(dir));
-    }
-    Ok(root.join("../shared/validation"))
 }
 
 fn fly(exe: &Path, dir: &Path, out: &Path) -> Result<Flight> {
@@ -232,7 +217,7 @@ fn num(v: &Value, key: &str) -> Option<f64> {
 fn check(f: &Flight) -> Vec<String> {
     let r = &f.reference["summary"];
     let mut failures = Vec::new();
-    for &(key, tol, _) in PARITY {
+    for Tolerance { key, relative: tol } in SUMMARY_PARITY {
         match (num(&f.summary, key), num(r, key)) {
             (Some(k), Some(p)) if rel(k, p) > tol => failures.push(format!(
                 "{key}: karman {k:.4} vs RocketPy {p:.4} ({:.3} % > {:.2} %)",
@@ -489,24 +474,17 @@ mod tests {
 
     #[test]
     fn every_measured_flight_has_a_band() {
-        let root = Path::new(env!("CARGO_MANIFEST_DIR")).join("..");
-        let Ok(data) = data_dir(&root, &[]) else {
+        let Some(folder) = karman_validation::folder() else {
             return;
         };
-        let Ok(entries) = std::fs::read_dir(&data) else {
-            eprintln!("validation data not found at {}: skipped", data.display());
-            return;
-        };
-        for e in entries.flatten() {
-            let Ok(text) = std::fs::read_to_string(e.path().join("reference.json")) else {
-                continue;
-            };
+        for flight in folder.flown() {
+            let text = std::fs::read_to_string(flight.reference()).expect("reference.json");
             let v: Value = serde_json::from_str(&text).expect("reference.json is JSON");
             if v["measured"]["apogee_agl_m"].is_f64() {
-                let name = e.file_name().to_string_lossy().into_owned();
                 assert!(
-                    MEASURED_BANDS.iter().any(|b| b.0 == name),
-                    "{name} has no band"
+                    MEASURED_BANDS.iter().any(|b| b.0 == flight.name),
+                    "{} has no band",
+                    flight.name
                 );
             }
         }

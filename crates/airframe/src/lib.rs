@@ -67,6 +67,8 @@
 //! # }
 //! ```
 
+pub mod air_brakes;
+pub mod drag;
 mod error;
 mod mass;
 mod motor;
@@ -74,6 +76,11 @@ mod recovery;
 mod rocket;
 pub mod surfaces;
 
+pub use air_brakes::{AirBrakes, AirBrakesDrag, AirBrakesSpec};
+pub use drag::{
+    BodySegment, DragComponents, DragEstimate, DragGeometry, DragModel, FinCrossSection,
+    FinSetDrag, FlowReference, LaunchLug, Profile, RailButtonDrag,
+};
 pub use error::AirframeError;
 pub use mass::MassProperties;
 pub use motor::MotorProperties;

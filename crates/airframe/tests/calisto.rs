@@ -179,7 +179,6 @@ fn validate_calisto_mirrored_coordinates_give_the_same_physics() {
     // The same rocket described nose-to-tail (every user position negated): body-axis
     // quantities and margins are unchanged, user-axis positions change sign (physics.md §2.5).
     let Some(dir) = crate::common::validation_dir() else {
-        println!("validation data folder absent: skipped");
         return;
     };
     let motor = crate::common::calisto_motor(&dir);

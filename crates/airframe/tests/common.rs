@@ -13,14 +13,10 @@ use karman_airframe::{
 };
 use karman_math::{Extrapolation, Interpolation, Table1, linspace};
 
-/// The validation folder (`KARMAN_VALIDATION_DATA`, else `<workspace>/../shared/validation`),
-/// or `None` when it is absent.
+/// The validation folder ([`karman_validation::folder`]), or `None` when it is unavailable
+/// outside CI.
 pub fn validation_dir() -> Option<PathBuf> {
-    let dir = match std::env::var_os("KARMAN_VALIDATION_DATA") {
-        Some(dir) => PathBuf::from(dir),
-        None => PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../../../shared/validation"),
-    };
-    dir.is_dir().then_some(dir)
+    karman_validation::folder().map(|f| f.dir)
 }
 
 /// Two numeric columns of a text file (`,` or whitespace separated, `;` comments and
@@ -214,10 +210,7 @@ pub fn calisto_inputs(dir: &std::path::Path, airfoil: Option<Airfoil>) -> Rocket
 
 /// The Calisto rocket of physics.md §13 (plain fins), or `None` without validation data.
 pub fn calisto(airfoil: bool) -> Option<Rocket> {
-    let Some(dir) = validation_dir() else {
-        println!("validation data folder absent: skipped");
-        return None;
-    };
+    let dir = validation_dir()?;
     let foil = airfoil.then(|| naca0012(&dir));
     Some(Rocket::new(calisto_inputs(&dir, foil), calisto_motor(&dir)).expect("valid Calisto"))
 }

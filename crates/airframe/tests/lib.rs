@@ -3,5 +3,6 @@
 mod calisto;
 mod common;
 mod dimensions;
+mod drag_openrocket;
 mod robustness;
 mod rocketpy_surfaces;

@@ -417,7 +417,7 @@ impl WeatherGrid {
     /// [`AtmosError::NetCdf`] when the file is missing, truncated or not netCDF.
     pub fn open(path: &Path) -> Result<WeatherGrid, AtmosError> {
         let name = path.display().to_string();
-        let bytes = std::fs::read(path).map_err(|e| AtmosError::NetCdf {
+        let bytes = karman_math::read_data_file(path).map_err(|e| AtmosError::NetCdf {
             file: name.clone(),
             message: e.to_string(),
         })?;

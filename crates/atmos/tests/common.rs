@@ -1,16 +1,14 @@
-//! Test helpers: where the shared data is, and a minimal netCDF classic (CDF-1) writer to
+//! Test helpers: where the project's shared weather data is, and a minimal netCDF classic (CDF-1) writer to
 //! author small synthetic weather grids (format: NetCDF Users Guide, "The NetCDF Classic
 //! Format Specification").
 
 use std::path::PathBuf;
 
-/// `<workspace>/../shared` (the validation data's parent), or `None` when absent.
+/// `<workspace>/../shared`, the project's shared data beside the repository (its
+/// `data/weather` soundings are not part of the repository), or `None` when absent.
 pub fn shared_dir() -> Option<PathBuf> {
-    let dir = match std::env::var_os("KARMAN_VALIDATION_DATA") {
-        Some(v) => PathBuf::from(v).join(".."),
-        None => PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../../../shared"),
-    };
-    dir.join("validation").is_dir().then_some(dir)
+    let dir = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../../../shared");
+    dir.join("data/weather").is_dir().then_some(dir)
 }
 
 /// A variable of a synthetic file: name, dimension indices, text attributes, f64 data.

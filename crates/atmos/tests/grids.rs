@@ -1,7 +1,7 @@
 //! Weather grids: synthetic netCDF files authored here (time choice, bilinear interpolation,
 //! longitude conventions, members, every error) and the validation ERA5 files (corruption).
 
-use crate::common::{Var, classic_nc, shared_dir};
+use crate::common::{Var, classic_nc};
 use karman_atmos::time::unix_seconds;
 use karman_atmos::{AtmosError, GridDictionary, GridRequest, WeatherGrid};
 
@@ -248,15 +248,14 @@ fn truncated_and_corrupt_files_are_errors() {
             );
         }
     }
-    let Some(shared) = shared_dir() else {
-        println!("truncated_and_corrupt_files_are_errors: real ERA5 part skipped (no data)");
+    let Some(validation) = karman_validation::folder() else {
         return;
     };
     for file in [
-        "validation/bella_lui/bella_lui_weather_data_ERA5.nc",
-        "validation/andromeda/euroc_2022_all_windows.nc",
+        "bella_lui/bella_lui_weather_data_ERA5.nc",
+        "andromeda/euroc_2022_all_windows.nc",
     ] {
-        let bytes = std::fs::read(shared.join(file)).expect("ERA5 file");
+        let bytes = std::fs::read(validation.dir.join(file)).expect("ERA5 file");
         for cut in [16, 1000, bytes.len() / 3, bytes.len() - 100] {
             let mut r = request(0.0, 47.2, 9.0);
             r.unix_time = unix_seconds(2020, 2, 22, 13, 0, 0.0);
@@ -276,11 +275,12 @@ fn truncated_and_corrupt_files_are_errors() {
 
 #[test]
 fn real_era5_files_dates_and_sites() {
-    let Some(shared) = shared_dir() else {
-        println!("real_era5_files_dates_and_sites: skipped (no validation data)");
+    let Some(validation) = karman_validation::folder() else {
         return;
     };
-    let path = shared.join("validation/bella_lui/bella_lui_weather_data_ERA5.nc");
+    let path = validation
+        .dir
+        .join("bella_lui/bella_lui_weather_data_ERA5.nc");
     let g = WeatherGrid::open(&path).expect("opens");
     assert_eq!(
         g.detect_dictionary().map(|d| d.name),
@@ -295,6 +295,6 @@ fn real_era5_files_dates_and_sites() {
         g.profile(&r),
         Err(AtmosError::DateOutsideFile { .. })
     ));
-    let missing = WeatherGrid::open(&shared.join("no/such/file.nc")).expect_err("missing");
+    let missing = WeatherGrid::open(&validation.dir.join("no/such/file.nc")).expect_err("missing");
     assert!(missing.to_string().contains("file.nc"));
 }

@@ -1,7 +1,7 @@
 //! `karman check`: exit 0 and "ok" on valid missions; exit 1 and every problem with its
 //! location on invalid ones; never a panic.
 
-use crate::common::{example, failure, karman, scratch, stderr, validation_dir};
+use crate::common::{example, failure, karman, scratch, stderr, validation_flights};
 use std::path::Path;
 
 fn redact(text: &str, path: &Path) -> String {
@@ -10,16 +10,12 @@ fn redact(text: &str, path: &Path) -> String {
 
 #[test]
 fn validate_check_accepts_every_validation_mission() {
-    let Some(dir) = validation_dir() else {
-        println!("skipped: validation data folder not found");
+    let Some(flights) = validation_flights() else {
         return;
     };
     let mut count = 0;
-    for entry in std::fs::read_dir(dir).expect("readable folder") {
-        let mission = entry.expect("folder entry").path().join("mission.toml");
-        if !mission.is_file() {
-            continue;
-        }
+    for flight in flights {
+        let mission = flight.mission();
         let output = karman(&["check", mission.to_str().expect("UTF-8 path")]);
         assert_eq!(
             output.status.code(),

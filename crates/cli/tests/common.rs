@@ -23,12 +23,10 @@ pub fn failure(args: &[&str]) -> String {
     text
 }
 
-pub fn validation_dir() -> Option<PathBuf> {
-    let dir = match std::env::var_os("KARMAN_VALIDATION_DATA") {
-        Some(dir) => PathBuf::from(dir),
-        None => PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../../../shared/validation"),
-    };
-    dir.is_dir().then_some(dir)
+/// The validation flights flown ([`karman_validation::Folder::flown`]), or `None` when the
+/// folder is unavailable outside CI.
+pub fn validation_flights() -> Option<Vec<karman_validation::Flight>> {
+    karman_validation::folder().map(|f| f.flown())
 }
 
 /// The repository's example mission (fixtures/example.toml).

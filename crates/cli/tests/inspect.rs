@@ -1,7 +1,7 @@
 //! `karman inspect`: the environment, motor and rocket objects shaped like the validation
 //! references, readable tables (snapshotted), plots and the rocket drawing.
 
-use crate::common::{example, karman, stderr, validation_dir};
+use crate::common::{example, karman, stderr, validation_flights};
 use std::path::Path;
 
 fn keys(v: &serde_json::Value) -> Vec<String> {
@@ -12,24 +12,18 @@ fn keys(v: &serde_json::Value) -> Vec<String> {
 
 #[test]
 fn validate_json_objects_have_the_reference_shape() {
-    let Some(dir) = validation_dir() else {
-        println!("skipped: validation data folder not found");
+    let Some(flights) = validation_flights() else {
         return;
     };
     let mut count = 0;
-    for entry in std::fs::read_dir(&dir).expect("readable folder") {
-        let flight = entry.expect("entry").path();
-        if !flight.join("reference.json").is_file() {
-            continue;
-        }
-        let mission = flight.join("mission.toml");
+    for flight in flights {
+        let mission = flight.mission();
         let output = karman(&["inspect", mission.to_str().expect("UTF-8"), "--json"]);
         assert_eq!(output.status.code(), Some(0), "{}", stderr(&output));
         let ours: serde_json::Value = serde_json::from_slice(&output.stdout).expect("JSON");
-        let reference: serde_json::Value = serde_json::from_str(
-            &std::fs::read_to_string(flight.join("reference.json")).expect("reference"),
-        )
-        .expect("reference JSON");
+        let reference: serde_json::Value =
+            serde_json::from_str(&std::fs::read_to_string(flight.reference()).expect("reference"))
+                .expect("reference JSON");
         for object in ["environment", "motor", "rocket"] {
             assert_eq!(keys(&ours[object]), keys(&reference[object]), "{object}");
         }
@@ -41,18 +35,12 @@ fn validate_json_objects_have_the_reference_shape() {
                 .map(|s| s["name"].as_str().expect("name").to_owned())
                 .collect()
         };
-        assert_eq!(
-            surfaces(&ours),
-            surfaces(&reference),
-            "{}",
-            flight.display()
-        );
+        assert_eq!(surfaces(&ours), surfaces(&reference), "{}", flight.name);
         // Default motor times are the reference's times, to the last bit.
         assert_eq!(
-            ours["motor"]["times_s"],
-            reference["motor"]["times_s"],
+            ours["motor"]["times_s"], reference["motor"]["times_s"],
             "{}",
-            flight.display()
+            flight.name
         );
         count += 1;
     }

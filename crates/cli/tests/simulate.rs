@@ -5,7 +5,7 @@ use crate::common::{example, failure, karman, stderr};
 use std::path::Path;
 
 /// The summary keys of the mission contract (mission-format.md, "The summary").
-const SUMMARY_KEYS: [&str; 19] = [
+const SUMMARY_KEYS: [&str; 20] = [
     "apogee_agl_m",
     "apogee_asl_m",
     "apogee_time_s",
@@ -25,6 +25,7 @@ const SUMMARY_KEYS: [&str; 19] = [
     "impact_y_m",
     "impact_velocity_mps",
     "events",
+    "warnings",
 ];
 
 fn example_arg() -> String {
@@ -32,7 +33,7 @@ fn example_arg() -> String {
 }
 
 #[test]
-fn json_is_exactly_the_contract_summary() {
+fn json_is_exactly_the_contract_summary_with_warnings() {
     let output = karman(&["simulate", &example_arg(), "--json"]);
     assert_eq!(output.status.code(), Some(0), "{}", stderr(&output));
     let summary: serde_json::Value =
@@ -57,6 +58,7 @@ fn json_is_exactly_the_contract_summary() {
     assert_eq!(events.last(), Some(&"impact"));
     assert!(events.contains(&"apogee") && events.contains(&"burnout"));
     assert!(summary["apogee_agl_m"].as_f64().expect("apogee") > 100.0);
+    assert_eq!(summary["warnings"], serde_json::json!([]));
 }
 
 #[test]
@@ -125,7 +127,7 @@ fn max_time_reached_is_a_clear_failure() {
 #[test]
 fn a_motor_too_weak_to_leave_the_rail_is_a_clear_failure() {
     let text = failure(&["simulate", &example_arg(), "--set", "rocket.mass=500"]);
-    assert!(text.contains("never left the rail"), "{text}");
+    assert!(text.contains("stuck on the rail"), "{text}");
 }
 
 #[test]

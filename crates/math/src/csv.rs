@@ -35,6 +35,17 @@ pub fn read_curve(path: impl AsRef<Path>) -> Result<Vec<[f64; 2]>, CsvError> {
     parse_curve(&text, path)
 }
 
+/// Reads a file of rows of exactly `width` numbers each, in file order (e.g. the
+/// `[level, Mach, Cd]` rows of an air-brake table).
+///
+/// # Errors
+/// As [`read_columns`]; [`CsvError::WrongColumnCount`] for a row of another width.
+pub fn read_rows(path: impl AsRef<Path>, width: usize) -> Result<Vec<Vec<f64>>, CsvError> {
+    let path = path.as_ref();
+    let text = read_text(path)?;
+    parse_rows(&text, path, Some(width))
+}
+
 /// Parses text in the format of the module docs into columns; `origin` names the source in
 /// errors.
 ///
@@ -61,8 +72,31 @@ pub fn parse_curve(text: &str, origin: &Path) -> Result<Vec<[f64; 2]>, CsvError>
     Ok(rows.into_iter().map(|r| [r[0], r[1]]).collect())
 }
 
+/// Reads the whole of a data file, refusing anything but a regular file (a directory, a FIFO
+/// or a device) before opening it: opening a FIFO for reading waits for a writer, and a
+/// device may never end.
+///
+/// # Errors
+/// The I/O error; [`std::io::ErrorKind::InvalidInput`] for a file that is not regular.
+pub fn read_data_file(path: impl AsRef<Path>) -> std::io::Result<Vec<u8>> {
+    let path = path.as_ref();
+    let kind = std::fs::metadata(path)?.file_type();
+    if !kind.is_file() {
+        let what = if kind.is_dir() {
+            "a directory"
+        } else {
+            "a FIFO, socket or device"
+        };
+        return Err(std::io::Error::new(
+            std::io::ErrorKind::InvalidInput,
+            format!("not a regular file ({what})"),
+        ));
+    }
+    std::fs::read(path)
+}
+
 fn read_text(path: &Path) -> Result<String, CsvError> {
-    let bytes = std::fs::read(path).map_err(|e| CsvError::Io {
+    let bytes = read_data_file(path).map_err(|e| CsvError::Io {
         path: path.to_path_buf(),
         message: e.to_string(),
     })?;

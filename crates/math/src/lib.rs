@@ -61,7 +61,7 @@ pub mod quadrature;
 mod table;
 
 pub use constants::{PhysicalConstants, Units};
-pub use csv::{read_columns, read_curve};
+pub use csv::{read_columns, read_curve, read_data_file, read_rows};
 pub use error::{CsvError, MathError};
 pub use function::{Extremum, Function};
 pub use grid::{MAX_GRID_DIMENSIONS, RegularGrid, ScatteredTable};

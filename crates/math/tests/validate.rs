@@ -1,4 +1,4 @@
-//! Validation against RocketPy 1.13 (`../shared/validation/*/reference.json`): the total
+//! Validation against RocketPy 1.13 (`fixtures/validation/*/reference.json`): the total
 //! impulse and maximum thrust of the missions whose thrust curve is a CSV file, computed here
 //! from the file with [`read_curve`], a linear zero-extrapolated [`Table1`] (RocketPy's
 //! motor thrust function, physics.md §6.1) and its exact integral and maximum on
@@ -8,34 +8,20 @@ use std::path::PathBuf;
 
 use karman_math::{Extrapolation, Function, Interpolation, PointOrder, Table1, read_curve};
 
-/// The validation folder, or `None` (with a message) when it is absent.
-fn validation_dir() -> Option<PathBuf> {
-    let dir = std::env::var_os("KARMAN_VALIDATION_DATA").map_or_else(
-        || PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../../../shared/validation"),
-        PathBuf::from,
-    );
-    if dir.is_dir() {
-        Some(dir)
-    } else {
-        println!("skipped: validation data not found at {}", dir.display());
-        None
-    }
-}
-
-fn missions(dir: &PathBuf) -> Vec<(PathBuf, toml::Table)> {
-    let mut out: Vec<(PathBuf, toml::Table)> = std::fs::read_dir(dir)
-        .unwrap()
-        .filter_map(Result::ok)
-        .map(|e| e.path())
-        .filter(|p| p.join("mission.toml").is_file())
-        .map(|p| {
-            let text = std::fs::read_to_string(p.join("mission.toml")).unwrap();
-            let table: toml::Table = text.parse().unwrap();
-            (p, table)
-        })
-        .collect();
-    out.sort_by(|a, b| a.0.cmp(&b.0));
-    out
+/// The folder and parsed `mission.toml` of every validation flight flown (sorted), or `None`
+/// when the validation folder is unavailable outside CI ([`karman_validation::folder`]).
+fn missions() -> Option<Vec<(PathBuf, toml::Table)>> {
+    let flights = karman_validation::folder()?.flown();
+    Some(
+        flights
+            .into_iter()
+            .map(|flight| {
+                let text = std::fs::read_to_string(flight.mission()).unwrap();
+                let table: toml::Table = text.parse().unwrap();
+                (flight.dir, table)
+            })
+            .collect(),
+    )
 }
 
 fn csv_entry<'a>(table: &'a toml::Table, section: &str, key: &str) -> Option<&'a str> {
@@ -48,9 +34,9 @@ fn csv_entry<'a>(table: &'a toml::Table, section: &str, key: &str) -> Option<&'a
 
 #[test]
 fn validate_csv_thrust_total_impulse_and_max_thrust() {
-    let Some(dir) = validation_dir() else { return };
+    let Some(missions) = missions() else { return };
     let mut checked = 0;
-    for (folder, mission) in missions(&dir) {
+    for (folder, mission) in missions {
         let Some(file) = csv_entry(&mission, "motor", "thrust") else {
             continue;
         };
@@ -101,10 +87,10 @@ fn validate_csv_thrust_total_impulse_and_max_thrust() {
 
 #[test]
 fn validation_csv_curves_load() {
-    let Some(dir) = validation_dir() else { return };
+    let Some(missions) = missions() else { return };
     let mut repeated = 0;
     let mut loaded = 0;
-    for (folder, mission) in missions(&dir) {
+    for (folder, mission) in missions {
         let keys = [
             ("motor", "thrust"),
             ("rocket", "power_off_drag"),

@@ -1,4 +1,4 @@
-//! The Calisto validation mission (`../shared/validation/calisto`, or
+//! The Calisto validation mission (`fixtures/validation/calisto`, or
 //! `$KARMAN_VALIDATION_DATA/calisto`) flown to the ground, once with the parachute noise zeroed
 //! (`calisto_flight/to_ground`) and once with the mission's trigger noise kept and a fixed
 //! noise seed (`calisto_flight/noisy`, the flight a Monte Carlo run repeats): the models are

@@ -1,4 +1,4 @@
-//! Monte Carlo throughput (issue 7): the Calisto validation mission (`../shared/validation/
+//! Monte Carlo throughput (issue 7): the Calisto validation mission (`fixtures/validation/
 //! calisto`, or `$KARMAN_VALIDATION_DATA/calisto`) with a 10-parameter dispersion — rocket
 //! mass, grain density, total impulse, burn time, both drag curves (factors), inclination,
 //! heading and both parachutes' `cd_s` — parachute trigger noise kept, as `karman

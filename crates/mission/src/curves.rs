@@ -4,7 +4,8 @@
 //! (mission-format.md "Conventions").
 
 use crate::error::{CurveError, ProblemKind};
-use crate::schema::{Curve, ExtrapolationKind, InterpolationKind};
+use crate::schema::{AirBrakesCurve, Curve, ExtrapolationKind, InterpolationKind};
+use karman_airframe::AirBrakesDrag;
 use karman_math::{Extrapolation, Interpolation, PointOrder, Table1};
 use std::path::Path;
 
@@ -30,6 +31,23 @@ impl From<ExtrapolationKind> for Extrapolation {
             ExtrapolationKind::Natural => Extrapolation::Natural,
             ExtrapolationKind::Zero => Extrapolation::Zero,
         }
+    }
+}
+
+impl AirBrakesCurve {
+    /// The air-brake table as RocketPy builds it: rows `[level, Mach, Cd]` in file order, or
+    /// a constant. Files are resolved against `mission_dir`.
+    pub fn to_drag(&self, mission_dir: &Path) -> Result<AirBrakesDrag, CurveError> {
+        Ok(match self {
+            AirBrakesCurve::Constant(cd) => AirBrakesDrag::Constant(*cd),
+            AirBrakesCurve::Rows(rows) => AirBrakesDrag::Table(rows.clone()),
+            AirBrakesCurve::File(path) => AirBrakesDrag::Table(
+                karman_math::read_rows(mission_dir.join(path), 3)?
+                    .into_iter()
+                    .map(|row| [row[0], row[1], row[2]])
+                    .collect(),
+            ),
+        })
     }
 }
 

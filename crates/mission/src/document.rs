@@ -12,6 +12,7 @@ use crate::schema::surfaces::keys_of;
 use crate::schema::{MissionSpec, SurfaceType};
 use serde::Deserialize;
 use std::borrow::Cow;
+use std::collections::BTreeMap;
 use std::ops::Range;
 use toml::Spanned;
 use toml::de::{DeArray, DeTable, DeValue};
@@ -223,6 +224,38 @@ impl<'a> Document<'a> {
             key: key.to_owned(),
             kind,
         }
+    }
+
+    /// The location of every key of the document by dotted path (tables at their key,
+    /// values at their value), so that errors found after validation, while building the
+    /// models, can still point at the key they concern.
+    pub fn key_locations(&self) -> BTreeMap<String, Location> {
+        fn walk(
+            doc: &Document<'_>,
+            table: &DeTable<'_>,
+            prefix: &str,
+            out: &mut BTreeMap<String, Location>,
+        ) {
+            for (k, v) in table.iter() {
+                let path = if prefix.is_empty() {
+                    k.get_ref().to_string()
+                } else {
+                    format!("{prefix}.{}", k.get_ref())
+                };
+                match v.get_ref() {
+                    DeValue::Table(inner) => {
+                        out.insert(path.clone(), doc.location(k.span().start));
+                        walk(doc, inner, &path, out);
+                    }
+                    _ => {
+                        out.insert(path, doc.location(v.span().start));
+                    }
+                }
+            }
+        }
+        let mut out = BTreeMap::new();
+        walk(self, self.root.get_ref(), "", &mut out);
+        out
     }
 
     /// Every NaN or infinite float of the document, except a `+inf` at one of `allow_inf`.

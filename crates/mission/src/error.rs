@@ -104,6 +104,19 @@ pub enum ProblemKind {
         /// What, e.g. `a hybrid motor`.
         what: String,
     },
+    /// A parachute trigger expression is not in the expression language.
+    #[error("invalid trigger expression")]
+    Expression {
+        /// Where in the expression, and why.
+        source: karman_script::ExpressionError,
+    },
+    /// The air-brake controller script does not compile, or the mission sets a constant the
+    /// script does not declare.
+    #[error("invalid controller script")]
+    Script {
+        /// The script's file, line, column and message.
+        source: Box<karman_script::ScriptError>,
+    },
     /// A `[dispersion.vary]` entry does not fit its target.
     #[error("{reason}")]
     Distribution {
@@ -193,10 +206,12 @@ pub enum MissionError {
     },
     /// A model could not be built from a section of the mission (e.g. a thrust file that
     /// fails to parse); the source is the model crate's error.
-    #[error("{}: [{section}]: cannot build the model", file.display())]
+    #[error("{}", ModelHeading { file, location: location.as_ref(), section })]
     Model {
         /// The mission file.
         file: PathBuf,
+        /// Where the key `section` was written, when it was.
+        location: Option<Location>,
         /// The section or key, e.g. `motor` or `rocket.surfaces.fins`.
         section: String,
         /// The model crate's error.
@@ -234,6 +249,29 @@ pub enum OverrideError {
         /// The TOML parser's message.
         message: String,
     },
+}
+
+/// Formats the heading of [`MissionError::Model`]: `file:line:column: `key`: cannot build
+/// the model`, or `--set PATH=VALUE: ...` for a key given on the command line.
+struct ModelHeading<'a> {
+    file: &'a PathBuf,
+    location: Option<&'a Location>,
+    section: &'a str,
+}
+
+impl fmt::Display for ModelHeading<'_> {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self.location {
+            Some(Location::File { line, column }) => {
+                write!(f, "{}:{line}:{column}: ", self.file.display())?;
+            }
+            Some(Location::Override { text }) => {
+                write!(f, "{}: --set {text}: ", self.file.display())?;
+            }
+            None => write!(f, "{}: ", self.file.display())?,
+        }
+        write!(f, "`{}`: cannot build the model", self.section)
+    }
 }
 
 /// Formats the problems of [`MissionError::Invalid`], one per line.

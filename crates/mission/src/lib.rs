@@ -45,7 +45,9 @@ pub use karman_math as math;
 pub use karman_propulsion as propulsion;
 
 use document::Document;
+use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
+use std::sync::Arc;
 
 /// A loaded, validated mission.
 #[derive(Debug, Clone, PartialEq)]
@@ -56,9 +58,46 @@ pub struct Mission {
     pub dir: PathBuf,
     /// The mission's content, overrides applied.
     pub spec: schema::MissionSpec,
+    /// Where each key was written (file line and column, or the `--set` that gave it).
+    pub keys: KeyLocations,
+}
+
+/// Where each key of a mission was written, by dotted path (`rocket.motor_position`), so that
+/// problems found while building the models name the key's line and column.
+#[derive(Debug, Clone, PartialEq, Eq, Default)]
+pub struct KeyLocations(Arc<BTreeMap<String, Location>>);
+
+impl KeyLocations {
+    /// The location of `key`, or of its deepest enclosing table that was written (a defaulted
+    /// key is blamed on its section); `None` when nothing on the path was written.
+    #[must_use]
+    pub fn locate(&self, key: &str) -> Option<&Location> {
+        let mut path = key;
+        loop {
+            if let Some(location) = self.0.get(path) {
+                return Some(location);
+            }
+            path = &path[..path.rfind('.')?];
+        }
+    }
 }
 
 impl Mission {
+    /// The error for a model that cannot be built from the mission key (or section)
+    /// `section`, located at that key.
+    pub fn model_error(
+        &self,
+        section: &str,
+        source: impl Into<Box<dyn std::error::Error + Send + Sync>>,
+    ) -> MissionError {
+        MissionError::Model {
+            file: self.path.clone(),
+            location: self.keys.locate(section).cloned(),
+            section: section.to_owned(),
+            source: source.into(),
+        }
+    }
+
     /// A data path of the mission resolved against its directory (absolute paths unchanged).
     pub fn resolve(&self, relative: &Path) -> PathBuf {
         self.dir.join(relative)
@@ -81,7 +120,7 @@ impl Mission {
 
 /// Reads, overrides, deserializes and validates the mission file at `path`.
 pub fn load(path: &Path, overrides: &[Override]) -> Result<Mission, MissionError> {
-    let bytes = std::fs::read(path).map_err(|source| MissionError::Read {
+    let bytes = karman_math::read_data_file(path).map_err(|source| MissionError::Read {
         file: path.to_owned(),
         source,
     })?;
@@ -140,6 +179,7 @@ pub fn parse(text: &str, path: &Path, overrides: &[Override]) -> Result<Mission,
             path: path.to_owned(),
             dir,
             spec,
+            keys: KeyLocations(Arc::new(doc.key_locations())),
         }),
         _ => {
             // `--set` problems first, then in file order (a stable sort keeps the order of

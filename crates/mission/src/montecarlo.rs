@@ -156,11 +156,7 @@ pub struct StudyOverrides {
 }
 
 fn dispersion_error(mission: &Mission, e: DispersionError) -> MissionError {
-    MissionError::Model {
-        file: mission.path.clone(),
-        section: "dispersion".into(),
-        source: Box::new(e),
-    }
+    mission.model_error("dispersion", e)
 }
 
 /// The plain distribution of a `[dispersion.vary]` entry (`std` inside `factor` is a normal
@@ -361,6 +357,7 @@ impl MonteCarlo {
             path: self.mission.path.clone(),
             dir: self.mission.dir.clone(),
             spec,
+            keys: self.mission.keys.clone(),
         };
         let built;
         let environment = match &self.environment {
@@ -415,7 +412,7 @@ fn inline_rocket_curves(mission: &mut Mission) -> Result<(), MissionError> {
         }
     }
     for (key, curve) in curves {
-        if matches!(curve, Curve::File(_)) {
+        if matches!(curve, Curve::File(_)) && !curve.is_estimate() {
             let points = curve.points(&dir).map_err(|source| MissionError::Curve {
                 file: path.clone(),
                 key,

@@ -8,7 +8,7 @@
 //! are inputs too. Besides stored keys, four derived knobs exist ([`DerivedKnob`]).
 
 use crate::schema::{
-    Atol, Curve, Distribution, MissionSpec, RocketSpec, SurfaceSpec, Sweep, Trigger,
+    AirBrakesCurve, Atol, Curve, Distribution, MissionSpec, RocketSpec, SurfaceSpec, Sweep, Trigger,
 };
 use thiserror::Error;
 
@@ -317,6 +317,22 @@ fn rocket_slot<'a>(rocket: &'a mut RocketSpec, path: &str) -> Option<Slot<'a>> {
             _ => return None,
         }));
     }
+    if let Some(rest) = path.strip_prefix("air_brakes.") {
+        let ab = rocket.air_brakes.as_mut()?;
+        if let Some(name) = rest.strip_prefix("constants.") {
+            return ab.constants.get_mut(name).map(Float);
+        }
+        return Some(Float(match rest {
+            "sampling_rate" => &mut ab.sampling_rate,
+            "deployment_level" => &mut ab.deployment_level,
+            "reference_area" => ab.reference_area.as_mut()?,
+            "drag_coefficient_curve" => match &mut ab.drag_coefficient_curve {
+                AirBrakesCurve::Constant(value) => value,
+                AirBrakesCurve::Rows(_) | AirBrakesCurve::File(_) => return None,
+            },
+            _ => return None,
+        }));
+    }
     if let Some(rest) = path.strip_prefix("surfaces.") {
         let (name, key) = rest.rsplit_once('.')?;
         return surface_slot(rocket.surfaces.get_mut(name)?, key);
@@ -330,7 +346,10 @@ fn rocket_slot<'a>(rocket: &'a mut RocketSpec, path: &str) -> Option<Slot<'a>> {
             "lag" => &mut p.lag,
             "trigger" => match &mut p.trigger {
                 Trigger::HeightAboveGround(height) => height,
-                Trigger::Apogee => return None,
+                Trigger::Apogee
+                | Trigger::Launch(_)
+                | Trigger::Burnout(_)
+                | Trigger::Expression(_) => return None,
             },
             "radius" => p.radius.as_mut()?,
             "height" => p.height.as_mut()?,

@@ -6,12 +6,34 @@
 use crate::document::Document;
 use crate::error::{Problem, ProblemKind};
 use crate::paths;
-use crate::schema::{AtmosphereModel, Curve, MissionSpec, MotorKind, SurfaceSpec, Sweep, Trigger};
+use crate::schema::{
+    AtmosphereModel, Curve, MissionSpec, MotorKind, RocketSpec, SurfaceSpec, Sweep, Trigger,
+};
+use karman_airframe::AirBrakesDrag;
 use karman_math::{Extrapolation, Interpolation};
 use std::path::Path;
 
 /// Keys where `inf` is a valid value.
 pub(crate) const ALLOW_INFINITE: &[&str] = &["flight.max_time_step"];
+
+/// Largest parachute sampling rate, Hz (a barometer at 10 kHz already resolves far more than
+/// any trigger needs; more only multiplies the sampling instants of a flight).
+const MAX_SAMPLING_RATE: f64 = 10_000.0;
+
+/// Longest flight time, s (a day; a descent under a drogue from 100 km takes under an hour).
+const MAX_FLIGHT_TIME: f64 = 86_400.0;
+
+/// Range of the integrator's relative tolerance: below 1e-12 round-off dominates the error
+/// estimate; above 1e-2 the steps no longer resolve the flight (at 1 the step control accepts
+/// anything and the states turn to NaN).
+const RTOL_RANGE: (f64, f64) = (1e-12, 1e-2);
+
+/// Largest absolute tolerance of a state (its SI unit: m, m/s, rad/s; the quaternion is
+/// dimensionless).
+const MAX_ATOL: f64 = 1.0;
+
+/// Smallest `max_time_step`, s: a 600 s flight at 1e-4 s already takes six million steps.
+const MIN_MAX_TIME_STEP: f64 = 1e-4;
 
 /// Extensions a thrust curve file may have (parsing them is the propulsion crate's job).
 const THRUST_EXTENSIONS: &[&str] = &["eng", "rse", "csv", "txt"];
@@ -126,6 +148,7 @@ pub(crate) fn validate(spec: &MissionSpec, doc: &Document<'_>, dir: &Path) -> Ve
     environment(&mut c, spec);
     motor(&mut c, spec);
     rocket(&mut c, spec);
+    air_brakes(&mut c, spec);
     flight(&mut c, spec);
     dispersion(&mut c, spec);
     c.problems
@@ -382,23 +405,77 @@ fn motor(c: &mut Checker<'_, '_>, spec: &MissionSpec) {
     }
 }
 
+/// `[rocket.drag_estimate]`: dimensions in range, every fin table names a fin set.
+fn drag_estimate(c: &mut Checker<'_, '_>, d: &crate::schema::DragEstimateSpec, r: &RocketSpec) {
+    const K: &str = "rocket.drag_estimate";
+    if let Some(l) = d.body_length {
+        c.positive(&format!("{K}.body_length"), l);
+    }
+    if let Some(k) = d.roughness {
+        c.non_negative(&format!("{K}.roughness"), k);
+    }
+    for (name, f) in &d.fins {
+        let key = format!("{K}.fins.{name}");
+        let is_fin_set = r.surfaces.get(name).is_some_and(|s| {
+            matches!(
+                s,
+                SurfaceSpec::TrapezoidalFins(_)
+                    | SurfaceSpec::EllipticalFins(_)
+                    | SurfaceSpec::FreeFormFins(_)
+            )
+        });
+        if !is_fin_set {
+            c.report(
+                &key,
+                ProblemKind::UnknownPath {
+                    path: key.clone(),
+                    reason: format!("there is no fin set [rocket.surfaces.{name}]"),
+                },
+            );
+        }
+        c.non_negative(&format!("{key}.thickness"), f.thickness);
+    }
+    for (name, l) in &d.launch_lugs {
+        let key = format!("{K}.launch_lugs.{name}");
+        c.positive(&format!("{key}.outer_radius"), l.outer_radius);
+        c.non_negative(&format!("{key}.inner_radius"), l.inner_radius);
+        c.non_negative(&format!("{key}.length"), l.length);
+    }
+    if let Some(b) = &d.rail_buttons {
+        let key = format!("{K}.rail_buttons");
+        c.required(
+            &key,
+            "rocket.rail_buttons",
+            r.rail_buttons.as_ref(),
+            "the rail-button drag",
+        );
+        for (k, v) in [
+            ("outer_diameter", b.outer_diameter),
+            ("inner_diameter", b.inner_diameter),
+            ("height", b.height),
+            ("inner_height", b.inner_height),
+        ] {
+            c.non_negative(&format!("{key}.{k}"), v);
+        }
+    }
+}
+
 fn rocket(c: &mut Checker<'_, '_>, spec: &MissionSpec) {
     let r = &spec.rocket;
     c.positive("rocket.radius", r.radius);
     c.positive("rocket.mass", r.mass);
     let (interpolation, extrapolation) = (r.interpolation.into(), r.extrapolation.into());
-    c.curve_as(
-        "rocket.power_off_drag",
-        &r.power_off_drag,
-        interpolation,
-        extrapolation,
-    );
-    c.curve_as(
-        "rocket.power_on_drag",
-        &r.power_on_drag,
-        interpolation,
-        extrapolation,
-    );
+    for (key, curve) in [
+        ("rocket.power_off_drag", &r.power_off_drag),
+        ("rocket.power_on_drag", &r.power_on_drag),
+    ] {
+        if !curve.is_estimate() {
+            c.curve_as(key, curve, interpolation, extrapolation);
+        }
+    }
+    if let Some(d) = &r.drag_estimate {
+        drag_estimate(c, d, r);
+    }
     for (name, surface) in &r.surfaces {
         let key = |k: &str| format!("rocket.surfaces.{name}.{k}");
         match surface {
@@ -472,10 +549,27 @@ fn rocket(c: &mut Checker<'_, '_>, spec: &MissionSpec) {
     for (name, chute) in &r.parachutes {
         let key = |k: &str| format!("rocket.parachutes.{name}.{k}");
         c.positive(&key("cd_s"), chute.cd_s);
-        if let Trigger::HeightAboveGround(h) = chute.trigger {
-            c.non_negative(&key("trigger"), h);
+        match &chute.trigger {
+            Trigger::HeightAboveGround(h) => c.non_negative(&key("trigger"), *h),
+            Trigger::Launch(delay) | Trigger::Burnout(delay) => {
+                c.non_negative(&key("trigger"), *delay);
+            }
+            Trigger::Expression(text) => {
+                if let Err(source) = karman_script::Expression::parse(text) {
+                    c.report(
+                        &key("trigger.expression"),
+                        ProblemKind::Expression { source },
+                    );
+                }
+            }
+            Trigger::Apogee => {}
         }
-        c.positive(&key("sampling_rate"), chute.sampling_rate);
+        c.range(
+            &key("sampling_rate"),
+            chute.sampling_rate,
+            chute.sampling_rate > 0.0 && chute.sampling_rate <= MAX_SAMPLING_RATE,
+            "must be in (0, 10000] Hz",
+        );
         c.non_negative(&key("lag"), chute.lag);
         c.non_negative(&key("noise"), chute.noise[1]);
         for (k, v) in [("radius", chute.radius), ("height", chute.height)] {
@@ -494,6 +588,70 @@ fn rocket(c: &mut Checker<'_, '_>, spec: &MissionSpec) {
     }
 }
 
+fn air_brakes(c: &mut Checker<'_, '_>, spec: &MissionSpec) {
+    let Some(ab) = &spec.rocket.air_brakes else {
+        return;
+    };
+    let key = |k: &str| format!("rocket.air_brakes.{k}");
+    c.positive(&key("sampling_rate"), ab.sampling_rate);
+    if let Some(area) = ab.reference_area {
+        c.positive(&key("reference_area"), area);
+    }
+    match ab.drag_coefficient_curve.to_drag(c.dir) {
+        Ok(AirBrakesDrag::Table(rows)) if rows.is_empty() => c.report(
+            &key("drag_coefficient_curve"),
+            ProblemKind::OutOfRange {
+                value: 0.0,
+                expected: "the table needs at least one [level, mach, cd] row",
+            },
+        ),
+        Ok(_) => {}
+        Err(source) => c.report(
+            &key("drag_coefficient_curve"),
+            ProblemKind::Curve { source },
+        ),
+    }
+    let file = c.dir.join(&ab.controller);
+    let text = karman_math::read_data_file(&file).and_then(|bytes| {
+        String::from_utf8(bytes).map_err(|_| {
+            std::io::Error::new(std::io::ErrorKind::InvalidData, "not a UTF-8 text file")
+        })
+    });
+    let source = match text {
+        Ok(source) => source,
+        Err(source) => {
+            c.report(&key("controller"), ProblemKind::File { path: file, source });
+            return;
+        }
+    };
+    match karman_script::ControllerScript::compile(&file, &source) {
+        Ok(script) => {
+            for name in ab.constants.keys() {
+                if !script.constants().iter().any(|(n, _)| n == name) {
+                    c.report(
+                        &format!("rocket.air_brakes.constants.{name}"),
+                        ProblemKind::Script {
+                            source: Box::new(karman_script::ScriptError {
+                                file: file.clone(),
+                                position: None,
+                                message: format!(
+                                    "the script declares no top-level `const {name} = <number>;`"
+                                ),
+                            }),
+                        },
+                    );
+                }
+            }
+        }
+        Err(source) => c.report(
+            &key("controller"),
+            ProblemKind::Script {
+                source: Box::new(source),
+            },
+        ),
+    }
+}
+
 fn flight(c: &mut Checker<'_, '_>, spec: &MissionSpec) {
     let f = &spec.flight;
     c.positive("flight.rail_length", f.rail_length);
@@ -503,14 +661,34 @@ fn flight(c: &mut Checker<'_, '_>, spec: &MissionSpec) {
         f.inclination_deg > 0.0 && f.inclination_deg < 180.0,
         "must be in (0, 180) deg (past 90 the rail leans toward heading + 180)",
     );
-    c.positive("flight.max_time", f.max_time);
-    c.positive("flight.rtol", f.rtol);
+    c.range(
+        "flight.max_time",
+        f.max_time,
+        f.max_time > 0.0 && f.max_time <= MAX_FLIGHT_TIME,
+        "must be in (0, 86400] s",
+    );
+    c.range(
+        "flight.rtol",
+        f.rtol,
+        (RTOL_RANGE.0..=RTOL_RANGE.1).contains(&f.rtol),
+        "must be in [1e-12, 1e-2]",
+    );
     if let Some(atol) = f.atol {
         for value in atol.per_state() {
-            c.positive("flight.atol", value);
+            c.range(
+                "flight.atol",
+                value,
+                value > 0.0 && value <= MAX_ATOL,
+                "every component must be in (0, 1]",
+            );
         }
     }
-    c.positive("flight.max_time_step", f.max_time_step);
+    c.range(
+        "flight.max_time_step",
+        f.max_time_step,
+        f.max_time_step >= MIN_MAX_TIME_STEP,
+        "must be at least 1e-4 s",
+    );
 }
 
 fn dispersion(c: &mut Checker<'_, '_>, spec: &MissionSpec) {

@@ -3,27 +3,16 @@
 
 use std::path::{Path, PathBuf};
 
-/// The validation folder (`KARMAN_VALIDATION_DATA`, else `<workspace>/../shared/validation`),
-/// or `None` when it is absent (the caller prints that it skipped).
+/// The validation folder ([`karman_validation::folder`]: `fixtures/validation` unless
+/// `KARMAN_VALIDATION_DATA` names another), or `None` when it is unavailable outside CI.
 pub fn validation_dir() -> Option<PathBuf> {
-    let dir = match std::env::var_os("KARMAN_VALIDATION_DATA") {
-        Some(dir) => PathBuf::from(dir),
-        None => PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../../../shared/validation"),
-    };
-    dir.is_dir().then_some(dir)
+    karman_validation::folder().map(|f| f.dir)
 }
 
-/// Every `*/mission.toml` of the validation folder, sorted.
+/// The `mission.toml` of every validation flight flown (the pending ones skipped by name),
+/// sorted.
 pub fn validation_missions() -> Option<Vec<PathBuf>> {
-    let dir = validation_dir()?;
-    let mut missions: Vec<PathBuf> = std::fs::read_dir(&dir)
-        .ok()?
-        .filter_map(Result::ok)
-        .map(|entry| entry.path().join("mission.toml"))
-        .filter(|path| path.is_file())
-        .collect();
-    missions.sort();
-    Some(missions)
+    karman_validation::folder().map(|f| f.missions())
 }
 
 /// A file of `tests/fixtures`.

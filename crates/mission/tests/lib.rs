@@ -3,10 +3,12 @@
 mod allocation;
 mod broken;
 mod common;
+mod drag_estimate;
 mod fuzz;
 mod load;
 mod overrides;
 mod paths;
+mod scripts;
 mod validate_environment;
 mod validate_flight;
 mod validate_motor;

@@ -7,6 +7,7 @@ use crate::common::{flight_name, load_reference, validation_missions};
 use karman_mission::build::environment::build_environment;
 use karman_mission::report::environment::{EnvironmentReport, environment_report};
 use serde_json::Value;
+use std::path::PathBuf;
 
 fn column(reference: &Value, key: &str) -> Vec<f64> {
     reference["environment"][key]
@@ -140,10 +141,15 @@ fn custom_atmosphere_wind_profile() {
 #[test]
 fn sounding_and_bad_sounding_through_the_mission() {
     let Some(dir) = crate::common::validation_dir() else {
-        println!("sounding_and_bad_sounding_through_the_mission: skipped (no data)");
         return;
     };
-    let wyoming = dir.join("../data/weather/wyoming_02963_2006-04-10T12Z.txt");
+    // The sounding is part of the project's shared data beside the repository, not of it.
+    let wyoming = PathBuf::from(env!("CARGO_MANIFEST_DIR"))
+        .join("../../../shared/data/weather/wyoming_02963_2006-04-10T12Z.txt");
+    if !wyoming.is_file() {
+        println!("sounding_and_bad_sounding_through_the_mission: skipped, no {wyoming:?}");
+        return;
+    }
     let file = format!(
         "environment.atmosphere.file={:?}",
         wyoming.display().to_string()

@@ -224,7 +224,10 @@ fn bad_thrust_file_names_file_line_and_value() {
         chain.push_str(&format!(": {cause}"));
         source = cause.source();
     }
-    assert!(chain.contains("[motor.thrust]"), "{chain}");
+    assert!(
+        chain.contains("mission.toml:26:10: `motor.thrust`"),
+        "{chain}"
+    );
     assert!(
         chain.contains("bad.eng:3") && chain.contains("1e2x"),
         "{chain}"

@@ -63,18 +63,23 @@ pub struct ThrustData {
     pub thrusts: Vec<f64>,
     /// The motor description of `.eng`/`.rse` files.
     pub header: Option<MotorHeader>,
+    /// What the reader accepted but would not expect in a well-formed file (e.g. a RASP
+    /// file without its header line), in words.
+    pub warnings: Vec<String>,
 }
 
 impl ThrustData {
     /// Reads a thrust file: `.eng` (RASP), `.rse` (RockSim XML) or, for any other extension,
-    /// a two-column CSV (comma- or whitespace-separated, optional header line).
+    /// a two-column CSV (comma- or whitespace-separated, optional header line). Only regular
+    /// files are opened ([`karman_math::read_data_file`]); a UTF-8 byte-order mark, CRLF
+    /// line ends and tabs are accepted by every reader.
     ///
     /// # Errors
     /// [`PropulsionError::Io`] when the file cannot be read, and the reader's errors (each
     /// naming the file, line and offending text).
     pub fn load(path: &Path) -> Result<ThrustData, PropulsionError> {
         let source_name = path.display().to_string();
-        let bytes = std::fs::read(path).map_err(|e| PropulsionError::Io {
+        let bytes = karman_math::read_data_file(path).map_err(|e| PropulsionError::Io {
             source_name: source_name.clone(),
             message: e.to_string(),
         })?;
@@ -199,6 +204,7 @@ impl PointsBuilder {
             times: self.times,
             thrusts: self.thrusts,
             header,
+            warnings: Vec::new(),
         })
     }
 }

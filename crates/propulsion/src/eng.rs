@@ -6,6 +6,11 @@
 //! non-blank line is one `time thrust` point (s, N). The format requires strictly increasing
 //! times, non-negative thrust and no `(0, 0)` point.
 //!
+//! Files as teams ship them: a UTF-8 byte-order mark, CRLF line ends and tabs are accepted;
+//! a file whose first non-comment line is already a `time thrust` point has lost its header
+//! line: every line is read as data and the file carries a warning (the motor description,
+//! and with it the dry mass RocketPy would derive, is unknown).
+//!
 //! As RocketPy's `Motor.import_eng` (rocketpy/motors/motor.py), a `(0, 0)` point is
 //! prepended; the propellant and total masses are read as the third- and second-last header
 //! fields. Deviation: a file that (against the format) already starts at `t = 0` keeps its own
@@ -22,7 +27,9 @@ use crate::data::{MotorHeader, PointsBuilder, ThrustData, ThrustFormat, parse_nu
 /// [`PropulsionError::TimeNotIncreasing`], [`PropulsionError::NegativeThrust`], and
 /// [`PropulsionError::TooFewPoints`] when the file has no header or no data line.
 pub fn parse(text: &str, source_name: &str) -> Result<ThrustData, PropulsionError> {
+    let text = text.strip_prefix('\u{feff}').unwrap_or(text);
     let mut header: Option<MotorHeader> = None;
+    let mut headerless = false;
     let mut points = PointsBuilder::new(source_name, ThrustFormat::Eng);
     for (index, raw) in text.lines().enumerate() {
         let line = index + 1;
@@ -30,9 +37,13 @@ pub fn parse(text: &str, source_name: &str) -> Result<ThrustData, PropulsionErro
         if content.is_empty() {
             continue;
         }
-        if header.is_none() {
-            header = Some(parse_header(content, source_name, line)?);
-            continue;
+        if header.is_none() && !headerless {
+            if is_point(content) {
+                headerless = true;
+            } else {
+                header = Some(parse_header(content, source_name, line)?);
+                continue;
+            }
         }
         let fields: Vec<&str> = content.split_whitespace().collect();
         let [time_text, thrust_text] = fields[..] else {
@@ -53,7 +64,25 @@ pub fn parse(text: &str, source_name: &str) -> Result<ThrustData, PropulsionErro
         }
         points.push(line, time, thrust)?;
     }
-    points.finish(header, 2)
+    let mut data = points.finish(header, 2)?;
+    if headerless {
+        data.warnings.push(
+            "no RASP header line (name diameter length delays propellant-mass total-mass \
+             maker): every line was read as a thrust point and the motor description is \
+             unknown"
+                .to_owned(),
+        );
+    }
+    Ok(data)
+}
+
+/// Whether a line is a `time thrust` point (two numbers) rather than a header.
+fn is_point(content: &str) -> bool {
+    let mut fields = content.split_whitespace();
+    matches!(
+        (fields.next(), fields.next(), fields.next()),
+        (Some(a), Some(b), None) if a.parse::<f64>().is_ok() && b.parse::<f64>().is_ok()
+    )
 }
 
 /// Parses `name diameter length delays propellant total manufacturer`.
@@ -142,6 +171,26 @@ mod tests {
             matches!(e, PropulsionError::TooFewPoints { found: 0, .. }),
             "{e}"
         );
+    }
+
+    #[test]
+    fn a_file_without_header_is_all_data_with_a_warning() {
+        let with = parse(M1670, "m.eng").unwrap();
+        let text = "\u{feff}; no header\r\n0.055\t100\r\n0.092 1500 ; c\r\n\r\n3.9 0\r\n";
+        let without = parse(text, "m.eng").unwrap();
+        assert_eq!(without.times, with.times);
+        assert_eq!(without.thrusts, with.thrusts);
+        assert!(without.header.is_none());
+        assert_eq!(without.warnings.len(), 1);
+        assert!(
+            without.warnings[0].starts_with("no RASP header line"),
+            "{:?}",
+            without.warnings
+        );
+        assert!(with.warnings.is_empty());
+        // A BOM and CRLF line ends before a header change nothing.
+        let crlf = format!("\u{feff}{}", M1670.replace('\n', "\r\n"));
+        assert_eq!(parse(&crlf, "m.eng").unwrap(), with);
     }
 
     #[test]

@@ -109,6 +109,7 @@ mod tests {
             times: vec![0.0, 0.5, 2.0],
             thrusts: vec![0.0, 1000.0, 0.0],
             header: None,
+            warnings: Vec::new(),
         };
         let curve = ThrustCurve::new(
             &ThrustSource::Data(Box::new(data)),

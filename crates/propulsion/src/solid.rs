@@ -487,6 +487,7 @@ mod tests {
             times: vec![0.0, 1.0, 2.0, 2.5],
             thrusts: vec![0.0, 100.0, 0.0, -20.0],
             header: None,
+            warnings: Vec::new(),
         };
         let curve = ThrustCurve::new(
             &ThrustSource::Data(Box::new(data)),

@@ -318,6 +318,7 @@ mod tests {
             times: times.to_vec(),
             thrusts: thrusts.to_vec(),
             header: None,
+            warnings: Vec::new(),
         }))
     }
 

@@ -1,30 +1,20 @@
 //! The thrust files of the validation missions load, and a malformed or missing file is
 //! reported with its name.
 
-use std::path::PathBuf;
-
 use karman_propulsion::{PropulsionError, ThrustData, ThrustFormat};
-
-fn validation_dir() -> Option<PathBuf> {
-    let dir = std::env::var_os("KARMAN_VALIDATION_DATA")
-        .map(PathBuf::from)
-        .unwrap_or_else(|| {
-            PathBuf::from(concat!(env!("CARGO_MANIFEST_DIR"), "/../.."))
-                .join("../shared/validation")
-        });
-    dir.is_dir().then_some(dir)
-}
 
 #[test]
 fn validation_thrust_files_load() {
-    let Some(dir) = validation_dir() else {
-        println!("skipped: validation data folder not found");
+    let Some(folder) = karman_validation::folder() else {
         return;
     };
     let mut loaded = 0;
-    for entry in std::fs::read_dir(&dir).expect("validation folder is readable") {
-        let flight = entry.expect("directory entry").path();
-        for file in std::fs::read_dir(&flight).into_iter().flatten().flatten() {
+    for flight in folder.flown() {
+        for file in std::fs::read_dir(&flight.dir)
+            .into_iter()
+            .flatten()
+            .flatten()
+        {
             let path = file.path();
             let name = path
                 .file_name()

@@ -13,20 +13,13 @@ use karman_propulsion::{
 };
 
 fn calisto_thrust_file() -> Option<PathBuf> {
-    let dir = std::env::var_os("KARMAN_VALIDATION_DATA")
-        .map(PathBuf::from)
-        .unwrap_or_else(|| {
-            PathBuf::from(concat!(env!("CARGO_MANIFEST_DIR"), "/../.."))
-                .join("../shared/validation")
-        });
-    let file = dir.join("calisto/Cesaroni_M1670.eng");
-    file.is_file().then_some(file)
+    let folder = karman_validation::folder()?;
+    Some(folder.flight("calisto")?.dir.join("Cesaroni_M1670.eng"))
 }
 
 #[test]
 fn validate_calisto_solid_motor() {
     let Some(file) = calisto_thrust_file() else {
-        println!("validate_calisto_solid_motor: skipped, the validation folder is absent");
         return;
     };
     // Inputs: validation/calisto/mission.toml [motor].

@@ -105,9 +105,18 @@ impl Flight {
     }
 
     /// The summary as `karman simulate --json` prints it (apogee, rail exit, maxima, impact,
-    /// events; SI units, `None` for what did not happen).
+    /// events, the mission's warnings; SI units, `None` for what did not happen).
     fn to_dict<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
-        plain(py, self.summary_ref())
+        let dict = plain(py, self.summary_ref())?;
+        dict.set_item("warnings", self.run.warnings.clone())?;
+        Ok(dict)
+    }
+
+    /// The mission's warnings (physical sanity, odd data files), each starting with the key
+    /// it concerns.
+    #[getter]
+    fn warnings(&self) -> Vec<String> {
+        self.run.warnings.clone()
     }
 
     /// The flight's events (`rail exit`, `apogee`, parachute triggers, `impact`), each a dict.

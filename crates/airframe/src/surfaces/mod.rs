@@ -217,6 +217,20 @@ impl Surface {
         Ok((surface, warnings))
     }
 
+    /// The resolved shape of the surface `input` on a rocket of radius `rocket_radius`, as
+    /// [`Surface::geometry`] holds it once built (the drag estimate reads it before the
+    /// rocket exists).
+    ///
+    /// # Errors
+    /// [`AirframeError`] for impossible dimensions.
+    pub fn geometry_of(
+        input: &SurfaceInput,
+        rocket_radius: f64,
+        constants: &PhysicalConstants,
+    ) -> Result<Geometry, AirframeError> {
+        Surface::build(input, rocket_radius, 1.0, 0.0, constants).map(|(s, _)| s.geometry)
+    }
+
     /// Normal-force slope CNα(Mach) per radian on [`Surface::reference_area`].
     #[inline]
     #[must_use]

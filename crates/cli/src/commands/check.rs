@@ -1,7 +1,10 @@
-//! `karman check MISSION [--set PATH=VALUE]...`: load and validate a mission.
+//! `karman check MISSION [--set PATH=VALUE]...`: load and validate a mission, then build and
+//! check every model its flight needs (thrust and drag curves, soundings, weather grids, the
+//! launch from the rail) exactly as `simulate` does before it integrates.
 
 use super::MissionArgs;
 use clap::Args;
+use karman_mission::build::preflight::prepare;
 use std::io::Write;
 
 /// Arguments of `karman check`.
@@ -11,10 +14,12 @@ pub struct CheckArgs {
     pub mission: MissionArgs,
 }
 
-/// Prints "ok" when the mission loads and validates; otherwise the error (every problem,
-/// each with `file:line:column`) goes back to `main`.
+/// Prints the warnings, then "ok" when the mission loads, validates and its models build;
+/// otherwise the error (every problem, each with `file:line:column`) goes back to `main`.
 pub fn run(args: &CheckArgs) -> anyhow::Result<()> {
-    args.mission.load()?;
+    let mission = args.mission.load()?;
+    let models = prepare(&mission, 0)?;
+    super::print_warnings(&mission, &models.warnings);
     // A closed stdout is an error to report, not a panic (as `println!` would).
     writeln!(std::io::stdout().lock(), "ok")?;
     Ok(())

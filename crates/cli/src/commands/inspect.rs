@@ -8,9 +8,12 @@ use std::path::{Path, PathBuf};
 
 use anyhow::{Context, Result};
 use clap::Args;
+use karman_mission::airframe::{DragComponents, DragEstimate, Rocket};
 use karman_mission::atmos::Environment;
 use karman_mission::build::{
-    environment::build_environment, motor::build_motor, rocket::build_rocket,
+    environment::build_environment,
+    motor::build_motor,
+    rocket::{build_rocket, estimated_drag},
 };
 use karman_mission::math::linspace;
 use karman_mission::propulsion::Motor;
@@ -88,6 +91,7 @@ pub fn run(args: &InspectArgs) -> Result<()> {
             .fold(environment.elevation() + 1000.0, f64::max);
         plot_environment(&environment, top, dir)?;
         plot_motor(&motor, dir)?;
+        plot_drag(&rocket, estimated_drag(&mission, &motor)?.as_ref(), dir)?;
     }
     if let Some(file) = &args.draw {
         std::fs::write(file, draw_rocket_svg(&mission, &rocket))
@@ -212,5 +216,71 @@ fn plot_motor(motor: &Motor, dir: &Path) -> Result<()> {
             },
         ],
     )?;
+    Ok(())
+}
+
+/// The drag curves the flight uses against Mach and, when they are estimated from the
+/// geometry, their friction, pressure and base terms.
+fn plot_drag(rocket: &Rocket, estimate: Option<&DragEstimate>, dir: &Path) -> Result<()> {
+    let machs = linspace(0.0, 3.0, 301);
+    let curve = |on: bool| {
+        machs
+            .iter()
+            .map(|&m| (m, rocket.drag_coefficient(on, m)))
+            .collect::<Vec<_>>()
+    };
+    line_chart(
+        &dir.join("drag.svg"),
+        "Drag coefficient",
+        "Mach",
+        "Cd",
+        &[
+            Series {
+                label: "power off",
+                points: curve(false),
+            },
+            Series {
+                label: "power on",
+                points: curve(true),
+            },
+        ],
+    )?;
+    if let Some(e) = estimate {
+        let term = |f: &dyn Fn(&DragComponents) -> f64| {
+            e.mach
+                .iter()
+                .zip(&e.components)
+                .map(|(m, c)| (*m, f(c)))
+                .collect::<Vec<_>>()
+        };
+        line_chart(
+            &dir.join("drag_components.svg"),
+            "Estimated drag build-up",
+            "Mach",
+            "Cd",
+            &[
+                Series {
+                    label: "total, power off",
+                    points: term(&|c| c.power_off()),
+                },
+                Series {
+                    label: "skin friction",
+                    points: term(&|c| c.friction),
+                },
+                Series {
+                    label: "pressure",
+                    points: term(&|c| c.pressure),
+                },
+                Series {
+                    label: "base, power off",
+                    points: term(&|c| c.base),
+                },
+                Series {
+                    label: "base, power on",
+                    points: term(&|c| c.base_power_on),
+                },
+            ],
+        )?;
+    }
     Ok(())
 }

@@ -9,6 +9,7 @@ mod sweep;
 
 use clap::{Args, Subcommand};
 use karman_mission::Override;
+use std::io::Write;
 use std::path::PathBuf;
 
 /// The subcommands of `karman`.
@@ -47,6 +48,15 @@ impl MissionArgs {
     /// Loads and validates the mission with its overrides.
     pub fn load(&self) -> Result<karman_mission::Mission, karman_mission::MissionError> {
         karman_mission::load(&self.mission, &self.overrides)
+    }
+}
+
+/// Prints each warning of a mission's models on stderr as `MISSION: warning: ...` (a closed
+/// stderr loses them silently: they are also in `--json` and summary.json).
+pub fn print_warnings(mission: &karman_mission::Mission, warnings: &[String]) {
+    let mut err = std::io::stderr().lock();
+    for warning in warnings {
+        let _ = writeln!(err, "{}: warning: {warning}", mission.path.display());
     }
 }
 

@@ -1,7 +1,8 @@
 //! `karman simulate MISSION [--json] [--out DIR]`: fly a mission once.
 //!
-//! Without `--json` a readable summary (RocketPy's `flight.info()`); with `--json` exactly the
-//! summary object of the mission contract. `--out DIR` writes `summary.json`,
+//! Warnings about the mission (physical sanity, odd data files) go to stderr. Without `--json`
+//! a readable summary (RocketPy's `flight.info()`); with `--json` the summary object of the
+//! mission contract with the warnings under `warnings`. `--out DIR` writes `summary.json`,
 //! `trajectory.csv` (every post-processed series, units in the header), `flight.kml` (the path
 //! in latitude/longitude/altitude for Google Earth) and SVG plots.
 
@@ -38,9 +39,12 @@ pub fn run(args: &SimulateArgs) -> Result<()> {
     let mission = args.mission.load()?;
     let run = simulate_with_seed(&mission, args.seed)?;
     let summary = run.summary();
+    super::print_warnings(&mission, &run.warnings);
     let mut out = std::io::stdout().lock();
     if args.json {
-        writeln!(out, "{}", serde_json::to_string_pretty(&summary)?)?;
+        let mut json = serde_json::to_value(&summary)?;
+        json["warnings"] = serde_json::to_value(&run.warnings)?;
+        writeln!(out, "{}", serde_json::to_string_pretty(&json)?)?;
     } else {
         writeln!(out, "{summary}")?;
         let stats = run.flight.stats;
@@ -70,7 +74,10 @@ pub fn run(args: &SimulateArgs) -> Result<()> {
             run.settings.max_time
         ),
         Termination::StuckOnRail => {
-            bail!("the rocket never left the rail: its thrust does not exceed its weight")
+            bail!(
+                "the rocket never left the rail: thrust minus drag never exceeded its weight \
+                 along the rail"
+            )
         }
     }
 }
@@ -82,6 +89,7 @@ fn write_outputs(run: &FlightRun, name: &str, seed: u64, dir: &Path) -> Result<(
     json["termination"] = serde_json::to_value(summary.termination)?;
     json["seed"] = seed.into();
     json["integration"] = serde_json::to_value(run.flight.stats)?;
+    json["warnings"] = serde_json::to_value(&run.warnings)?;
     std::fs::write(
         dir.join("summary.json"),
         serde_json::to_string_pretty(&json)?,

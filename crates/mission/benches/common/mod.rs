@@ -2,13 +2,8 @@
 
 use std::path::PathBuf;
 
-/// `../shared/validation/calisto/mission.toml` beside the workspace, or
-/// `$KARMAN_VALIDATION_DATA/calisto/mission.toml`; `None` when it is absent.
+/// The `mission.toml` of the Calisto validation flight (`fixtures/validation/calisto`, or
+/// `$KARMAN_VALIDATION_DATA/calisto`); `None` when it is absent.
 pub fn calisto() -> Option<PathBuf> {
-    let dir = std::env::var_os("KARMAN_VALIDATION_DATA").map_or_else(
-        || PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../../../shared/validation"),
-        PathBuf::from,
-    );
-    let path = dir.join("calisto/mission.toml");
-    path.is_file().then_some(path)
+    Some(karman_validation::folder()?.flight("calisto")?.mission())
 }

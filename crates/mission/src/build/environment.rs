@@ -29,11 +29,7 @@ use karman_math::PhysicalConstants;
 pub fn build_environment(mission: &Mission) -> Result<Environment, MissionError> {
     let constants = PhysicalConstants::SI;
     let env = &mission.spec.environment;
-    let model_err = |section: &str, e: AtmosError| MissionError::Model {
-        file: mission.path.clone(),
-        section: section.into(),
-        source: Box::new(e),
-    };
+    let model_err = |section: &str, e: AtmosError| mission.model_error(section, e);
     let datum = match env.datum {
         None | Some(Datum::Sirgas2000) => karman_atmos::Datum::Sirgas2000,
         Some(Datum::Wgs84) => karman_atmos::Datum::Wgs84,
@@ -122,10 +118,7 @@ fn build_atmosphere(
         AtmosphereModel::Sounding => {
             let path = data_file()?;
             let name = path.display().to_string();
-            let text = std::fs::read_to_string(&path).map_err(|e| AtmosError::Io {
-                file: name.clone(),
-                message: e.to_string(),
-            })?;
+            let text = read_text(&path, &name)?;
             let sounding = match spec.format.unwrap_or(SoundingFormat::Wyoming) {
                 SoundingFormat::Wyoming => Sounding::parse_wyoming(&text, &name)?,
                 SoundingFormat::NoaaRuc => Sounding::parse_noaa_ruc(&text, &name)?,
@@ -172,13 +165,20 @@ fn atmos_curve(
         Curve::File(f) => {
             let path = mission.resolve(f);
             let name = format!("{} ({what})", path.display());
-            let text = std::fs::read_to_string(&path).map_err(|e| AtmosError::Io {
-                file: name.clone(),
-                message: e.to_string(),
-            })?;
+            let text = read_text(&path, &name)?;
             Ok(karman_atmos::Curve::Points(karman_atmos::parse_table(
                 &text, &name,
             )?))
         }
     }
+}
+
+/// The text of an atmosphere data file (a regular file only; bytes that are not UTF-8 are
+/// replaced, and then reported by the parser as text it cannot read).
+fn read_text(path: &std::path::Path, name: &str) -> Result<String, AtmosError> {
+    let bytes = karman_math::read_data_file(path).map_err(|e| AtmosError::Io {
+        file: name.to_owned(),
+        message: e.to_string(),
+    })?;
+    Ok(String::from_utf8_lossy(&bytes).into_owned())
 }

@@ -1,5 +1,5 @@
 //! `[flight]` → [`karman_dynamics::FlightSettings`], and [`simulate`]: a whole mission flown
-//! (environment, motor and rocket built, then the flight integrated).
+//! (environment, motor and rocket built and checked, then the flight integrated).
 //!
 //! Defaults are RocketPy 1.13's `Flight` defaults (physics.md §1): inclination 80°, heading
 //! 90°, `max_time` 600 s, `rtol` 1e-6, per-state `atol` (1e-3 for positions, velocities and
@@ -11,9 +11,7 @@ use karman_atmos::Environment;
 use karman_dynamics::{DEFAULT_ATOL, Flight, FlightSettings, Sample, Summary};
 use karman_propulsion::Motor;
 
-use super::environment::build_environment;
-use super::motor::build_motor;
-use super::rocket::build_rocket;
+use super::preflight::{Models, prepare};
 use crate::{Mission, MissionError};
 
 /// The flight settings of a mission, with the trigger-noise `seed` of its parachutes.
@@ -45,6 +43,8 @@ pub struct FlightRun {
     pub settings: FlightSettings,
     /// Stored points, events and integration counters.
     pub flight: Flight,
+    /// The warnings of [`prepare`], each starting with the mission key it concerns.
+    pub warnings: Vec<String>,
 }
 
 impl FlightRun {
@@ -61,30 +61,29 @@ impl FlightRun {
     }
 }
 
-/// Builds the models of `mission` and flies it, with parachute trigger noise seeded by
-/// `seed` (recorded in the flight).
+/// Builds and checks the models of `mission` ([`prepare`]) and flies it, with parachute
+/// trigger noise seeded by `seed` (recorded in the flight).
 ///
 /// # Errors
-/// The builders' [`MissionError`]s, and [`MissionError::Model`] with section `flight` when the
-/// flight cannot be integrated (bad settings, a non-finite state, a stiff or unstable model).
+/// [`prepare`]'s [`MissionError`]s, and [`MissionError::Model`] with section `flight` when the
+/// flight cannot be integrated (a non-finite state, a stiff or unstable model).
 pub fn simulate_with_seed(mission: &Mission, seed: u64) -> Result<FlightRun, MissionError> {
-    let environment = build_environment(mission)?;
-    let motor = build_motor(mission)?;
-    let rocket = build_rocket(mission, &motor)?;
-    let settings = flight_settings(mission, seed);
-    let flight = karman_dynamics::simulate(&environment, &rocket, &settings).map_err(|e| {
-        MissionError::Model {
-            file: mission.path.clone(),
-            section: "flight".into(),
-            source: Box::new(e),
-        }
-    })?;
+    let Models {
+        environment,
+        motor,
+        rocket,
+        settings,
+        warnings,
+    } = prepare(mission, seed)?;
+    let flight = karman_dynamics::simulate(&environment, &rocket, &settings)
+        .map_err(|e| mission.model_error("flight", e))?;
     Ok(FlightRun {
         environment,
         motor,
         rocket,
         settings,
         flight,
+        warnings,
     })
 }
 

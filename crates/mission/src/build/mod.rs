@@ -1,5 +1,7 @@
 //! Building the physics models (environment, motor, rocket) from a validated mission.
+pub mod drag;
 pub mod environment;
 pub mod flight;
 pub mod motor;
+pub mod preflight;
 pub mod rocket;

@@ -37,11 +37,7 @@ pub fn build_motor(mission: &Mission) -> Result<Motor, MissionError> {
 }
 
 fn model_err(mission: &Mission, section: &'static str) -> impl Fn(PropulsionError) -> MissionError {
-    move |e: PropulsionError| MissionError::Model {
-        file: mission.path.clone(),
-        section: section.to_owned(),
-        source: Box::new(e),
-    }
+    move |e: PropulsionError| mission.model_error(section, e)
 }
 
 /// Builds the motor of `mission` from an already read thrust `source` (the Monte Carlo reads
@@ -52,7 +48,6 @@ fn model_err(mission: &Mission, section: &'static str) -> impl Fn(PropulsionErro
 /// As [`build_motor`], except for reading the thrust data.
 pub fn build_motor_with(mission: &Mission, source: &ThrustSource) -> Result<Motor, MissionError> {
     let spec = &mission.spec.motor;
-    let model_err = |section: &'static str| model_err(mission, section);
     let options = ThrustOptions {
         burn_time: spec.burn_time.map(|b| BurnTime::Interval(b.start, b.end)),
         reshape: spec
@@ -60,7 +55,18 @@ pub fn build_motor_with(mission: &Mission, source: &ThrustSource) -> Result<Moto
             .map(|[time, impulse]| (BurnTime::End(time), impulse)),
         interpolation: spec.interpolation.into(),
     };
-    let thrust = ThrustCurve::new(source, &options).map_err(model_err("motor"))?;
+    let thrust = ThrustCurve::new(source, &options).map_err(|e| {
+        let key = match &e {
+            PropulsionError::InvalidBurnTime { .. } if spec.reshape_thrust_curve.is_some() => {
+                "motor.reshape_thrust_curve"
+            }
+            PropulsionError::InvalidBurnTime { .. } | PropulsionError::MissingBurnTime => {
+                "motor.burn_time"
+            }
+            _ => "motor.thrust",
+        };
+        mission.model_error(key, e)
+    })?;
     let chamber_position = spec.chamber_position.unwrap_or(0.0);
     let structure = MotorStructure {
         dry_mass: spec.dry_mass,
@@ -110,17 +116,22 @@ pub fn build_motor_with(mission: &Mission, source: &ThrustSource) -> Result<Moto
             },
         ),
     };
-    motor.map_err(model_err("motor"))
+    motor.map_err(|e| match &e {
+        // A parameter named as in RocketPy is the mission key of the same name.
+        PropulsionError::InvalidParameter { name, .. } => {
+            mission.model_error(&format!("motor.{name}"), e)
+        }
+        _ => mission.model_error("motor", e),
+    })
 }
 
 /// The error for a motor kind the format names but karman does not model yet (`load`
 /// rejects it already; a hand-made [`Mission`] gets the same answer here).
 fn unsupported(mission: &Mission) -> MissionError {
-    MissionError::Model {
-        file: mission.path.clone(),
-        section: "motor.kind".to_owned(),
-        source: format!("a {} motor is not supported yet", mission.spec.motor.kind).into(),
-    }
+    mission.model_error(
+        "motor.kind",
+        format!("a {} motor is not supported yet", mission.spec.motor.kind),
+    )
 }
 
 /// The thrust source named by `motor.thrust`: a constant, inline points or a file read now.

@@ -4,8 +4,8 @@
 //! propulsion crate).
 
 use karman_airframe::{
-    self as airframe, Airfoil, AirframeError, CoordinateSystem, NoseKind, Parachute, RailButtons,
-    Rocket, RocketInputs, SurfaceInput, Trigger,
+    self as airframe, Airfoil, AirframeError, CoordinateSystem, DragEstimate, NoseKind, Parachute,
+    RailButtons, Rocket, RocketInputs, SurfaceInput, Trigger,
 };
 use karman_math::{Extrapolation, Interpolation};
 use karman_propulsion::Motor;
@@ -16,8 +16,8 @@ use crate::{Mission, MissionError};
 /// Builds the rocket of `mission` with `motor` at `rocket.motor_position`.
 ///
 /// # Errors
-/// [`MissionError::Curve`] for a drag or airfoil curve that is not a table,
-/// [`MissionError::Model`] (section `rocket`, `rocket.surfaces.<name>`,
+/// [`MissionError::Model`] (the curve's key) for a drag or airfoil curve that is not a table,
+/// and (section `rocket`, `rocket.surfaces.<name>`,
 /// `rocket.parachutes.<name>` or `rocket.rail_buttons`) for impossible airframe inputs.
 pub fn build_rocket(mission: &Mission, motor: &Motor) -> Result<Rocket, MissionError> {
     let spec = &mission.spec.rocket;
@@ -25,19 +25,11 @@ pub fn build_rocket(mission: &Mission, motor: &Motor) -> Result<Rocket, MissionE
     // curves follow the rocket's `interpolation` / `extrapolation`.
     let curve = |key: String, c: &schema::Curve, kind: (Interpolation, Extrapolation)| {
         c.to_table(&mission.dir, kind.0, kind.1)
-            .map_err(|source| MissionError::Curve {
-                file: mission.path.clone(),
-                key,
-                source,
-            })
+            .map_err(|source| mission.model_error(&key, source))
     };
     let linear = (Interpolation::Linear, Extrapolation::Constant);
     let drag = (spec.interpolation.into(), spec.extrapolation.into());
-    let model = |section: String, source: AirframeError| MissionError::Model {
-        file: mission.path.clone(),
-        section,
-        source: Box::new(source),
-    };
+    let model = |section: String, source: AirframeError| mission.model_error(&section, source);
 
     let mut surfaces = Vec::with_capacity(spec.surfaces.len());
     for (name, surface) in &spec.surfaces {
@@ -59,9 +51,23 @@ pub fn build_rocket(mission: &Mission, motor: &Motor) -> Result<Rocket, MissionE
         let chute = Parachute::new(&airframe::ParachuteSpec {
             name: name.clone(),
             cd_s: p.cd_s,
-            trigger: match p.trigger {
+            trigger: match &p.trigger {
                 schema::Trigger::Apogee => Trigger::Apogee,
-                schema::Trigger::HeightAboveGround(h) => Trigger::HeightAboveGround(h),
+                schema::Trigger::HeightAboveGround(h) => Trigger::HeightAboveGround(*h),
+                schema::Trigger::Launch(_)
+                | schema::Trigger::Burnout(_)
+                | schema::Trigger::Expression(_) => {
+                    return Err(MissionError::Invalid {
+                        file: mission.path.clone(),
+                        problems: vec![crate::Problem {
+                            location: crate::Location::File { line: 1, column: 1 },
+                            key: format!("rocket.parachutes.{name}.trigger"),
+                            kind: crate::ProblemKind::Unsupported {
+                                what: "a timed or expression trigger in flight".into(),
+                            },
+                        }],
+                    });
+                }
             },
             sampling_rate: Some(p.sampling_rate),
             lag: Some(p.lag),
@@ -83,6 +89,16 @@ pub fn build_rocket(mission: &Mission, motor: &Motor) -> Result<Rocket, MissionE
         None => None,
     };
 
+    // Drag curves: tables from the mission, or the geometric estimate (computed once for
+    // both when either asks for it).
+    let estimated = estimated_drag(mission, motor)?;
+    let drag_table = |key: &str, c: &schema::Curve, on: bool| match &estimated {
+        Some(e) if c.is_estimate() => (if on { e.power_on() } else { e.power_off() })
+            .map_err(|e| model("rocket.drag_estimate".to_owned(), e)),
+        _ => curve(key.to_owned(), c, drag),
+    };
+    let power_off_drag = drag_table("rocket.power_off_drag", &spec.power_off_drag, false)?;
+    let power_on_drag = drag_table("rocket.power_on_drag", &spec.power_on_drag, true)?;
     let inputs = RocketInputs {
         radius: spec.radius,
         mass: spec.mass,
@@ -92,8 +108,8 @@ pub fn build_rocket(mission: &Mission, motor: &Motor) -> Result<Rocket, MissionE
             RocketCoordinateSystem::TailToNose => CoordinateSystem::TailToNose,
             RocketCoordinateSystem::NoseToTail => CoordinateSystem::NoseToTail,
         },
-        power_off_drag: curve("rocket.power_off_drag".into(), &spec.power_off_drag, drag)?,
-        power_on_drag: curve("rocket.power_on_drag".into(), &spec.power_on_drag, drag)?,
+        power_off_drag,
+        power_on_drag,
         motor_position: spec.motor_position,
         surfaces,
         parachutes,
@@ -119,6 +135,28 @@ pub fn build_rocket(mission: &Mission, motor: &Motor) -> Result<Rocket, MissionE
         };
         model(section, e)
     })
+}
+
+/// The drag estimated from the geometry when `power_off_drag` or `power_on_drag` is
+/// `"estimate"` (see [`super::drag`]), with `motor`'s nozzle exit for the power-on base.
+///
+/// # Errors
+/// [`MissionError::Model`] for a geometry the estimate cannot use.
+pub fn estimated_drag(
+    mission: &Mission,
+    motor: &Motor,
+) -> Result<Option<DragEstimate>, MissionError> {
+    let spec = &mission.spec.rocket;
+    if !(spec.power_off_drag.is_estimate() || spec.power_on_drag.is_estimate()) {
+        return Ok(None);
+    }
+    // The airfoil changes lift only, not the planform the estimate needs.
+    let surfaces: Vec<SurfaceInput> = spec
+        .surfaces
+        .iter()
+        .map(|(name, s)| surface_input(name, s, None))
+        .collect();
+    super::drag::estimate(mission, &surfaces, motor.nozzle_radius()).map(Some)
 }
 
 /// The airframe's description of one mission surface.

@@ -11,6 +11,7 @@
 //! [`IndexMap`]s: they keep the file order, which RocketPy's results depend on (surfaces and
 //! parachutes are added in that order).
 
+mod drag;
 pub mod names;
 pub(crate) mod surfaces;
 pub mod values;
@@ -19,16 +20,18 @@ use indexmap::IndexMap;
 use serde::{Deserialize, Serialize};
 use std::path::PathBuf;
 
+pub use drag::{DragEstimateSpec, FinDragSpec, LaunchLugSpec, RailButtonSizeSpec};
 pub use names::{
-    AngleUnit, AtmosphereModel, Datum, ExtrapolationKind, InterpolationKind, MotorCoordinateSystem,
-    MotorKind, NoseKind, RocketCoordinateSystem, SoundingFormat, SurfaceType,
+    AngleUnit, AtmosphereModel, Datum, ExtrapolationKind, FinCrossSection, InterpolationKind,
+    MotorCoordinateSystem, MotorKind, NoseKind, RocketCoordinateSystem, SoundingFormat,
+    SurfaceFinish, SurfaceType,
 };
 pub use surfaces::{
     AirfoilSpec, EllipticalFinsSpec, FreeFormFinsSpec, NoseSpec, SurfaceSpec, Sweep, TailSpec,
     TrapezoidalFinsSpec,
 };
 pub use toml::value::Datetime;
-pub use values::{Atol, BurnTime, Curve, Inertia, STATE_SIZE, Trigger};
+pub use values::{AirBrakesCurve, Atol, BurnTime, Curve, ESTIMATE, Inertia, STATE_SIZE, Trigger};
 
 /// A whole mission file.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
@@ -241,10 +244,13 @@ pub struct RocketSpec {
     /// Direction of the rocket coordinate; RocketPy default tail to nose.
     #[serde(default = "default_tail_to_nose")]
     pub coordinate_system: RocketCoordinateSystem,
-    /// Drag coefficient of Mach, motor off.
+    /// Drag coefficient of Mach, motor off; `"estimate"`: from the geometry.
     pub power_off_drag: Curve,
-    /// Drag coefficient of Mach, motor burning.
+    /// Drag coefficient of Mach, motor burning; `"estimate"`: from the geometry.
     pub power_on_drag: Curve,
+    /// `[rocket.drag_estimate]`: geometry of the drag estimate, optional.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub drag_estimate: Option<DragEstimateSpec>,
     /// How both drag curves interpolate between their points.
     #[serde(default = "default_linear")]
     pub interpolation: InterpolationKind,
@@ -262,6 +268,51 @@ pub struct RocketSpec {
     /// `[rocket.parachutes.<name>]`, in file order.
     #[serde(default, skip_serializing_if = "IndexMap::is_empty")]
     pub parachutes: IndexMap<String, ParachuteSpec>,
+    /// `[rocket.air_brakes]`, optional.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub air_brakes: Option<AirBrakesSpec>,
+}
+
+fn default_true() -> bool {
+    true
+}
+
+/// `[rocket.air_brakes]` (RocketPy `Rocket.add_air_brakes` with its controller,
+/// physics.md §16).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct AirBrakesSpec {
+    /// `Cd(deployment_level, Mach)`: a number, `[[level, mach, cd], ...]` or a 3-column file.
+    pub drag_coefficient_curve: AirBrakesCurve,
+    /// The controller script (Rhai), relative to the mission.
+    pub controller: PathBuf,
+    /// Controller calls per second, Hz.
+    pub sampling_rate: f64,
+    /// Clip every level written to `[0, 1]`; RocketPy default true.
+    #[serde(default = "default_true")]
+    pub clamp: bool,
+    /// Reference area of the curve, m²; absent: the rocket's `π r²`.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub reference_area: Option<f64>,
+    /// While deployed, the curve is the whole rocket's drag; RocketPy default false.
+    #[serde(default)]
+    pub override_rocket_drag: bool,
+    /// Level at `t = 0`; RocketPy default 0.
+    #[serde(default)]
+    pub deployment_level: f64,
+    /// The controller record's first entry.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub initial_observed_variables: Option<Vec<f64>>,
+    /// Name shown in reports; RocketPy default "AirBrakes".
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub name: Option<String>,
+    /// Name of the controller in reports; RocketPy default "AirBrakes Controller".
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub controller_name: Option<String>,
+    /// `[rocket.air_brakes.constants]`: values for top-level constants of the script
+    /// (`const NAME = ...;`), which `--set` and `[dispersion.vary]` reach by dotted path.
+    #[serde(default, skip_serializing_if = "IndexMap::is_empty")]
+    pub constants: IndexMap<String, f64>,
 }
 
 fn default_button_angle() -> f64 {
@@ -361,6 +412,11 @@ pub struct FlightSpec {
     /// Largest integrator step, s; RocketPy default +∞ (`inf` in TOML).
     #[serde(default = "default_max_time_step")]
     pub max_time_step: f64,
+    /// `true`: sampled processes (parachute triggers, controllers) look at the solver's free
+    /// steps afterwards; `false`: every sampling instant is a hard time node (RocketPy's
+    /// `time_overshoot`, physics.md §16.4); RocketPy default true.
+    #[serde(default = "default_true")]
+    pub time_overshoot: bool,
 }
 
 /// `[dispersion]`: Monte Carlo run settings and the inputs that vary.

@@ -254,6 +254,60 @@ names! {
     }
 }
 
+names! {
+    /// `rocket.drag_estimate.finish`: OpenRocket's surface finishes and their sand roughness
+    /// (Niskanen 2009, Table 3.2).
+    pub enum SurfaceFinish ("surface finish") {
+        /// Rough, 500 µm.
+        Rough => ["rough"],
+        /// Unfinished (rough), 250 µm.
+        RoughUnfinished => ["rough unfinished", "roughunfinished"],
+        /// Unfinished, 150 µm.
+        Unfinished => ["unfinished"],
+        /// Regular paint, 60 µm.
+        Normal => ["normal", "regular paint"],
+        /// Smooth paint, 20 µm.
+        Smooth => ["smooth", "smooth paint"],
+        /// Optimum paint, 5 µm.
+        Optimum => ["optimum", "optimum paint"],
+        /// Polished (aircraft sheet metal), 2 µm.
+        Polished => ["polished"],
+        /// Finished and polished, 0.5 µm.
+        FinishPolished => ["finish polished", "finishpolished"],
+        /// Mirror, 0.
+        Mirror => ["mirror"],
+    }
+}
+
+impl SurfaceFinish {
+    /// Equivalent sand roughness, m.
+    pub fn roughness(self) -> f64 {
+        match self {
+            SurfaceFinish::Rough => 500e-6,
+            SurfaceFinish::RoughUnfinished => 250e-6,
+            SurfaceFinish::Unfinished => 150e-6,
+            SurfaceFinish::Normal => 60e-6,
+            SurfaceFinish::Smooth => 20e-6,
+            SurfaceFinish::Optimum => 5e-6,
+            SurfaceFinish::Polished => 2e-6,
+            SurfaceFinish::FinishPolished => 0.5e-6,
+            SurfaceFinish::Mirror => 0.0,
+        }
+    }
+}
+
+names! {
+    /// `rocket.drag_estimate.fins.<surface>.cross_section`: a fin's edge profile.
+    pub enum FinCrossSection ("fin cross section") {
+        /// Square leading and trailing edges.
+        Square => ["square"],
+        /// Rounded edges.
+        Rounded => ["rounded"],
+        /// Airfoil: rounded leading edge, sharp trailing edge.
+        Airfoil => ["airfoil"],
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

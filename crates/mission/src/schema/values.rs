@@ -22,7 +22,15 @@ pub enum Curve {
     File(PathBuf),
 }
 
+/// The keyword of a drag curve estimated from the geometry (`power_off_drag = "estimate"`).
+pub const ESTIMATE: &str = "estimate";
+
 impl Curve {
+    /// Whether this is the drag keyword [`ESTIMATE`] rather than a file.
+    pub fn is_estimate(&self) -> bool {
+        matches!(self, Curve::File(path) if path.as_os_str() == ESTIMATE)
+    }
+
     /// The data file of a [`Curve::File`], resolved against `mission_dir`.
     pub fn file_path(&self, mission_dir: &Path) -> Option<PathBuf> {
         match self {
@@ -252,12 +260,31 @@ impl<'de> Deserialize<'de> for Atol {
 }
 
 /// `trigger` of a parachute.
-#[derive(Debug, Clone, Copy, PartialEq)]
+#[derive(Debug, Clone, PartialEq)]
 pub enum Trigger {
     /// Eject at apogee (first sampling instant with a descending velocity).
     Apogee,
     /// Eject on descent below this height above ground level, m.
     HeightAboveGround(f64),
+    /// `"launch + X"`: eject at the first sampling instant at or after `X` s (RocketPy 1.14).
+    Launch(f64),
+    /// `"burnout + X"`: eject at the first sampling instant at or after the motor's burn-out
+    /// plus `X` s (RocketPy 1.14).
+    Burnout(f64),
+    /// `{ expression = "..." }`: RocketPy's callable `trigger(p, h, y)` as an expression
+    /// (mission-format.md "Custom triggers"); checked by validation.
+    Expression(String),
+}
+
+/// Reads `"launch + X"` / `"burnout + X"` (spaces optional, case-insensitive).
+fn timed_trigger(text: &str) -> Option<Trigger> {
+    let (event, delay) = text.split_once('+')?;
+    let delay: f64 = delay.trim().parse().ok().filter(|d: &f64| d.is_finite())?;
+    match super::names::normalize(event).as_str() {
+        "launch" => Some(Trigger::Launch(delay)),
+        "burnout" => Some(Trigger::Burnout(delay)),
+        _ => None,
+    }
 }
 
 impl Serialize for Trigger {
@@ -265,6 +292,14 @@ impl Serialize for Trigger {
         match self {
             Trigger::Apogee => serializer.serialize_str("apogee"),
             Trigger::HeightAboveGround(height) => serializer.serialize_f64(*height),
+            Trigger::Launch(delay) => serializer.serialize_str(&format!("launch + {delay}")),
+            Trigger::Burnout(delay) => serializer.serialize_str(&format!("burnout + {delay}")),
+            Trigger::Expression(text) => {
+                use serde::ser::SerializeMap;
+                let mut map = serializer.serialize_map(Some(1))?;
+                map.serialize_entry("expression", text)?;
+                map.end()
+            }
         }
     }
 }
@@ -272,10 +307,13 @@ impl Serialize for Trigger {
 impl<'de> Deserialize<'de> for Trigger {
     fn deserialize<D: Deserializer<'de>>(deserializer: D) -> Result<Self, D::Error> {
         struct TriggerVisitor;
-        impl Visitor<'_> for TriggerVisitor {
+        impl<'de> Visitor<'de> for TriggerVisitor {
             type Value = Trigger;
             fn expecting(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-                f.write_str("\"apogee\" or a height above ground level in m")
+                f.write_str(
+                    "\"apogee\", a height above ground level in m, \"launch + <s>\", \
+                     \"burnout + <s>\" or { expression = \"...\" }",
+                )
             }
             fn visit_i64<E: de::Error>(self, v: i64) -> Result<Trigger, E> {
                 Ok(Trigger::HeightAboveGround(v as f64))
@@ -288,15 +326,94 @@ impl<'de> Deserialize<'de> for Trigger {
             }
             fn visit_str<E: de::Error>(self, v: &str) -> Result<Trigger, E> {
                 if super::names::normalize(v) == "apogee" {
-                    Ok(Trigger::Apogee)
-                } else {
-                    Err(E::custom(format!(
-                        "unknown parachute trigger \"{v}\", expected \"apogee\" or a height above ground level in m"
-                    )))
+                    return Ok(Trigger::Apogee);
                 }
+                timed_trigger(v).ok_or_else(|| {
+                    E::custom(format!(
+                        "unknown parachute trigger \"{v}\", expected \"apogee\", a height above \
+                         ground level in m, \"launch + <seconds>\", \"burnout + <seconds>\" or \
+                         {{ expression = \"...\" }}"
+                    ))
+                })
+            }
+            fn visit_map<A: de::MapAccess<'de>>(self, mut map: A) -> Result<Trigger, A::Error> {
+                let mut expression = None;
+                while let Some(key) = map.next_key::<String>()? {
+                    if key != "expression" || expression.is_some() {
+                        return Err(de::Error::custom(format!(
+                            "a trigger table takes one key, `expression`; found `{key}`"
+                        )));
+                    }
+                    expression = Some(map.next_value::<String>()?);
+                }
+                expression
+                    .map(Trigger::Expression)
+                    .ok_or_else(|| de::Error::custom("a trigger table needs `expression`"))
             }
         }
         deserializer.deserialize_any(TriggerVisitor)
+    }
+}
+
+/// `drag_coefficient_curve` of the air brakes: `Cd(deployment_level, Mach)`.
+#[derive(Debug, Clone, PartialEq)]
+pub enum AirBrakesCurve {
+    /// The same value everywhere.
+    Constant(f64),
+    /// Inline rows `[[level, mach, cd], ...]`, in file order (not sorted: the Shepard sums run
+    /// in row order).
+    Rows(Vec<[f64; 3]>),
+    /// A 3-column data file (deployment level, Mach, Cd; an optional header line).
+    File(PathBuf),
+}
+
+impl Serialize for AirBrakesCurve {
+    fn serialize<S: Serializer>(&self, serializer: S) -> Result<S::Ok, S::Error> {
+        match self {
+            AirBrakesCurve::Constant(value) => serializer.serialize_f64(*value),
+            AirBrakesCurve::Rows(rows) => rows.serialize(serializer),
+            AirBrakesCurve::File(path) => path.serialize(serializer),
+        }
+    }
+}
+
+impl<'de> Deserialize<'de> for AirBrakesCurve {
+    fn deserialize<D: Deserializer<'de>>(deserializer: D) -> Result<Self, D::Error> {
+        struct CurveVisitor;
+        impl<'de> Visitor<'de> for CurveVisitor {
+            type Value = AirBrakesCurve;
+            fn expecting(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+                f.write_str("a number, a file path or [[level, mach, cd], ...]")
+            }
+            fn visit_i64<E: de::Error>(self, v: i64) -> Result<AirBrakesCurve, E> {
+                Ok(AirBrakesCurve::Constant(v as f64))
+            }
+            fn visit_u64<E: de::Error>(self, v: u64) -> Result<AirBrakesCurve, E> {
+                Ok(AirBrakesCurve::Constant(v as f64))
+            }
+            fn visit_f64<E: de::Error>(self, v: f64) -> Result<AirBrakesCurve, E> {
+                Ok(AirBrakesCurve::Constant(v))
+            }
+            fn visit_str<E: de::Error>(self, v: &str) -> Result<AirBrakesCurve, E> {
+                if v.trim().is_empty() {
+                    return Err(E::custom("a curve file path must not be empty"));
+                }
+                Ok(AirBrakesCurve::File(PathBuf::from(v)))
+            }
+            fn visit_seq<A: SeqAccess<'de>>(self, mut seq: A) -> Result<AirBrakesCurve, A::Error> {
+                let mut rows = Vec::new();
+                while let Some(row) = seq.next_element::<[f64; 3]>()? {
+                    rows.push(row);
+                }
+                if rows.is_empty() {
+                    return Err(de::Error::custom(
+                        "the table needs at least one [level, mach, cd] row",
+                    ));
+                }
+                Ok(AirBrakesCurve::Rows(rows))
+            }
+        }
+        deserializer.deserialize_any(CurveVisitor)
     }
 }
 
@@ -374,5 +491,61 @@ mod tests {
         );
         assert_eq!(h.t, Trigger::HeightAboveGround(800.0));
         assert!(toml::from_str::<H>("b = 1\nt = \"perigee\"").is_err());
+        let h: H = toml::from_str("b = 1\nt = \"Launch + 5\"").expect("valid");
+        assert_eq!(h.t, Trigger::Launch(5.0));
+        let h: H = toml::from_str("b = 1\nt = \"burnout+2.5\"").expect("valid");
+        assert_eq!(h.t, Trigger::Burnout(2.5));
+        let h: H = toml::from_str("b = 1\nt = { expression = \"vz < 5.0\" }").expect("valid");
+        assert_eq!(h.t, Trigger::Expression("vz < 5.0".into()));
+        for bad in [
+            "\"launch + x\"",
+            "\"landing + 2\"",
+            "{ expr = \"a\" }",
+            "{}",
+        ] {
+            assert!(
+                toml::from_str::<H>(&format!("b = 1\nt = {bad}")).is_err(),
+                "{bad}"
+            );
+        }
+    }
+
+    #[test]
+    fn triggers_serialize_back() {
+        #[derive(Deserialize, Serialize)]
+        struct H {
+            t: Trigger,
+        }
+        for t in [
+            Trigger::Apogee,
+            Trigger::HeightAboveGround(800.0),
+            Trigger::Launch(0.1),
+            Trigger::Burnout(3.25),
+            Trigger::Expression("z > 300.0".into()),
+        ] {
+            let text = toml::to_string(&H { t: t.clone() }).expect("serializes");
+            let back: H = toml::from_str(&text).expect("reads back");
+            assert_eq!(back.t, t, "{text}");
+        }
+    }
+
+    #[test]
+    fn air_brake_curves() {
+        #[derive(Debug, Deserialize)]
+        struct H {
+            c: AirBrakesCurve,
+        }
+        let c = |text: &str| toml::from_str::<H>(&format!("c = {text}")).map(|h| h.c);
+        assert_eq!(c("0.8").expect("number"), AirBrakesCurve::Constant(0.8));
+        assert_eq!(
+            c("\"ab.csv\"").expect("file"),
+            AirBrakesCurve::File("ab.csv".into())
+        );
+        assert_eq!(
+            c("[[1, 0.1, 0.7], [0, 0.1, 0.5]]").expect("rows"),
+            AirBrakesCurve::Rows(vec![[1.0, 0.1, 0.7], [0.0, 0.1, 0.5]])
+        );
+        assert!(c("[[1, 0.1]]").is_err());
+        assert!(c("[]").is_err());
     }
 }

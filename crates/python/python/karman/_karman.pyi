@@ -97,6 +97,9 @@ class Flight:
     def events(self) -> list[dict[str, Any]]:
         """The events (``name``, ``time_s``)."""
     @property
+    def warnings(self) -> list[str]:
+        """The mission's warnings, each starting with the key it concerns."""
+    @property
     def termination(self) -> str:
         """``"impact"``, ``"apogee"``, ``"max_time"`` or ``"stuck_on_rail"``."""
     @property

@@ -1,0 +1,373 @@
+//! Everything a flight needs, built and checked before it starts: the environment, motor and
+//! rocket models, the flight settings, the launch from the rail, and the physical-sanity
+//! warnings. `karman check` runs exactly this, so whatever `simulate` would reject before
+//! integrating, `check` rejects first; every error names the mission key that is wrong.
+//!
+//! Launch checks (errors, each blamed on the key that decides it):
+//! - the flight settings' ranges ([`FlightSettings::validate`]), blamed on the `[flight]` key;
+//! - the nozzle must lie on the airframe (within one airframe length of the span of its
+//!   surfaces, rail buttons and centre of mass): `rocket.motor_position` otherwise;
+//! - the rail must be longer than the nozzle-to-upper-button distance (physics.md §8.1,
+//!   RocketPy's effective rail length): `flight.rail_length`;
+//! - winds above [`ABSURD_WIND`] (no wind on Earth comes near): the wind's key;
+//! - the rocket must leave the rail before burn-out. The rail slide is integrated along the
+//!   rail with the engine's rail equation (physics.md §8.1: thrust, power-on drag in the
+//!   wind, weight along the rail, acceleration clipped at zero) with a fixed step; a rocket
+//!   still on the rail at burn-out can only creep on at constant speed (RocketPy's clipped
+//!   rail acceleration), which is no flight: "stuck on the rail", blamed on `motor.thrust`
+//!   (or on the wind when the thrust alone would lift it).
+//!
+//! Warnings (flyable, but a range-safety officer would ask): the rocket's own
+//! ([`karman_airframe::Rocket::warnings`]), the thrust file's, no fins, a negative static
+//! margin at any time of the powered flight (RocketPy 1.13 warns as well), a thrust-to-weight
+//! ratio below 1 at rail exit, pressure rising with height, strong winds.
+
+use karman_airframe::Rocket;
+use karman_atmos::Environment;
+use karman_dynamics::{FlightSettings, VehicleModel};
+use karman_propulsion::{Motor, ThrustSource};
+
+use super::environment::build_environment;
+use super::flight::flight_settings;
+use super::motor::{build_motor_with, thrust_source};
+use super::rocket::build_rocket;
+use crate::schema::AtmosphereModel;
+use crate::{Mission, MissionError};
+
+/// A wind speed no atmosphere has (m/s, about twice the strongest jet stream measured): a wind
+/// curve reaching it is an error in the data or its unit.
+pub const ABSURD_WIND: f64 = 200.0;
+
+/// A wind speed worth a warning (m/s): the strongest jet-stream cores.
+pub const STRONG_WIND: f64 = 100.0;
+
+/// Heights sampled for the atmosphere checks (from the site up to the top of the check).
+const ATMOSPHERE_SAMPLES: usize = 600;
+
+/// Height above the site up to which the atmosphere is checked when the mission does not
+/// state `max_expected_height`, m.
+const DEFAULT_CHECK_HEIGHT: f64 = 30_000.0;
+
+/// Steps of the rail-slide integration per second of burn (and at least [`RAIL_MIN_STEPS`]).
+const RAIL_STEPS_PER_SECOND: f64 = 2000.0;
+
+/// Fewest steps of the rail-slide integration.
+const RAIL_MIN_STEPS: usize = 2000;
+
+/// Most steps of the rail-slide integration (a very long burn gets longer steps).
+const RAIL_MAX_STEPS: usize = 200_000;
+
+/// Samples of the static margin over the powered flight.
+const MARGIN_SAMPLES: usize = 200;
+
+/// The models of a mission, built and checked, with the warnings found on the way.
+#[derive(Debug, Clone)]
+pub struct Models {
+    /// The launch environment.
+    pub environment: Environment,
+    /// The motor.
+    pub motor: Motor,
+    /// The rocket with its motor.
+    pub rocket: Rocket,
+    /// The flight settings.
+    pub settings: FlightSettings,
+    /// Warnings, each starting with the mission key it concerns.
+    pub warnings: Vec<String>,
+}
+
+/// Builds every model of `mission` and checks its launch (module docs); `seed` is the
+/// parachute trigger-noise seed of the settings.
+///
+/// # Errors
+/// The builders' [`MissionError`]s and [`MissionError::Model`] located at the key that
+/// makes the flight impossible.
+pub fn prepare(mission: &Mission, seed: u64) -> Result<Models, MissionError> {
+    let environment = build_environment(mission)?;
+    let thrust = thrust_source(mission)?;
+    let motor = build_motor_with(mission, &thrust)?;
+    let rocket = build_rocket(mission, &motor)?;
+    let settings = flight_settings(mission, seed);
+    settings.validate().map_err(|e| {
+        let key = match &e {
+            karman_dynamics::DynamicsError::InvalidSetting { name, .. } => format!("flight.{name}"),
+            _ => "flight".to_owned(),
+        };
+        mission.model_error(&key, e)
+    })?;
+    let mut warnings = Vec::new();
+    if let ThrustSource::Data(data) = &thrust {
+        warnings.extend(data.warnings.iter().map(|w| format!("`motor.thrust`: {w}")));
+    }
+    warnings.extend(rocket.warnings().iter().map(|w| format!("`rocket`: {w}")));
+    check_atmosphere(mission, &environment, &mut warnings)?;
+    check_layout(mission, &rocket, &settings)?;
+    check_rail(mission, &environment, &rocket, &settings, &mut warnings)?;
+    check_stability(&rocket, &mut warnings);
+    Ok(Models {
+        environment,
+        motor,
+        rocket,
+        settings,
+        warnings,
+    })
+}
+
+/// A launch check that failed, as a plain message (the key goes to [`Mission::model_error`]).
+#[derive(Debug)]
+struct Launch(String);
+
+impl std::fmt::Display for Launch {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(&self.0)
+    }
+}
+
+impl std::error::Error for Launch {}
+
+fn fail(mission: &Mission, key: &str, message: String) -> MissionError {
+    mission.model_error(key, Launch(message))
+}
+
+/// The key that sets the winds of the mission's atmosphere.
+fn wind_key(mission: &Mission, east: bool) -> &'static str {
+    match mission.spec.environment.atmosphere.model {
+        AtmosphereModel::Custom if east => "environment.atmosphere.wind_u",
+        AtmosphereModel::Custom => "environment.atmosphere.wind_v",
+        AtmosphereModel::Standard => "environment.atmosphere",
+        _ => "environment.atmosphere.file",
+    }
+}
+
+/// Pressure must fall with height; winds must be possible.
+fn check_atmosphere(
+    mission: &Mission,
+    env: &Environment,
+    warnings: &mut Vec<String>,
+) -> Result<(), MissionError> {
+    let bottom = env.elevation();
+    let top = mission
+        .spec
+        .environment
+        .max_expected_height
+        .filter(|&h| h > bottom)
+        .unwrap_or(bottom + DEFAULT_CHECK_HEIGHT);
+    let height = |k: usize| bottom + (top - bottom) * k as f64 / (ATMOSPHERE_SAMPLES - 1) as f64;
+    let mut rising = None;
+    let mut strongest: (f64, f64) = (0.0, bottom);
+    let mut previous = env.pressure(bottom);
+    for k in 0..ATMOSPHERE_SAMPLES {
+        let z = height(k);
+        let p = env.pressure(z);
+        if k > 0 && p > previous * (1.0 + 1e-12) && rising.is_none() {
+            rising = Some((height(k - 1), z, previous, p));
+        }
+        previous = p;
+        let [u, v] = env.wind(z);
+        if u.abs() >= ABSURD_WIND || v.abs() >= ABSURD_WIND {
+            let (east, value) = if u.abs() >= v.abs() {
+                (true, u)
+            } else {
+                (false, v)
+            };
+            return Err(fail(
+                mission,
+                wind_key(mission, east),
+                format!(
+                    "the {} wind is {value} m/s at {z:.0} m above sea level; no atmosphere has \
+                     winds above {ABSURD_WIND} m/s (is the unit right?)",
+                    if east { "east" } else { "north" }
+                ),
+            ));
+        }
+        let speed = u.hypot(v);
+        if speed > strongest.0 {
+            strongest = (speed, z);
+        }
+    }
+    if let Some((z0, z1, p0, p1)) = rising {
+        warnings.push(format!(
+            "`environment.atmosphere`: pressure rises with height, from {p0:.1} Pa at {z0:.0} m \
+             to {p1:.1} Pa at {z1:.0} m above sea level (a column or unit mix-up in the data?)"
+        ));
+    }
+    if strongest.0 > STRONG_WIND {
+        let [u, v] = env.wind(strongest.1);
+        warnings.push(format!(
+            "`{}`: wind of {:.1} m/s at {:.0} m above sea level, stronger than any jet-stream \
+             core (is the unit right?)",
+            wind_key(mission, u.abs() >= v.abs()),
+            strongest.0,
+            strongest.1
+        ));
+    }
+    Ok(())
+}
+
+/// The nozzle must sit on the airframe; the rail must be longer than the nozzle-to-button
+/// distance.
+fn check_layout(
+    mission: &Mission,
+    rocket: &Rocket,
+    settings: &FlightSettings,
+) -> Result<(), MissionError> {
+    let csys = rocket.csys();
+    // The airframe's span in rocket coordinates: surfaces (reference point and aft end),
+    // rail buttons and the centre of mass without motor.
+    let mut ends = vec![rocket.rocket_center_of_mass()];
+    for s in rocket.surfaces() {
+        ends.push(s.position);
+        ends.push(s.position - csys * s.geometry.length());
+    }
+    if let Some(b) = rocket.rail_buttons() {
+        ends.extend([b.upper_position, b.lower_position]);
+    }
+    let low = ends.iter().copied().fold(f64::INFINITY, f64::min);
+    let high = ends.iter().copied().fold(f64::NEG_INFINITY, f64::max);
+    let margin = (high - low).max(20.0 * rocket.radius());
+    let nozzle = VehicleModel::nozzle_position(rocket);
+    if nozzle < low - margin || nozzle > high + margin {
+        return Err(fail(
+            mission,
+            "rocket.motor_position",
+            format!(
+                "puts the nozzle exit at {nozzle} m (rocket coordinates), far outside the \
+                 airframe, which spans {low} m to {high} m"
+            ),
+        ));
+    }
+    let upper = VehicleModel::rail_buttons(rocket).map_or(nozzle, |b| {
+        b.lower_position + csys * (b.upper_position - b.lower_position).abs()
+    });
+    let needed = (nozzle - upper).abs();
+    if settings.rail_length - needed <= 0.0 {
+        return Err(fail(
+            mission,
+            "flight.rail_length",
+            format!(
+                "{} m is not longer than the nozzle-to-upper-rail-button distance {needed:.4} m: \
+                 the rocket cannot slide on it",
+                settings.rail_length
+            ),
+        ));
+    }
+    Ok(())
+}
+
+/// The slide along the rail (module docs): the rocket must leave it before burn-out.
+fn check_rail(
+    mission: &Mission,
+    env: &Environment,
+    rocket: &Rocket,
+    settings: &FlightSettings,
+    warnings: &mut Vec<String>,
+) -> Result<(), MissionError> {
+    let csys = rocket.csys();
+    let nozzle = VehicleModel::nozzle_position(rocket);
+    let upper = VehicleModel::rail_buttons(rocket).map_or(nozzle, |b| {
+        b.lower_position + csys * (b.upper_position - b.lower_position).abs()
+    });
+    let travel = settings.rail_length - (nozzle - upper).abs();
+    let (sin_i, cos_i) = settings.inclination_deg.to_radians().sin_cos();
+    let (sin_h, cos_h) = settings.heading_deg.to_radians().sin_cos();
+    // Unit vector of the rail (east, north, up).
+    let axis = [cos_i * sin_h, cos_i * cos_h, sin_i];
+    let area = rocket.reference_area();
+    let burn_out = rocket.burn_out();
+    let steps =
+        ((burn_out * RAIL_STEPS_PER_SECOND).ceil() as usize).clamp(RAIL_MIN_STEPS, RAIL_MAX_STEPS);
+    let dt = burn_out / steps as f64;
+    let acceleration = |t: f64, s: f64, v: f64| {
+        let z = env.elevation() + s * sin_i;
+        let wind = env.wind(z);
+        let free = [wind[0] - v * axis[0], wind[1] - v * axis[1], -v * axis[2]];
+        let speed = (free[0] * free[0] + free[1] * free[1] + free[2] * free[2]).sqrt();
+        let mach = speed / env.speed_of_sound(z);
+        let drag =
+            0.5 * env.density(z) * speed * speed * area * rocket.drag_coefficient(true, mach);
+        let thrust = rocket.net_thrust(t, env.pressure(z));
+        let a = (thrust - drag) / rocket.total_mass(t) - sin_i * env.gravity(z);
+        (a.max(0.0), thrust)
+    };
+    let (mut s, mut v) = (0.0, 0.0);
+    let mut best_excess = f64::NEG_INFINITY;
+    let mut exit = None;
+    for k in 0..steps {
+        let t = k as f64 * dt;
+        // Heun's method on (s, v).
+        let (a0, thrust) = acceleration(t, s, v);
+        let weight = rocket.total_mass(t) * sin_i * env.gravity(env.elevation() + s * sin_i);
+        best_excess = best_excess.max(thrust - weight);
+        let (s1, v1) = (s + dt * v, v + dt * a0);
+        let (a1, _) = acceleration(t + dt, s1, v1);
+        let (s2, v2) = (s + 0.5 * dt * (v + v1), v + 0.5 * dt * (a0 + a1));
+        if s2 >= travel {
+            exit = Some(t + dt * ((travel - s) / (s2 - s)).clamp(0.0, 1.0));
+            break;
+        }
+        (s, v) = (s2, v2);
+    }
+    let Some(t_exit) = exit else {
+        let message = if best_excess <= 0.0 {
+            format!(
+                "the rocket is stuck on the rail: its thrust never exceeds its weight along the \
+                 rail (by at best {best_excess:.1} N), so it does not leave the pad"
+            )
+        } else if s <= 0.0 {
+            format!(
+                "the rocket is stuck on the rail: the air drag in the wind holds it on the pad \
+                 although its thrust exceeds its weight along the rail by up to \
+                 {best_excess:.1} N"
+            )
+        } else {
+            format!(
+                "the rocket is stuck on the rail: at burn-out ({burn_out:.3} s) it has slid \
+                 {s:.3} m of the {travel:.3} m to rail exit, at {v:.3} m/s; it would only creep \
+                 off the rail without thrust"
+            )
+        };
+        let key = if best_excess > 0.0 && s <= 0.0 {
+            let [u, v] = env.wind(env.elevation());
+            wind_key(mission, u.abs() >= v.abs())
+        } else {
+            "motor.thrust"
+        };
+        return Err(fail(mission, key, message));
+    };
+    let weight = rocket.total_mass(t_exit) * env.gravity(env.elevation()) * sin_i;
+    let thrust = rocket.net_thrust(t_exit, env.pressure(env.elevation()));
+    if thrust < weight {
+        warnings.push(format!(
+            "`motor.thrust`: thrust-to-weight ratio {:.2} at rail exit (t = {t_exit:.3} s): the \
+             rocket leaves the rail slower than its motor can hold it up",
+            thrust / weight
+        ));
+    }
+    Ok(())
+}
+
+/// No fins; a negative static margin during the powered flight.
+fn check_stability(rocket: &Rocket, warnings: &mut Vec<String>) {
+    if !rocket.surfaces().iter().any(|s| s.is_fin_set()) {
+        warnings.push(
+            "`rocket.surfaces`: the rocket has no fins; nothing keeps it pointing into the \
+             wind"
+                .to_owned(),
+        );
+    }
+    let burn_out = rocket.burn_out();
+    let (mut worst, mut at) = (rocket.static_margin(0.0), 0.0);
+    for k in 1..MARGIN_SAMPLES {
+        let t = burn_out * k as f64 / (MARGIN_SAMPLES - 1) as f64;
+        let margin = rocket.static_margin(t);
+        if margin < worst {
+            (worst, at) = (margin, t);
+        }
+    }
+    if worst < 0.0 {
+        warnings.push(format!(
+            "`rocket`: negative static margin {worst:.3} calibres at t = {at:.3} s of the \
+             powered flight: the centre of pressure lies ahead of the centre of mass and the \
+             rocket is unstable"
+        ));
+    }
+}

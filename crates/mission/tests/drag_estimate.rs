@@ -1,0 +1,129 @@
+//! `power_off_drag = "estimate"`: the body implied by the surfaces, the estimate's tables,
+//! and the errors of an incomplete geometry.
+
+use crate::common::fixture;
+use karman_airframe::{BodySegment, DragGeometry, DragModel, FinCrossSection, FinSetDrag, Profile};
+use karman_math::PhysicalConstants;
+use karman_mission::build::drag::launch_air;
+use karman_mission::build::{motor::build_motor, rocket::build_rocket};
+use karman_mission::{Override, load};
+
+fn load_with(sets: &[(&str, &str)]) -> karman_mission::Mission {
+    let overrides: Vec<Override> = sets
+        .iter()
+        .map(|(p, v)| Override::new(p, v).expect("override"))
+        .collect();
+    load(&fixture("estimate.toml"), &overrides).unwrap_or_else(|e| panic!("{e}"))
+}
+
+/// The fixture's geometry written out: ogive nose 0.2 m from the tip at 0.9 m, a tube of
+/// radius 0.04 m to the fins' trailing edge at −0.72 m (1.62 m from the tip), three fins.
+fn by_hand() -> DragGeometry {
+    let k = 20e-6;
+    DragGeometry {
+        reference_radius: 0.04,
+        body: vec![
+            BodySegment {
+                name: "nose".into(),
+                length: 0.2,
+                fore_radius: 0.0,
+                aft_radius: 0.04,
+                profile: Profile::Ogive(1.0),
+                roughness: k,
+            },
+            BodySegment {
+                name: "tube".into(),
+                length: 1.42,
+                fore_radius: 0.04,
+                aft_radius: 0.04,
+                profile: Profile::Conical,
+                roughness: k,
+            },
+        ],
+        fins: vec![FinSetDrag {
+            name: "fins".into(),
+            count: 3,
+            // RocketPy's default sweep: the tip's trailing edge above the root's.
+            outline: vec![[0.0, 0.0], [0.07, 0.08], [0.12, 0.08], [0.12, 0.0]],
+            position: 1.5,
+            thickness: 0.003,
+            cross_section: FinCrossSection::Rounded,
+            roughness: k,
+        }],
+        launch_lugs: Vec::new(),
+        rail_buttons: None,
+        nozzle_exit_radius: 0.02,
+    }
+}
+
+#[test]
+fn the_estimate_flies_the_geometry_of_the_surfaces() {
+    let mission = load_with(&[]);
+    let motor = build_motor(&mission).expect("motor");
+    let rocket = build_rocket(&mission, &motor).unwrap_or_else(|e| panic!("{e}"));
+    let model = DragModel::new(&by_hand(), &PhysicalConstants::SI).expect("geometry");
+    let air = launch_air(1400.0, &PhysicalConstants::SI);
+    for mach in [0.0, 0.15, 0.5, 0.95, 1.2, 2.0, 3.0] {
+        let c = model.components(mach, mach * air.speed_of_sound, air.kinematic_viscosity);
+        let off = rocket.drag_coefficient(false, mach);
+        let on = rocket.drag_coefficient(true, mach);
+        assert!(
+            (off - c.power_off()).abs() < 1e-12,
+            "Mach {mach}: {off} vs {}",
+            c.power_off()
+        );
+        assert!(
+            (on - c.power_on()).abs() < 1e-12,
+            "Mach {mach}: {on} vs {}",
+            c.power_on()
+        );
+        // The jet fills a quarter of the base (nozzle 0.02 m, body 0.04 m).
+        assert!(on < off);
+    }
+    let subsonic = rocket.drag_coefficient(false, 0.3);
+    assert!((0.25..0.6).contains(&subsonic), "Cd {subsonic}");
+}
+
+#[test]
+fn a_fin_table_must_name_a_fin_set() {
+    let text = std::fs::read_to_string(fixture("estimate.toml")).expect("fixture");
+    let text = text.replace(
+        "[rocket.drag_estimate.fins.fins]\nthickness = 0.003\n",
+        "[rocket.drag_estimate.fins.other]\nthickness = 0.003\n",
+    );
+    let error = karman_mission::parse(&text, &fixture("estimate.toml"), &[])
+        .expect_err("unknown fin set")
+        .to_string();
+    assert!(error.contains("rocket.drag_estimate.fins.other"), "{error}");
+}
+
+#[test]
+fn an_estimate_without_a_nose_is_refused() {
+    let mission = load_with(&[]);
+    let mut mission = mission;
+    mission.spec.rocket.surfaces.shift_remove("nose");
+    let motor = build_motor(&mission).expect("motor");
+    let error = build_rocket(&mission, &motor).expect_err("no nose");
+    let text = format!(
+        "{error}: {}",
+        std::error::Error::source(&error)
+            .map(ToString::to_string)
+            .unwrap_or_default()
+    );
+    assert!(text.contains("rocket.drag_estimate"), "{text}");
+    assert!(text.contains("nose cone"), "{text}");
+}
+
+#[test]
+fn a_fin_set_without_thickness_is_named() {
+    let mut mission = load_with(&[]);
+    if let Some(d) = mission.spec.rocket.drag_estimate.as_mut() {
+        d.fins.clear();
+    }
+    let motor = build_motor(&mission).expect("motor");
+    let error = build_rocket(&mission, &motor).expect_err("no thickness");
+    let text = std::error::Error::source(&error)
+        .map(ToString::to_string)
+        .unwrap_or_default();
+    assert!(text.contains("[rocket.drag_estimate.fins.fins]"), "{text}");
+}

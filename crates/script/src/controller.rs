@@ -1,0 +1,505 @@
+//! Air-brake controllers written in Rhai: RocketPy's `controller_function` (physics.md §16.5,
+//! mission-format.md "The controller script").
+//!
+//! A [`ControllerScript`] is compiled once per mission; each flight makes its own
+//! [`Controller`] from it (its deployment level, its record). The engine calls
+//! [`Controller::call`] at every sampling instant with the state there and the last stored
+//! solution row; the script sets `air_brakes.deployment_level` and returns what it wants
+//! recorded (`()` records nothing), which comes back as `observed_variables[-1]` at the next
+//! call.
+//!
+//! The scripts run sandboxed ([`crate::sandbox`]): no file, network, clock or module access,
+//! and every call is bounded in operations, call depth and data size, so a runaway script ends
+//! its flight with a located [`ScriptError`] instead of hanging.
+
+use crate::sandbox;
+use rhai::{AST, Array, CallFnOptions, Dynamic, Engine, EvalAltResult, Map, Position, Scope};
+use std::fmt;
+use std::path::{Path, PathBuf};
+use std::sync::Arc;
+use std::sync::atomic::{AtomicU64, Ordering};
+use thiserror::Error;
+
+/// The function a controller script defines.
+pub const CONTROLLER_FUNCTION: &str = "controller_function";
+
+/// A compile or run-time error of a script, located in the script file.
+#[derive(Debug, Clone, PartialEq, Eq, Error)]
+pub struct ScriptError {
+    /// The script file.
+    pub file: PathBuf,
+    /// Line and column (1-based) in the script, when known.
+    pub position: Option<(usize, usize)>,
+    /// What went wrong.
+    pub message: String,
+}
+
+impl fmt::Display for ScriptError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self.position {
+            Some((line, column)) => write!(f, "{}:{line}:{column}: ", self.file.display())?,
+            None => write!(f, "{}: ", self.file.display())?,
+        }
+        f.write_str(&self.message)
+    }
+}
+
+fn located(file: &Path, position: Position, message: String) -> ScriptError {
+    ScriptError {
+        file: file.to_owned(),
+        position: position
+            .line()
+            .map(|line| (line, position.position().unwrap_or(1))),
+        message,
+    }
+}
+
+/// A run-time error, located at the innermost position Rhai knows (inside a nested function
+/// call, the statement that failed rather than the call).
+/// An error Rhai does not locate (an operation limit reached inside a loop, say) is placed at
+/// the definition of `controller_function`, `function`.
+fn runtime(file: &Path, function: Option<(usize, usize)>, error: &EvalAltResult) -> ScriptError {
+    let mut innermost = error;
+    let mut position = error.position();
+    while let EvalAltResult::ErrorInFunctionCall(_, _, inner, at) = innermost {
+        if !at.is_none() {
+            position = *at;
+        }
+        innermost = inner;
+        if !innermost.position().is_none() {
+            position = innermost.position();
+        }
+    }
+    let message = match innermost {
+        EvalAltResult::ErrorTooManyOperations(_) => format!(
+            "the controller exceeded {} operations in one call (an endless loop?)",
+            sandbox::MAX_OPERATIONS
+        ),
+        other => other.to_string(),
+    };
+    let mut error = located(file, position, message);
+    if error.position.is_none() {
+        error.position = function;
+        error.message = format!("in `{CONTROLLER_FUNCTION}`: {}", error.message);
+    }
+    error
+}
+
+/// Line and column of the definition `fn controller_function` in `source`.
+fn definition(source: &str) -> Option<(usize, usize)> {
+    source.lines().enumerate().find_map(|(index, line)| {
+        let at = line.find("fn ")?;
+        let rest = line[at + 3..].trim_start();
+        rest.strip_prefix(CONTROLLER_FUNCTION)
+            .filter(|after| after.trim_start().starts_with('('))
+            .map(|_| (index + 1, line[..at].chars().count() + 1))
+    })
+}
+
+/// A controller script, compiled and checked.
+#[derive(Debug, Clone)]
+pub struct ControllerScript {
+    file: PathBuf,
+    ast: AST,
+    parameters: usize,
+    definition: Option<(usize, usize)>,
+    constants: Vec<(String, f64)>,
+}
+
+impl ControllerScript {
+    /// Compiles `source` (read from `file`, which names it in errors) and checks that it
+    /// defines `controller_function` with 6, 7 or 8 parameters (RocketPy's forms without and
+    /// with `sensors` and `environment`).
+    ///
+    /// # Errors
+    /// [`ScriptError`] at the position of a syntax error, an undefined variable or module, a
+    /// missing or misshapen `controller_function`.
+    pub fn compile(file: &Path, source: &str) -> Result<Self, ScriptError> {
+        let engine = sandbox::engine(&sandbox::motor_module(0.0, 0.0));
+        let ast = engine
+            .compile(source)
+            .map_err(|e| located(file, e.position(), e.err_type().to_string()))?;
+        let definitions: Vec<usize> = ast
+            .iter_functions()
+            .filter(|f| f.name == CONTROLLER_FUNCTION)
+            .map(|f| f.params.len())
+            .collect();
+        let parameters = match definitions.as_slice() {
+            [n @ 6..=8] => *n,
+            [] => {
+                return Err(ScriptError {
+                    file: file.to_owned(),
+                    position: None,
+                    message: format!(
+                        "the script defines no `{CONTROLLER_FUNCTION}(time, sampling_rate, state, \
+                         state_history, observed_variables, air_brakes[, sensors[, environment]])`"
+                    ),
+                });
+            }
+            _ => {
+                return Err(ScriptError {
+                    file: file.to_owned(),
+                    position: None,
+                    message: format!(
+                        "`{CONTROLLER_FUNCTION}` must be defined once, with 6, 7 or 8 parameters \
+                         (found {})",
+                        definitions
+                            .iter()
+                            .map(usize::to_string)
+                            .collect::<Vec<_>>()
+                            .join(", ")
+                    ),
+                });
+            }
+        };
+        let constants = ast
+            .iter_literal_variables(true, false)
+            .filter_map(|(name, _, value)| value.as_float().ok().map(|v| (name.to_owned(), v)))
+            .collect();
+        Ok(ControllerScript {
+            file: file.to_owned(),
+            ast,
+            parameters,
+            definition: definition(source),
+            constants,
+        })
+    }
+
+    /// The script file.
+    #[must_use]
+    pub fn file(&self) -> &Path {
+        &self.file
+    }
+
+    /// Number of parameters of its `controller_function` (6, 7 or 8).
+    #[must_use]
+    pub fn parameters(&self) -> usize {
+        self.parameters
+    }
+
+    /// The script's top-level `const NAME = <float>;` declarations, in order: the constants a
+    /// mission may set (`[rocket.air_brakes.constants]`).
+    #[must_use]
+    pub fn constants(&self) -> &[(String, f64)] {
+        &self.constants
+    }
+}
+
+/// Environment functions of height a controller may query (RocketPy's `Environment`), heights
+/// in m above sea level.
+pub trait EnvironmentQuery: Send + Sync {
+    /// Launch elevation, m.
+    fn elevation(&self) -> f64;
+    /// Eastward wind, m/s.
+    fn wind_velocity_x(&self, height: f64) -> f64;
+    /// Northward wind, m/s.
+    fn wind_velocity_y(&self, height: f64) -> f64;
+    /// Speed of sound, m/s.
+    fn speed_of_sound(&self, height: f64) -> f64;
+    /// Air density, kg/m³.
+    fn density(&self, height: f64) -> f64;
+    /// Air pressure, Pa.
+    fn pressure(&self, height: f64) -> f64;
+    /// Air temperature, K.
+    fn temperature(&self, height: f64) -> f64;
+    /// Dynamic viscosity, Pa·s.
+    fn dynamic_viscosity(&self, height: f64) -> f64;
+    /// Gravity, m/s².
+    fn gravity(&self, height: f64) -> f64;
+}
+
+/// The air brakes as a controller sees them (RocketPy's `AirBrakes` object).
+#[derive(Clone)]
+pub struct AirBrakesSetup {
+    /// Whether a level written outside `[0, 1]` is clipped to it.
+    pub clamp: bool,
+    /// Whether the brakes' curve replaces the rocket's drag while deployed.
+    pub override_rocket_drag: bool,
+    /// Reference area of the curve, m².
+    pub reference_area: f64,
+    /// The level at `t = 0`.
+    pub initial_level: f64,
+    /// The drag-coefficient curve `Cd(level, Mach)`.
+    pub drag_coefficient: Arc<dyn Fn(f64, f64) -> f64 + Send + Sync>,
+}
+
+impl fmt::Debug for AirBrakesSetup {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.debug_struct("AirBrakesSetup")
+            .field("clamp", &self.clamp)
+            .field("override_rocket_drag", &self.override_rocket_drag)
+            .field("reference_area", &self.reference_area)
+            .field("initial_level", &self.initial_level)
+            .finish_non_exhaustive()
+    }
+}
+
+/// Everything a flight's controller is made from besides its script.
+#[derive(Clone)]
+pub struct ControllerSetup {
+    /// Calls per second.
+    pub sampling_rate: f64,
+    /// The air brakes it drives.
+    pub air_brakes: AirBrakesSetup,
+    /// `motor::burn_start_time`, s.
+    pub burn_start: f64,
+    /// `motor::burn_out_time`, s.
+    pub burn_out: f64,
+    /// The environment queries of the `environment` argument.
+    pub environment: Arc<dyn EnvironmentQuery>,
+    /// The record's first entry (`initial_observed_variables`), if given.
+    pub initial_observed_variables: Option<Vec<f64>>,
+    /// Values replacing the script's top-level constants of these names.
+    pub constants: Vec<(String, f64)>,
+}
+
+/// The `air_brakes` argument: its level is shared by every copy, so a write inside the
+/// script is seen by the engine.
+#[derive(Clone)]
+pub(crate) struct AirBrakesHandle {
+    level: Arc<AtomicU64>,
+    pub(crate) setup: AirBrakesSetup,
+}
+
+impl AirBrakesHandle {
+    pub(crate) fn level(&self) -> f64 {
+        f64::from_bits(self.level.load(Ordering::Relaxed))
+    }
+
+    /// Stores `value`, clipped to `[0, 1]` when the brakes clamp (physics.md §16.3).
+    pub(crate) fn set_level(&self, value: f64) {
+        let stored = if self.setup.clamp {
+            value.clamp(0.0, 1.0)
+        } else {
+            value
+        };
+        self.level.store(stored.to_bits(), Ordering::Relaxed);
+    }
+}
+
+/// The `environment` argument.
+#[derive(Clone)]
+pub(crate) struct EnvironmentHandle(pub(crate) Arc<dyn EnvironmentQuery>);
+
+/// One call of a controller: its instant and the deployment level after it.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct LevelRecord {
+    /// The sampling instant, s.
+    pub time: f64,
+    /// The deployment level the call left.
+    pub level: f64,
+}
+
+/// What a flight's controller recorded.
+#[derive(Debug, Clone, PartialEq, Default)]
+pub struct ControllerRecord {
+    /// RocketPy's `observed_variables`: `initial_observed_variables` when given, then every
+    /// value other than `()` the script returned, in call order.
+    pub observed_variables: Vec<serde_json::Value>,
+    /// The level after each call, in call order.
+    pub levels: Vec<LevelRecord>,
+}
+
+/// A flight's controller: the compiled script bound to its air brakes and environment.
+pub struct Controller {
+    engine: Engine,
+    ast: AST,
+    file: PathBuf,
+    parameters: usize,
+    definition: Option<(usize, usize)>,
+    sampling_rate: f64,
+    air_brakes: AirBrakesHandle,
+    environment: EnvironmentHandle,
+    observed: Vec<Dynamic>,
+    levels: Vec<LevelRecord>,
+}
+
+impl fmt::Debug for Controller {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.debug_struct("Controller")
+            .field("file", &self.file)
+            .field("sampling_rate", &self.sampling_rate)
+            .field("level", &self.air_brakes.level())
+            .field("calls", &self.levels.len())
+            .finish_non_exhaustive()
+    }
+}
+
+impl Controller {
+    /// A controller flying `script` with `setup`; the level starts at the setup's initial
+    /// level (clipped when the brakes clamp).
+    ///
+    /// # Errors
+    /// [`ScriptError`] when a constant of `setup` is not one of the script's top-level
+    /// constants.
+    pub fn new(script: &ControllerScript, setup: ControllerSetup) -> Result<Self, ScriptError> {
+        let engine = sandbox::engine(&sandbox::motor_module(setup.burn_start, setup.burn_out));
+        let mut ast = script.ast.clone();
+        if !setup.constants.is_empty() {
+            for (name, _) in &setup.constants {
+                if !script.constants.iter().any(|(n, _)| n == name) {
+                    return Err(ScriptError {
+                        file: script.file.clone(),
+                        position: None,
+                        message: format!(
+                            "the mission sets the constant `{name}`, which the script does not \
+                             declare (`const {name} = ...;` at its top level)"
+                        ),
+                    });
+                }
+            }
+            ast = ast.merge(&constants_ast(&engine, &setup.constants));
+        }
+        let air_brakes = AirBrakesHandle {
+            level: Arc::new(AtomicU64::new(0.0f64.to_bits())),
+            setup: setup.air_brakes,
+        };
+        air_brakes.set_level(air_brakes.setup.initial_level);
+        let observed = setup
+            .initial_observed_variables
+            .map(|values| {
+                values
+                    .into_iter()
+                    .map(Dynamic::from_float)
+                    .collect::<Array>()
+                    .into()
+            })
+            .into_iter()
+            .collect();
+        Ok(Controller {
+            engine,
+            ast,
+            file: script.file.clone(),
+            parameters: script.parameters,
+            definition: script.definition,
+            sampling_rate: setup.sampling_rate,
+            air_brakes,
+            environment: EnvironmentHandle(setup.environment),
+            observed,
+            levels: Vec::new(),
+        })
+    }
+
+    /// Calls per second.
+    #[must_use]
+    pub fn sampling_rate(&self) -> f64 {
+        self.sampling_rate
+    }
+
+    /// The current deployment level.
+    #[must_use]
+    pub fn level(&self) -> f64 {
+        self.air_brakes.level()
+    }
+
+    /// Calls the script at sampling instant `time` with the state there and the last stored
+    /// solution row `[t, x, …, wz]`; returns the deployment level it leaves.
+    ///
+    /// # Errors
+    /// [`ScriptError`] located in the script for any run-time error (a type error, a limit of
+    /// the sandbox such as its operation count).
+    pub fn call(
+        &mut self,
+        time: f64,
+        state: &[f64; 13],
+        last_row: &[f64; 14],
+    ) -> Result<f64, ScriptError> {
+        let floats = |values: &[f64]| -> Dynamic {
+            values
+                .iter()
+                .map(|&v| Dynamic::from_float(v))
+                .collect::<Array>()
+                .into()
+        };
+        let history: Array = vec![floats(last_row)];
+        let observed: Array = self.observed.last().cloned().into_iter().collect();
+        let mut args: Vec<Dynamic> = vec![
+            Dynamic::from_float(time),
+            Dynamic::from_float(self.sampling_rate),
+            floats(state),
+            history.into(),
+            observed.into(),
+            Dynamic::from(self.air_brakes.clone()),
+        ];
+        if self.parameters >= 7 {
+            args.push(Array::new().into());
+        }
+        if self.parameters >= 8 {
+            args.push(Dynamic::from(self.environment.clone()));
+        }
+        let mut scope = Scope::new();
+        let returned = self
+            .engine
+            .call_fn_with_options::<Dynamic>(
+                CallFnOptions::new(),
+                &mut scope,
+                &self.ast,
+                CONTROLLER_FUNCTION,
+                args,
+            )
+            .map_err(|e| runtime(&self.file, self.definition, &e))?;
+        if !returned.is_unit() {
+            self.observed.push(returned);
+        }
+        let level = self.air_brakes.level();
+        self.levels.push(LevelRecord { time, level });
+        Ok(level)
+    }
+
+    /// What the controller recorded so far.
+    #[must_use]
+    pub fn record(&self) -> ControllerRecord {
+        ControllerRecord {
+            observed_variables: self.observed.iter().map(to_json).collect(),
+            levels: self.levels.clone(),
+        }
+    }
+}
+
+/// An AST of `const NAME = value;` statements (values written with Rust's shortest
+/// round-trip formatting, so they parse back to the same `f64`).
+fn constants_ast(engine: &Engine, constants: &[(String, f64)]) -> AST {
+    let text: String = constants
+        .iter()
+        .map(|(name, value)| format!("const {name} = {value:?};\n"))
+        .collect();
+    // The names are the script's own constants and the values finite numbers, so the text
+    // always compiles; an empty AST otherwise.
+    engine.compile(&text).unwrap_or_default()
+}
+
+/// A recorded value as JSON: numbers, booleans, strings, arrays and maps (keys sorted, as Rhai
+/// keeps them); a non-finite number or another type becomes `null` or its text.
+#[must_use]
+pub fn to_json(value: &Dynamic) -> serde_json::Value {
+    use serde_json::Value;
+    if value.is_unit() {
+        return Value::Null;
+    }
+    if let Ok(v) = value.as_float() {
+        return serde_json::Number::from_f64(v).map_or(Value::Null, Value::Number);
+    }
+    if let Ok(v) = value.as_int() {
+        return Value::from(v);
+    }
+    if let Ok(v) = value.as_bool() {
+        return Value::Bool(v);
+    }
+    if let Ok(v) = value.as_char() {
+        return Value::String(v.to_string());
+    }
+    if value.is_string() {
+        return Value::String(value.to_string());
+    }
+    if let Some(array) = value.read_lock::<Array>() {
+        return Value::Array(array.iter().map(to_json).collect());
+    }
+    if let Some(map) = value.read_lock::<Map>() {
+        return Value::Object(
+            map.iter()
+                .map(|(k, v)| (k.to_string(), to_json(v)))
+                .collect(),
+        );
+    }
+    Value::String(value.to_string())
+}

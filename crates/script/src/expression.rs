@@ -1,0 +1,634 @@
+//! Parachute trigger expressions: RocketPy's `trigger(p, h, y)` callable written as one
+//! expression (mission-format.md, "Custom triggers"; physics.md §17).
+//!
+//! The language is the common subset of Rhai and Python expressions, so an expression means
+//! the same in both: float literals (`5.0`, `2.5e2`, `1e3`), the variables `p`, `h` and the 13
+//! state components by name, `+ - * /`, unary `-` and `!`, one comparison
+//! `< <= > >= == !=` (comparisons do not chain), `&&`, `||`, parentheses, `true`, `false`,
+//! `abs`, `sqrt`, `min` and `max`. Rhai's precedence: unary operators bind tightest, then
+//! `* /`, `+ -`, one comparison, `&&`, `||`. Numbers and booleans never mix, and the whole
+//! expression is a boolean; both are checked when the expression is parsed, so evaluation
+//! cannot fail. Arithmetic is IEEE 754: a division by zero gives ±inf or NaN.
+//!
+//! ```
+//! use karman_script::{Expression, TriggerInputs};
+//!
+//! let drogue = Expression::parse("vz < 5.0 && z > 300.0")?;
+//! let mut state = [0.0; 13];
+//! state[2] = 1200.0; // z
+//! state[5] = 4.0;    // vz
+//! assert!(drogue.evaluate(&TriggerInputs { pressure: 88_000.0, height: 1100.0, state }));
+//! # Ok::<(), karman_script::ExpressionError>(())
+//! ```
+
+use std::cmp::Ordering;
+use std::fmt;
+use thiserror::Error;
+
+/// The names of the 13 state components, in RocketPy's order `y[0] … y[12]`.
+pub const STATE_NAMES: [&str; 13] = [
+    "x", "y", "z", "vx", "vy", "vz", "e0", "e1", "e2", "e3", "wx", "wy", "wz",
+];
+
+/// What a trigger expression reads at one sampling instant.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct TriggerInputs {
+    /// `p`: the (noisy) pressure signal, Pa.
+    pub pressure: f64,
+    /// `h`: the barometric height above ground derived from it, m.
+    pub height: f64,
+    /// `x, y, z, vx, vy, vz, e0, e1, e2, e3, wx, wy, wz` (SI, `z` above sea level).
+    pub state: [f64; 13],
+}
+
+/// A syntax or type error of an expression, at a character of its text.
+#[derive(Debug, Clone, PartialEq, Eq, Error)]
+#[error("character {column} of the expression: {message}")]
+pub struct ExpressionError {
+    /// 1-based position, in characters, of the offending token.
+    pub column: usize,
+    /// What is wrong.
+    pub message: String,
+}
+
+/// The type of a sub-expression.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+enum Type {
+    Number,
+    Boolean,
+}
+
+impl fmt::Display for Type {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(match self {
+            Type::Number => "a number",
+            Type::Boolean => "a boolean",
+        })
+    }
+}
+
+/// A value read by the evaluator: index into `[p, h, state…]`.
+const PRESSURE: usize = 0;
+const HEIGHT: usize = 1;
+
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+enum Function {
+    Abs,
+    Sqrt,
+    Min,
+    Max,
+}
+
+impl Function {
+    fn named(name: &str) -> Option<(Function, usize)> {
+        Some(match name {
+            "abs" => (Function::Abs, 1),
+            "sqrt" => (Function::Sqrt, 1),
+            "min" => (Function::Min, 2),
+            "max" => (Function::Max, 2),
+            _ => return None,
+        })
+    }
+}
+
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+enum Binary {
+    Add,
+    Sub,
+    Mul,
+    Div,
+    Less,
+    LessEqual,
+    Greater,
+    GreaterEqual,
+    Equal,
+    NotEqual,
+    And,
+    Or,
+}
+
+/// A node of the checked expression tree.
+#[derive(Debug, Clone, PartialEq)]
+enum Node {
+    Number(f64),
+    Boolean(bool),
+    /// Index into `[p, h, x, y, z, …]`.
+    Variable(usize),
+    Negate(Box<Node>),
+    Not(Box<Node>),
+    Call(Function, Vec<Node>),
+    Binary(Binary, Box<Node>, Box<Node>),
+}
+
+/// A parsed, type-checked trigger expression.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Expression {
+    text: String,
+    root: Node,
+}
+
+impl Expression {
+    /// Parses and checks `text`.
+    ///
+    /// # Errors
+    /// [`ExpressionError`] at the first token that is not in the language, a number used as a
+    /// boolean (or the reverse), a chained comparison, an unknown name or a wrong number of
+    /// function arguments.
+    pub fn parse(text: &str) -> Result<Self, ExpressionError> {
+        let tokens = tokenize(text)?;
+        let mut parser = Parser {
+            tokens: &tokens,
+            next: 0,
+            end: text.chars().count() + 1,
+        };
+        let (root, ty) = parser.or()?;
+        if let Some(token) = parser.peek() {
+            return Err(error(token.column, "unexpected text after the expression"));
+        }
+        if ty != Type::Boolean {
+            return Err(error(
+                1,
+                "the expression is a number; a trigger must be a boolean",
+            ));
+        }
+        Ok(Expression {
+            text: text.to_owned(),
+            root,
+        })
+    }
+
+    /// The expression as written.
+    #[must_use]
+    pub fn text(&self) -> &str {
+        &self.text
+    }
+
+    /// Whether the trigger fires for `inputs`.
+    #[must_use]
+    pub fn evaluate(&self, inputs: &TriggerInputs) -> bool {
+        let mut values = [0.0; 15];
+        values[PRESSURE] = inputs.pressure;
+        values[HEIGHT] = inputs.height;
+        values[2..].copy_from_slice(&inputs.state);
+        boolean(&self.root, &values)
+    }
+}
+
+fn number(node: &Node, values: &[f64; 15]) -> f64 {
+    match node {
+        Node::Number(value) => *value,
+        Node::Variable(index) => values[*index],
+        Node::Negate(inner) => -number(inner, values),
+        Node::Call(function, args) => {
+            let a = number(&args[0], values);
+            match function {
+                Function::Abs => a.abs(),
+                Function::Sqrt => a.sqrt(),
+                // Python's `min(a, b)` keeps `a` unless `b < a` (and `max` unless `b > a`);
+                // Rhai's float `min`/`max` agree except on NaN.
+                Function::Min => {
+                    let b = number(&args[1], values);
+                    if b < a { b } else { a }
+                }
+                Function::Max => {
+                    let b = number(&args[1], values);
+                    if b > a { b } else { a }
+                }
+            }
+        }
+        Node::Binary(op, a, b) => {
+            let (a, b) = (number(a, values), number(b, values));
+            match op {
+                Binary::Add => a + b,
+                Binary::Sub => a - b,
+                Binary::Mul => a * b,
+                _ => a / b,
+            }
+        }
+        // The type check admits only numeric nodes here.
+        Node::Boolean(_) | Node::Not(_) => f64::NAN,
+    }
+}
+
+fn boolean(node: &Node, values: &[f64; 15]) -> bool {
+    match node {
+        Node::Boolean(value) => *value,
+        Node::Not(inner) => !boolean(inner, values),
+        Node::Binary(Binary::And, a, b) => boolean(a, values) && boolean(b, values),
+        Node::Binary(Binary::Or, a, b) => boolean(a, values) || boolean(b, values),
+        Node::Binary(op @ (Binary::Equal | Binary::NotEqual), a, b) if is_boolean(a) => {
+            (boolean(a, values) == boolean(b, values)) == (*op == Binary::Equal)
+        }
+        Node::Binary(op, a, b) => {
+            let (a, b) = (number(a, values), number(b, values));
+            match op {
+                Binary::Less => a < b,
+                Binary::LessEqual => a <= b,
+                Binary::Greater => a > b,
+                Binary::GreaterEqual => a >= b,
+                // IEEE equality: NaN equals nothing, −0 equals +0.
+                Binary::Equal => a.partial_cmp(&b) == Some(Ordering::Equal),
+                _ => a.partial_cmp(&b) != Some(Ordering::Equal),
+            }
+        }
+        // The type check admits only boolean nodes here.
+        Node::Number(_) | Node::Variable(_) | Node::Negate(_) | Node::Call(..) => false,
+    }
+}
+
+/// Whether a checked node is boolean-valued.
+fn is_boolean(node: &Node) -> bool {
+    match node {
+        Node::Boolean(_) | Node::Not(_) => true,
+        Node::Binary(op, ..) => {
+            !matches!(op, Binary::Add | Binary::Sub | Binary::Mul | Binary::Div)
+        }
+        Node::Number(_) | Node::Variable(_) | Node::Negate(_) | Node::Call(..) => false,
+    }
+}
+
+fn error(column: usize, message: impl Into<String>) -> ExpressionError {
+    ExpressionError {
+        column,
+        message: message.into(),
+    }
+}
+
+#[derive(Debug, Clone, PartialEq)]
+enum TokenKind {
+    Number(f64),
+    Name(String),
+    /// An operator or punctuation: `+ - * / ( ) , < <= > >= == != && || !`.
+    Symbol(&'static str),
+}
+
+#[derive(Debug, Clone, PartialEq)]
+struct Token {
+    kind: TokenKind,
+    column: usize,
+}
+
+const SYMBOLS: [&str; 16] = [
+    "<=", ">=", "==", "!=", "&&", "||", "+", "-", "*", "/", "(", ")", ",", "<", ">", "!",
+];
+
+fn tokenize(text: &str) -> Result<Vec<Token>, ExpressionError> {
+    let chars: Vec<char> = text.chars().collect();
+    let mut tokens = Vec::new();
+    let mut i = 0;
+    while i < chars.len() {
+        let c = chars[i];
+        let column = i + 1;
+        if c.is_whitespace() {
+            i += 1;
+        } else if c.is_ascii_digit() || c == '.' {
+            let start = i;
+            while i < chars.len() && (chars[i].is_ascii_alphanumeric() || chars[i] == '.') {
+                // An exponent sign belongs to the literal.
+                if matches!(chars[i], 'e' | 'E') && matches!(chars.get(i + 1), Some('+' | '-')) {
+                    i += 1;
+                }
+                i += 1;
+            }
+            let literal: String = chars[start..i].iter().collect();
+            tokens.push(Token {
+                kind: TokenKind::Number(float_literal(&literal, column)?),
+                column,
+            });
+        } else if c.is_ascii_alphabetic() || c == '_' {
+            let start = i;
+            while i < chars.len() && (chars[i].is_ascii_alphanumeric() || chars[i] == '_') {
+                i += 1;
+            }
+            tokens.push(Token {
+                kind: TokenKind::Name(chars[start..i].iter().collect()),
+                column,
+            });
+        } else {
+            let rest: String = chars[i..chars.len().min(i + 2)].iter().collect();
+            let Some(symbol) = SYMBOLS.iter().find(|s| rest.starts_with(**s)) else {
+                return Err(error(column, format!("`{c}` is not part of the language")));
+            };
+            i += symbol.chars().count();
+            tokens.push(Token {
+                kind: TokenKind::Symbol(symbol),
+                column,
+            });
+        }
+    }
+    Ok(tokens)
+}
+
+/// A float literal of the common subset: digits, then a fraction `.digits` and/or an
+/// exponent `e[+-]digits` (at least one of the two, so that Rhai reads a float, not an
+/// integer).
+fn float_literal(literal: &str, column: usize) -> Result<f64, ExpressionError> {
+    let bad = |why: &str| error(column, format!("`{literal}` is not a float literal: {why}"));
+    let digits = |s: &str| !s.is_empty() && s.bytes().all(|b| b.is_ascii_digit());
+    let (mantissa, exponent) = match literal.find(['e', 'E']) {
+        Some(at) => (&literal[..at], Some(&literal[at + 1..])),
+        None => (literal, None),
+    };
+    let (whole, fraction) = match mantissa.split_once('.') {
+        Some((whole, fraction)) => (whole, Some(fraction)),
+        None => (mantissa, None),
+    };
+    if !digits(whole) {
+        return Err(bad("write a digit before the point (0.5, not .5)"));
+    }
+    if let Some(fraction) = fraction
+        && !digits(fraction)
+    {
+        return Err(bad("write a digit after the point (5.0, not 5.)"));
+    }
+    if let Some(exponent) = exponent {
+        let unsigned = exponent.strip_prefix(['+', '-']).unwrap_or(exponent);
+        if !digits(unsigned) {
+            return Err(bad("the exponent needs digits"));
+        }
+    }
+    if fraction.is_none() && exponent.is_none() {
+        return Err(bad("integers are not numbers here; write 5.0"));
+    }
+    literal.parse().map_err(|_| bad("cannot read it"))
+}
+
+struct Parser<'t> {
+    tokens: &'t [Token],
+    next: usize,
+    /// Column just past the text, for errors at its end.
+    end: usize,
+}
+
+impl Parser<'_> {
+    fn peek(&self) -> Option<&Token> {
+        self.tokens.get(self.next)
+    }
+
+    fn column(&self) -> usize {
+        self.peek().map_or(self.end, |t| t.column)
+    }
+
+    fn symbol(&mut self, wanted: &[&'static str]) -> Option<(&'static str, usize)> {
+        match self.peek() {
+            Some(Token {
+                kind: TokenKind::Symbol(s),
+                column,
+            }) if wanted.contains(s) => {
+                let found = (*s, *column);
+                self.next += 1;
+                Some(found)
+            }
+            _ => None,
+        }
+    }
+
+    fn expect(&mut self, wanted: &'static str) -> Result<(), ExpressionError> {
+        self.symbol(&[wanted])
+            .map(|_| ())
+            .ok_or_else(|| error(self.column(), format!("expected `{wanted}`")))
+    }
+
+    /// A binary level: `next (op next)*`, all operands of type `operand`.
+    fn chain(
+        &mut self,
+        ops: &[&'static str],
+        operand: Type,
+        next: fn(&mut Self) -> Result<(Node, Type), ExpressionError>,
+    ) -> Result<(Node, Type), ExpressionError> {
+        let column = self.column();
+        let (mut node, mut ty) = next(self)?;
+        while let Some((op, _)) = self.symbol(ops) {
+            check(ty, operand, column, op)?;
+            let right_column = self.column();
+            let (right, right_ty) = next(self)?;
+            check(right_ty, operand, right_column, op)?;
+            node = Node::Binary(binary(op), Box::new(node), Box::new(right));
+            ty = operand;
+        }
+        Ok((node, ty))
+    }
+
+    fn or(&mut self) -> Result<(Node, Type), ExpressionError> {
+        self.chain(&["||"], Type::Boolean, Self::and)
+    }
+
+    fn and(&mut self) -> Result<(Node, Type), ExpressionError> {
+        self.chain(&["&&"], Type::Boolean, Self::comparison)
+    }
+
+    fn comparison(&mut self) -> Result<(Node, Type), ExpressionError> {
+        const OPS: [&str; 6] = ["<", "<=", ">", ">=", "==", "!="];
+        let column = self.column();
+        let (left, left_ty) = self.sum()?;
+        let Some((op, at)) = self.symbol(&OPS) else {
+            return Ok((left, left_ty));
+        };
+        let right_column = self.column();
+        let (right, right_ty) = self.sum()?;
+        if matches!(op, "==" | "!=") {
+            if left_ty != right_ty {
+                return Err(error(
+                    at,
+                    format!("`{op}` compares {left_ty} with {right_ty}"),
+                ));
+            }
+        } else {
+            check(left_ty, Type::Number, column, op)?;
+            check(right_ty, Type::Number, right_column, op)?;
+        }
+        if let Some((_, again)) = self.symbol(&OPS) {
+            return Err(error(
+                again,
+                "comparisons do not chain; write `a < b && b < c`",
+            ));
+        }
+        Ok((
+            Node::Binary(binary(op), Box::new(left), Box::new(right)),
+            Type::Boolean,
+        ))
+    }
+
+    fn sum(&mut self) -> Result<(Node, Type), ExpressionError> {
+        self.chain(&["+", "-"], Type::Number, Self::product)
+    }
+
+    fn product(&mut self) -> Result<(Node, Type), ExpressionError> {
+        self.chain(&["*", "/"], Type::Number, Self::unary)
+    }
+
+    fn unary(&mut self) -> Result<(Node, Type), ExpressionError> {
+        if let Some((op, _)) = self.symbol(&["-", "!"]) {
+            let column = self.column();
+            let (inner, ty) = self.unary()?;
+            return Ok(if op == "-" {
+                check(ty, Type::Number, column, "unary -")?;
+                (Node::Negate(Box::new(inner)), Type::Number)
+            } else {
+                check(ty, Type::Boolean, column, "!")?;
+                (Node::Not(Box::new(inner)), Type::Boolean)
+            });
+        }
+        self.primary()
+    }
+
+    fn primary(&mut self) -> Result<(Node, Type), ExpressionError> {
+        let column = self.column();
+        let Some(token) = self.peek().cloned() else {
+            return Err(error(self.end, "the expression ends too early"));
+        };
+        self.next += 1;
+        match token.kind {
+            TokenKind::Number(value) => Ok((Node::Number(value), Type::Number)),
+            TokenKind::Symbol("(") => {
+                let inner = self.or()?;
+                self.expect(")")?;
+                Ok(inner)
+            }
+            TokenKind::Symbol(s) => Err(error(column, format!("unexpected `{s}`"))),
+            TokenKind::Name(name) => self.name(&name, column),
+        }
+    }
+
+    fn name(&mut self, name: &str, column: usize) -> Result<(Node, Type), ExpressionError> {
+        match name {
+            "true" => return Ok((Node::Boolean(true), Type::Boolean)),
+            "false" => return Ok((Node::Boolean(false), Type::Boolean)),
+            "p" => return Ok((Node::Variable(PRESSURE), Type::Number)),
+            "h" => return Ok((Node::Variable(HEIGHT), Type::Number)),
+            _ => {}
+        }
+        if let Some(index) = STATE_NAMES.iter().position(|n| *n == name) {
+            return Ok((Node::Variable(index + 2), Type::Number));
+        }
+        let Some((function, arity)) = Function::named(name) else {
+            return Err(error(
+                column,
+                format!(
+                    "unknown name `{name}` (variables: p, h, {}; functions: abs, sqrt, min, max)",
+                    STATE_NAMES.join(", ")
+                ),
+            ));
+        };
+        self.expect("(")?;
+        let mut args = Vec::with_capacity(arity);
+        loop {
+            let arg_column = self.column();
+            let (arg, ty) = self.or()?;
+            check(ty, Type::Number, arg_column, name)?;
+            args.push(arg);
+            if self.symbol(&[","]).is_none() {
+                break;
+            }
+        }
+        self.expect(")")?;
+        if args.len() != arity {
+            return Err(error(
+                column,
+                format!("`{name}` takes {arity} argument(s), got {}", args.len()),
+            ));
+        }
+        Ok((Node::Call(function, args), Type::Number))
+    }
+}
+
+fn check(found: Type, wanted: Type, column: usize, op: &str) -> Result<(), ExpressionError> {
+    if found == wanted {
+        Ok(())
+    } else {
+        Err(error(
+            column,
+            format!("`{op}` takes {wanted}, found {found}"),
+        ))
+    }
+}
+
+fn binary(op: &str) -> Binary {
+    match op {
+        "+" => Binary::Add,
+        "-" => Binary::Sub,
+        "*" => Binary::Mul,
+        "/" => Binary::Div,
+        "<" => Binary::Less,
+        "<=" => Binary::LessEqual,
+        ">" => Binary::Greater,
+        ">=" => Binary::GreaterEqual,
+        "==" => Binary::Equal,
+        "!=" => Binary::NotEqual,
+        "&&" => Binary::And,
+        _ => Binary::Or,
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn inputs(vz: f64, z: f64) -> TriggerInputs {
+        let mut state = [0.0; 13];
+        state[2] = z;
+        state[5] = vz;
+        TriggerInputs {
+            pressure: 90_000.0,
+            height: 1000.0,
+            state,
+        }
+    }
+
+    fn eval(text: &str, vz: f64, z: f64) -> bool {
+        Expression::parse(text)
+            .unwrap_or_else(|e| panic!("{text}: {e}"))
+            .evaluate(&inputs(vz, z))
+    }
+
+    #[test]
+    fn camoes_drogue() {
+        let text = "vz < 5.0 && z > 300.0";
+        assert!(eval(text, 4.9, 301.0));
+        assert!(!eval(text, 5.0, 301.0));
+        assert!(!eval(text, 4.0, 300.0));
+    }
+
+    #[test]
+    fn precedence_is_rhai_s() {
+        // Unary binds tightest, then * /, + -, one comparison, &&, ||.
+        assert!(eval("-vz * 2.0 == -(vz * 2.0)", 3.0, 0.0));
+        assert!(eval("1.0 + 2.0 * 3.0 == 7.0", 0.0, 0.0));
+        assert!(eval("true || false && false", 0.0, 0.0));
+        assert!(!eval("(true || false) && false", 0.0, 0.0));
+        assert!(eval("!false && true", 0.0, 0.0));
+        assert!(eval("8.0 / 2.0 / 2.0 == 2.0", 0.0, 0.0));
+        assert!(eval("5.0 - 2.0 - 1.0 == 2.0", 0.0, 0.0));
+    }
+
+    #[test]
+    fn variables_functions_and_ieee() {
+        assert!(eval("p == 90000.0 && h == 1000.0", 0.0, 0.0));
+        assert!(eval("abs(vz) == 3.0 && sqrt(z) == 3.0", -3.0, 9.0));
+        assert!(eval("min(vz, z) == -3.0 && max(vz, z) == 9.0", -3.0, 9.0));
+        assert!(eval("1.0 / 0.0 > 1e308", 0.0, 0.0));
+        assert!(eval("2.5e2 == 250.0 && 1E-3 == 0.001", 0.0, 0.0));
+        assert!(eval("true != false", 0.0, 0.0));
+    }
+
+    #[test]
+    fn errors_are_located() {
+        let column = |text: &str| Expression::parse(text).map(|_| ()).unwrap_err().column;
+        assert_eq!(column("vz < 5"), 6);
+        assert_eq!(column("vz < 5."), 6);
+        assert_eq!(column("vz < .5"), 6);
+        assert_eq!(column("a < b < c"), 1);
+        assert_eq!(column("0.0 < vz < 1.0"), 10);
+        assert_eq!(column("vz + 1.0"), 1);
+        assert_eq!(column("!vz"), 2);
+        assert_eq!(column("vz && true"), 1);
+        assert_eq!(column("vz < 1.0 &&"), 12);
+        assert_eq!(column("vz ** 2.0 > 1.0"), 5);
+        assert_eq!(column("min(vz) > 1.0"), 1);
+        assert_eq!(column("(vz < 1.0"), 10);
+        assert_eq!(column("vz < 1.0)"), 9);
+        assert_eq!(column("vz # 1.0"), 4);
+        assert_eq!(column("true == 1.0"), 6);
+        assert_eq!(column(""), 1);
+    }
+}

@@ -1,0 +1,38 @@
+//! # karman-script
+//!
+//! The scripts a karman mission may carry, kept out of the flight engine:
+//!
+//! - [`expression`]: parachute trigger expressions (`trigger = { expression = "vz < 5.0 &&
+//!   z > 300.0" }`), RocketPy's `trigger(p, h, y)` callables as one boolean expression of the
+//!   common subset of Rhai and Python, parsed and type-checked once, evaluated without
+//!   allocation.
+//! - [`controller`]: air-brake controllers, RocketPy's `controller_function` written in Rhai
+//!   (the `rhai` crate), compiled once per mission and run sandboxed
+//!   ([`sandbox`]: no file, network, clock or module access; bounded operations, call depth
+//!   and data sizes per call).
+//!
+//! ```
+//! use karman_script::ControllerScript;
+//! use std::path::Path;
+//!
+//! let script = ControllerScript::compile(
+//!     Path::new("brakes.rhai"),
+//!     "fn controller_function(time, sampling_rate, state, state_history, \
+//!                             observed_variables, air_brakes) {
+//!          air_brakes.deployment_level = if time > motor::burn_out_time { 1.0 } else { 0.0 };
+//!          return [time, air_brakes.deployment_level];
+//!      }",
+//! )?;
+//! assert_eq!(script.parameters(), 6);
+//! # Ok::<(), karman_script::ScriptError>(())
+//! ```
+
+pub mod controller;
+pub mod expression;
+pub mod sandbox;
+
+pub use controller::{
+    AirBrakesSetup, Controller, ControllerRecord, ControllerScript, ControllerSetup,
+    EnvironmentQuery, LevelRecord, ScriptError,
+};
+pub use expression::{Expression, ExpressionError, TriggerInputs};

@@ -1,0 +1,103 @@
+//! The Rhai engine scripts run in: the standard library without clock (`no_time`), no module
+//! resolver (`import` fails), `eval` disabled, `print`/`debug` discarded, strict variables (an
+//! undefined name is a compile error), and limits on every call so that no script can hang or
+//! exhaust memory. What the engine adds: the `motor` module, and the `AirBrakes` and
+//! `Environment` types of the controller's arguments.
+
+use crate::controller::{AirBrakesHandle, EnvironmentHandle};
+use rhai::module_resolvers::DummyModuleResolver;
+use rhai::packages::{Package, StandardPackage};
+use rhai::{Engine, FLOAT, Module, Shared};
+use std::sync::OnceLock;
+
+/// Operations one call may run (an operation is roughly one expression node or statement).
+pub const MAX_OPERATIONS: u64 = 1_000_000;
+/// Depth of nested function calls.
+pub const MAX_CALL_LEVELS: usize = 48;
+/// Nesting depth of expressions, at the top level and inside functions.
+pub const MAX_EXPR_DEPTHS: (usize, usize) = (64, 48);
+/// Characters of one string.
+pub const MAX_STRING_SIZE: usize = 16_384;
+/// Elements of one array.
+pub const MAX_ARRAY_SIZE: usize = 100_000;
+/// Entries of one object map.
+pub const MAX_MAP_SIZE: usize = 10_000;
+/// Variables alive at once.
+pub const MAX_VARIABLES: usize = 1_000;
+
+/// Rhai's standard package, built once per process.
+fn standard() -> Shared<Module> {
+    static STANDARD: OnceLock<Shared<Module>> = OnceLock::new();
+    STANDARD
+        .get_or_init(|| StandardPackage::new().as_shared_module())
+        .clone()
+}
+
+/// The `motor` module: `motor::burn_start_time` and `motor::burn_out_time`, s.
+pub(crate) fn motor_module(burn_start: f64, burn_out: f64) -> Shared<Module> {
+    let mut module = Module::new();
+    module.set_var("burn_start_time", burn_start);
+    module.set_var("burn_out_time", burn_out);
+    module.into()
+}
+
+/// A sandboxed engine with the controller's types and `motor`.
+pub(crate) fn engine(motor: &Shared<Module>) -> Engine {
+    let mut engine = Engine::new_raw();
+    engine.register_global_module(standard());
+    engine.register_static_module("motor", motor.clone());
+    engine.set_module_resolver(DummyModuleResolver::new());
+    engine.disable_symbol("eval");
+    engine.on_print(|_| {});
+    engine.on_debug(|_, _, _| {});
+    engine.set_strict_variables(true);
+    engine.set_max_operations(MAX_OPERATIONS);
+    engine.set_max_call_levels(MAX_CALL_LEVELS);
+    engine.set_max_expr_depths(MAX_EXPR_DEPTHS.0, MAX_EXPR_DEPTHS.1);
+    engine.set_max_string_size(MAX_STRING_SIZE);
+    engine.set_max_array_size(MAX_ARRAY_SIZE);
+    engine.set_max_map_size(MAX_MAP_SIZE);
+    engine.set_max_variables(MAX_VARIABLES);
+    engine.set_max_modules(0);
+
+    engine.register_type_with_name::<AirBrakesHandle>("AirBrakes");
+    engine.register_get_set(
+        "deployment_level",
+        |brakes: &mut AirBrakesHandle| -> FLOAT { brakes.level() },
+        |brakes: &mut AirBrakesHandle, value: FLOAT| brakes.set_level(value),
+    );
+    engine.register_get("clamp", |brakes: &mut AirBrakesHandle| brakes.setup.clamp);
+    engine.register_get("override_rocket_drag", |brakes: &mut AirBrakesHandle| {
+        brakes.setup.override_rocket_drag
+    });
+    engine.register_get("reference_area", |brakes: &mut AirBrakesHandle| {
+        brakes.setup.reference_area
+    });
+    engine.register_fn(
+        "drag_coefficient",
+        |brakes: &mut AirBrakesHandle, level: FLOAT, mach: FLOAT| -> FLOAT {
+            (brakes.setup.drag_coefficient)(level, mach)
+        },
+    );
+
+    engine.register_type_with_name::<EnvironmentHandle>("Environment");
+    engine.register_get("elevation", |env: &mut EnvironmentHandle| env.0.elevation());
+    macro_rules! of_height {
+        ($($name:ident),*) => {$(
+            engine.register_fn(stringify!($name), |env: &mut EnvironmentHandle, h: FLOAT| {
+                env.0.$name(h)
+            });
+        )*};
+    }
+    of_height!(
+        wind_velocity_x,
+        wind_velocity_y,
+        speed_of_sound,
+        density,
+        pressure,
+        temperature,
+        dynamic_viscosity,
+        gravity
+    );
+    engine
+}

@@ -1,0 +1,4 @@
+//! Integration tests of karman-script, one module per topic.
+
+mod controllers;
+mod expressions;
