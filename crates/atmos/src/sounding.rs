@@ -7,7 +7,9 @@
 //! \[RP\] quirks kept for parity: a Wyoming sounding's pressure, temperature and barometric
 //! height use the *reported* (geopotential) heights, only its winds use heights converted to
 //! geometric; a RUC sounding uses its heights as they are. Wyoming rows with a missing field
-//! are skipped whole; RUC rows are filtered per quantity (missing value 99999).
+//! are skipped whole (a row with a field that is not a number is an error); RUC rows are
+//! filtered per quantity (missing value 99999). Wyoming wind speeds are in the unit the header
+//! names: `SKNT` knots (legacy pages), `SPED` m/s (current pages), as RocketPy 1.13 reads them.
 
 use crate::AtmosError;
 use crate::curve::Curve;
@@ -64,8 +66,9 @@ impl Sounding {
     /// the station information (with "Station elevation") in the second.
     ///
     /// # Errors
-    /// [`AtmosError::Parse`] for a complete row (11 fields) that is not numeric or has an
-    /// impossible value, [`AtmosError::Empty`] when no table or no complete row is found.
+    /// [`AtmosError::Parse`] for a header without a wind-speed column, a row with a field that
+    /// is not a number, or a complete row (11 fields) with an impossible value;
+    /// [`AtmosError::Empty`] when no table or no complete row is found.
     pub fn parse_wyoming(text: &str, source_name: &str) -> Result<Sounding, AtmosError> {
         let (table, table_line0, station) = split_pre_blocks(text);
         let lines: Vec<&str> = table.lines().collect();
@@ -85,6 +88,22 @@ impl Sounding {
                 what: "the Wyoming TEXT:LIST table (two dashed rules around its header)".into(),
             });
         };
+        // The header names the wind-speed column: SKNT in knots (the legacy CGI pages), SPED
+        // in m/s (the current WSGI pages), as RocketPy 1.13 reads it.
+        let header = lines.get(rules[0] + 1).copied().unwrap_or("");
+        let speed_unit = if header.split_whitespace().any(|c| c == "SKNT") {
+            KNOT
+        } else if header.split_whitespace().any(|c| c == "SPED") {
+            1.0
+        } else {
+            return Err(AtmosError::Parse {
+                source_name: source_name.into(),
+                line: table_line0 + rules[0] + 2,
+                message: "the header names no wind speed column (SKNT in knots or SPED in m/s)"
+                    .into(),
+                text: snippet(header),
+            });
+        };
         let mut levels = Vec::new();
         for (i, line) in lines.iter().enumerate().skip(start + 1) {
             let t = line.trim();
@@ -95,19 +114,20 @@ impl Sounding {
                 break; // end of the table (station information follows)
             }
             let fields: Vec<&str> = t.split_whitespace().collect();
-            if fields.len() != 11 {
-                continue; // RocketPy keeps only rows with every column
-            }
             let err = |message: &str| AtmosError::Parse {
                 source_name: source_name.into(),
                 line: table_line0 + i + 1,
                 message: message.into(),
                 text: snippet(line),
             };
+            // A row that does not parse is an error, never the end of the table.
             let nums: Option<Vec<f64>> = fields.iter().map(|f| f.parse::<f64>().ok()).collect();
             let Some(n) = nums.filter(|n| n.iter().all(|v| v.is_finite())) else {
-                return Err(err("expected 11 numbers"));
+                return Err(err("expected a row of numbers"));
             };
+            if n.len() != 11 {
+                continue; // RocketPy keeps only rows with every column
+            }
             if n[0] <= 0.0 || n[7] < 0.0 {
                 return Err(err("pressure must be positive and wind speed non-negative"));
             }
@@ -116,7 +136,7 @@ impl Sounding {
                 height_m: n[1],
                 temperature_k: Some(n[2] + ZERO_CELSIUS),
                 wind_direction_deg: Some(n[6]),
-                wind_speed_mps: Some(n[7] * KNOT),
+                wind_speed_mps: Some(n[7] * speed_unit),
             });
         }
         if levels.is_empty() {
@@ -306,6 +326,49 @@ mod tests {
   992.0    103    1.6    0.8     94   4.11    270     10  275.4  286.7  276.1
   850.0   1325   -6.5  -10.0     76   2.11    180      3  279.3  285.5  279.7
 ";
+
+    #[test]
+    fn wyoming_winds_in_knots_and_in_m_per_s_agree() {
+        let knots = Sounding::parse_wyoming(TABLE, "t.txt").expect("parses");
+        // The same table from a current page: SPED in m/s.
+        let speeds: String = TABLE
+            .lines()
+            .map(|l| {
+                let f: Vec<&str> = l.split_whitespace().collect();
+                if f.len() == 11 && f[7].parse::<f64>().is_ok() {
+                    let v = f[7].parse::<f64>().unwrap_or(0.0) * KNOT;
+                    let mut out: Vec<String> = f.iter().map(|s| (*s).to_owned()).collect();
+                    out[7] = format!("{v:.17}");
+                    out.join("  ")
+                } else {
+                    l.replace("SKNT", "SPED").replace("knot", " m/s")
+                }
+            })
+            .collect::<Vec<_>>()
+            .join("\n");
+        let mps = Sounding::parse_wyoming(&speeds, "t.txt").expect("parses");
+        assert_eq!(knots.levels.len(), mps.levels.len());
+        for (a, b) in knots.levels.iter().zip(&mps.levels) {
+            let (a, b) = (
+                a.wind_speed_mps.unwrap_or(-1.0),
+                b.wind_speed_mps.unwrap_or(-2.0),
+            );
+            assert!((a - b).abs() < 1e-12, "{a} vs {b}");
+        }
+        let no_unit = TABLE.replace("SKNT", "WIND");
+        let e = Sounding::parse_wyoming(&no_unit, "t.txt").unwrap_err();
+        assert!(e.to_string().contains("line 4"), "{e}");
+    }
+
+    #[test]
+    fn a_wyoming_row_that_does_not_parse_is_an_error() {
+        let bad = TABLE.replace("  850.0   1325", "  850.0   13x5");
+        let e = Sounding::parse_wyoming(&bad, "t.txt").unwrap_err();
+        assert!(e.to_string().starts_with("t.txt, line 9:"), "{e}");
+        let short = TABLE.replace("  850.0   1325   -6.5", "  850.0   1O25");
+        let e = Sounding::parse_wyoming(&short, "t.txt").unwrap_err();
+        assert!(e.to_string().starts_with("t.txt, line 9:"), "{e}");
+    }
 
     #[test]
     fn bare_wyoming_table() {

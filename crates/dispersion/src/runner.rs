@@ -57,10 +57,14 @@ impl Outcome {
     }
 }
 
+/// Most worker threads per core a study may ask for: flights are CPU-bound, so threads beyond
+/// the cores only share them (and each holds a window of rows in memory).
+pub const MAX_THREADS_PER_CORE: usize = 4;
+
 /// How to run.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
 pub struct RunOptions {
-    /// Worker threads; `None` (or 0): one per core.
+    /// Worker threads; `None` (or 0): one per core; at most [`MAX_THREADS_PER_CORE`] per core.
     pub threads: Option<usize>,
     /// The part of the study to fly ([`Shard::WHOLE`] by default).
     pub shard: Option<Shard>,
@@ -128,6 +132,18 @@ where
     F: Fn(u64, &[f64]) -> Result<Outcome, String> + Sync,
 {
     study.validate()?;
+    let requested = options.threads.unwrap_or(0);
+    let cores = std::thread::available_parallelism().map_or(1, std::num::NonZeroUsize::get);
+    if requested > MAX_THREADS_PER_CORE * cores {
+        return Err(DispersionError::ThreadPool {
+            threads: requested,
+            message: format!(
+                "at most {MAX_THREADS_PER_CORE} per core ({} on this machine's {cores} cores): \
+                 more only share the same cores",
+                MAX_THREADS_PER_CORE * cores
+            ),
+        });
+    }
     let shard = options.shard.unwrap_or(Shard::WHOLE);
     let record = Record::new(study, shard);
     std::fs::create_dir_all(dir).map_err(DispersionError::io(dir))?;

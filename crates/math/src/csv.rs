@@ -43,7 +43,12 @@ pub fn read_curve(path: impl AsRef<Path>) -> Result<Vec<[f64; 2]>, CsvError> {
 pub fn read_rows(path: impl AsRef<Path>, width: usize) -> Result<Vec<Vec<f64>>, CsvError> {
     let path = path.as_ref();
     let text = read_text(path)?;
-    parse_rows(&text, path, Some(width))
+    let rows = parse_rows(&text, path, Some(width))?;
+    Ok(rows
+        .values
+        .chunks_exact(width.max(1))
+        .map(<[f64]>::to_vec)
+        .collect())
 }
 
 /// Parses text in the format of the module docs into columns; `origin` names the source in
@@ -53,11 +58,11 @@ pub fn read_rows(path: impl AsRef<Path>, width: usize) -> Result<Vec<Vec<f64>>, 
 /// As [`read_columns`].
 pub fn parse_columns(text: &str, origin: &Path) -> Result<Vec<Vec<f64>>, CsvError> {
     let rows = parse_rows(text, origin, None)?;
-    let width = rows.first().map_or(0, Vec::len);
-    let mut columns = vec![Vec::with_capacity(rows.len()); width];
-    for row in rows {
+    let count = rows.lines.len();
+    let mut columns = vec![Vec::with_capacity(count); rows.width];
+    for row in rows.values.chunks_exact(rows.width.max(1)) {
         for (column, value) in columns.iter_mut().zip(row) {
-            column.push(value);
+            column.push(*value);
         }
     }
     Ok(columns)
@@ -68,8 +73,29 @@ pub fn parse_columns(text: &str, origin: &Path) -> Result<Vec<Vec<f64>>, CsvErro
 /// # Errors
 /// As [`read_curve`].
 pub fn parse_curve(text: &str, origin: &Path) -> Result<Vec<[f64; 2]>, CsvError> {
+    Ok(parse_curve_rows(text, origin)?.points)
+}
+
+/// The points of a two-column text and the 1-based line each came from.
+#[derive(Debug, Clone, PartialEq)]
+pub struct CurveRows {
+    /// The `[x, y]` points in file order.
+    pub points: Vec<[f64; 2]>,
+    /// The line of each point.
+    pub lines: Vec<usize>,
+}
+
+/// [`parse_curve`] with the line of every point, for readers that check the points further
+/// (e.g. increasing times) and must name the line of a point they reject.
+///
+/// # Errors
+/// As [`read_curve`].
+pub fn parse_curve_rows(text: &str, origin: &Path) -> Result<CurveRows, CsvError> {
     let rows = parse_rows(text, origin, Some(2))?;
-    Ok(rows.into_iter().map(|r| [r[0], r[1]]).collect())
+    Ok(CurveRows {
+        points: rows.values.chunks_exact(2).map(|r| [r[0], r[1]]).collect(),
+        lines: rows.lines,
+    })
 }
 
 /// Reads the whole of a data file, refusing anything but a regular file (a directory, a FIFO
@@ -104,23 +130,41 @@ fn read_text(path: &Path) -> Result<String, CsvError> {
 }
 
 /// The fields of a line: comma-separated if it has a comma, else whitespace-separated.
-fn fields(line: &str) -> Vec<&str> {
-    if line.contains(',') {
-        line.split(',').map(str::trim).collect()
+fn fields(line: &str) -> impl Iterator<Item = &str> {
+    let commas = line.contains(',');
+    let (by_comma, by_blank) = if commas {
+        (Some(line.split(',').map(str::trim)), None)
     } else {
-        line.split_whitespace().collect()
-    }
+        (None, Some(line.split_whitespace()))
+    };
+    by_comma
+        .into_iter()
+        .flatten()
+        .chain(by_blank.into_iter().flatten())
+}
+
+/// Numeric rows, stored flat: row `k` is `values[k·width .. (k+1)·width]`, read at line
+/// `lines[k]`.
+struct Rows {
+    width: usize,
+    values: Vec<f64>,
+    lines: Vec<usize>,
 }
 
 fn quote(text: &str) -> String {
     text.chars().take(QUOTE_CHARS).collect()
 }
 
-/// Rows of numbers; `width` fixes the number of fields (else the first data row does).
-fn parse_rows(text: &str, origin: &Path, width: Option<usize>) -> Result<Vec<Vec<f64>>, CsvError> {
+/// Rows of numbers; `width` fixes the number of fields (else the first data row does). Work
+/// and memory are linear in the text: one pass, no allocation per row.
+fn parse_rows(text: &str, origin: &Path, width: Option<usize>) -> Result<Rows, CsvError> {
     let path = || -> PathBuf { origin.to_path_buf() };
     let text = text.strip_prefix('\u{feff}').unwrap_or(text);
-    let mut rows: Vec<Vec<f64>> = Vec::new();
+    let mut rows = Rows {
+        width: width.unwrap_or(0),
+        values: Vec::new(),
+        lines: Vec::new(),
+    };
     let mut expected = width;
     let mut header_allowed = true;
     for (index, raw) in text.lines().enumerate() {
@@ -129,13 +173,12 @@ fn parse_rows(text: &str, origin: &Path, width: Option<usize>) -> Result<Vec<Vec
         if line.is_empty() || line.starts_with('#') {
             continue;
         }
-        let fields = fields(line);
         let first_row = std::mem::replace(&mut header_allowed, false);
-        if first_row && fields.iter().any(|f| f.parse::<f64>().is_err()) {
+        if first_row && fields(line).any(|f| f.parse::<f64>().is_err()) {
             continue;
         }
-        let mut row = Vec::with_capacity(fields.len());
-        for (k, field) in fields.iter().enumerate() {
+        let start = rows.values.len();
+        for (k, field) in fields(line).enumerate() {
             let column = k + 1;
             if field.is_empty() {
                 return Err(CsvError::EmptyField {
@@ -158,20 +201,22 @@ fn parse_rows(text: &str, origin: &Path, width: Option<usize>) -> Result<Vec<Vec
                     text: quote(field),
                 });
             }
-            row.push(value);
+            rows.values.push(value);
         }
-        let want = *expected.get_or_insert(row.len());
-        if row.len() != want {
+        let found = rows.values.len() - start;
+        let want = *expected.get_or_insert(found);
+        if found != want {
             return Err(CsvError::WrongColumnCount {
                 path: path(),
                 line: line_no,
                 expected: want,
-                found: row.len(),
+                found,
             });
         }
-        rows.push(row);
+        rows.width = want;
+        rows.lines.push(line_no);
     }
-    if rows.is_empty() {
+    if rows.lines.is_empty() {
         return Err(CsvError::NoData { path: path() });
     }
     Ok(rows)

@@ -10,7 +10,7 @@
 //! - [`dimensions`]: test support for those tests (random unit systems, dimensions, scaled
 //!   comparisons); nothing in it runs during a simulation.
 //! - [`Table1`] (module `table`): a tabulated function of one variable with linear, natural
-//!   cubic spline, Akima (1970), RocketPy's `"akima"` Hermite, or polynomial interpolation and
+//!   cubic spline, Akima (1970, RocketPy 1.13's `"akima"`), or polynomial interpolation and
 //!   constant, natural or zero extrapolation; repeated abscissae for linear tables
 //!   ([`Table1::linear_stepwise`]); allocation-free `O(log n)` evaluation, or `O(1)` along
 //!   monotone query sequences with a [`Cursor`]; exact derivatives, integrals and inverse.
@@ -61,7 +61,7 @@ pub mod quadrature;
 mod table;
 
 pub use constants::{PhysicalConstants, Units};
-pub use csv::{read_columns, read_curve, read_data_file, read_rows};
+pub use csv::{CurveRows, read_columns, read_curve, read_data_file, read_rows};
 pub use error::{CsvError, MathError};
 pub use function::{Extremum, Function};
 pub use grid::{MAX_GRID_DIMENSIONS, RegularGrid, ScatteredTable};

@@ -6,9 +6,9 @@
 //!   `[x_i, x_{i+1}]` for [`Interpolation::Linear`] (`c = e = 0`), [`Interpolation::Spline`]
 //!   (natural cubic spline, second derivative zero at both ends: de Boor, *A Practical Guide to
 //!   Splines* (1978), ch. IV, solved with the tridiagonal Thomas algorithm — the same spline as
-//!   RocketPy's `Function.__interpolate_spline__`), [`Interpolation::Akima`] (Akima 1970,
-//!   *J. ACM* 17(4), 589–602) and [`Interpolation::RocketPyAkima`] (the cubic Hermite that
-//!   RocketPy 1.13 calls `"akima"`, see its docs);
+//!   RocketPy's `Function.__interpolate_spline__`), and [`Interpolation::Akima`]
+//!   (Akima 1970, *J. ACM* 17(4), 589–602 — the `"akima"` of RocketPy 1.13's `Function`,
+//!   `rocketpy.mathutils._calc._fitting.fit_akima`);
 //! - one polynomial through every sample for [`Interpolation::Polynomial`], in the scaled
 //!   variable `t = (x − x_mid)/h ∈ [−1, 1]`; its coefficients solve the Vandermonde system by
 //!   LU decomposition with partial pivoting (nalgebra), which is far better conditioned than
@@ -48,12 +48,6 @@ pub enum Interpolation {
     /// free of the overshoot of splines near steps. Needs no special case below 3 points (then
     /// it is linear).
     Akima,
-    /// RocketPy 1.13's `"akima"` interpolation (`Function.__interpolate_akima__`), which is not
-    /// Akima's method: a cubic Hermite whose slope at an interior node is the interval-length
-    /// weighted mean of the two adjacent secant slopes,
-    /// `d_i = (h_{i−1} m_i + h_i m_{i−1}) / (h_{i−1} + h_i)`, and the end secant at the ends.
-    /// Use it to reproduce a RocketPy model that asked for `"akima"`.
-    RocketPyAkima,
     /// The single polynomial of degree `n − 1` through all `n` samples.
     Polynomial,
 }
@@ -277,9 +271,6 @@ fn pieces(xs: &[f64], ys: &[f64], interpolation: Interpolation) -> Result<Pieces
         Interpolation::Linear => Pieces::Cubic(linear_coeffs(xs, ys)),
         Interpolation::Spline => Pieces::Cubic(natural_spline_coeffs(xs, ys)),
         Interpolation::Akima => Pieces::Cubic(hermite_coeffs(xs, ys, &akima_slopes(xs, ys))),
-        Interpolation::RocketPyAkima => {
-            Pieces::Cubic(hermite_coeffs(xs, ys, &weighted_mean_slopes(xs, ys)))
-        }
         Interpolation::Polynomial => {
             if xs.len() == 1 {
                 Pieces::Cubic(Arc::from([]))
@@ -1120,28 +1111,6 @@ fn akima_slopes(xs: &[f64], ys: &[f64]) -> Vec<f64> {
         .collect()
 }
 
-/// RocketPy's `"akima"` node slopes: interval-weighted mean of the adjacent secants inside,
-/// the end secants at the ends.
-fn weighted_mean_slopes(xs: &[f64], ys: &[f64]) -> Vec<f64> {
-    let n = xs.len();
-    let m = secants(xs, ys);
-    if n < 2 {
-        return vec![0.0; n];
-    }
-    (0..n)
-        .map(|i| {
-            if i == 0 {
-                m[0]
-            } else if i == n - 1 {
-                m[n - 2]
-            } else {
-                let (w1, w2) = (xs[i] - xs[i - 1], xs[i + 1] - xs[i]);
-                (w1 * m[i] + w2 * m[i - 1]) / (w1 + w2)
-            }
-        })
-        .collect()
-}
-
 /// The interpolating polynomial through all (≥ 2) samples, solved by LU with partial
 /// pivoting on the Vandermonde matrix of `t = (x − center)/half_width ∈ [−1, 1]`.
 fn polynomial(xs: &[f64], ys: &[f64]) -> Result<Polynomial, MathError> {
@@ -1216,22 +1185,6 @@ mod tests {
             let x = 0.1 * f64::from(k);
             assert!(t.eval(x).abs() < 1e-15, "x = {x}: {}", t.eval(x));
         }
-    }
-
-    #[test]
-    fn rocketpy_akima_slopes_match_the_weighted_mean() {
-        // Node 1 of (0,0), (1,1), (3,2): secants 1 and 0.5, widths 1 and 2, so
-        // d_1 = (1·0.5 + 2·1)/3 = 5/6 (RocketPy function.py, __interpolate_akima__).
-        let t = Table1::new(
-            vec![0.0, 1.0, 3.0],
-            vec![0.0, 1.0, 2.0],
-            Interpolation::RocketPyAkima,
-            Extrapolation::Natural,
-        )
-        .unwrap();
-        assert!(close(t.derivative(1.0), 5.0 / 6.0, 1e-14));
-        assert!(close(t.derivative(0.0), 1.0, 1e-14));
-        assert!(close(t.derivative(3.0), 0.5, 1e-14));
     }
 
     #[test]
@@ -1390,7 +1343,6 @@ mod tests {
             Interpolation::Linear,
             Interpolation::Spline,
             Interpolation::Akima,
-            Interpolation::RocketPyAkima,
             Interpolation::Polynomial,
         ];
         let extrapolations = [
@@ -1515,7 +1467,6 @@ mod tests {
             Interpolation::Linear,
             Interpolation::Spline,
             Interpolation::Akima,
-            Interpolation::RocketPyAkima,
             Interpolation::Polynomial,
         ];
         for kind in kinds {
@@ -1605,7 +1556,6 @@ mod tests {
             Interpolation::Linear,
             Interpolation::Spline,
             Interpolation::Akima,
-            Interpolation::RocketPyAkima,
         ];
         let ends = [
             Extrapolation::Natural,

@@ -11,7 +11,6 @@ fn evaluation_does_not_allocate() {
         Interpolation::Linear,
         Interpolation::Spline,
         Interpolation::Akima,
-        Interpolation::RocketPyAkima,
         Interpolation::Polynomial,
     ]
     .into_iter()

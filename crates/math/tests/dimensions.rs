@@ -39,7 +39,6 @@ fn check_tables(check: &mut ScaledComparison) {
         Interpolation::Linear,
         Interpolation::Spline,
         Interpolation::Akima,
-        Interpolation::RocketPyAkima,
         Interpolation::Polynomial,
     ];
     let extrapolations = [

@@ -9,15 +9,15 @@ use karman_airframe::AirBrakesDrag;
 use karman_math::{Extrapolation, Interpolation, PointOrder, Table1};
 use std::path::Path;
 
-/// The table interpolation of a mission `interpolation` key. `"akima"` means RocketPy's own
-/// "akima" (a weighted-secant Hermite, [`Interpolation::RocketPyAkima`]), so a RocketPy script
+/// The table interpolation of a mission `interpolation` key. `"akima"` is Akima's (1970)
+/// method, as RocketPy 1.13's `"akima"` ([`Interpolation::Akima`]), so a RocketPy script
 /// translates unchanged.
 impl From<InterpolationKind> for Interpolation {
     fn from(kind: InterpolationKind) -> Self {
         match kind {
             InterpolationKind::Linear => Interpolation::Linear,
             InterpolationKind::Spline => Interpolation::Spline,
-            InterpolationKind::Akima => Interpolation::RocketPyAkima,
+            InterpolationKind::Akima => Interpolation::Akima,
             InterpolationKind::Polynomial => Interpolation::Polynomial,
         }
     }

@@ -308,3 +308,39 @@ fn negative_margin_rocket_ends_in_bounded_time() {
         Err(e) => assert!(e.to_string().contains("flight"), "a flight error: {e}"),
     }
 }
+
+/// A thrust curve of 200 000 points (a static fire sampled at 67 kHz) flies within the step
+/// budget of a phase: its steps do not stop at every knot.
+#[test]
+fn a_dense_thrust_curve_flies_within_the_step_limits() {
+    use std::fmt::Write as _;
+    if crate::common::validation_dir().is_none() {
+        println!(
+            "a_dense_thrust_curve_flies_within_the_step_limits: skipped, no validation folder"
+        );
+        return;
+    }
+    let rows = 200_000;
+    let mut text = String::with_capacity(rows * 24);
+    for k in 0..rows {
+        let t = 3.0 * k as f64 / (rows - 1) as f64;
+        let thrust = 1500.0 * (std::f64::consts::PI * t / 3.0).sin() + 10.0;
+        let _ = writeln!(text, "{t:.9},{thrust:.6}");
+    }
+    let path = std::env::temp_dir().join(format!("karman-dense-{}.csv", std::process::id()));
+    std::fs::write(&path, text).expect("write thrust file");
+    let thrust = format!("{:?}", path.display().to_string());
+    let mission = calisto_with(&[("motor.thrust", &thrust), ("motor.burn_time", "3")])
+        .expect("the validation folder");
+    let run = simulate(&mission).expect("the dense curve flies");
+    std::fs::remove_file(&path).expect("cleanup");
+    assert_eq!(
+        run.flight.termination,
+        karman_mission::dynamics::Termination::Impact
+    );
+    assert!(
+        run.flight.stats.steps < 20_000,
+        "{} steps",
+        run.flight.stats.steps
+    );
+}

@@ -251,3 +251,68 @@ fn report_display_lists_every_time() {
     assert!(text.contains("total impulse") && text.contains("I33 [kg·m²]"));
     assert_eq!(text.lines().count(), 1 + 7 + 1 + 1 + 12);
 }
+
+/// Calisto with `interpolation = "akima"` against RocketPy 1.13's `SolidMotor` built from the
+/// same arguments with `interpolation_method="akima"` (Akima 1970, RocketPy's `fit_akima`).
+/// The figures were printed by RocketPy 1.13.0 (`total_impulse`, `propellant_initial_mass`,
+/// `average_thrust`, `max_thrust`, `exhaust_velocity`, `thrust(t)`); the references hold
+/// the linear motor only.
+#[test]
+fn validate_calisto_akima_motor_matches_rocketpy_1_13() {
+    let Some(missions) = validation_missions() else {
+        println!("validate_calisto_akima_motor: skipped, no validation folder");
+        return;
+    };
+    let Some(calisto) = missions
+        .iter()
+        .find(|p| p.parent().is_some_and(|d| d.ends_with("calisto")))
+    else {
+        panic!("the calisto validation mission is missing");
+    };
+    let akima =
+        karman_mission::Override::new("motor.interpolation", "\"akima\"").expect("override");
+    let mission = karman_mission::load(calisto, &[akima]).expect("calisto loads");
+    let motor = build_motor(&mission).expect("motor builds");
+    let times = [
+        0.0, 0.39, 0.78, 1.17, 1.56, 1.95, 2.34, 2.73, 3.12, 3.51, 3.9, 4.9,
+    ];
+    let ours = MotorReport::at_times(&motor, &times);
+    let scalars = [
+        ("total impulse", ours.total_impulse_ns, 6016.709832741909),
+        (
+            "propellant mass",
+            ours.propellant_initial_mass_kg,
+            2.955911961392022,
+        ),
+        ("average thrust", ours.average_thrust_n, 1542.746110959464),
+        ("max thrust", ours.max_thrust_n, 2200.0),
+        (
+            "exhaust velocity",
+            ours.exhaust_velocity_mps,
+            2035.483435003413,
+        ),
+        ("burn out", ours.burn_out_s, 3.9),
+    ];
+    for (name, value, rocketpy) in scalars {
+        assert!(
+            (value - rocketpy).abs() <= 1e-6 * rocketpy.abs(),
+            "{name}: {value} vs RocketPy 1.13 {rocketpy}"
+        );
+    }
+    let thrust = [
+        0.0,
+        1903.4073745580984,
+        2009.176316067197,
+        2031.172414828459,
+        1989.808095669147,
+        1911.782746159049,
+        1804.3926286951892,
+        1721.864463534584,
+        1278.7233509264452,
+        235.92214285714306,
+        8.526512829121202e-14,
+        0.0,
+    ];
+    let (worst, ok) = compare(&ours.thrust_n, &thrust, 1e-6, 1e-9 * 2200.0, &[false; 12]);
+    assert!(ok, "akima thrust samples: worst relative error {worst:e}");
+}

@@ -18,41 +18,12 @@ use crate::data::{PointsBuilder, ThrustData, ThrustFormat};
 /// a finite number, [`PropulsionError::TimeNotIncreasing`], and
 /// [`PropulsionError::TooFewPoints`] for a single data row.
 pub fn parse(text: &str, source_name: &str) -> Result<ThrustData, PropulsionError> {
-    let points = karman_math::csv::parse_curve(text, Path::new(source_name))?;
-    let lines = data_lines(text);
+    let rows = karman_math::csv::parse_curve_rows(text, Path::new(source_name))?;
     let mut builder = PointsBuilder::new(source_name, ThrustFormat::Csv);
-    for (k, [time, thrust]) in points.into_iter().enumerate() {
-        builder.push(lines.get(k).copied().unwrap_or(k + 1), time, thrust)?;
+    for ([time, thrust], line) in rows.points.into_iter().zip(rows.lines) {
+        builder.push(line, time, thrust)?;
     }
     builder.finish(None, 2)
-}
-
-/// 1-based line numbers of the data rows, by the reader's rules (blank and `#` lines
-/// skipped; the first remaining line skipped when it has a non-numeric field).
-fn data_lines(text: &str) -> Vec<usize> {
-    let text = text.strip_prefix('\u{feff}').unwrap_or(text);
-    let mut out = Vec::new();
-    let mut first = true;
-    for (index, raw) in text.lines().enumerate() {
-        let line = raw.trim();
-        if line.is_empty() || line.starts_with('#') {
-            continue;
-        }
-        let header = first && split(line).any(|f| f.parse::<f64>().is_err());
-        first = false;
-        if !header {
-            out.push(index + 1);
-        }
-    }
-    out
-}
-
-fn split(line: &str) -> Box<dyn Iterator<Item = &str> + '_> {
-    if line.contains(',') {
-        Box::new(line.split(',').map(str::trim))
-    } else {
-        Box::new(line.split_whitespace())
-    }
 }
 
 #[cfg(test)]

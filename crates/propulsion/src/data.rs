@@ -2,11 +2,9 @@
 //!
 //! [`ThrustData`] is a validated list of `(time, thrust)` points (times strictly increasing,
 //! all values finite) with the motor description the file carried, if any. The readers live
-//! in [`crate::eng`] (RASP), [`crate::rse`] (RockSim XML) and [`crate::csv`] (two columns);
-//! [`ThrustData::load`] picks one from the file extension as RocketPy's `Motor` does
-//! (`.eng`, `.rse`, anything else is read as CSV).
-
-use std::path::Path;
+//! in [`crate::eng`] (RASP), [`crate::rse`] (RockSim XML) and [`crate::csv`] (two columns)
+//! and build it with this module's point checks; `ThrustData::load` (module `file`) picks a
+//! reader from the file extension.
 
 use crate::PropulsionError;
 
@@ -69,33 +67,6 @@ pub struct ThrustData {
 }
 
 impl ThrustData {
-    /// Reads a thrust file: `.eng` (RASP), `.rse` (RockSim XML) or, for any other extension,
-    /// a two-column CSV (comma- or whitespace-separated, optional header line). Only regular
-    /// files are opened ([`karman_math::read_data_file`]); a UTF-8 byte-order mark, CRLF
-    /// line ends and tabs are accepted by every reader.
-    ///
-    /// # Errors
-    /// [`PropulsionError::Io`] when the file cannot be read, and the reader's errors (each
-    /// naming the file, line and offending text).
-    pub fn load(path: &Path) -> Result<ThrustData, PropulsionError> {
-        let source_name = path.display().to_string();
-        let bytes = karman_math::read_data_file(path).map_err(|e| PropulsionError::Io {
-            source_name: source_name.clone(),
-            message: e.to_string(),
-        })?;
-        let text = String::from_utf8_lossy(&bytes);
-        let extension = path
-            .extension()
-            .and_then(|e| e.to_str())
-            .map(str::to_ascii_lowercase)
-            .unwrap_or_default();
-        match extension.as_str() {
-            "eng" => crate::eng::parse(&text, &source_name),
-            "rse" => crate::rse::parse(&text, &source_name),
-            _ => crate::csv::parse(&text, &source_name),
-        }
-    }
-
     /// Thrust points given inline, as the mission format allows: sorted by time with a
     /// stable sort, then checked (finite values, no repeated time, at least two points).
     /// Negative thrust is accepted, as in RocketPy (measured curves dip below zero).
@@ -256,11 +227,5 @@ mod tests {
             matches!(e, PropulsionError::TooFewPoints { found: 1, .. }),
             "{e}"
         );
-    }
-
-    #[test]
-    fn missing_file_names_the_file() {
-        let e = ThrustData::load(Path::new("/nonexistent/motor.eng")).unwrap_err();
-        assert!(e.to_string().contains("/nonexistent/motor.eng"), "{e}");
     }
 }

@@ -18,6 +18,7 @@ pub mod csv;
 mod data;
 pub mod eng;
 mod error;
+mod file;
 mod generic;
 mod motor;
 mod propellant;

@@ -25,7 +25,7 @@ pub struct MonteCarloArgs {
     /// Seed of the random streams (default: the mission's `[dispersion] seed`).
     #[arg(long, value_name = "S")]
     pub seed: Option<u64>,
-    /// Worker threads (default: one per core).
+    /// Worker threads (default: one per core; at most 4 per core).
     #[arg(long, value_name = "T")]
     pub threads: Option<usize>,
     /// Output directory; rerun with the same directory to resume.

@@ -4,8 +4,8 @@
 //! - `thrust`: a number (constant, sampled over `burn_time`), an inline table (sorted by time,
 //!   stably) or a file — `.eng` (RASP, a `(0, 0)` point prepended), `.rse` (RockSim XML), or
 //!   two numeric columns for any other extension.
-//! - `interpolation = "akima"` means RocketPy's own "akima" (a weighted-secant Hermite, see
-//!   [`karman_math::Interpolation::RocketPyAkima`]), so a RocketPy script translates unchanged.
+//! - `interpolation = "akima"` is Akima's (1970) method, as RocketPy 1.13's `"akima"` (see
+//!   [`karman_math::Interpolation::Akima`]), so a RocketPy script translates unchanged.
 //! - A generic motor without `center_of_dry_mass_position` takes `chamber_position`
 //!   (RocketPy's default; an explicit 0 is kept, where RocketPy's truthiness test would also
 //!   replace it); a solid motor's `throat_radius` defaults to 0.01 m.

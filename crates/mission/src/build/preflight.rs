@@ -4,7 +4,9 @@
 //! integrating, `check` rejects first; every error names the mission key that is wrong.
 //!
 //! Launch checks (errors, each blamed on the key that decides it):
-//! - the flight settings' ranges ([`FlightSettings::validate`]), blamed on the `[flight]` key;
+//! - the flight settings' ranges ([`FlightSettings::validate`]), blamed on the `[flight]` key
+//!   (steps stop at the thrust-curve knots only for curves of at most [`MAX_KNOT_STOPS`]
+//!   points);
 //! - the nozzle must lie on the airframe (within one airframe length of the span of its
 //!   surfaces, rail buttons and centre of mass): `rocket.motor_position` otherwise;
 //! - the rail must be longer than the nozzle-to-upper-button distance (physics.md §8.1,
@@ -60,6 +62,12 @@ const RAIL_MAX_STEPS: usize = 200_000;
 /// Samples of the static margin over the powered flight.
 const MARGIN_SAMPLES: usize = 200;
 
+/// Most thrust-curve knots the integration steps stop at (each knot ends a step). A denser
+/// curve (a static fire sampled at kHz rates) has kinks far below the step control's
+/// resolution: its steps are left to the error control, so the flight stays within the step
+/// budget of a phase whatever the number of points.
+pub const MAX_KNOT_STOPS: usize = 20_000;
+
 /// The models of a mission, built and checked, with the warnings found on the way.
 #[derive(Debug, Clone)]
 pub struct Models {
@@ -86,7 +94,10 @@ pub fn prepare(mission: &Mission, seed: u64) -> Result<Models, MissionError> {
     let thrust = thrust_source(mission)?;
     let motor = build_motor_with(mission, &thrust)?;
     let rocket = build_rocket(mission, &motor)?;
-    let settings = flight_settings(mission, seed);
+    let mut settings = flight_settings(mission, seed);
+    if rocket.motor().thrust.xs().len() > MAX_KNOT_STOPS {
+        settings.stop_at_thrust_knots = false;
+    }
     settings.validate().map_err(|e| {
         let key = match &e {
             karman_dynamics::DynamicsError::InvalidSetting { name, .. } => format!("flight.{name}"),
