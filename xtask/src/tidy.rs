@@ -10,24 +10,18 @@ use anyhow::{Context, Result, bail};
 /// Each package may depend on the listed workspace packages and on no other.
 pub const ALLOWED: &[(&str, &[&str])] = &[
     ("karman-math", &[]),
-    ("karman-atmos", &["karman-math"]),
+    ("karman-model", &["karman-math"]),
+    ("karman-atmos", &["karman-math", "karman-model"]),
     ("karman-propulsion", &["karman-math"]),
-    ("karman-airframe", &["karman-math"]),
-    (
-        "karman-dynamics",
-        &[
-            "karman-math",
-            "karman-atmos",
-            "karman-propulsion",
-            "karman-airframe",
-        ],
-    ),
-    ("karman-dispersion", &["karman-math", "karman-dynamics"]),
+    ("karman-airframe", &["karman-math", "karman-model"]),
+    ("karman-dynamics", &["karman-math", "karman-model"]),
+    ("karman-dispersion", &["karman-math"]),
     ("karman-script", &[]),
     (
         "karman-mission",
         &[
             "karman-math",
+            "karman-model",
             "karman-atmos",
             "karman-propulsion",
             "karman-airframe",

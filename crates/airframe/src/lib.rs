@@ -71,6 +71,7 @@ pub mod air_brakes;
 pub mod drag;
 mod error;
 mod mass;
+mod model;
 mod motor;
 mod recovery;
 mod rocket;

@@ -24,6 +24,7 @@ mod error;
 pub mod fetch;
 pub mod grid;
 pub mod isa;
+mod model;
 mod profile;
 pub mod sounding;
 pub mod time;

@@ -3,16 +3,18 @@
 //! J. Aerosp. Eng. 34(6), and the RocketPy docs "Equations of Motion v1") and the 3-DOF
 //! parachute descent with added mass (§8.4).
 //!
-//! Each is a pure function of `(t, u)` and the immutable [`Equations`] context and returns the
-//! state derivative together with the loads that produced it, so the same code serves the
-//! integrator and the post-processing. Nothing here allocates.
+//! Each is a pure function of `(t, u)`, the flight's [`Configuration`] and the immutable
+//! [`Equations`] context, and returns the state derivative together with the loads that
+//! produced it, so the same code serves the integrator and the post-processing. The caller
+//! passes the table cursors ([`Cursors`]) explicitly: they only shorten the searches, the
+//! values never depend on them. Nothing here allocates.
 
-use std::cell::Cell;
-
-use crate::model::{Air, AtmosphereModel, Cursor, SurfaceModel, VehicleModel};
 use crate::state::{
     Mat3, State, Vec3, add, cross, dot, inverse, mat_t_vec, mat_vec, norm, quaternion,
     quaternion_rate, rotation, scale, sub, tensor,
+};
+use karman_model::{
+    Air, AtmosphereModel, BodyFlow, Configuration, Cursor, LocalFlow, SurfaceModel, VehicleModel,
 };
 
 /// State derivative and the loads behind it (body axes, about the CDM).
@@ -50,26 +52,24 @@ pub struct Equations<'a, A, V> {
     earth_rotation: Vec3,
     burn_start: f64,
     burn_out: f64,
-    reference_area: f64,
     nozzle: Vec3,
     nozzle_gyration: Mat3,
     dry_mass: f64,
     coast: Option<CoastMass>,
     /// The wind when it does not vary with height (read once; no per-height lookups then).
     uniform_wind: Option<[f64; 2]>,
-    /// Where the last evaluation's table lookups ended; the next start there (heights, Mach
-    /// numbers and times change little between evaluations). Values never depend on them.
-    cursors: Cell<Cursors>,
 }
 
-/// The table cursors of the models' `*_near` lookups ([`crate::model`]).
+/// The table cursors of the models' lookups, kept by the caller between evaluations so
+/// that each search starts where the last one ended (heights, Mach numbers and times change
+/// little between evaluations). Values never depend on them.
 #[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
-struct Cursors {
+pub struct Cursors {
     /// Heights ([`AtmosphereModel::air_near`]).
     height: Cursor,
-    /// Mach number ([`VehicleModel::drag_coefficient_near`]).
+    /// Mach number ([`VehicleModel::axial_load`]).
     mach: Cursor,
-    /// Times ([`VehicleModel::mass_sample_near`], [`VehicleModel::net_thrust_near`]).
+    /// Times ([`VehicleModel::mass`], [`VehicleModel::thrust`]).
     time: [Cursor; 2],
 }
 
@@ -114,28 +114,22 @@ fn inverse_cm_inertia(inertia: &Mat3, mass: f64, c: f64) -> Mat3 {
     inverse(&i_cm).unwrap_or([[f64::NAN; 3]; 3])
 }
 
-/// The vehicle's mass properties at `t`, `(m, c, I)`.
-fn mass_properties<V: VehicleModel>(vehicle: &V, t: f64) -> (f64, f64, [f64; 6]) {
-    (
-        vehicle.total_mass(t),
-        vehicle.com_to_cdm(t),
-        vehicle.inertia(t),
-    )
-}
-
 /// [`CoastMass`] when the mass tables are constant after burn-out (checked at two times far
 /// apart, to 1e-12 relative); `None` otherwise.
-fn coast_mass<V: VehicleModel>(vehicle: &V) -> Option<CoastMass> {
-    let b1 = vehicle.burn_out();
-    let (m1, c1, i1) = mass_properties(vehicle, b1 + 1.0);
-    let (m2, c2, i2) = mass_properties(vehicle, b1 + 1e4);
+fn coast_mass<V: VehicleModel>(vehicle: &V, burn_out: f64) -> Option<CoastMass> {
+    let b1 = burn_out;
+    let cursors = &mut [Cursor::default(); 2];
+    let p1 = vehicle.mass(b1 + 1.0, cursors);
+    let p2 = vehicle.mass(b1 + 1e4, cursors);
+    let (m1, c1, i1) = (p1.total_mass, p1.com_to_cdm, p1.inertia);
+    let (m2, c2, i2) = (p2.total_mass, p2.com_to_cdm, p2.inertia);
     let same = |a: f64, b: f64| (a - b).abs() <= 1e-12 * a.abs().max(b.abs());
-    let rates = vehicle.inertia_rate(b1 + 1.0);
+    let rates = p1.inertia_rate;
     let constant = same(m1, m2)
         && same(c1, c2)
         && i1.iter().zip(&i2).all(|(a, b)| same(*a, *b))
         && rates.iter().all(|r| r.abs() <= f64::MIN_POSITIVE)
-        && vehicle.com_to_cdm_rate(b1 + 1.0).abs() <= f64::MIN_POSITIVE;
+        && p1.com_to_cdm_rate.abs() <= f64::MIN_POSITIVE;
     constant.then(|| CoastMass {
         mass: m1,
         inverse_mass: 1.0 / m1,
@@ -148,20 +142,19 @@ fn coast_mass<V: VehicleModel>(vehicle: &V) -> Option<CoastMass> {
 impl<'a, A: AtmosphereModel, V: VehicleModel> Equations<'a, A, V> {
     /// Reads the constant model quantities once.
     pub fn new(atmosphere: &'a A, vehicle: &'a V) -> Self {
-        let s = vehicle.nozzle_gyration();
+        let setup = vehicle.setup();
+        let s = setup.nozzle_gyration;
         Self {
             atmosphere,
             vehicle,
             earth_rotation: atmosphere.earth_rotation_enu(),
-            burn_start: vehicle.burn_start(),
-            burn_out: vehicle.burn_out(),
-            reference_area: vehicle.reference_area(),
-            nozzle: [0.0, 0.0, vehicle.nozzle_to_cdm()],
+            burn_start: setup.burn_start,
+            burn_out: setup.burn_out,
+            nozzle: [0.0, 0.0, setup.nozzle_to_cdm],
             nozzle_gyration: [[s[0], 0.0, 0.0], [0.0, s[1], 0.0], [0.0, 0.0, s[2]]],
-            dry_mass: vehicle.dry_mass(),
-            coast: coast_mass(vehicle),
+            dry_mass: setup.dry_mass,
+            coast: coast_mass(vehicle, setup.burn_out),
             uniform_wind: atmosphere.uniform_wind(),
-            cursors: Cell::default(),
         }
     }
 
@@ -175,6 +168,12 @@ impl<'a, A: AtmosphereModel, V: VehicleModel> Equations<'a, A, V> {
     #[must_use]
     pub fn vehicle(&self) -> &'a V {
         self.vehicle
+    }
+
+    /// The vehicle's dry mass, kg (the mass under a canopy, physics.md §8.4).
+    #[must_use]
+    pub fn dry_mass(&self) -> f64 {
+        self.dry_mass
     }
 
     /// The horizontal wind at height `z`, without a lookup when it is uniform.
@@ -197,7 +196,13 @@ impl<'a, A: AtmosphereModel, V: VehicleModel> Equations<'a, A, V> {
     /// gravity times `K33`, acceleration clipped at zero, attitude frozen, no Coriolis.
     #[inline]
     #[must_use]
-    pub fn rail(&self, t: f64, u: &State) -> Derivative {
+    pub fn rail(
+        &self,
+        t: f64,
+        u: &State,
+        configuration: &Configuration,
+        cursors: &mut Cursors,
+    ) -> Derivative {
         let (e0, e1, e2, e3) = (u[6], u[7], u[8], u[9]);
         let z = u[2];
         let atm = self.atmosphere;
@@ -205,16 +210,18 @@ impl<'a, A: AtmosphereModel, V: VehicleModel> Equations<'a, A, V> {
         let wind = self.wind(z);
         let free = [wind[0] - u[3], wind[1] - u[4], -u[5]];
         let speed = norm(free);
-        let mut cursors = self.cursors.get();
         let air = atm.air_near(z, &mut cursors.height);
         let mach = speed / air.speed_of_sound;
-        let rho = air.density;
-        let cd = veh.drag_coefficient_near(true, mach, &mut cursors.mach);
-        let net_thrust = veh.net_thrust_near(t, air.pressure, &mut cursors.time[0]);
-        self.cursors.set(cursors);
-        let r3 = -0.5 * rho * speed * speed * self.reference_area * cd;
-        let a3 = (r3 + net_thrust) / veh.total_mass(t)
-            - (e0 * e0 - e1 * e1 - e2 * e2 + e3 * e3) * air.gravity;
+        let flow = BodyFlow {
+            power_on: true,
+            speed,
+            mach,
+            density: air.density,
+        };
+        let r3 = veh.axial_load(&flow, configuration, &mut cursors.mach);
+        let net_thrust = veh.thrust(t, air.pressure, &mut cursors.time[0]);
+        let mass = veh.mass(t, &mut cursors.time).total_mass;
+        let a3 = (r3 + net_thrust) / mass - (e0 * e0 - e1 * e1 - e2 * e2 + e3 * e3) * air.gravity;
         let (ax, ay, az) = if a3 > 0.0 {
             (
                 2.0 * (e1 * e3 + e0 * e2) * a3,
@@ -246,6 +253,7 @@ impl<'a, A: AtmosphereModel, V: VehicleModel> Equations<'a, A, V> {
         u: &State,
         k: &Mat3,
         air: &Air,
+        configuration: &Configuration,
         cursors: &mut Cursors,
     ) -> (Vec3, Vec3, f64) {
         let atm = self.atmosphere;
@@ -261,15 +269,20 @@ impl<'a, A: AtmosphereModel, V: VehicleModel> Equations<'a, A, V> {
         let mach = speed / a;
         let powered = self.powered(t);
         let net_thrust = if powered {
-            veh.net_thrust_near(t, air.pressure, &mut cursors.time[0])
+            veh.thrust(t, air.pressure, &mut cursors.time[0])
         } else {
             0.0
         };
-        let cd = veh.drag_coefficient_near(powered, mach, &mut cursors.mach);
+        let flow = BodyFlow {
+            power_on: powered,
+            speed,
+            mach,
+            density: rho,
+        };
         let mut r = [
             0.0,
             0.0,
-            -0.5 * rho * speed * speed * self.reference_area * cd,
+            veh.axial_load(&flow, configuration, &mut cursors.mach),
         ];
         let mut m = [0.0; 3];
         let v_body = mat_t_vec(k, v);
@@ -289,34 +302,20 @@ impl<'a, A: AtmosphereModel, V: VehicleModel> Equations<'a, A, V> {
                     mat_t_vec(k, [wc[0], wc[1], 0.0])
                 }
             };
-            let s = sub(wb, vb);
-            let sp = norm(s);
-            let area = surface.reference_area();
-            let [cn_alpha, forcing, damping] = surface.coefficients(sp * inverse_a);
-            let transverse2 = s[0] * s[0] + s[1] * s[1];
-            if transverse2 > 0.0 {
-                // Angle of attack α = acos(−s₃/|s|) (physics.md §7.2) in the equal form
-                // atan2(|s_⊥|, −s₃): better conditioned at small angles, and for the usual
-                // nose-first stream (s₃ < 0) a plain arctangent, about twice as fast as acos.
-                let transverse = transverse2.sqrt();
-                let alpha = if s[2] < 0.0 {
-                    (transverse / -s[2]).atan()
-                } else {
-                    transverse.atan2(-s[2])
-                };
-                let lift = 0.5 * rho * sp * sp * area * cn_alpha * alpha;
-                let inv = 1.0 / transverse;
-                let fx = lift * s[0] * inv;
-                let fy = lift * s[1] * inv;
-                r[0] += fx;
-                r[1] += fy;
-                m[0] -= cp[2] * fy;
-                m[1] += cp[2] * fx;
-            }
-            if surface.rolls() {
-                let d = surface.reference_length();
-                m[2] += 0.5 * rho * sp * sp * area * d * forcing
-                    - 0.5 * rho * sp * area * d * d * damping * w[2] / 2.0;
+            let stream = sub(wb, vb);
+            let speed = norm(stream);
+            let flow = LocalFlow {
+                stream,
+                speed,
+                mach: speed * inverse_a,
+                density: rho,
+                roll_rate: w[2],
+            };
+            // The surfaces' zero components are −0, so they add nothing (karman_model::Loads).
+            let loads = surface.loads(&flow);
+            for i in 0..3 {
+                r[i] += loads.force[i];
+                m[i] += loads.moment[i];
             }
         }
         (r, m, net_thrust)
@@ -325,20 +324,29 @@ impl<'a, A: AtmosphereModel, V: VehicleModel> Equations<'a, A, V> {
     /// Rail-phase loads for post-processing: the 6-DOF aerodynamic loads at the rail state
     /// (RocketPy's `udot_rail1(post_processing=True)` reports those).
     #[must_use]
-    pub fn rail_loads(&self, t: f64, u: &State) -> (Vec3, Vec3, f64) {
+    pub fn rail_loads(
+        &self,
+        t: f64,
+        u: &State,
+        configuration: &Configuration,
+        cursors: &mut Cursors,
+    ) -> (Vec3, Vec3, f64) {
         let k = rotation(quaternion(u));
-        let mut cursors = self.cursors.get();
         let air = self.atmosphere.air_near(u[2], &mut cursors.height);
-        let loads = self.loads(t, u, &k, &air, &mut cursors);
-        self.cursors.set(cursors);
-        loads
+        self.loads(t, u, &k, &air, configuration, cursors)
     }
 
     /// 6-DOF variable-mass flight (physics.md §8.2, RocketPy's `u_dot_generalized`), with the
     /// RocketPy sign of the CM offset (§5.4) and nozzle terms (§5.6), Coriolis (§4.5).
     #[inline]
     #[must_use]
-    pub fn six_dof(&self, t: f64, u: &State) -> Derivative {
+    pub fn six_dof(
+        &self,
+        t: f64,
+        u: &State,
+        configuration: &Configuration,
+        cursors: &mut Cursors,
+    ) -> Derivative {
         let atm = self.atmosphere;
         let veh = self.vehicle;
         let z = u[2];
@@ -346,7 +354,6 @@ impl<'a, A: AtmosphereModel, V: VehicleModel> Equations<'a, A, V> {
         let e = quaternion(u);
         let w = [u[10], u[11], u[12]];
         let k = rotation(e);
-        let mut cursors = self.cursors.get();
 
         // After burn-out c ≡ 0 and nothing changes; a finite-difference c̈ of a spline table
         // (RocketPy's, §5.4) straddling the burn-out kink would otherwise spike within 1e-6 s
@@ -372,7 +379,7 @@ impl<'a, A: AtmosphereModel, V: VehicleModel> Equations<'a, A, V> {
                 0.0,
             ),
             _ => {
-                let p = veh.mass_sample_near(t, &mut cursors.time);
+                let p = veh.mass(t, &mut cursors.time);
                 let (mass, c) = (p.total_mass, p.com_to_cdm);
                 let inertia = tensor(p.inertia);
                 let c_ddot = if t < self.burn_out {
@@ -413,8 +420,7 @@ impl<'a, A: AtmosphereModel, V: VehicleModel> Equations<'a, A, V> {
         let r_cm_ddot = [0.0, 0.0, c_ddot];
 
         let air = atm.air_near(z, &mut cursors.height);
-        let (force, moment, net_thrust) = self.loads(t, u, &k, &air, &mut cursors);
-        self.cursors.set(cursors);
+        let (force, moment, net_thrust) = self.loads(t, u, &k, &air, configuration, cursors);
         let weight = mat_t_vec(&k, [0.0, 0.0, -mass * air.gravity]);
 
         let t00 = scale(mass, r_cm);
@@ -482,13 +488,17 @@ impl<'a, A: AtmosphereModel, V: VehicleModel> Equations<'a, A, V> {
     /// Coriolis; attitude frozen.
     #[inline]
     #[must_use]
-    pub fn parachute(&self, _t: f64, u: &State, canopy: &CanopyState) -> Derivative {
+    pub fn parachute(
+        &self,
+        _t: f64,
+        u: &State,
+        canopy: &CanopyState,
+        cursors: &mut Cursors,
+    ) -> Derivative {
         let atm = self.atmosphere;
         let z = u[2];
         let v = [u[3], u[4], u[5]];
-        let mut cursors = self.cursors.get();
         let air = atm.air_near(z, &mut cursors.height);
-        self.cursors.set(cursors);
         let rho = air.density;
         let wind = self.wind(z);
         let mass = self.dry_mass;

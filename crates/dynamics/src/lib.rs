@@ -7,10 +7,11 @@
 //! - [`integrator`]: the Dormand–Prince pairs DOPRI5 and DOP853 with dense output, fixed-size
 //!   state, no allocation.
 //! - [`equations`]: rail, 6-DOF variable-mass and parachute right-hand sides.
-//! - [`model`]: the [`AtmosphereModel`] / [`VehicleModel`] traits the engine evaluates
-//!   (implemented for karman-atmos' `Environment` and karman-airframe's `Rocket` in
-//!   [`adapters`]).
-//! - [`flight`]: phases, time nodes and events; [`simulate`] flies a rocket.
+//! - The models it flies are the interfaces of karman-model ([`AtmosphereModel`],
+//!   [`VehicleModel`], [`SurfaceModel`]), re-exported here; karman-atmos, karman-airframe and
+//!   test mocks implement them.
+//! - [`flight`]: phases, events, sampled processes and actions; [`simulate`] flies a rocket,
+//!   [`simulate_from`] resumes a flight from a given state.
 //! - [`output`]: post-processed samples and the [`Summary`] of the mission contract.
 
 // The integration tests' analytic models (an exponential atmosphere, a stable 10 kg rocket),
@@ -22,12 +23,10 @@ extern crate self as karman_dynamics;
 #[path = "../tests/mock.rs"]
 mod mock;
 
-pub mod adapters;
 pub mod equations;
 mod error;
 pub mod flight;
 pub mod integrator;
-pub mod model;
 pub mod noise;
 pub mod output;
 pub mod settings;
@@ -35,11 +34,13 @@ pub mod state;
 
 pub use error::DynamicsError;
 pub use flight::{
-    Flight, IntegrationStats, ParachuteEvent, PhaseKind, SolutionPoint, Termination, simulate,
+    Action, DenseOutput, Flight, IntegrationStats, ParachuteEvent, PhaseKind, Probe, Record,
+    SampledProcess, SolutionPoint, StepBounds, Termination, simulate, simulate_from, simulate_with,
 };
-pub use model::{
-    Air, AtmosphereModel, MassSample, ParachuteSpec, RailButtonGeometry, SurfaceModel, TriggerKind,
-    VehicleModel,
+pub use karman_model::{
+    Air, AtmosphereModel, BodyFlow, Configuration, Cursor, Loads, LocalFlow, MAX_CONTROLS,
+    MassSample, ParachuteSpec, RailButtonGeometry, SurfaceModel, TriggerKind, VehicleModel,
+    VehicleSetup,
 };
 pub use output::{EventRecord, Sample, Summary};
 pub use settings::{DEFAULT_ATOL, FlightSettings};

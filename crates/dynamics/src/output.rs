@@ -9,9 +9,10 @@
 
 use serde::Serialize;
 
-use crate::equations::Equations;
-use crate::flight::{Flight, PhaseKind, Termination, evaluate};
-use crate::model::{AtmosphereModel, Cursor, VehicleModel};
+use karman_model::{AtmosphereModel, Cursor, VehicleModel};
+
+use crate::equations::{Cursors, Equations};
+use crate::flight::{Flight, PhaseKind, SolutionPoint, Termination, evaluate};
 use crate::state::{State, norm, rotation};
 
 /// One named event of the summary.
@@ -134,15 +135,16 @@ pub struct Sample {
 fn sample<A: AtmosphereModel, V: VehicleModel>(
     eq: &Equations<'_, A, V>,
     elevation: f64,
-    t: f64,
-    u: &State,
-    kind: &PhaseKind,
+    point: &SolutionPoint,
+    cursors: &mut Cursors,
 ) -> Sample {
     let atm = eq.atmosphere();
     let veh = eq.vehicle();
-    let d = evaluate(eq, kind, t, u);
+    let (kind, configuration) = (&point.phase, &point.configuration);
+    let (t, u) = (point.t, &point.state);
+    let d = evaluate(eq, kind, configuration, t, u, cursors);
     let (force, moment, net_thrust) = match kind {
-        PhaseKind::Rail => eq.rail_loads(t, u),
+        PhaseKind::Rail => eq.rail_loads(t, u, configuration, cursors),
         _ => (d.force, d.moment, d.net_thrust),
     };
     let z = u[2];
@@ -163,8 +165,8 @@ fn sample<A: AtmosphereModel, V: VehicleModel>(
     let a1 = e3.atan2(e0);
     let a2 = (-e2).atan2(-e1);
     let mass = match kind {
-        PhaseKind::Parachute(_) => veh.dry_mass(),
-        _ => veh.total_mass(t),
+        PhaseKind::Parachute(_) => eq.dry_mass(),
+        _ => veh.mass(t, &mut [Cursor::default(); 2]).total_mass,
     };
     Sample {
         t,
@@ -210,9 +212,10 @@ impl Flight {
         vehicle: &V,
     ) -> Vec<Sample> {
         let eq = Equations::new(atmosphere, vehicle);
+        let mut cursors = Cursors::default();
         self.points
             .iter()
-            .map(|p| sample(&eq, self.elevation, p.t, &p.state, &p.phase))
+            .map(|p| sample(&eq, self.elevation, p, &mut cursors))
             .collect()
     }
 
@@ -223,6 +226,7 @@ impl Flight {
         atmosphere: &A,
         vehicle: &V,
     ) -> Summary {
+        let static_margins = vehicle.setup().static_margins;
         let mut max_speed: f64 = 0.0;
         let mut max_mach: f64 = 0.0;
         let mut max_q: f64 = 0.0;
@@ -297,8 +301,8 @@ impl Flight {
             out_of_rail_time_s: rail.map(|r| r.0),
             out_of_rail_velocity_mps: rail.map(|r| r.1),
             out_of_rail_stability_margin: rail.map(|r| r.2),
-            initial_static_margin: vehicle.static_margin(0.0),
-            burnout_static_margin: vehicle.static_margin(self.burn_out),
+            initial_static_margin: static_margins[0],
+            burnout_static_margin: static_margins[1],
             max_speed_mps: max_speed,
             max_mach,
             max_dynamic_pressure_pa: max_q,

@@ -1,6 +1,6 @@
 //! Integration tests of karman-dynamics (one binary, one module per topic).
 
-mod dimensions;
 mod mock;
+mod processes;
 mod robustness;
 mod toy_flights;

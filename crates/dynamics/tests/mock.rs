@@ -2,7 +2,8 @@
 //! the mission files: an exponential atmosphere and a constant-thrust rocket.
 
 use karman_dynamics::{
-    AtmosphereModel, ParachuteSpec, RailButtonGeometry, SurfaceModel, TriggerKind, VehicleModel,
+    AtmosphereModel, BodyFlow, Configuration, Cursor, Loads, LocalFlow, MassSample, ParachuteSpec,
+    RailButtonGeometry, SurfaceModel, TriggerKind, VehicleModel, VehicleSetup,
 };
 
 /// Exponential atmosphere with constant speed of sound, gravity and wind.
@@ -77,23 +78,9 @@ impl SurfaceModel for MockSurface {
     fn cp_body(&self) -> [f64; 3] {
         self.cp
     }
-    fn reference_area(&self) -> f64 {
-        std::f64::consts::PI * 0.05 * 0.05
-    }
-    fn reference_length(&self) -> f64 {
-        0.1
-    }
-    fn cn_alpha(&self, _mach: f64) -> f64 {
-        self.cn_alpha
-    }
-    fn rolls(&self) -> bool {
-        false
-    }
-    fn roll_forcing(&self, _mach: f64) -> f64 {
-        0.0
-    }
-    fn roll_damping(&self, _mach: f64) -> f64 {
-        0.0
+    fn loads(&self, flow: &LocalFlow) -> Loads {
+        let area = std::f64::consts::PI * 0.05 * 0.05;
+        Loads::normal_force(flow, area, self.cn_alpha, self.cp[2])
     }
 }
 
@@ -157,27 +144,13 @@ impl MockRocket {
     fn burning(&self, t: f64) -> bool {
         (0.0..=self.burn_time).contains(&t)
     }
-}
 
-impl VehicleModel for MockRocket {
-    type Surface = MockSurface;
-
-    fn surfaces(&self) -> &[MockSurface] {
-        &self.surfaces
-    }
-    fn reference_area(&self) -> f64 {
-        std::f64::consts::PI * 0.05 * 0.05
-    }
-    fn radius(&self) -> f64 {
-        0.05
-    }
-    fn csys(&self) -> f64 {
-        1.0
-    }
-    fn total_mass(&self, t: f64) -> f64 {
+    /// Total mass, kg.
+    pub fn total_mass(&self, t: f64) -> f64 {
         let burnt = (t / self.burn_time).clamp(0.0, 1.0);
         self.dry_mass + self.propellant * (1.0 - burnt)
     }
+
     fn mass_flow_rate(&self, t: f64) -> f64 {
         if self.burning(t) {
             -self.propellant / self.burn_time
@@ -185,71 +158,53 @@ impl VehicleModel for MockRocket {
             0.0
         }
     }
-    fn mass_flow_rate_derivative(&self, _t: f64) -> f64 {
-        0.0
+}
+
+impl VehicleModel for MockRocket {
+    type Surface = MockSurface;
+
+    fn setup(&self) -> VehicleSetup {
+        VehicleSetup {
+            csys: 1.0,
+            burn_start: 0.0,
+            burn_out: self.burn_time,
+            thrust_knots: vec![0.0, self.burn_time],
+            rail_buttons: Some(RailButtonGeometry {
+                upper_position: 0.2,
+                lower_position: -0.5,
+                angular_position_rad: std::f64::consts::FRAC_PI_4,
+            }),
+            parachutes: self.parachutes.clone(),
+            dry_mass: self.dry_mass,
+            nozzle_position: -1.0,
+            nozzle_to_cdm: 1.0,
+            nozzle_gyration: [0.25, 0.25, 0.0005],
+            static_margins: [0.0; 2],
+        }
     }
-    fn com_to_cdm(&self, _t: f64) -> f64 {
-        0.0
+    fn surfaces(&self) -> &[MockSurface] {
+        &self.surfaces
     }
-    fn com_to_cdm_rate(&self, _t: f64) -> f64 {
-        0.0
-    }
-    fn com_to_cdm_accel(&self, _t: f64) -> f64 {
-        0.0
-    }
-    fn inertia(&self, t: f64) -> [f64; 6] {
+    fn mass(&self, t: f64, _cursors: &mut [Cursor; 2]) -> MassSample {
         let m = self.total_mass(t);
-        [m * 0.25, m * 0.25, m * 0.0025, 0.0, 0.0, 0.0]
-    }
-    fn inertia_rate(&self, t: f64) -> [f64; 6] {
         let md = self.mass_flow_rate(t);
-        [md * 0.25, md * 0.25, md * 0.0025, 0.0, 0.0, 0.0]
+        MassSample {
+            total_mass: m,
+            mass_flow_rate: md,
+            mass_flow_rate_derivative: 0.0,
+            com_to_cdm: 0.0,
+            com_to_cdm_rate: 0.0,
+            com_to_cdm_accel: 0.0,
+            inertia: [m * 0.25, m * 0.25, m * 0.0025, 0.0, 0.0, 0.0],
+            inertia_rate: [md * 0.25, md * 0.25, md * 0.0025, 0.0, 0.0, 0.0],
+        }
     }
-    fn nozzle_to_cdm(&self) -> f64 {
-        1.0
-    }
-    fn nozzle_gyration(&self) -> [f64; 3] {
-        [0.25, 0.25, 0.0005]
-    }
-    fn thrust(&self, t: f64) -> f64 {
+    fn thrust(&self, t: f64, _ambient_pressure: f64, _cursor: &mut Cursor) -> f64 {
         if self.burning(t) { self.thrust } else { 0.0 }
     }
-    fn net_thrust(&self, t: f64, _p: f64) -> f64 {
-        self.thrust(t).max(0.0)
-    }
-    fn thrust_knots(&self) -> Vec<f64> {
-        vec![0.0, self.burn_time]
-    }
-    fn burn_start(&self) -> f64 {
-        0.0
-    }
-    fn burn_out(&self) -> f64 {
-        self.burn_time
-    }
-    fn drag_coefficient(&self, _power_on: bool, _mach: f64) -> f64 {
-        self.cd
-    }
-    fn dry_mass(&self) -> f64 {
-        self.dry_mass
-    }
-    fn center_of_dry_mass(&self) -> f64 {
-        0.0
-    }
-    fn nozzle_position(&self) -> f64 {
-        -1.0
-    }
-    fn rail_buttons(&self) -> Option<RailButtonGeometry> {
-        Some(RailButtonGeometry {
-            upper_position: 0.2,
-            lower_position: -0.5,
-            angular_position_rad: std::f64::consts::FRAC_PI_4,
-        })
-    }
-    fn parachutes(&self) -> Vec<ParachuteSpec> {
-        self.parachutes.clone()
-    }
-    fn static_margin(&self, _t: f64) -> f64 {
-        0.0
+    fn axial_load(&self, flow: &BodyFlow, _configuration: &Configuration, _c: &mut Cursor) -> f64 {
+        let area = std::f64::consts::PI * 0.05 * 0.05;
+        -0.5 * flow.density * flow.speed * flow.speed * area * self.cd
     }
     fn stability_margin(&self, _mach: f64, _t: f64) -> f64 {
         0.0

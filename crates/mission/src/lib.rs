@@ -28,6 +28,7 @@ mod curves;
 mod document;
 mod error;
 pub mod montecarlo;
+pub mod ork;
 mod overrides;
 pub mod paths;
 pub mod report;
@@ -42,6 +43,7 @@ pub use karman_atmos as atmos;
 pub use karman_dispersion as dispersion;
 pub use karman_dynamics as dynamics;
 pub use karman_math as math;
+pub use karman_model as model;
 pub use karman_propulsion as propulsion;
 
 use document::Document;

@@ -1,7 +1,7 @@
 //! The equations of motion and the integrator step loop must not allocate (style.md: nothing
 //! the right-hand side calls per step allocates). Every validation mission is flown once with
-//! the real models (karman-atmos' `Environment`, karman-airframe's `Rocket` through the
-//! karman-dynamics adapters); then, under `allocation_counter::measure` (which counts the
+//! the real models (karman-atmos' `Environment`, karman-airframe's `Rocket` through their
+//! karman-model implementations); then, under `allocation_counter::measure` (which counts the
 //! current thread's allocations), the right-hand side of the phase of every stored point is
 //! re-evaluated at that point, and the integrator is stepped (dense output included) through the
 //! 6-DOF phase and the parachute descent (everything but the storing of solution points,
@@ -11,9 +11,9 @@ use karman_mission::build::environment::build_environment;
 use karman_mission::build::flight::flight_settings;
 use karman_mission::build::motor::build_motor;
 use karman_mission::build::rocket::build_rocket;
-use karman_mission::dynamics::equations::{CanopyState, Equations};
+use karman_mission::dynamics::equations::{CanopyState, Cursors, Equations};
 use karman_mission::dynamics::integrator::{Pair, RungeKutta, StepStatus, Tolerances};
-use karman_mission::dynamics::{PhaseKind, SolutionPoint, simulate};
+use karman_mission::dynamics::{Configuration, PhaseKind, SolutionPoint, simulate};
 
 use crate::common::{flight_name, validation_missions};
 
@@ -60,29 +60,31 @@ fn equations_and_steps_do_not_allocate() {
         let mut phases = [0usize; 3];
         let mut sum = 0.0;
         let mut steps = 0usize;
+        let configuration = &Configuration::default();
         let info = allocation_counter::measure(|| {
+            let cursors = &mut Cursors::default();
             for p in points {
                 let d = match p.phase {
                     PhaseKind::Rail => {
                         phases[0] += 1;
-                        let (force, _, _) = eq.rail_loads(p.t, &p.state);
+                        let (force, _, _) = eq.rail_loads(p.t, &p.state, configuration, cursors);
                         sum += force[2];
-                        eq.rail(p.t, &p.state)
+                        eq.rail(p.t, &p.state, configuration, cursors)
                     }
                     PhaseKind::SixDof => {
                         phases[1] += 1;
-                        eq.six_dof(p.t, &p.state)
+                        eq.six_dof(p.t, &p.state, configuration, cursors)
                     }
                     PhaseKind::Parachute(canopy) => {
                         phases[2] += 1;
-                        eq.parachute(p.t, &p.state, &canopy)
+                        eq.parachute(p.t, &p.state, &canopy, cursors)
                     }
                 };
                 sum += d.u_dot.iter().sum::<f64>();
             }
             // The integrator loop of the 6-DOF phase, to apogee or 60 s at most.
             if let Some(p) = six_dof_start {
-                let f = |t: f64, u: &[f64; 13]| eq.six_dof(t, u).u_dot;
+                let f = |t: f64, u: &[f64; 13]| eq.six_dof(t, u, configuration, cursors).u_dot;
                 let bound = p.t + 60.0;
                 let mut dp = RungeKutta::new(Pair::Dop853, f, p.t, p.state, bound, tol)
                     .expect("6-DOF starts");
@@ -100,8 +102,8 @@ fn equations_and_steps_do_not_allocate() {
                     return;
                 };
                 let canopy: CanopyState = canopy;
-                let f = |t: f64, u: &[f64; 13]| eq.parachute(t, u, &canopy).u_dot;
                 for pair in [Pair::Dopri5, Pair::Rkc2] {
+                    let f = |t: f64, u: &[f64; 13]| eq.parachute(t, u, &canopy, cursors).u_dot;
                     let mut dp = RungeKutta::new(pair, f, p.t, p.state, p.t + 30.0, tol)
                         .expect("descent starts");
                     while let StepStatus::Running = dp.step().expect("descent steps") {

@@ -3,9 +3,12 @@
 mod allocation;
 mod broken;
 mod common;
+mod dimensions_flight;
 mod drag_estimate;
 mod fuzz;
 mod load;
+mod openrocket;
+mod ork;
 mod overrides;
 mod paths;
 mod scripts;

@@ -120,7 +120,8 @@ fn validate_flight() {
 /// its `airfoil` line removed.
 #[test]
 fn validate_equations_of_motion_vectors() {
-    use karman_dynamics::equations::{CanopyState, Equations};
+    use karman_dynamics::Configuration;
+    use karman_dynamics::equations::{CanopyState, Cursors, Equations};
     let Some(dir) = crate::common::validation_dir() else {
         println!("validate_equations_of_motion_vectors: skipped, the validation folder is absent");
         return;
@@ -142,6 +143,7 @@ fn validate_equations_of_motion_vectors() {
     let motor = karman_mission::build::motor::build_motor(&mission).expect("motor");
     let rocket = karman_mission::build::rocket::build_rocket(&mission, &motor).expect("rocket");
     let eq = Equations::new(&env, &rocket);
+    let (configuration, cursors) = (&Configuration::default(), &mut Cursors::default());
 
     let e = [0.9230002039, -0.0402990592, 0.0166924169, 0.3823192025];
     let rail_state = [
@@ -168,7 +170,7 @@ fn validate_equations_of_motion_vectors() {
         assert!(worst <= 1e-4 * scale, "{what}: {ours:?} vs {theirs:?}");
     };
 
-    let rail = eq.rail(0.2, &rail_state).u_dot;
+    let rail = eq.rail(0.2, &rail_state, configuration, cursors).u_dot;
     check(
         "rail t=0.2 acceleration",
         &rail[3..6],
@@ -179,7 +181,7 @@ fn validate_equations_of_motion_vectors() {
         "attitude frozen on the rail"
     );
 
-    let d2 = eq.six_dof(2.0, &state).u_dot;
+    let d2 = eq.six_dof(2.0, &state, configuration, cursors).u_dot;
     check(
         "6-DOF t=2 acceleration",
         &d2[3..6],
@@ -196,7 +198,7 @@ fn validate_equations_of_motion_vectors() {
         &[-7.62683550, 8.57087767, 26.7949713],
     );
 
-    let d10 = eq.six_dof(10.0, &state).u_dot;
+    let d10 = eq.six_dof(10.0, &state, configuration, cursors).u_dot;
     check(
         "6-DOF t=10 acceleration",
         &d10[3..6],
@@ -214,7 +216,7 @@ fn validate_equations_of_motion_vectors() {
         height: 0.4768272,
         added_mass_coefficient: 0.99999941,
     };
-    let dp = eq.parachute(30.0, &state, &canopy).u_dot;
+    let dp = eq.parachute(30.0, &state, &canopy, cursors).u_dot;
     check(
         "parachute t=30 acceleration",
         &dp[3..6],

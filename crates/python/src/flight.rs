@@ -5,7 +5,7 @@ use std::path::PathBuf;
 use std::sync::OnceLock;
 
 use karman_mission::build::flight::FlightRun;
-use karman_mission::dynamics::{Sample, Summary, Termination};
+use karman_mission::dynamics::{Sample, Summary};
 use karman_mission::report::trajectory::{self, SERIES};
 use numpy::PyArray1;
 use pyo3::exceptions::{PyAttributeError, PyKeyError, PyOSError, PyRuntimeError};
@@ -125,15 +125,14 @@ impl Flight {
         plain(py, &self.summary_ref().events)
     }
 
-    /// How the flight ended: `"impact"`, `"apogee"`, `"max_time"` or `"stuck_on_rail"`.
+    /// How the flight ended: `"impact"`, `"apogee"`, `"max_time"`, `"stuck_on_rail"`,
+    /// `"terminated"` (by a controller) or `"separation"`.
     #[getter]
-    fn termination(&self) -> &'static str {
-        match self.summary_ref().termination {
-            Termination::Impact => "impact",
-            Termination::Apogee => "apogee",
-            Termination::MaxTime => "max_time",
-            Termination::StuckOnRail => "stuck_on_rail",
-        }
+    fn termination(&self) -> String {
+        serde_json::to_value(self.summary_ref().termination)
+            .ok()
+            .and_then(|v| v.as_str().map(str::to_owned))
+            .unwrap_or_default()
     }
 
     /// The seed of the parachute trigger noise.

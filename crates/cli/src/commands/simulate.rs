@@ -68,7 +68,10 @@ pub fn run(args: &SimulateArgs) -> Result<()> {
         )?;
     }
     match summary.termination {
-        Termination::Impact | Termination::Apogee => Ok(()),
+        Termination::Impact
+        | Termination::Apogee
+        | Termination::Terminated
+        | Termination::Separation => Ok(()),
         Termination::MaxTime => bail!(
             "the flight reached max_time ({} s) before landing; raise [flight] max_time",
             run.settings.max_time

@@ -26,7 +26,7 @@
 
 use karman_airframe::Rocket;
 use karman_atmos::Environment;
-use karman_dynamics::{FlightSettings, VehicleModel};
+use karman_dynamics::FlightSettings;
 use karman_propulsion::{Motor, ThrustSource};
 
 use super::environment::build_environment;
@@ -235,7 +235,7 @@ fn check_layout(
     let low = ends.iter().copied().fold(f64::INFINITY, f64::min);
     let high = ends.iter().copied().fold(f64::NEG_INFINITY, f64::max);
     let margin = (high - low).max(20.0 * rocket.radius());
-    let nozzle = VehicleModel::nozzle_position(rocket);
+    let nozzle = rocket.nozzle_position();
     if nozzle < low - margin || nozzle > high + margin {
         return Err(fail(
             mission,
@@ -246,7 +246,7 @@ fn check_layout(
             ),
         ));
     }
-    let upper = VehicleModel::rail_buttons(rocket).map_or(nozzle, |b| {
+    let upper = rocket.rail_buttons().map_or(nozzle, |b| {
         b.lower_position + csys * (b.upper_position - b.lower_position).abs()
     });
     let needed = (nozzle - upper).abs();
@@ -273,8 +273,8 @@ fn check_rail(
     warnings: &mut Vec<String>,
 ) -> Result<(), MissionError> {
     let csys = rocket.csys();
-    let nozzle = VehicleModel::nozzle_position(rocket);
-    let upper = VehicleModel::rail_buttons(rocket).map_or(nozzle, |b| {
+    let nozzle = rocket.nozzle_position();
+    let upper = rocket.rail_buttons().map_or(nozzle, |b| {
         b.lower_position + csys * (b.upper_position - b.lower_position).abs()
     });
     let travel = settings.rail_length - (nozzle - upper).abs();

@@ -1,17 +1,41 @@
 //! `[rocket]` → [`karman_airframe::Rocket`]: the airframe, its surfaces, parachutes and rail
 //! buttons, with the mission's motor converted to [`karman_airframe::MotorProperties`] by
-//! `karman_dynamics::adapters::motor_properties` (the airframe crate may not depend on the
-//! propulsion crate).
+//! [`motor_properties`] (the airframe crate may not depend on the propulsion crate, so the
+//! hand-over lives here, the first crate that sees both).
 
 use karman_airframe::{
-    self as airframe, Airfoil, AirframeError, CoordinateSystem, DragEstimate, NoseKind, Parachute,
-    RailButtons, Rocket, RocketInputs, SurfaceInput, Trigger,
+    self as airframe, Airfoil, AirframeError, CoordinateSystem, DragEstimate, MotorProperties,
+    NoseKind, Parachute, RailButtons, Rocket, RocketInputs, SurfaceInput, Trigger,
 };
 use karman_math::{Extrapolation, Interpolation};
 use karman_propulsion::Motor;
 
 use crate::schema::{self, AngleUnit, RocketCoordinateSystem, SurfaceSpec};
 use crate::{Mission, MissionError};
+
+/// The motor's tables and constants as the airframe needs them
+/// ([`karman_airframe::MotorProperties`]).
+#[must_use]
+pub fn motor_properties(motor: &Motor) -> MotorProperties {
+    let (i11, i33) = motor.propellant_inertia();
+    MotorProperties {
+        thrust: motor.thrust_table().clone(),
+        burn_start: motor.burn_start(),
+        burn_out: motor.burn_out(),
+        exhaust_velocity: motor.exhaust_velocity(),
+        propellant_mass: motor.propellant_mass().clone(),
+        propellant_center_of_mass: motor.propellant_center_of_mass().clone(),
+        propellant_i11: i11.clone(),
+        propellant_i33: i33.clone(),
+        dry_mass: motor.dry_mass(),
+        center_of_dry_mass: motor.center_of_dry_mass(),
+        dry_inertia: motor.dry_inertia(),
+        nozzle_position: motor.nozzle_position(),
+        nozzle_radius: motor.nozzle_radius(),
+        coordinate_system_sign: motor.coordinate_system_sign(),
+        reference_pressure: motor.reference_pressure(),
+    }
+}
 
 /// Builds the rocket of `mission` with `motor` at `rocket.motor_position`.
 ///
@@ -115,7 +139,7 @@ pub fn build_rocket(mission: &Mission, motor: &Motor) -> Result<Rocket, MissionE
         parachutes,
         rail_buttons,
     };
-    Rocket::new(inputs, karman_dynamics::adapters::motor_properties(motor)).map_err(|e| {
+    Rocket::new(inputs, motor_properties(motor)).map_err(|e| {
         let section = match &e {
             AirframeError::NotFinite { component, .. }
             | AirframeError::NotPositive { component, .. }

@@ -3,5 +3,6 @@
 pub mod environment;
 pub mod flight;
 pub mod motor;
+pub mod openrocket;
 pub mod rocket;
 pub mod trajectory;

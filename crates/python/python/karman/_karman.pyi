@@ -101,7 +101,8 @@ class Flight:
         """The mission's warnings, each starting with the key it concerns."""
     @property
     def termination(self) -> str:
-        """``"impact"``, ``"apogee"``, ``"max_time"`` or ``"stuck_on_rail"``."""
+        """``"impact"``, ``"apogee"``, ``"max_time"``, ``"stuck_on_rail"``, ``"terminated"``
+        or ``"separation"``."""
     @property
     def seed(self) -> int:
         """The seed of the parachute trigger noise."""

@@ -18,9 +18,11 @@ use karman_airframe::{
     TrapezoidalFinsSpec, Trigger,
 };
 use karman_atmos::{Atmosphere, Curve, Datum, Environment, EnvironmentConfig, Gravity, Profiles};
-use karman_dynamics::equations::{CanopyState, Equations};
+use karman_dynamics::equations::{CanopyState, Cursors, Equations};
 use karman_dynamics::state::State;
-use karman_dynamics::{DEFAULT_ATOL, Flight, FlightSettings, PhaseKind, Summary, simulate};
+use karman_dynamics::{
+    Configuration, DEFAULT_ATOL, Flight, FlightSettings, PhaseKind, Summary, simulate,
+};
 use karman_math::dimensions::{Dimension, ScaledComparison, test_seeds};
 use karman_math::{PhysicalConstants, Table1, Units};
 use karman_propulsion::{
@@ -112,7 +114,7 @@ fn motor(u: &Units, c: &PhysicalConstants) -> MotorProperties {
         c,
     )
     .expect("valid motor");
-    karman_dynamics::adapters::motor_properties(&motor)
+    karman_mission::build::rocket::motor_properties(&motor)
 }
 
 fn rocket(u: &Units, c: &PhysicalConstants) -> Rocket {
@@ -354,9 +356,10 @@ where
     B: karman_dynamics::VehicleModel,
 {
     let (t, x) = (u.scale(t, T), scale_state(u, x));
+    let (configuration, cursors) = (&Configuration::default(), &mut Cursors::default());
     match phase {
-        PhaseKind::Rail => eq.rail(t, &x),
-        PhaseKind::SixDof => eq.six_dof(t, &x),
+        PhaseKind::Rail => eq.rail(t, &x, configuration, cursors),
+        PhaseKind::SixDof => eq.six_dof(t, &x, configuration, cursors),
         PhaseKind::Parachute(c) => eq.parachute(
             t,
             &x,
@@ -366,6 +369,7 @@ where
                 height: u.scale(c.height, L),
                 added_mass_coefficient: c.added_mass_coefficient,
             },
+            cursors,
         ),
     }
 }

@@ -1,0 +1,166 @@
+//! Actions: what a sampled process's sample may do to the flight.
+
+use karman_model::MAX_CONTROLS;
+
+use super::phases::{Phase, insert_phase};
+use super::run::Run;
+use super::{ParachuteEvent, PhaseKind, Termination};
+use crate::equations::CanopyState;
+use crate::integrator::RungeKutta;
+use crate::state::State;
+
+/// What a sample may do. Every action but [`Action::Record`] ends the integration step at the
+/// sample instant (the last point is rolled back there) and starts the phase that follows.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum Action {
+    /// Deploy recovery device `i` (parachute `i` of the vehicle): after its lag the descent
+    /// goes on under it (physics.md §9.4, §8.4).
+    DeployDevice(usize),
+    /// Set control input `index` (`< MAX_CONTROLS`) of the configuration to `value` from this
+    /// instant on; a bad index is ignored.
+    SetControl {
+        /// Control index.
+        index: usize,
+        /// New value.
+        value: f64,
+    },
+    /// Separate stage `stage`: the flight ends here with [`Termination::Separation`], and each
+    /// part goes on with [`super::simulate_from`].
+    SeparateStage(usize),
+    /// Record `value` on the process's channel `channel` ([`super::Flight::records`]); the
+    /// step goes on.
+    Record {
+        /// The process's channel number.
+        channel: usize,
+        /// The value.
+        value: f64,
+    },
+    /// End the flight here ([`Termination::Terminated`]).
+    Terminate,
+}
+
+/// A value recorded by a sampled process ([`Action::Record`]).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Record {
+    /// Sample instant, s.
+    pub t: f64,
+    /// Index of the process (the vehicle's parachute triggers first, then the processes
+    /// given to the flight in their order).
+    pub process: usize,
+    /// The process's channel.
+    pub channel: usize,
+    /// The value.
+    pub value: f64,
+}
+
+impl Run<'_> {
+    /// Stores a recorded value.
+    pub(super) fn record(&mut self, process: usize, channel: usize, value: f64, t: f64) {
+        self.records.push(Record {
+            t,
+            process,
+            channel,
+            value,
+        });
+    }
+
+    /// Carries out `action` of process `p` at `t` inside the last step of phase `index`:
+    /// the step is cut there, and the state the next phase starts from is returned.
+    #[allow(clippy::too_many_arguments)]
+    pub(super) fn act<F: FnMut(f64, &State) -> State>(
+        &mut self,
+        integ: &mut RungeKutta<13, F>,
+        p: usize,
+        action: Action,
+        index: usize,
+        phase: &Phase,
+        kind: PhaseKind,
+        t: f64,
+    ) -> (f64, State) {
+        let cut = self.cut_step(integ, phase, kind, t);
+        if self.processes[p].is_done() {
+            self.active.retain(|&q| q != p);
+        }
+        match action {
+            Action::DeployDevice(device) => self.deploy(device, index, phase, kind, t),
+            Action::SetControl {
+                index: control,
+                value,
+            } => {
+                let set = |phase: &Phase| phase.configuration.with_control(control, value);
+                if let Some(configuration) = set(phase) {
+                    // The phases already scheduled fly the new value too.
+                    for later in &mut self.phases[index + 1..] {
+                        if later.kind.is_some() && control < MAX_CONTROLS {
+                            later.configuration.controls[control] = value;
+                        }
+                    }
+                    insert_phase(
+                        &mut self.phases,
+                        index + 1,
+                        Phase {
+                            t,
+                            kind: Some(kind),
+                            configuration,
+                            clear: true,
+                        },
+                    );
+                }
+            }
+            Action::SeparateStage(stage) => {
+                self.separation = Some((t, stage));
+                self.end_flight(index, t, Termination::Separation);
+            }
+            Action::Terminate => self.end_flight(index, t, Termination::Terminated),
+            Action::Record { channel, value } => self.record(p, channel, value, t),
+        }
+        cut
+    }
+
+    /// Schedules a triggered parachute: an optional lag phase with the current equations,
+    /// then the parachute phase (physics.md §9.4).
+    fn deploy(&mut self, device: usize, index: usize, phase: &Phase, kind: PhaseKind, t: f64) {
+        let Some(spec) = self.parachutes.get(device) else {
+            return;
+        };
+        let (lag, name) = (spec.lag, spec.name.clone());
+        let canopy = CanopyState {
+            cd_s: spec.cd_s,
+            radius: spec.radius,
+            height: spec.height,
+            added_mass_coefficient: spec.added_mass_coefficient,
+        };
+        let configuration = phase.configuration.with_deployed(device);
+        let mut at = index + 1;
+        if lag != 0.0 {
+            insert_phase(
+                &mut self.phases,
+                at,
+                Phase {
+                    t,
+                    kind: Some(kind),
+                    configuration,
+                    clear: true,
+                },
+            );
+            at += 1;
+        }
+        insert_phase(
+            &mut self.phases,
+            at,
+            Phase {
+                t: t + lag,
+                kind: Some(PhaseKind::Parachute(canopy)),
+                configuration,
+                clear: false,
+            },
+        );
+        // Without lag the parachute phase starts right at the node: it must follow the current
+        // phase, which the insertion above guarantees.
+        self.parachute_events.push(ParachuteEvent {
+            name,
+            trigger_time: t,
+            inflation_time: t + lag,
+        });
+    }
+}

@@ -1,0 +1,223 @@
+//! Events: a scalar of the state whose sign change inside an accepted step is located by one
+//! root routine ([`root`]), and what firing does (physics.md §9.2, §9.3, §9.5). Rail exit,
+//! apogee and impact are the instances checked after every step, in RocketPy's order; burn-out
+//! and `max_time` are time nodes instead (a step stop, the last phase bound).
+
+use super::phases::{Phase, end_at, insert_phase};
+use super::run::Run;
+use super::{PhaseKind, SolutionPoint, Termination};
+use crate::DynamicsError;
+use crate::integrator::RungeKutta;
+use crate::state::State;
+
+/// How an event's root is interpolated between the step's ends.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub(super) enum Root {
+    /// The cubic Hermite interpolant of the end values and slopes, by bisection (rail exit
+    /// §9.2, impact §9.5): the end values bracket a sign change by construction.
+    Hermite,
+    /// The straight line through the end values (RocketPy's apogee, §9.3; the slopes are
+    /// unused).
+    Linear,
+}
+
+/// The offset `τ ∈ (0, h)` from the step start of the root of a scalar with values `y0, y1`
+/// and slopes `yp0, yp1` at the ends of a step of length `h`; `None` when a Hermite root is
+/// not bracketed.
+pub(super) fn root(form: Root, h: f64, y0: f64, yp0: f64, y1: f64, yp1: f64) -> Option<f64> {
+    match form {
+        Root::Hermite => hermite_root(h, y0, yp0, y1, yp1),
+        Root::Linear => Some(-(y0 * h / (y1 - y0))),
+    }
+}
+
+/// Real root in `(0, h)` of the cubic Hermite interpolant with values `y0, y1` and slopes
+/// `yp0, yp1` at `0, h`, by bisection on the cubic.
+fn hermite_root(h: f64, y0: f64, yp0: f64, y1: f64, yp1: f64) -> Option<f64> {
+    let bracketed = h > 0.0 && y0 * y1 <= 0.0; // false for NaN too
+    if !bracketed {
+        return None;
+    }
+    // p(τ) = a τ³ + b τ² + c τ + d.
+    let d = y0;
+    let c = yp0;
+    let b = (3.0 * (y1 - y0) / h - 2.0 * yp0 - yp1) / h;
+    let a = (yp0 + yp1 - 2.0 * (y1 - y0) / h) / (h * h);
+    let p = |x: f64| ((a * x + b) * x + c) * x + d;
+    let (mut lo, mut hi) = (0.0, h);
+    let mut plo = p(lo);
+    for _ in 0..200 {
+        let mid = 0.5 * (lo + hi);
+        if mid <= lo || mid >= hi {
+            break;
+        }
+        let pm = p(mid);
+        if (pm <= 0.0) == (plo <= 0.0) && pm != 0.0 {
+            lo = mid;
+            plo = pm;
+        } else {
+            hi = mid;
+        }
+    }
+    Some(0.5 * (lo + hi))
+}
+
+impl Run<'_> {
+    /// Ends the flight at the current phase: every later phase is replaced by a final bound
+    /// at `t`.
+    pub(super) fn end_flight(&mut self, index: usize, t: f64, termination: Termination) {
+        end_at(&mut self.phases, index, t);
+        self.termination = termination;
+    }
+
+    /// Replaces the last stored point by the dense state at `t` (an event or an action inside
+    /// the step) and returns it.
+    pub(super) fn cut_step<F: FnMut(f64, &State) -> State>(
+        &mut self,
+        integ: &mut RungeKutta<13, F>,
+        phase: &Phase,
+        kind: PhaseKind,
+        t: f64,
+    ) -> (f64, State) {
+        let y = integ.dense(t);
+        let n = self.points.len();
+        self.points[n - 1] = SolutionPoint {
+            t,
+            state: y,
+            phase: kind,
+            configuration: phase.configuration,
+        };
+        (t, y)
+    }
+
+    /// Event checks after an accepted step (physics.md §9.1 step 4): (a) rail exit, (b)
+    /// apogee, (c) impact. Returns the state the next phase starts from when the current
+    /// phase ends here; `Ok(None)` when the sampled processes are to be checked next.
+    pub(super) fn check_events<F: FnMut(f64, &State) -> State>(
+        &mut self,
+        integ: &mut RungeKutta<13, F>,
+        index: usize,
+        phase: &Phase,
+        kind: PhaseKind,
+    ) -> Result<Option<(f64, State)>, DynamicsError> {
+        let elevation = self.elevation;
+        let n = self.points.len();
+        let prev = self.points[n - 2];
+        let last = self.points[n - 1];
+        let (t0, y0) = (prev.t, prev.state);
+        let (t1, y1) = (last.t, last.state);
+        let h = t1 - t0;
+
+        // (a) Rail exit: `|Δr|² − L₁²` crosses zero.
+        if !self.off_rail {
+            let travel = self.rail_travel;
+            let dr = |u: &State| [u[0], u[1], u[2] - elevation];
+            let f = |u: &State| {
+                let d = dr(u);
+                d[0] * d[0] + d[1] * d[1] + d[2] * d[2] - travel * travel
+            };
+            let fp = |u: &State| {
+                let d = dr(u);
+                2.0 * (d[0] * u[3] + d[1] * u[4] + d[2] * u[5])
+            };
+            if f(&y1) >= 0.0 {
+                let tau = root(Root::Hermite, h, f(&y0), fp(&y0), f(&y1), fp(&y1)).ok_or(
+                    DynamicsError::EventRoot {
+                        event: "rail exit",
+                        t0,
+                        t1,
+                    },
+                )?;
+                let (t_exit, y_exit) = self.cut_step(integ, phase, kind, t0 + tau);
+                self.rail_exit = Some((t_exit, y_exit));
+                self.off_rail = true;
+                insert_phase(
+                    &mut self.phases,
+                    index + 1,
+                    Phase {
+                        t: t_exit,
+                        kind: Some(PhaseKind::SixDof),
+                        configuration: phase.configuration,
+                        clear: true,
+                    },
+                );
+                return Ok(Some((t_exit, y_exit)));
+            }
+            // A rocket at rest on the rail after burn-out never leaves it.
+            if kind == PhaseKind::Rail
+                && t1 > self.burn_out
+                && y1[3..6].iter().all(|v| v.abs() == 0.0)
+            {
+                self.end_flight(index, t1, Termination::StuckOnRail);
+                return Ok(Some((t1, y1)));
+            }
+        }
+        // (b) Apogee: `v_z` turns negative.
+        if self.apogee.is_none() && self.off_rail && y1[5] < 0.0 {
+            let tau = root(Root::Linear, h, y0[5], 0.0, y1[5], 0.0).unwrap_or(f64::NAN);
+            let t_apogee = t0 + tau;
+            let y_apogee = integ.dense(t_apogee);
+            self.apogee = Some((t_apogee, y_apogee));
+            if self.terminate_on_apogee {
+                self.cut_step(integ, phase, kind, t_apogee);
+                self.end_flight(index, t_apogee, Termination::Apogee);
+                return Ok(Some((t_apogee, y_apogee)));
+            }
+            if n > 2 {
+                self.points.insert(
+                    n - 1,
+                    SolutionPoint {
+                        t: t_apogee,
+                        state: y_apogee,
+                        phase: kind,
+                        configuration: phase.configuration,
+                    },
+                );
+            }
+        }
+        // (c) Impact: `z − elevation` turns negative. RocketPy skips the impact check on the
+        // apogee step; a step that spans both (a ballistic arc in vacuum) would then never
+        // find the ground, so it is checked here. On the rail the height cannot fall below
+        // the pad; only round-off (the fifth-order weights include a negative one) could make
+        // it, so the check starts at rail exit.
+        if self.off_rail && y1[2] < elevation {
+            let tau = root(
+                Root::Hermite,
+                h,
+                y0[2] - elevation,
+                y0[5],
+                y1[2] - elevation,
+                y1[5],
+            )
+            .ok_or(DynamicsError::EventRoot {
+                event: "impact",
+                t0,
+                t1,
+            })?;
+            let (t_impact, y_impact) = self.cut_step(integ, phase, kind, t0 + tau);
+            self.impact = Some((t_impact, y_impact));
+            self.end_flight(index, t_impact, Termination::Impact);
+            return Ok(Some((t_impact, y_impact)));
+        }
+        Ok(None)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn hermite_root_of_a_cubic() {
+        // p(τ) = τ³ − 0.5 on [0, 1]: root 0.5^(1/3).
+        let r = root(Root::Hermite, 1.0, -0.5, 0.0, 0.5, 3.0).unwrap();
+        assert!((r - 0.5f64.cbrt()).abs() < 1e-12);
+        assert!(root(Root::Hermite, 1.0, 1.0, 0.0, 2.0, 0.0).is_none());
+    }
+
+    #[test]
+    fn linear_root_of_a_line() {
+        let r = root(Root::Linear, 2.0, 3.0, 0.0, -1.0, 0.0).unwrap();
+        assert!((r - 1.5).abs() < 1e-15);
+    }
+}

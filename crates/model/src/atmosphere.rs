@@ -1,0 +1,66 @@
+//! The atmosphere the engine queries (physics.md §4).
+
+use karman_math::Cursor;
+
+/// The atmosphere at one height, as the equations of motion use it
+/// ([`AtmosphereModel::air`]).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Air {
+    /// Air pressure, Pa.
+    pub pressure: f64,
+    /// Air density, kg/m³.
+    pub density: f64,
+    /// Speed of sound, m/s.
+    pub speed_of_sound: f64,
+    /// Gravity, m/s².
+    pub gravity: f64,
+}
+
+/// Atmosphere, gravity and Earth rotation at the launch site (physics.md §4). Heights are
+/// geometric, metres above sea level. The methods marked "once" are read when a flight is
+/// set up; the others are evaluated along the flight and allocate nothing.
+pub trait AtmosphereModel {
+    /// Launch elevation, m ASL (once).
+    fn elevation(&self) -> f64;
+    /// Air pressure, Pa.
+    fn pressure(&self, z: f64) -> f64;
+    /// Air density, kg/m³.
+    fn density(&self, z: f64) -> f64;
+    /// Speed of sound, m/s.
+    fn speed_of_sound(&self, z: f64) -> f64;
+    /// Dynamic viscosity, Pa·s.
+    fn dynamic_viscosity(&self, z: f64) -> f64;
+    /// Horizontal wind `(east, north)`, m/s.
+    fn wind(&self, z: f64) -> [f64; 2];
+    /// The wind when it is the same at every height, bit for bit what
+    /// [`AtmosphereModel::wind`] returns (once): the engine then skips the per-height lookups.
+    /// `None` (the default) when it varies with height.
+    fn uniform_wind(&self) -> Option<[f64; 2]> {
+        None
+    }
+    /// Gravity, m/s².
+    fn gravity(&self, z: f64) -> f64;
+    /// Pressure, density, speed of sound and gravity at once, equal to the individual
+    /// methods; a model overrides it to share the height lookups.
+    #[inline]
+    fn air(&self, z: f64) -> Air {
+        Air {
+            pressure: self.pressure(z),
+            density: self.density(z),
+            speed_of_sound: self.speed_of_sound(z),
+            gravity: self.gravity(z),
+        }
+    }
+    /// [`AtmosphereModel::air`] with the height located from `cursor`, which the caller
+    /// keeps between evaluations (updated): the same values whatever it holds. A model with
+    /// tables overrides it to start its search where the last one ended; the default
+    /// ignores it.
+    #[inline]
+    fn air_near(&self, z: f64, _cursor: &mut Cursor) -> Air {
+        self.air(z)
+    }
+    /// Earth rotation vector in the ENU launch frame, rad/s (once).
+    fn earth_rotation_enu(&self) -> [f64; 3];
+    /// Barometric height `h_baro(P)` of a (noisy) pressure, m ASL (physics.md §4.4).
+    fn barometric_height(&self, pressure: f64) -> f64;
+}

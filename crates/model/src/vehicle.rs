@@ -1,0 +1,141 @@
+//! The vehicle the engine flies (physics.md §5–§7, §9.4).
+
+use karman_math::Cursor;
+
+use crate::{Configuration, SurfaceModel};
+
+/// Rail-button geometry in the rocket's user coordinates (physics.md §2.5, §8.1).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct RailButtonGeometry {
+    /// Axial position of the button nearer the nose, m.
+    pub upper_position: f64,
+    /// Axial position of the button nearer the nozzle, m.
+    pub lower_position: f64,
+    /// Angular position of the buttons, rad (from the user y axis).
+    pub angular_position_rad: f64,
+}
+
+/// What fires a parachute (physics.md §9.4).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum TriggerKind {
+    /// Vertical velocity negative.
+    Apogee,
+    /// Descending and barometric height above ground below this value, m.
+    HeightAboveGround(f64),
+}
+
+/// A parachute as the flight engine needs it (resolved defaults, physics.md §1, §8.4, §9.4).
+#[derive(Debug, Clone, PartialEq)]
+pub struct ParachuteSpec {
+    /// The user's name for it (event `parachute:<name>`).
+    pub name: String,
+    /// Drag coefficient times reference area, m².
+    pub cd_s: f64,
+    /// Trigger condition.
+    pub trigger: TriggerKind,
+    /// Trigger sampling rate, Hz.
+    pub sampling_rate: f64,
+    /// Delay between trigger and full inflation, s.
+    pub lag: f64,
+    /// Pressure-signal noise `(mean, std, correlation)`, Pa, Pa, –.
+    pub noise: [f64; 3],
+    /// Canopy radius, m.
+    pub radius: f64,
+    /// Canopy height, m.
+    pub height: f64,
+    /// Added-mass coefficient `C_a(porosity)` (physics.md §8.4).
+    pub added_mass_coefficient: f64,
+}
+
+/// What the engine reads of a vehicle once, when a flight is set up
+/// ([`VehicleModel::setup`]). Times are seconds from the motor-ignition reference `t = 0`,
+/// positions in the rocket's user coordinates unless stated.
+#[derive(Debug, Clone, PartialEq)]
+pub struct VehicleSetup {
+    /// `+1` for a `tail_to_nose` rocket, `−1` for `nose_to_tail`.
+    pub csys: f64,
+    /// Start of the burn, s.
+    pub burn_start: f64,
+    /// End of the burn, s.
+    pub burn_out: f64,
+    /// Abscissae of the thrust curve's knots, s, where the thrust has kinks.
+    pub thrust_knots: Vec<f64>,
+    /// Rail buttons, if any.
+    pub rail_buttons: Option<RailButtonGeometry>,
+    /// Parachutes in insertion order.
+    pub parachutes: Vec<ParachuteSpec>,
+    /// Rocket + motor dry mass, kg.
+    pub dry_mass: f64,
+    /// Nozzle exit position, m.
+    pub nozzle_position: f64,
+    /// Nozzle-to-CDM distance `d_n` (physics.md §5.6), m.
+    pub nozzle_to_cdm: f64,
+    /// Nozzle gyration tensor diagonal `(S11, S22, S33)`, m².
+    pub nozzle_gyration: [f64; 3],
+    /// Static margin (CP at Mach 0) at `t = 0` and at burn-out, calibers (post-processing).
+    pub static_margins: [f64; 2],
+}
+
+/// Every time-dependent mass quantity at one instant ([`VehicleModel::mass`]).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct MassSample {
+    /// Total mass `m(t)`, kg.
+    pub total_mass: f64,
+    /// RocketPy's signed mass-flow rate `ṁ(t) = −T/v̄_e`, kg/s (physics.md §6.2).
+    pub mass_flow_rate: f64,
+    /// `m̈(t)` of [`MassSample::mass_flow_rate`], kg/s².
+    pub mass_flow_rate_derivative: f64,
+    /// CM→CDM offset `c(t)` with RocketPy's sign (physics.md §5.4), m.
+    pub com_to_cdm: f64,
+    /// `ċ(t)`, m/s.
+    pub com_to_cdm_rate: f64,
+    /// `c̈(t)`, m/s².
+    pub com_to_cdm_accel: f64,
+    /// Inertia about the CDM `(I11, I22, I33, I12, I13, I23)`, kg·m².
+    pub inertia: [f64; 6],
+    /// Its time derivative, kg·m²/s.
+    pub inertia_rate: [f64; 6],
+}
+
+/// The free stream of the vehicle as a whole (at its centre of dry mass), what its axial
+/// aerodynamic load depends on (physics.md §7.1).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct BodyFlow {
+    /// Whether the motor is burning (power-on drag).
+    pub power_on: bool,
+    /// Free-stream speed `|w − v|`, m/s.
+    pub speed: f64,
+    /// Its Mach number.
+    pub mach: f64,
+    /// Air density, kg/m³.
+    pub density: f64,
+}
+
+/// The rocket as the equations of motion see it (physics.md §5–§7): a [`VehicleSetup`] read
+/// once, and the quantities evaluated along the flight, which allocate nothing. The cursor
+/// arguments are the caller's table cursors (see the crate overview).
+pub trait VehicleModel {
+    /// The aerodynamic-surface type.
+    type Surface: SurfaceModel;
+
+    /// The constants of the vehicle (once).
+    fn setup(&self) -> VehicleSetup;
+    /// Aerodynamic surfaces in insertion order.
+    fn surfaces(&self) -> &[Self::Surface];
+    /// Every time-dependent mass quantity at `t`, with the time located from `cursors`.
+    fn mass(&self, t: f64, cursors: &mut [Cursor; 2]) -> MassSample;
+    /// Net thrust at `t` with the nozzle-pressure correction for the ambient pressure,
+    /// clamped at 0, N (physics.md §6.3); `cursor` is the first of [`VehicleModel::mass`]'s.
+    fn thrust(&self, t: f64, ambient_pressure: f64, cursor: &mut Cursor) -> f64;
+    /// Axial aerodynamic force `R3` in body axes (drag, negative forward), N, in the flow
+    /// and the configuration (e.g. air brakes deployed) of the instant, with the Mach number
+    /// located from `cursor` (physics.md §7.1).
+    fn axial_load(
+        &self,
+        flow: &BodyFlow,
+        configuration: &Configuration,
+        cursor: &mut Cursor,
+    ) -> f64;
+    /// Stability margin at a Mach number and time, calibers (post-processing, §7.7).
+    fn stability_margin(&self, mach: f64, t: f64) -> f64;
+}
