@@ -4,7 +4,7 @@
 use std::path::{Path, PathBuf};
 use std::time::Duration;
 
-use karman_mission::dispersion::{RunReport, Study as StudyDefinition, Summary, parse_row};
+use karman_mission::dispersion::{RunReport, Status, Study as StudyDefinition, Summary, parse_row};
 use numpy::PyArray1;
 use pyo3::exceptions::{PyOSError, PyRuntimeError};
 use pyo3::prelude::*;
@@ -59,8 +59,12 @@ impl Study {
             for (column, value) in outputs.iter_mut().zip(&row.outputs) {
                 column.push(value.unwrap_or(f64::NAN));
             }
-            if let Some(error) = row.error {
-                failures.push((row.index, error));
+            match row.status {
+                Status::Completed => {}
+                Status::Ended { kind, message } => {
+                    failures.push((row.index, format!("{kind}: {message}")));
+                }
+                Status::Failed(error) => failures.push((row.index, error)),
             }
         }
         let summary = report
@@ -132,7 +136,8 @@ impl Study {
         Study::columns(py, &self.outputs)
     }
 
-    /// The failed samples as `(index, message)` pairs.
+    /// The samples that failed or ended before the flight the study asked for (`max_time`,
+    /// stuck on the rail) as `(index, message)` pairs.
     #[getter]
     fn failures(&self) -> Vec<(u64, String)> {
         self.failures.clone()
