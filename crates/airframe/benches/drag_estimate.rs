@@ -21,6 +21,7 @@ fn geometry() -> DragGeometry {
         aft_radius: aft,
         profile,
         roughness: k,
+        drag_override: None,
     };
     DragGeometry {
         reference_radius: 0.028,

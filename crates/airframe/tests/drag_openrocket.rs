@@ -32,6 +32,7 @@ fn simple_rocket() -> DragGeometry {
                 aft_radius: 0.0125,
                 profile: Profile::Ogive(1.0),
                 roughness: k,
+                drag_override: None,
             },
             BodySegment {
                 name: "Body tube".into(),
@@ -40,6 +41,7 @@ fn simple_rocket() -> DragGeometry {
                 aft_radius: 0.0125,
                 profile: Profile::Conical,
                 roughness: k,
+                drag_override: None,
             },
         ],
         fins: vec![FinSetDrag {

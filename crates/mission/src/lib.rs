@@ -28,6 +28,7 @@ mod curves;
 mod document;
 mod error;
 pub mod montecarlo;
+pub mod ork;
 mod overrides;
 pub mod paths;
 pub mod report;

@@ -435,6 +435,22 @@ fn drag_estimate(c: &mut Checker<'_, '_>, d: &crate::schema::DragEstimateSpec, r
         }
         c.non_negative(&format!("{key}.thickness"), f.thickness);
     }
+    for name in d.overrides.keys() {
+        let body_part = r
+            .surfaces
+            .get(name)
+            .is_some_and(|s| matches!(s, SurfaceSpec::Nose(_) | SurfaceSpec::Tail(_)));
+        if !body_part {
+            let key = format!("{K}.overrides.{name}");
+            c.report(
+                &key,
+                ProblemKind::UnknownPath {
+                    path: key.clone(),
+                    reason: format!("there is no nose or tail [rocket.surfaces.{name}]"),
+                },
+            );
+        }
+    }
     for (name, l) in &d.launch_lugs {
         let key = format!("{K}.launch_lugs.{name}");
         c.positive(&format!("{key}.outer_radius"), l.outer_radius);

@@ -30,6 +30,7 @@ fn by_hand() -> DragGeometry {
                 aft_radius: 0.04,
                 profile: Profile::Ogive(1.0),
                 roughness: k,
+                drag_override: None,
             },
             BodySegment {
                 name: "tube".into(),
@@ -38,6 +39,7 @@ fn by_hand() -> DragGeometry {
                 aft_radius: 0.04,
                 profile: Profile::Conical,
                 roughness: k,
+                drag_override: None,
             },
         ],
         fins: vec![FinSetDrag {

@@ -7,6 +7,8 @@ mod dimensions_flight;
 mod drag_estimate;
 mod fuzz;
 mod load;
+mod openrocket;
+mod ork;
 mod overrides;
 mod paths;
 mod scripts;

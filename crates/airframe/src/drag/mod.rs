@@ -37,6 +37,9 @@ pub use shape::Profile;
 pub const ESTIMATE_MAX_MACH: f64 = 3.0;
 /// Mach spacing of the tabulated estimate.
 pub const ESTIMATE_MACH_STEP: f64 = 0.01;
+/// Extra samples below the first step, where the Reynolds number (∝ M) changes the skin
+/// friction fastest.
+const LOW_MACH: [f64; 3] = [0.001, 0.002, 0.005];
 
 /// One segment of the body of revolution, in order from the nose tip.
 #[derive(Debug, Clone, PartialEq)]
@@ -53,6 +56,10 @@ pub struct BodySegment {
     pub profile: Profile,
     /// Sand roughness of its surface (m).
     pub roughness: f64,
+    /// A drag coefficient (on the reference area) that replaces the segment's own friction,
+    /// pressure and base terms (OpenRocket's component CD override); the segment then does
+    /// not count in the body's fineness either.
+    pub drag_override: Option<f64>,
 }
 
 /// A fin set.
@@ -176,6 +183,8 @@ struct Segment {
     step_up: f64,
     /// Area of the step down to the next segment (base), not counting the rocket's base.
     step_down: f64,
+    /// Its drag coefficient when overridden.
+    drag_override: Option<f64>,
 }
 
 #[derive(Debug, Clone, PartialEq)]
@@ -255,15 +264,22 @@ impl DragModel {
         )?;
         let reference_area = PI * r_ref * r_ref;
         let mut body_length = 0.0;
+        let mut fineness_length = 0.0;
         let mut max_radius: f64 = 0.0;
         for s in &geometry.body {
             non_negative(&s.name, "length", s.length)?;
             non_negative(&s.name, "fore radius", s.fore_radius)?;
             non_negative(&s.name, "aft radius", s.aft_radius)?;
             non_negative(&s.name, "roughness", s.roughness)?;
+            if let Some(cd) = s.drag_override {
+                finite(&s.name, "drag override", cd)?;
+            }
             check_profile(&s.name, s.profile)?;
             body_length += s.length;
-            max_radius = max_radius.max(s.fore_radius).max(s.aft_radius);
+            if s.drag_override.is_none() {
+                fineness_length += s.length;
+                max_radius = max_radius.max(s.fore_radius).max(s.aft_radius);
+            }
         }
         if body_length <= 0.0 || max_radius <= 0.0 {
             return Err(AirframeError::Geometry {
@@ -367,13 +383,19 @@ impl DragModel {
                 frontal_area,
                 step_up,
                 step_down,
+                drag_override: s.drag_override,
             });
         }
-        let last_aft = geometry.body.last().map_or(0.0, |s| s.aft_radius);
+        // The rocket's base, unless its last segment's drag is overridden.
+        let last_aft = geometry
+            .body
+            .last()
+            .filter(|s| s.drag_override.is_none())
+            .map_or(0.0, |s| s.aft_radius);
         Ok(DragModel {
             reference_area,
             length,
-            body_correction: friction::body_fineness_correction(body_length, max_radius),
+            body_correction: friction::body_fineness_correction(fineness_length, max_radius),
             segments,
             fins,
             launch_lugs: geometry.launch_lugs.clone(),
@@ -404,6 +426,10 @@ impl DragModel {
         let mut pressure_cd = 0.0;
         let mut base_cd = 0.0;
         for s in &self.segments {
+            if let Some(cd) = s.drag_override {
+                pressure_cd += cd * a_ref;
+                continue;
+            }
             body_friction += cf(s.roughness) * s.wetted_area;
             pressure_cd += match &s.shape {
                 SegmentShape::Tube => 0.0,
@@ -448,12 +474,14 @@ impl DragModel {
         }
     }
 
-    /// The terms tabulated every [`ESTIMATE_MACH_STEP`] from Mach 0 to [`ESTIMATE_MAX_MACH`],
-    /// at airspeed M·a and Reynolds number M a L / ν of `flow`.
+    /// The terms tabulated every [`ESTIMATE_MACH_STEP`] from Mach 0 to [`ESTIMATE_MAX_MACH`]
+    /// (and at Mach 0.001, 0.002, 0.005), at airspeed M·a and Reynolds number M a L / ν of
+    /// `flow`.
     #[must_use]
     pub fn estimate(&self, flow: &FlowReference) -> DragEstimate {
         let n = (ESTIMATE_MAX_MACH / ESTIMATE_MACH_STEP).round() as usize;
-        let mach: Vec<f64> = (0..=n).map(|i| i as f64 * ESTIMATE_MACH_STEP).collect();
+        let mut mach: Vec<f64> = (0..=n).map(|i| i as f64 * ESTIMATE_MACH_STEP).collect();
+        mach.splice(1..1, LOW_MACH);
         let components = mach
             .iter()
             .map(|&m| self.components(m, m * flow.speed_of_sound, flow.kinematic_viscosity))

@@ -38,7 +38,8 @@ impl Profile {
 
     /// Radius at distance `x` from the pointed end of a shape of length `length` growing to
     /// `radius` (0 ≤ x ≤ length).
-    pub(crate) fn radius(self, x: f64, radius: f64, length: f64) -> f64 {
+    #[must_use]
+    pub fn radius(self, x: f64, radius: f64, length: f64) -> f64 {
         let x = x.clamp(0.0, length);
         match self {
             Profile::Conical => radius * x / length,

@@ -1,6 +1,7 @@
 //! The subcommands, one file each, and the arguments they share.
 
 mod check;
+mod import;
 mod inspect;
 mod merge;
 mod montecarlo;
@@ -16,6 +17,9 @@ use std::path::PathBuf;
 pub enum Command {
     /// Load and validate a mission file; print "ok" or every problem with its location.
     Check(check::CheckArgs),
+    /// Read an OpenRocket design (.ork) into a commented mission file: geometry, masses,
+    /// recovery, the launch conditions and motor of one of its simulations, drag estimated.
+    Import(import::ImportArgs),
     /// Build the environment, motor and rocket of a mission and show them (tables, JSON,
     /// SVG plots, a drawing of the rocket).
     Inspect(inspect::InspectArgs),
@@ -60,6 +64,7 @@ pub fn print_warnings(mission: &karman_mission::Mission, warnings: &[String]) {
 pub fn run(command: Command) -> anyhow::Result<()> {
     match command {
         Command::Check(args) => check::run(&args),
+        Command::Import(args) => import::run(&args),
         Command::Inspect(args) => inspect::run(&args),
         Command::Simulate(args) => simulate::run(&args),
         Command::Montecarlo(args) => montecarlo::run(&args),

@@ -87,6 +87,7 @@ pub fn drag_geometry(
         roughness: None,
         fins: Default::default(),
         launch_lugs: Default::default(),
+        overrides: Default::default(),
         rail_buttons: None,
     };
     let spec = rocket.drag_estimate.as_ref().unwrap_or(&empty);
@@ -189,6 +190,7 @@ pub fn drag_geometry(
     let body_end = spec.body_length.unwrap_or(aft_end);
 
     let mut body = vec![BodySegment {
+        drag_override: spec.overrides.get(&nose_name).copied(),
         name: nose_name,
         length: nose_length,
         fore_radius: 0.0,
@@ -212,6 +214,7 @@ pub fn drag_geometry(
             body.push(tube(start - x, radius, roughness));
         }
         body.push(BodySegment {
+            drag_override: spec.overrides.get(&name).copied(),
             name,
             length,
             fore_radius: top,
@@ -266,6 +269,7 @@ fn tube(length: f64, radius: f64, roughness: f64) -> BodySegment {
         aft_radius: radius,
         profile: Profile::Conical,
         roughness,
+        drag_override: None,
     }
 }
 

@@ -2,4 +2,5 @@
 pub mod environment;
 pub mod flight;
 pub mod motor;
+pub mod openrocket;
 pub mod rocket;

@@ -32,6 +32,11 @@ pub struct DragEstimateSpec {
     /// `[rocket.drag_estimate.launch_lugs.<name>]`.
     #[serde(default, skip_serializing_if = "IndexMap::is_empty")]
     pub launch_lugs: IndexMap<String, LaunchLugSpec>,
+    /// `[rocket.drag_estimate.overrides]`: surface name (a nose or tail) → a drag coefficient
+    /// on the reference area that replaces that part's estimated drag (OpenRocket's CD
+    /// override).
+    #[serde(default, skip_serializing_if = "IndexMap::is_empty")]
+    pub overrides: IndexMap<String, f64>,
     /// `[rocket.drag_estimate.rail_buttons]`: the size of the buttons of
     /// `[rocket.rail_buttons]`; absent: the buttons add no drag.
     #[serde(default, skip_serializing_if = "Option::is_none")]

@@ -1,0 +1,13 @@
+//! Fuzz target: arbitrary bytes as an OpenRocket `.ork` file (zip archive or XML) must give
+//! a design or an error, never a panic.
+#![no_main]
+
+use libfuzzer_sys::fuzz_target;
+use std::path::Path;
+
+fuzz_target!(|data: &[u8]| {
+    let path = Path::new("fuzz.ork");
+    if let Ok(text) = karman_mission::ork::document_text(path, data) {
+        let _ = karman_mission::ork::Design::parse(path, &text);
+    }
+});

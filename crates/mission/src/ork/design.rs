@@ -1,0 +1,589 @@
+//! The OpenRocket document as a component tree with absolute axial positions, and its
+//! simulations (launch conditions, motor per configuration).
+
+use std::collections::BTreeMap;
+use std::path::{Path, PathBuf};
+
+use super::OrkError;
+
+/// The component types the reader knows.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Kind {
+    /// `<stage>`.
+    Stage,
+    /// `<nosecone>`.
+    NoseCone,
+    /// `<bodytube>`.
+    BodyTube,
+    /// `<transition>`.
+    Transition,
+    /// `<trapezoidfinset>`.
+    TrapezoidFins,
+    /// `<ellipticalfinset>`.
+    EllipticalFins,
+    /// `<freeformfinset>`.
+    FreeFormFins,
+    /// `<launchlug>`.
+    LaunchLug,
+    /// `<railbutton>`.
+    RailButton,
+    /// `<innertube>` (a motor mount, possibly).
+    InnerTube,
+    /// `<tubecoupler>`.
+    TubeCoupler,
+    /// `<centeringring>`.
+    CenteringRing,
+    /// `<bulkhead>`.
+    Bulkhead,
+    /// `<engineblock>`.
+    EngineBlock,
+    /// `<parachute>`.
+    Parachute,
+    /// `<streamer>`.
+    Streamer,
+    /// `<shockcord>`.
+    ShockCord,
+    /// `<masscomponent>`.
+    MassComponent,
+}
+
+impl Kind {
+    fn from_tag(tag: &str) -> Option<Kind> {
+        Some(match tag {
+            "stage" => Kind::Stage,
+            "nosecone" => Kind::NoseCone,
+            "bodytube" => Kind::BodyTube,
+            "transition" => Kind::Transition,
+            "trapezoidfinset" => Kind::TrapezoidFins,
+            "ellipticalfinset" => Kind::EllipticalFins,
+            "freeformfinset" => Kind::FreeFormFins,
+            "launchlug" => Kind::LaunchLug,
+            "railbutton" => Kind::RailButton,
+            "innertube" => Kind::InnerTube,
+            "tubecoupler" => Kind::TubeCoupler,
+            "centeringring" => Kind::CenteringRing,
+            "bulkhead" => Kind::Bulkhead,
+            "engineblock" => Kind::EngineBlock,
+            "parachute" => Kind::Parachute,
+            "streamer" => Kind::Streamer,
+            "shockcord" => Kind::ShockCord,
+            "masscomponent" => Kind::MassComponent,
+            _ => return None,
+        })
+    }
+
+    /// A part of the outer body of revolution.
+    pub fn is_body(self) -> bool {
+        matches!(self, Kind::NoseCone | Kind::BodyTube | Kind::Transition)
+    }
+
+    /// A fin set.
+    pub fn is_fins(self) -> bool {
+        matches!(
+            self,
+            Kind::TrapezoidFins | Kind::EllipticalFins | Kind::FreeFormFins
+        )
+    }
+}
+
+/// One component, its position resolved.
+#[derive(Debug, Clone)]
+pub struct Component {
+    /// Its type.
+    pub kind: Kind,
+    /// Its name in the design.
+    pub name: String,
+    /// Axial position of its forward end, from the nose tip (m).
+    pub x: f64,
+    /// Its axial length (m).
+    pub length: f64,
+    /// Text of its direct child elements (`length`, `thickness`, ...).
+    pub fields: BTreeMap<String, String>,
+    /// Material density (kg/m³, kg/m² or kg/m by the material type) and type.
+    pub material: Option<(f64, String)>,
+    /// A second material (the line of a parachute).
+    pub line_material: Option<f64>,
+    /// Fin outline points of a free-form fin set.
+    pub points: Vec<[f64; 2]>,
+    /// Motors of a motor mount by configuration id: (manufacturer, designation, delay).
+    pub motors: BTreeMap<String, MotorRef>,
+    /// Mount overhang (m).
+    pub overhang: f64,
+    /// Sub-components.
+    pub children: Vec<Component>,
+    file: PathBuf,
+}
+
+/// A motor as the design names it.
+#[derive(Debug, Clone, PartialEq)]
+pub struct MotorRef {
+    /// Manufacturer.
+    pub manufacturer: String,
+    /// Designation.
+    pub designation: String,
+    /// Ejection delay (s), `None` for a plugged motor.
+    pub delay: Option<f64>,
+    /// Diameter (m).
+    pub diameter: f64,
+    /// Length (m).
+    pub length: f64,
+}
+
+/// One stored simulation.
+#[derive(Debug, Clone)]
+pub struct Simulation {
+    /// Its name.
+    pub name: String,
+    /// Motor configuration id.
+    pub config: String,
+    /// `<conditions>` children.
+    pub conditions: BTreeMap<String, String>,
+}
+
+/// The whole design.
+#[derive(Debug, Clone)]
+pub struct Design {
+    /// Rocket name.
+    pub name: String,
+    /// The one stage.
+    pub stage: Component,
+    /// Stored simulations.
+    pub simulations: Vec<Simulation>,
+}
+
+/// A number, OpenRocket's way: `"auto 0.0125"` is the automatic value it resolved.
+pub(crate) fn number(text: &str) -> Option<f64> {
+    let t = text.trim();
+    let t = t.strip_prefix("auto").map_or(t, str::trim);
+    t.parse::<f64>().ok()
+}
+
+impl Component {
+    /// The number in child element `element`.
+    ///
+    /// # Errors
+    /// [`OrkError::Value`] when it is absent, not a number or not finite.
+    pub fn num(&self, element: &str) -> Result<f64, OrkError> {
+        let problem = |p: &str| OrkError::Value {
+            file: self.file.clone(),
+            component: self.name.clone(),
+            element: element.to_owned(),
+            problem: p.to_owned(),
+        };
+        let text = self
+            .fields
+            .get(element)
+            .ok_or_else(|| problem("is missing"))?;
+        let v = number(text).ok_or_else(|| problem(&format!("{text:?} is not a number")))?;
+        if v.is_finite() {
+            Ok(v)
+        } else {
+            Err(problem(&format!("{text:?} is not a finite number")))
+        }
+    }
+
+    /// The number in `element`, or `default` when the element is absent or `auto` without a
+    /// value.
+    ///
+    /// # Errors
+    /// As [`Component::num`] for a present value that is not a finite number.
+    pub fn num_or(&self, element: &str, default: f64) -> Result<f64, OrkError> {
+        match self.fields.get(element) {
+            None => Ok(default),
+            Some(t) if t.trim() == "auto" => Ok(default),
+            Some(_) => self.num(element),
+        }
+    }
+
+    /// A non-negative dimension.
+    ///
+    /// # Errors
+    /// As [`Component::num`], and for a negative value.
+    pub fn dim(&self, element: &str) -> Result<f64, OrkError> {
+        let v = self.num(element)?;
+        if v < 0.0 {
+            return Err(self.value_error(element, &format!("{v} must not be negative")));
+        }
+        Ok(v)
+    }
+
+    /// The text of `element`.
+    pub fn text(&self, element: &str) -> Option<&str> {
+        self.fields.get(element).map(String::as_str)
+    }
+
+    /// An [`OrkError::Value`] about `element`.
+    pub fn value_error(&self, element: &str, problem: &str) -> OrkError {
+        OrkError::Value {
+            file: self.file.clone(),
+            component: self.name.clone(),
+            element: element.to_owned(),
+            problem: problem.to_owned(),
+        }
+    }
+
+    /// An [`OrkError::Unsupported`] about this component.
+    pub fn unsupported(&self, what: &str) -> OrkError {
+        OrkError::Unsupported {
+            file: self.file.clone(),
+            component: self.name.clone(),
+            what: what.to_owned(),
+        }
+    }
+
+    /// The material density.
+    ///
+    /// # Errors
+    /// [`OrkError::Value`] when there is none.
+    pub fn density(&self) -> Result<f64, OrkError> {
+        self.material
+            .as_ref()
+            .map(|m| m.0)
+            .ok_or_else(|| self.value_error("material", "is missing"))
+    }
+
+    /// This component and every descendant, depth first.
+    pub fn walk(&self) -> Vec<&Component> {
+        let mut out = vec![self];
+        for c in &self.children {
+            out.extend(c.walk());
+        }
+        out
+    }
+}
+
+fn child_text(node: roxmltree::Node<'_, '_>, tag: &str) -> Option<String> {
+    node.children()
+        .find(|c| c.has_tag_name(tag))
+        .map(|c| c.text().unwrap_or("").trim().to_owned())
+}
+
+/// Axial length of a component for positioning, from its fields.
+fn positioning_length(kind: Kind, c: &Component) -> Result<f64, OrkError> {
+    Ok(match kind {
+        Kind::TrapezoidFins | Kind::EllipticalFins => c.dim("rootchord")?,
+        Kind::FreeFormFins => c.points.iter().map(|p| p[0]).fold(0.0, f64::max),
+        Kind::Parachute | Kind::Streamer | Kind::ShockCord | Kind::MassComponent => {
+            c.num_or("packedlength", 0.0)?
+        }
+        Kind::RailButton => c.num_or("outerdiameter", 0.0)?,
+        Kind::Stage => 0.0,
+        _ => c.num_or("length", 0.0)?,
+    })
+}
+
+const VERSIONS: [&str; 11] = [
+    "1.0", "1.1", "1.2", "1.3", "1.4", "1.5", "1.6", "1.7", "1.8", "1.9", "1.10",
+];
+
+impl Design {
+    /// Parses the OpenRocket document `text` of `file`.
+    ///
+    /// # Errors
+    /// [`OrkError`]: malformed XML, an unknown version, more than one stage, pods, a value
+    /// that is not a number.
+    pub fn parse(file: &Path, text: &str) -> Result<Design, OrkError> {
+        let doc = roxmltree::Document::parse(text).map_err(|e| OrkError::Xml {
+            file: file.to_owned(),
+            message: e.to_string(),
+        })?;
+        let root = doc.root_element();
+        let container = |reason: &str| OrkError::Container {
+            file: file.to_owned(),
+            reason: reason.to_owned(),
+        };
+        if !root.has_tag_name("openrocket") {
+            return Err(container(&format!(
+                "the root element is <{}>, not <openrocket>",
+                root.tag_name().name()
+            )));
+        }
+        let version = root.attribute("version").unwrap_or("").to_owned();
+        if !VERSIONS.contains(&version.as_str()) {
+            return Err(OrkError::Version {
+                file: file.to_owned(),
+                version,
+            });
+        }
+        let rocket = root
+            .children()
+            .find(|c| c.has_tag_name("rocket"))
+            .ok_or_else(|| container("no <rocket> element"))?;
+        let name = child_text(rocket, "name").unwrap_or_else(|| "OpenRocket design".to_owned());
+        let stages: Vec<_> = rocket
+            .children()
+            .find(|c| c.has_tag_name("subcomponents"))
+            .map(|s| s.children().filter(|c| c.is_element()).collect())
+            .unwrap_or_default();
+        if stages.len() != 1 {
+            let names: Vec<String> = stages
+                .iter()
+                .map(|s| child_text(*s, "name").unwrap_or_default())
+                .collect();
+            return Err(OrkError::Unsupported {
+                file: file.to_owned(),
+                component: names.join(", "),
+                what: format!(
+                    "a design of {} stages (multi-stage flights are a later issue)",
+                    stages.len()
+                ),
+            });
+        }
+        let mut stage = component(file, stages[0], None, None)?;
+        resolve_automatic_radii(&mut stage);
+
+        let mut simulations = Vec::new();
+        if let Some(sims) = root.children().find(|c| c.has_tag_name("simulations")) {
+            for s in sims.children().filter(|c| c.has_tag_name("simulation")) {
+                let conditions_node = s.children().find(|c| c.has_tag_name("conditions"));
+                let mut conditions = BTreeMap::new();
+                if let Some(c) = conditions_node {
+                    for e in c.children().filter(|e| e.is_element()) {
+                        conditions.insert(
+                            e.tag_name().name().to_owned(),
+                            e.text().unwrap_or("").trim().to_owned(),
+                        );
+                    }
+                }
+                simulations.push(Simulation {
+                    name: child_text(s, "name").unwrap_or_default(),
+                    config: conditions.get("configid").cloned().unwrap_or_default(),
+                    conditions,
+                });
+            }
+        }
+        Ok(Design {
+            name,
+            stage,
+            simulations,
+        })
+    }
+}
+
+/// Reads one component element and its sub-components; `parent` is the parent's (top,
+/// length) and `previous` the end of the previous body sibling (for `after` placement).
+fn component(
+    file: &Path,
+    node: roxmltree::Node<'_, '_>,
+    parent: Option<(f64, f64)>,
+    previous: Option<f64>,
+) -> Result<Component, OrkError> {
+    let tag = node.tag_name().name();
+    let name = child_text(node, "name").unwrap_or_else(|| tag.to_owned());
+    let unsupported = |what: String| OrkError::Unsupported {
+        file: file.to_owned(),
+        component: name.clone(),
+        what,
+    };
+    let Some(kind) = Kind::from_tag(tag) else {
+        let what = match tag {
+            "podset" | "parallelstage" => "a pod or parallel booster set".to_owned(),
+            "tubefinset" => "a tube fin set".to_owned(),
+            other => format!("a <{other}> component"),
+        };
+        return Err(unsupported(what));
+    };
+    let mut fields = BTreeMap::new();
+    let mut material = None;
+    let mut line_material = None;
+    let mut points = Vec::new();
+    let mut motors = BTreeMap::new();
+    let mut overhang = 0.0;
+    let mut axial = None;
+    for e in node.children().filter(|e| e.is_element()) {
+        let t = e.tag_name().name();
+        let text = e.text().unwrap_or("").trim().to_owned();
+        match t {
+            "material" => {
+                let d = e.attribute("density").and_then(|d| d.parse::<f64>().ok());
+                material = d.map(|d| (d, e.attribute("type").unwrap_or("bulk").to_owned()));
+            }
+            "linematerial" => {
+                line_material = e.attribute("density").and_then(|d| d.parse::<f64>().ok());
+            }
+            "axialoffset" => {
+                axial = Some((
+                    e.attribute("method").unwrap_or("top").to_owned(),
+                    text.clone(),
+                ));
+            }
+            "finpoints" => {
+                for p in e.children().filter(|p| p.has_tag_name("point")) {
+                    let coordinate = |a: &str| {
+                        p.attribute(a)
+                            .and_then(|v| v.parse::<f64>().ok())
+                            .filter(|v| v.is_finite())
+                    };
+                    match (coordinate("x"), coordinate("y")) {
+                        (Some(x), Some(y)) => points.push([x, y]),
+                        _ => {
+                            return Err(OrkError::Value {
+                                file: file.to_owned(),
+                                component: name.clone(),
+                                element: "finpoints".to_owned(),
+                                problem: "a point without finite x and y".to_owned(),
+                            });
+                        }
+                    }
+                }
+            }
+            "motormount" => {
+                if let Some(o) = child_text(e, "overhang").as_deref().and_then(number) {
+                    overhang = o;
+                }
+                for m in e.children().filter(|m| m.has_tag_name("motor")) {
+                    let id = m.attribute("configid").unwrap_or("").to_owned();
+                    let get = |t: &str| child_text(m, t).unwrap_or_default();
+                    let delay = child_text(m, "delay").and_then(|d| number(&d));
+                    motors.insert(
+                        id,
+                        MotorRef {
+                            manufacturer: get("manufacturer"),
+                            designation: get("designation"),
+                            delay,
+                            diameter: number(&get("diameter")).unwrap_or(f64::NAN),
+                            length: number(&get("length")).unwrap_or(f64::NAN),
+                        },
+                    );
+                }
+            }
+            "subcomponents" | "appearance" | "insideappearance" | "motorconfiguration" => {}
+            _ => {
+                fields.insert(t.to_owned(), text);
+            }
+        }
+    }
+    let mut c = Component {
+        kind,
+        name: name.clone(),
+        x: 0.0,
+        length: 0.0,
+        fields,
+        material,
+        line_material,
+        points,
+        motors,
+        overhang,
+        children: Vec::new(),
+        file: file.to_owned(),
+    };
+    if kind == Kind::InnerTube {
+        if let Some(cluster) = c.text("clusterconfiguration") {
+            if cluster != "single" {
+                return Err(unsupported(format!("a motor cluster ({cluster})")));
+            }
+        }
+    }
+    c.length = positioning_length(kind, &c)?;
+    let (parent_top, parent_length) = parent.unwrap_or((0.0, 0.0));
+    let (method, value) = match &axial {
+        Some((m, v)) => (
+            m.as_str(),
+            number(v)
+                .ok_or_else(|| c.value_error("axialoffset", &format!("{v:?} is not a number")))?,
+        ),
+        None => ("after", 0.0),
+    };
+    c.x = match method {
+        "after" => previous.unwrap_or(parent_top) + value,
+        "absolute" => value,
+        "middle" => parent_top + 0.5 * parent_length - 0.5 * c.length + value,
+        "bottom" => parent_top + parent_length - c.length + value,
+        _ => parent_top + value,
+    };
+    if !c.x.is_finite() {
+        return Err(c.value_error("axialoffset", "gives no finite position"));
+    }
+    // Sub-components: body parts one after the other, the rest relative to this one.
+    let mut end = None;
+    if let Some(subs) = node.children().find(|s| s.has_tag_name("subcomponents")) {
+        for s in subs.children().filter(|s| s.is_element()) {
+            let child = component(file, s, Some((c.x, c.length)), end.or(Some(c.x)))?;
+            if child.kind.is_body() {
+                end = Some(child.x + child.length);
+            }
+            c.children.push(child);
+        }
+    }
+    if kind == Kind::Stage {
+        c.length = end.map_or(0.0, |e| e - c.x);
+    }
+    Ok(c)
+}
+
+fn is_auto(c: &Component, element: &str) -> bool {
+    c.text(element)
+        .is_some_and(|t| t.trim_start().starts_with("auto"))
+}
+
+/// OpenRocket's automatic radii of the body: a tube or a transition end marked `auto` takes
+/// the radius of the body part it joins (the previous part's aft end first, else the next
+/// part's fore end), as OpenRocket resolves them when it opens the file; the value stored
+/// after `auto` may be stale.
+fn resolve_automatic_radii(stage: &mut Component) {
+    let body: Vec<usize> = (0..stage.children.len())
+        .filter(|&i| stage.children[i].kind.is_body())
+        .collect();
+    // (fore, aft, fore is auto, aft is auto) of each body part.
+    let mut ends: Vec<(f64, f64, bool, bool)> = body
+        .iter()
+        .map(|&i| {
+            let c = &stage.children[i];
+            let get = |e: &str| c.text(e).and_then(number).unwrap_or(0.0);
+            match c.kind {
+                Kind::BodyTube => {
+                    let a = is_auto(c, "radius");
+                    (get("radius"), get("radius"), a, a)
+                }
+                Kind::NoseCone => (0.0, get("aftradius"), false, is_auto(c, "aftradius")),
+                _ => (
+                    get("foreradius"),
+                    get("aftradius"),
+                    is_auto(c, "foreradius"),
+                    is_auto(c, "aftradius"),
+                ),
+            }
+        })
+        .collect();
+    for _ in 0..ends.len() + 1 {
+        for k in 0..ends.len() {
+            let tube = stage.children[body[k]].kind == Kind::BodyTube;
+            let previous = (k > 0 && !ends[k - 1].3).then(|| ends[k - 1].1);
+            let next = (k + 1 < ends.len() && !ends[k + 1].2).then(|| ends[k + 1].0);
+            if tube && ends[k].2 {
+                if let Some(r) = previous.or(next) {
+                    ends[k] = (r, r, false, false);
+                }
+                continue;
+            }
+            if ends[k].2 {
+                if let Some(r) = previous {
+                    ends[k].0 = r;
+                    ends[k].2 = false;
+                }
+            }
+            if ends[k].3 {
+                if let Some(r) = next {
+                    ends[k].1 = r;
+                    ends[k].3 = false;
+                }
+            }
+        }
+    }
+    for (k, &i) in body.iter().enumerate() {
+        let c = &mut stage.children[i];
+        let (fore, aft, _, _) = ends[k];
+        match c.kind {
+            Kind::BodyTube => {
+                c.fields.insert("radius".to_owned(), fore.to_string());
+            }
+            Kind::NoseCone => {
+                c.fields.insert("aftradius".to_owned(), aft.to_string());
+            }
+            _ => {
+                c.fields.insert("foreradius".to_owned(), fore.to_string());
+                c.fields.insert("aftradius".to_owned(), aft.to_string());
+            }
+        }
+    }
+}

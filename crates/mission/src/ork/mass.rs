@@ -1,0 +1,359 @@
+//! Mass, centre of mass and inertia of the design without motor, component by component as
+//! OpenRocket builds them: material density times volume (bulk, kg/m³), area (surface,
+//! kg/m²) or length (line, kg/m), or a given mass; mass and CG overrides of a component or of
+//! its whole subtree (`overridesubcomponents*`).
+//!
+//! Inertias are those of the solid each component approximates — thin or thick tubes, disks,
+//! shells of revolution integrated along the axis, fins as plates at their centroid — about
+//! the component's own centre of mass; the subtree sums them with the parallel-axis theorem.
+
+use std::f64::consts::PI;
+
+use karman_airframe::Profile;
+
+use super::OrkError;
+use super::design::{Component, Kind};
+
+/// Mass properties: mass (kg), axial CM from the nose tip (m), longitudinal (pitch) and
+/// rotational (roll) moments of inertia about that CM (kg·m²).
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct MassProps {
+    /// Mass, kg.
+    pub mass: f64,
+    /// Centre of mass from the nose tip, m.
+    pub cg: f64,
+    /// Pitch/yaw inertia about the CM, kg·m².
+    pub i_long: f64,
+    /// Roll inertia, kg·m².
+    pub i_rot: f64,
+}
+
+impl MassProps {
+    fn add(self, o: MassProps) -> MassProps {
+        let m = self.mass + o.mass;
+        if m <= 0.0 {
+            return MassProps::default();
+        }
+        let cg = (self.mass * self.cg + o.mass * o.cg) / m;
+        let shift = |p: MassProps| p.i_long + p.mass * (p.cg - cg).powi(2);
+        MassProps {
+            mass: m,
+            cg,
+            i_long: shift(self) + shift(o),
+            i_rot: self.i_rot + o.i_rot,
+        }
+    }
+
+    fn scaled(self, mass: f64) -> MassProps {
+        let k = if self.mass > 0.0 {
+            mass / self.mass
+        } else {
+            0.0
+        };
+        MassProps {
+            mass,
+            cg: self.cg,
+            i_long: self.i_long * k,
+            i_rot: self.i_rot * k,
+        }
+    }
+}
+
+/// A hollow cylinder of radii `ro` > `ri`, length `l`, density `rho`, forward end at `x`.
+fn tube(x: f64, l: f64, ro: f64, ri: f64, rho: f64) -> MassProps {
+    let ri = ri.clamp(0.0, ro);
+    let m = rho * PI * (ro * ro - ri * ri) * l;
+    MassProps {
+        mass: m,
+        cg: x + 0.5 * l,
+        i_long: m * (3.0 * (ro * ro + ri * ri) + l * l) / 12.0,
+        i_rot: 0.5 * m * (ro * ro + ri * ri),
+    }
+}
+
+/// OpenRocket's shape families by name and parameter.
+pub(crate) fn profile(shape: &str, parameter: f64) -> Profile {
+    match shape {
+        "ogive" => Profile::Ogive(parameter),
+        "ellipsoid" => Profile::Ellipsoid,
+        "power" => Profile::Power(parameter),
+        "parabolic" => Profile::Parabolic(parameter),
+        "haack" => Profile::Haack(parameter),
+        _ => Profile::Conical,
+    }
+}
+
+/// Radius at `x` aft of the forward end of a nose cone or transition.
+fn shell_radius(p: Profile, x: f64, fore: f64, aft: f64, length: f64) -> f64 {
+    if aft >= fore {
+        fore + p.radius(x, aft - fore, length)
+    } else {
+        aft + p.radius(length - x, fore - aft, length)
+    }
+}
+
+/// A shell of revolution (wall `t` measured normal to the surface) integrated in slices.
+fn shell(x0: f64, length: f64, fore: f64, aft: f64, p: Profile, t: f64, rho: f64) -> MassProps {
+    const SLICES: usize = 200;
+    let dx = length / SLICES as f64;
+    let mut total = MassProps::default();
+    for i in 0..SLICES {
+        let (xa, xb) = (i as f64 * dx, (i + 1) as f64 * dx);
+        let (ra, rb) = (
+            shell_radius(p, xa, fore, aft, length),
+            shell_radius(p, xb, fore, aft, length),
+        );
+        let r = 0.5 * (ra + rb);
+        let slope = (rb - ra) / dx;
+        let ri = (r - t * slope.hypot(1.0)).max(0.0);
+        total = total.add(tube(x0 + xa, dx, r, ri, rho));
+    }
+    total
+}
+
+fn fins(c: &Component, body_radius: f64) -> Result<MassProps, OrkError> {
+    let n = c.num_or("fincount", 1.0)?;
+    let t = c.dim("thickness")?;
+    let rho = c.density()?;
+    let outline: Vec<[f64; 2]> = match c.kind {
+        Kind::TrapezoidFins => {
+            let (cr, ct, s, sweep) = (
+                c.dim("rootchord")?,
+                c.dim("tipchord")?,
+                c.dim("height")?,
+                c.num("sweeplength")?,
+            );
+            vec![[0.0, 0.0], [sweep, s], [sweep + ct, s], [cr, 0.0]]
+        }
+        Kind::EllipticalFins => {
+            let (cr, s) = (c.dim("rootchord")?, c.dim("height")?);
+            (0..=36)
+                .map(|i| {
+                    let a = PI * f64::from(i) / 36.0;
+                    [0.5 * cr * (1.0 - a.cos()), s * a.sin()]
+                })
+                .collect()
+        }
+        _ => c.points.clone(),
+    };
+    // Planform area and centroid (shoelace).
+    let (mut a, mut cx, mut cy) = (0.0, 0.0, 0.0);
+    for i in 0..outline.len() {
+        let (p, q) = (outline[i], outline[(i + 1) % outline.len()]);
+        let cross = p[0] * q[1] - q[0] * p[1];
+        a += cross;
+        cx += (p[0] + q[0]) * cross;
+        cy += (p[1] + q[1]) * cross;
+    }
+    let area = 0.5 * a.abs();
+    let (cx, cy) = if a.abs() > 0.0 {
+        (cx / (3.0 * a), cy / (3.0 * a))
+    } else {
+        (0.0, 0.0)
+    };
+    let tab = c.num_or("tabheight", 0.0)? * c.num_or("tablength", 0.0)?;
+    let m_fin = rho * t * (area + tab);
+    let m = n * m_fin;
+    let arm = body_radius + cy;
+    let chord = c.length.max(1e-12);
+    Ok(MassProps {
+        mass: m,
+        cg: c.x + cx,
+        i_long: m * (0.5 * arm * arm + chord * chord / 12.0),
+        i_rot: m * arm * arm,
+    })
+}
+
+/// Mass properties of `c` alone (not its children); `parent_inner` is the inner radius of
+/// the tube it sits in, `mount_outer` the outer radius of a sibling inner tube.
+fn own(
+    c: &Component,
+    parent_inner: f64,
+    body_radius: f64,
+    mount_outer: f64,
+) -> Result<MassProps, OrkError> {
+    let x = c.x;
+    Ok(match c.kind {
+        Kind::Stage => MassProps::default(),
+        Kind::BodyTube | Kind::InnerTube | Kind::TubeCoupler | Kind::LaunchLug => {
+            let ro = match c.kind {
+                Kind::BodyTube | Kind::LaunchLug => c.dim("radius")?,
+                _ => c.num_or("outerradius", parent_inner)?,
+            };
+            let t = c.dim("thickness")?;
+            let mut p = tube(x, c.length, ro, ro - t, c.density()?);
+            if c.kind == Kind::LaunchLug {
+                let n = c.num_or("instancecount", 1.0)?;
+                let arm = body_radius + ro;
+                p = p.scaled(p.mass * n);
+                p.i_long += p.mass * arm * arm;
+                p.i_rot += p.mass * arm * arm;
+            }
+            p
+        }
+        Kind::NoseCone | Kind::Transition => {
+            let (fore, aft) = if c.kind == Kind::NoseCone {
+                (0.0, c.dim("aftradius")?)
+            } else {
+                (c.dim("foreradius")?, c.dim("aftradius")?)
+            };
+            let shape = c.text("shape").unwrap_or("conical");
+            let parameter = c.num_or("shapeparameter", 1.0)?;
+            // A filled (solid) part stores "filled" as its thickness.
+            let wall = if c.text("thickness") == Some("filled") || c.text("filled") == Some("true")
+            {
+                f64::INFINITY
+            } else {
+                c.dim("thickness")?
+            };
+            let rho = c.density()?;
+            let mut p = shell(x, c.length, fore, aft, profile(shape, parameter), wall, rho);
+            for (end, at) in [("aft", x + c.length), ("fore", x)] {
+                let l = c.num_or(&format!("{end}shoulderlength"), 0.0)?;
+                if l <= 0.0 {
+                    continue;
+                }
+                let r = c.num_or(&format!("{end}shoulderradius"), 0.0)?;
+                let ts = match c.text(&format!("{end}shoulderthickness")) {
+                    Some("filled") => r,
+                    _ => c.num_or(&format!("{end}shoulderthickness"), 0.0)?,
+                };
+                let start = if end == "aft" { at } else { at - l };
+                p = p.add(tube(start, l, r, r - ts, rho));
+                if c.text(&format!("{end}shouldercapped")) == Some("true") {
+                    let cap = if end == "aft" { start + l - ts } else { start };
+                    p = p.add(tube(cap, ts, r - ts, 0.0, rho));
+                }
+            }
+            p
+        }
+        Kind::TrapezoidFins | Kind::EllipticalFins | Kind::FreeFormFins => fins(c, body_radius)?,
+        Kind::CenteringRing | Kind::Bulkhead | Kind::EngineBlock => {
+            let ro = c.num_or("outerradius", parent_inner)?;
+            let ri = match c.kind {
+                Kind::CenteringRing => c.num_or("innerradius", mount_outer)?,
+                Kind::EngineBlock => ro - c.dim("thickness")?,
+                _ => 0.0,
+            };
+            let n = c.num_or("instancecount", 1.0)?;
+            let p = tube(x, c.length, ro, ri, c.density()?);
+            p.scaled(p.mass * n)
+        }
+        Kind::RailButton => {
+            let od = c.dim("outerdiameter")?;
+            let id = c.dim("innerdiameter")?;
+            let h = c.dim("height")?;
+            let base = c.num_or("baseheight", 0.0)?;
+            let flange = c.num_or("flangeheight", 0.0)?;
+            let n = c.num_or("instancecount", 1.0)?;
+            let v =
+                PI * 0.25 * (od * od * (base + flange) + id * id * (h - base - flange).max(0.0));
+            let m = n * v * c.density()?;
+            let separation = c.num_or("instanceseparation", 0.0)?;
+            MassProps {
+                mass: m,
+                cg: x + 0.5 * od + 0.5 * (n - 1.0) * separation,
+                i_long: m * (body_radius * body_radius),
+                i_rot: m * body_radius * body_radius,
+            }
+        }
+        Kind::Parachute | Kind::Streamer | Kind::ShockCord | Kind::MassComponent => {
+            let m = match c.kind {
+                Kind::Parachute => {
+                    let d = c.dim("diameter")?;
+                    let lines = c.num_or("linecount", 0.0)? * c.num_or("linelength", 0.0)?;
+                    c.density()? * PI * 0.25 * d * d + lines * c.line_material.unwrap_or(0.0)
+                }
+                Kind::Streamer => c.density()? * c.num("striplength")? * c.num("stripwidth")?,
+                Kind::ShockCord => c.density()? * c.dim("cordlength")?,
+                _ => c.dim("mass")?,
+            };
+            let r = c.num_or("packedradius", 0.0)?;
+            let l = c.length;
+            MassProps {
+                mass: m,
+                cg: x + 0.5 * l,
+                i_long: m * (3.0 * r * r + l * l) / 12.0,
+                i_rot: 0.5 * m * r * r,
+            }
+        }
+    })
+}
+
+fn flag(c: &Component, element: &str) -> bool {
+    c.text(element) == Some("true")
+}
+
+/// Mass properties of `c` and its subtree, overrides applied; `parent_inner` and
+/// `body_radius` describe the tube it sits in.
+///
+/// # Errors
+/// [`OrkError::Value`] for a missing or malformed dimension or material.
+pub fn subtree(c: &Component, parent_inner: f64, body_radius: f64) -> Result<MassProps, OrkError> {
+    let mount_outer = c
+        .children
+        .iter()
+        .find(|k| k.kind == Kind::InnerTube)
+        .map_or(Ok(0.0), |k| k.num_or("outerradius", 0.0))?;
+    let mut p = own(c, parent_inner, body_radius, mount_outer)?;
+    let subs_override = flag(c, "overridesubcomponentsmass");
+    if let Some(m) = c
+        .fields
+        .get("overridemass")
+        .and_then(|t| super::design::number(t))
+    {
+        if !subs_override {
+            p = p.scaled(m);
+        }
+    }
+    if let Some(cg) = c
+        .fields
+        .get("overridecg")
+        .and_then(|t| super::design::number(t))
+    {
+        if !flag(c, "overridesubcomponentscg") {
+            p.cg = c.x + cg;
+        }
+    }
+    let (inner, radius) = match c.kind {
+        Kind::BodyTube => {
+            let r = c.dim("radius")?;
+            (r - c.dim("thickness")?, r)
+        }
+        Kind::InnerTube | Kind::TubeCoupler => {
+            let r = c.num_or("outerradius", parent_inner)?;
+            (r - c.dim("thickness")?, body_radius)
+        }
+        Kind::NoseCone | Kind::Transition => {
+            let r = c.num_or("aftshoulderradius", c.num_or("aftradius", parent_inner)?)?;
+            let t = match c.text("aftshoulderthickness") {
+                Some("filled") => r,
+                _ => c.num_or("aftshoulderthickness", 0.0)?,
+            };
+            (r - t, r)
+        }
+        _ => (parent_inner, body_radius),
+    };
+    for k in &c.children {
+        p = p.add(subtree(k, inner, radius)?);
+    }
+    if subs_override {
+        if let Some(m) = c
+            .fields
+            .get("overridemass")
+            .and_then(|t| super::design::number(t))
+        {
+            p = p.scaled(m);
+        }
+    }
+    if flag(c, "overridesubcomponentscg") {
+        if let Some(cg) = c
+            .fields
+            .get("overridecg")
+            .and_then(|t| super::design::number(t))
+        {
+            p.cg = c.x + cg;
+        }
+    }
+    Ok(p)
+}

@@ -1,0 +1,201 @@
+//! `karman import design.ork`: an OpenRocket design (zip archive or plain XML, format 1.x)
+//! read into a karman mission.
+//!
+//! The file format is OpenRocket's (`OpenRocketSaver` / `importt` in the OpenRocket sources,
+//! read for the element names only). The reader maps
+//! - the body (nose cone, body tubes, transitions) onto a `"nose"` surface and `"tail"`
+//!   surfaces, and trapezoidal, elliptical and free-form fin sets onto fin surfaces;
+//! - every component's mass, centre of mass and inertia, with OpenRocket's mass and CG
+//!   overrides, onto the rocket's mass, centre of mass and inertia without motor
+//!   (module `mass`);
+//! - parachutes onto `[rocket.parachutes]`, the chosen simulation's launch conditions onto
+//!   `[environment]` and `[flight]`, its motor onto a generic `[motor]` whose thrust curve is
+//!   found by designation among the given files and folders;
+//! - the drag onto `power_off_drag = "estimate"` with `[rocket.drag_estimate]` (finish, fin
+//!   thickness and edges, launch lugs, rail buttons).
+//!
+//! Stages beyond the first, pods, motor clusters and tube fins are refused, naming the
+//! component; what is mapped approximately is listed in [`Imported::warnings`].
+
+mod design;
+mod mass;
+mod write;
+
+use std::path::{Path, PathBuf};
+
+use thiserror::Error;
+
+pub use design::{Component, Design, Kind, Simulation};
+
+/// Errors of the `.ork` reader; each names the file and, where there is one, the component.
+#[derive(Debug, Error)]
+pub enum OrkError {
+    /// The file cannot be read.
+    #[error("{}: cannot read: {source}", file.display())]
+    Read {
+        /// The design file.
+        file: PathBuf,
+        /// The I/O error.
+        source: std::io::Error,
+    },
+    /// Not a zip archive holding an OpenRocket document, nor OpenRocket XML.
+    #[error("{}: not an OpenRocket design: {reason}", file.display())]
+    Container {
+        /// The design file.
+        file: PathBuf,
+        /// What was found instead.
+        reason: String,
+    },
+    /// The XML is malformed.
+    #[error("{}: XML error: {message}", file.display())]
+    Xml {
+        /// The design file.
+        file: PathBuf,
+        /// The parser's message (with line and column).
+        message: String,
+    },
+    /// A format version this reader does not know.
+    #[error("{}: OpenRocket file format version {version:?} is not supported (1.0 to 1.10 are)", file.display())]
+    Version {
+        /// The design file.
+        file: PathBuf,
+        /// The `version` attribute.
+        version: String,
+    },
+    /// A value is missing, not a number, or not finite/positive where it must be.
+    #[error("{}: component `{component}`: <{element}> {problem}", file.display())]
+    Value {
+        /// The design file.
+        file: PathBuf,
+        /// The component's name.
+        component: String,
+        /// The element.
+        element: String,
+        /// What is wrong with it.
+        problem: String,
+    },
+    /// A component or configuration karman cannot fly yet.
+    #[error("{}: component `{component}`: {what} is not supported yet", file.display())]
+    Unsupported {
+        /// The design file.
+        file: PathBuf,
+        /// The component's name.
+        component: String,
+        /// What.
+        what: String,
+    },
+    /// No simulation of that name, or none at all.
+    #[error("{}: no simulation named {name:?} (the file has: {available})", file.display())]
+    Simulation {
+        /// The design file.
+        file: PathBuf,
+        /// The requested name.
+        name: String,
+        /// The names the file has.
+        available: String,
+    },
+    /// The chosen simulation's motor has no thrust curve among the given files and folders.
+    #[error("{}: no thrust curve for motor {manufacturer} {designation} in {searched} (give one with --motor)", file.display())]
+    Motor {
+        /// The design file.
+        file: PathBuf,
+        /// Motor manufacturer.
+        manufacturer: String,
+        /// Motor designation.
+        designation: String,
+        /// Where it was looked for.
+        searched: String,
+    },
+}
+
+/// What `import` was asked for.
+#[derive(Debug, Clone, Default)]
+pub struct ImportOptions {
+    /// The simulation whose motor and launch conditions to take (default: the first).
+    pub simulation: Option<String>,
+    /// Thrust-curve files, or folders searched for `.eng` files, for the motor (the design's
+    /// folder is always searched last).
+    pub motors: Vec<PathBuf>,
+    /// Where the mission will be written: the thrust-curve path is made relative to its
+    /// folder.
+    pub output_dir: Option<PathBuf>,
+}
+
+/// An imported design.
+#[derive(Debug, Clone)]
+pub struct Imported {
+    /// The mission file's text (commented TOML).
+    pub mission: String,
+    /// What was mapped approximately or left out.
+    pub warnings: Vec<String>,
+}
+
+/// Reads the OpenRocket document of `file`: the `.ork` entry of a zip archive, or the file
+/// itself when it is XML.
+///
+/// # Errors
+/// [`OrkError::Read`], [`OrkError::Container`].
+pub fn read_document(file: &Path) -> Result<String, OrkError> {
+    let bytes = std::fs::read(file).map_err(|source| OrkError::Read {
+        file: file.to_owned(),
+        source,
+    })?;
+    document_text(file, &bytes)
+}
+
+/// The document text of `.ork` bytes (see [`read_document`]).
+///
+/// # Errors
+/// [`OrkError::Container`].
+pub fn document_text(file: &Path, bytes: &[u8]) -> Result<String, OrkError> {
+    let container = |reason: String| OrkError::Container {
+        file: file.to_owned(),
+        reason,
+    };
+    if bytes.starts_with(b"PK") {
+        use std::io::Read;
+        let mut archive = zip::ZipArchive::new(std::io::Cursor::new(bytes))
+            .map_err(|e| container(format!("a broken zip archive ({e})")))?;
+        let names: Vec<String> = archive.file_names().map(str::to_owned).collect();
+        let Some(name) = names
+            .iter()
+            .find(|n| n.ends_with(".ork") || n.ends_with(".xml") || n.ends_with(".rkt"))
+        else {
+            return Err(container(format!(
+                "a zip archive without an .ork document (it holds {})",
+                names.join(", ")
+            )));
+        };
+        let mut entry = archive
+            .by_name(name)
+            .map_err(|e| container(format!("cannot open {name} in the archive ({e})")))?;
+        let mut text = String::new();
+        entry
+            .read_to_string(&mut text)
+            .map_err(|e| container(format!("{name} in the archive is not UTF-8 text ({e})")))?;
+        Ok(text)
+    } else if bytes.starts_with(&[0x1f, 0x8b]) {
+        Err(container(
+            "a gzip-compressed document (OpenRocket before 15.03); open and save it in a \
+             current OpenRocket"
+                .to_owned(),
+        ))
+    } else {
+        let text = std::str::from_utf8(bytes)
+            .map_err(|_| container("neither a zip archive nor UTF-8 XML text".to_owned()))?;
+        if !text.trim_start().starts_with('<') {
+            return Err(container("neither a zip archive nor XML".to_owned()));
+        }
+        Ok(text.to_owned())
+    }
+}
+
+/// Imports `file` as a mission.
+///
+/// # Errors
+/// [`OrkError`] naming the file and the component.
+pub fn import(file: &Path, options: &ImportOptions) -> Result<Imported, OrkError> {
+    let text = read_document(file)?;
+    let design = Design::parse(file, &text)?;
+    write::mission(file, &design, options)
+}

@@ -1,0 +1,183 @@
+//! An OpenRocket design imported (`ork`) and flown, against the flight OpenRocket stored in
+//! it (the `reference.json` of `fixtures/openrocket`, see its README): apogee, maximum
+//! speed, total drag coefficient row by row, centre of pressure and stability margin.
+
+use std::path::Path;
+
+use serde_json::Value;
+
+use crate::build::flight::simulate;
+use crate::ork::{ImportOptions, import};
+
+/// The figures of one simulation.
+#[derive(Debug, Clone, PartialEq)]
+pub struct OpenRocketComparison {
+    /// The simulation's name.
+    pub simulation: String,
+    /// karman's apogee above the site (m) and OpenRocket's (`optimum_altitude_m`: the apogee
+    /// without a premature deployment).
+    pub apogee: (f64, f64),
+    /// Maximum speed (m/s), karman and OpenRocket.
+    pub max_speed: (f64, f64),
+    /// Worst relative error of the total Cd over the ascent rows below Mach 0.8.
+    pub cd_subsonic: f64,
+    /// Worst relative error of the total Cd at or above Mach 0.8 (`NaN` without such rows).
+    pub cd_transonic: f64,
+    /// Centre of pressure from the nose tip (m), karman and OpenRocket, at the compared row.
+    pub cp: (f64, f64),
+    /// Body length (m), the scale of the CP error.
+    pub body_length: f64,
+    /// Stability margin (calibers), karman and OpenRocket, at the compared row.
+    pub margin: (f64, f64),
+    /// Time of the compared row (s): the ascent row of least angle of attack after rod exit,
+    /// where OpenRocket's CP is its zero-angle CP.
+    pub cp_time: f64,
+}
+
+impl OpenRocketComparison {
+    /// Relative apogee error.
+    #[must_use]
+    pub fn apogee_error(&self) -> f64 {
+        (self.apogee.0 - self.apogee.1).abs() / self.apogee.1
+    }
+
+    /// Relative maximum-speed error.
+    #[must_use]
+    pub fn max_speed_error(&self) -> f64 {
+        (self.max_speed.0 - self.max_speed.1).abs() / self.max_speed.1
+    }
+
+    /// CP error as a fraction of the body length.
+    #[must_use]
+    pub fn cp_error(&self) -> f64 {
+        (self.cp.0 - self.cp.1).abs() / self.body_length
+    }
+
+    /// Stability-margin error, calibers.
+    #[must_use]
+    pub fn margin_error(&self) -> f64 {
+        (self.margin.0 - self.margin.1).abs()
+    }
+}
+
+impl std::fmt::Display for OpenRocketComparison {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        write!(
+            f,
+            "{:<28} apogee {:8.1} / {:8.1} m ({:5.2} %)  vmax {:6.1} / {:6.1} m/s ({:5.2} %)  Cd <M0.8 {:5.1} %  ≥M0.8 {:5.1} %  CP {:.4} / {:.4} m ({:.2} % of L)  margin {:.2} / {:.2} cal",
+            self.simulation,
+            self.apogee.0,
+            self.apogee.1,
+            100.0 * self.apogee_error(),
+            self.max_speed.0,
+            self.max_speed.1,
+            100.0 * self.max_speed_error(),
+            100.0 * self.cd_subsonic,
+            100.0 * self.cd_transonic,
+            self.cp.0,
+            self.cp.1,
+            100.0 * self.cp_error(),
+            self.margin.0,
+            self.margin.1,
+        )
+    }
+}
+
+fn column(ascent: &Value, name: &str) -> Vec<f64> {
+    ascent[name]
+        .as_array()
+        .map(|a| a.iter().map(|v| v.as_f64().unwrap_or(f64::NAN)).collect())
+        .unwrap_or_default()
+}
+
+/// Imports `design_dir/design.ork` for each stored simulation without extensions, flies it
+/// and compares it with `design_dir/reference.json`.
+///
+/// # Errors
+/// The import's or the flight's error, as text.
+pub fn compare_design(design_dir: &Path) -> Result<Vec<OpenRocketComparison>, String> {
+    let text = std::fs::read_to_string(design_dir.join("reference.json"))
+        .map_err(|e| format!("{}: {e}", design_dir.display()))?;
+    let reference: Value = serde_json::from_str(&text).map_err(|e| e.to_string())?;
+    let design = design_dir.join("design.ork");
+    let mut out = Vec::new();
+    for sim in reference["simulations"].as_array().into_iter().flatten() {
+        if sim["extensions"].as_array().is_some_and(|e| !e.is_empty()) {
+            continue;
+        }
+        let name = sim["name"].as_str().unwrap_or("").to_owned();
+        let options = ImportOptions {
+            simulation: Some(name.clone()),
+            motors: Vec::new(),
+            output_dir: Some(design_dir.to_owned()),
+        };
+        let imported = import(&design, &options).map_err(|e| e.to_string())?;
+        let mission = crate::parse(&imported.mission, &design_dir.join("imported.toml"), &[])
+            .map_err(|e| format!("{name}: {e}"))?;
+        let run = simulate(&mission).map_err(|e| format!("{name}: {e}"))?;
+        let summary = run.summary();
+        let rocket = &run.rocket;
+
+        let branch = &sim["branches"][0];
+        let ascent = &branch["ascent"];
+        let (t, mach, cd, aoa, cp, thrust) = (
+            column(ascent, "time_s"),
+            column(ascent, "mach"),
+            column(ascent, "cd"),
+            column(ascent, "aoa_rad"),
+            column(ascent, "cp_m"),
+            column(ascent, "thrust_n"),
+        );
+        let stability = column(ascent, "stability_cal");
+        let rod = branch["launch"]["first_finite_cp"]["time_s"]
+            .as_f64()
+            .unwrap_or(0.0);
+        let (mut sub, mut sup) = (0.0_f64, f64::NAN);
+        for i in 0..t.len() {
+            if t[i] < rod || !cd[i].is_finite() {
+                continue;
+            }
+            let ours = rocket.drag_coefficient(thrust[i] > 0.0, mach[i]);
+            let e = (ours - cd[i]).abs() / cd[i];
+            if mach[i] < 0.8 {
+                sub = sub.max(e);
+            } else {
+                sup = if sup.is_nan() { e } else { sup.max(e) };
+            }
+        }
+        // OpenRocket's CP moves forward with the angle of attack (its body-lift term, ∝ α²);
+        // karman's normal-force model is linear in α (RocketPy's), so the CPs compare at the
+        // ascent row of least angle of attack.
+        let row = (0..t.len())
+            .filter(|&i| t[i] >= rod && cp[i].is_finite() && aoa[i].is_finite())
+            .min_by(|&a, &b| aoa[a].abs().total_cmp(&aoa[b].abs()))
+            .ok_or_else(|| format!("{name}: no CP row"))?;
+        let body_length = mission
+            .spec
+            .rocket
+            .drag_estimate
+            .as_ref()
+            .and_then(|d| d.body_length)
+            .unwrap_or(f64::NAN);
+        out.push(OpenRocketComparison {
+            simulation: name,
+            apogee: (
+                summary.apogee_agl_m.unwrap_or(f64::NAN),
+                // The apogee without a premature deployment (karman deploys at apogee the
+                // parachutes OpenRocket ejects a delay after burnout).
+                branch["optimum_altitude_m"].as_f64().unwrap_or(f64::NAN),
+            ),
+            max_speed: (
+                summary.max_speed_mps,
+                sim["summary"]["maxvelocity"].as_f64().unwrap_or(f64::NAN),
+            ),
+            cd_subsonic: sub,
+            cd_transonic: sup,
+            cp: (rocket.cp_position(mach[row]), cp[row]),
+            body_length,
+            margin: (rocket.stability_margin(mach[row], t[row]), stability[row]),
+            cp_time: t[row],
+        });
+    }
+    Ok(out)
+}

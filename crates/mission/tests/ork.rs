@@ -1,0 +1,127 @@
+//! The `.ork` reader on bad input: every error names the file and, where there is one, the
+//! component; arbitrary bytes never panic. And the refusals of what karman cannot fly yet.
+
+use std::path::{Path, PathBuf};
+
+use karman_mission::ork::{Design, ImportOptions, OrkError, document_text, import};
+use proptest::prelude::*;
+
+fn design(name: &str) -> PathBuf {
+    PathBuf::from(env!("CARGO_MANIFEST_DIR"))
+        .join("../../fixtures/openrocket")
+        .join(name)
+        .join("design.ork")
+}
+
+fn simple_xml() -> String {
+    let path = design("a_simple_model_rocket");
+    document_text(&path, &std::fs::read(&path).expect("fixture")).expect("zip with rocket.ork")
+}
+
+fn parse_error(text: &str) -> String {
+    match Design::parse(Path::new("bad.ork"), text) {
+        Ok(_) => panic!("parsed"),
+        Err(e) => e.to_string(),
+    }
+}
+
+#[test]
+fn not_a_design() {
+    let e = document_text(Path::new("x.ork"), b"\x00\x01binary").expect_err("binary");
+    assert!(e.to_string().contains("x.ork"), "{e}");
+    let e = document_text(Path::new("x.ork"), b"PK\x03\x04broken").expect_err("zip");
+    assert!(e.to_string().contains("zip"), "{e}");
+    let e = parse_error("<rocket/>");
+    assert!(e.contains("bad.ork") && e.contains("<openrocket>"), "{e}");
+    let e = parse_error("<openrocket version='1.10'><rocket>");
+    assert!(e.contains("XML"), "{e}");
+}
+
+#[test]
+fn unknown_version() {
+    let text = simple_xml().replacen("version=\"1.10\"", "version=\"9.99\"", 1);
+    let e = parse_error(&text);
+    assert!(e.contains("9.99"), "{e}");
+}
+
+#[test]
+fn nan_dimension_names_the_component() {
+    let text = simple_xml().replacen("<length>0.3</length>", "<length>NaN</length>", 1);
+    let e = parse_error(&text);
+    assert!(e.contains("Body tube") && e.contains("<length>"), "{e}");
+}
+
+fn tempdir() -> PathBuf {
+    let dir = std::env::temp_dir().join(format!("karman-ork-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).expect("temp dir");
+    dir
+}
+
+#[test]
+fn missing_motor_names_the_designation() {
+    let dir = tempdir();
+    let file = dir.join("no_motor_here.ork");
+    std::fs::write(&file, simple_xml()).expect("write");
+    let e = import(&file, &ImportOptions::default()).expect_err("no .eng beside it");
+    assert!(matches!(e, OrkError::Motor { .. }), "{e}");
+    let text = e.to_string();
+    assert!(
+        text.contains("no_motor_here.ork") && text.contains("A8"),
+        "{text}"
+    );
+}
+
+#[test]
+fn unknown_simulation_lists_the_names() {
+    let options = ImportOptions {
+        simulation: Some("Nope".into()),
+        ..ImportOptions::default()
+    };
+    let e = import(&design("a_simple_model_rocket"), &options).expect_err("no such simulation");
+    assert!(e.to_string().contains("\"Simulation 1\""), "{e}");
+}
+
+#[test]
+fn clusters_pods_and_tube_fins_are_refused_by_name() {
+    for (name, component) in [
+        ("clustered_motors", "Clustered Inner Tube"),
+        ("pods_airframes_and_winglets", "Wing pods"),
+        ("tube_fin_rocket", "Tube fin set"),
+    ] {
+        let e = import(&design(name), &ImportOptions::default()).expect_err(name);
+        assert!(matches!(e, OrkError::Unsupported { .. }), "{e}");
+        assert!(e.to_string().contains(component), "{e}");
+    }
+}
+
+#[test]
+fn imported_missions_load_and_estimate_their_drag() {
+    let options = ImportOptions {
+        output_dir: Some(design("chute_release").parent().expect("dir").to_owned()),
+        ..ImportOptions::default()
+    };
+    let imported = import(&design("chute_release"), &options).expect("imports");
+    assert!(imported.mission.contains("power_off_drag = \"estimate\""));
+    let path = design("chute_release").with_file_name("imported.toml");
+    karman_mission::parse(&imported.mission, &path, &[]).unwrap_or_else(|e| panic!("{e}"));
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(256))]
+
+    #[test]
+    fn arbitrary_bytes_do_not_panic(bytes in proptest::collection::vec(any::<u8>(), 0..512)) {
+        if let Ok(text) = document_text(Path::new("fuzz.ork"), &bytes) {
+            let _ = Design::parse(Path::new("fuzz.ork"), &text);
+        }
+    }
+
+    #[test]
+    fn mutated_designs_do_not_panic(cut in 0usize..4000, insert in "[<>/a-z0-9 .\"=-]{0,12}") {
+        let text = simple_xml();
+        let cut = cut.min(text.len());
+        let cut = (0..=cut).rev().find(|&i| text.is_char_boundary(i)).unwrap_or(0);
+        let mutated = format!("{}{insert}{}", &text[..cut], &text[cut..]);
+        let _ = Design::parse(Path::new("fuzz.ork"), &mutated);
+    }
+}
