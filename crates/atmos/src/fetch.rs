@@ -15,7 +15,8 @@ use crate::grid::{GridDictionary, GridRequest, WeatherGrid};
 use crate::isa::geopotential_to_geometric;
 use crate::profile::LevelProfile;
 use crate::sounding::Sounding;
-use crate::time::{civil_from_days, iso8601};
+use crate::time::{iso8601, utc_date};
+use chrono::Datelike;
 use std::time::Duration;
 
 /// Base addresses of the services.
@@ -169,13 +170,8 @@ impl Fetcher {
                 hourly.push(format!("{q}_{l}hPa"));
             }
         }
-        let day = if unix_time.is_finite() {
-            (unix_time / 86_400.0).floor() as i64
-        } else {
-            0
-        };
-        let (y, m, d) = civil_from_days(day);
-        let date = format!("{y:04}-{m:02}-{d:02}");
+        let day = utc_date(unix_time).unwrap_or_default();
+        let date = format!("{:04}-{:02}-{:02}", day.year(), day.month(), day.day());
         let query = vec![
             ("latitude".to_string(), format!("{latitude_deg:.5}")),
             ("longitude".to_string(), format!("{longitude_deg:.5}")),

@@ -1,58 +1,54 @@
 //! Calendar arithmetic for weather files: UTC civil dates ↔ Unix seconds (proleptic
-//! Gregorian, the algorithm of H. Hinnant, "chrono-Compatible Low-Level Date Algorithms") and
-//! CF time units (`"hours since 1900-01-01 00:00:00.0"`, CF Conventions 1.11 §4.4).
+//! Gregorian, on the `chrono` crate, which also rejects dates that do not exist) and CF time
+//! units (`"hours since 1900-01-01 00:00:00.0"`, CF Conventions 1.11 §4.4).
 
-/// Days from 1970-01-01 to the civil date `y-m-d` (proleptic Gregorian).
+use chrono::{DateTime, Datelike, NaiveDate, Timelike};
+
+/// Unix time (s) of a UTC civil date and time; `None` for a date or time that does not exist
+/// (February 31, hour 25).
 #[must_use]
-pub fn days_from_civil(y: i64, m: u32, d: u32) -> i64 {
-    let y = if m <= 2 { y - 1 } else { y };
-    let era = y.div_euclid(400);
-    let yoe = y - era * 400;
-    let m = i64::from(m);
-    let doy = (153 * (if m > 2 { m - 3 } else { m + 9 }) + 2) / 5 + i64::from(d) - 1;
-    let doe = yoe * 365 + yoe / 4 - yoe / 100 + doy;
-    era * 146_097 + doe - 719_468
+pub fn unix_seconds(
+    year: i64,
+    month: u32,
+    day: u32,
+    hour: u32,
+    minute: u32,
+    second: f64,
+) -> Option<f64> {
+    let date = NaiveDate::from_ymd_opt(i32::try_from(year).ok()?, month, day)?;
+    let midnight = date.and_hms_opt(hour, minute, 0)?.and_utc().timestamp();
+    Some(midnight as f64 + second)
 }
 
-/// The civil date `(y, m, d)` of a day count from 1970-01-01.
+/// The UTC calendar date of a Unix time (the day it falls in); `None` outside chrono's range.
 #[must_use]
-pub fn civil_from_days(z: i64) -> (i64, u32, u32) {
-    let z = z + 719_468;
-    let era = z.div_euclid(146_097);
-    let doe = z - era * 146_097;
-    let yoe = (doe - doe / 1460 + doe / 36_524 - doe / 146_096) / 365;
-    let doy = doe - (365 * yoe + yoe / 4 - yoe / 100);
-    let mp = (5 * doy + 2) / 153;
-    let d = (doy - (153 * mp + 2) / 5 + 1) as u32;
-    let m = if mp < 10 { mp + 3 } else { mp - 9 } as u32;
-    let y = yoe + era * 400 + i64::from(m <= 2);
-    (y, m, d)
-}
-
-/// Unix time (s) of a UTC civil date and time.
-#[must_use]
-pub fn unix_seconds(y: i64, month: u32, day: u32, hour: u32, minute: u32, second: f64) -> f64 {
-    days_from_civil(y, month, day) as f64 * 86_400.0
-        + f64::from(hour) * 3600.0
-        + f64::from(minute) * 60.0
-        + second
+pub fn utc_date(unix: f64) -> Option<NaiveDate> {
+    let secs = unix.floor();
+    if !secs.is_finite() || secs.abs() > 1e15 {
+        return None;
+    }
+    DateTime::from_timestamp(secs as i64, 0).map(|t| t.date_naive())
 }
 
 /// ISO 8601 rendering (`YYYY-MM-DDTHH:MM:SSZ`) of a Unix time, for messages.
 #[must_use]
 pub fn iso8601(unix: f64) -> String {
-    if !unix.is_finite() {
-        return format!("{unix}");
+    let secs = unix.round();
+    let time = (secs.is_finite() && secs.abs() < 1e15)
+        .then(|| DateTime::from_timestamp(secs as i64, 0))
+        .flatten();
+    match time {
+        Some(t) => format!(
+            "{:04}-{:02}-{:02}T{:02}:{:02}:{:02}Z",
+            t.year(),
+            t.month(),
+            t.day(),
+            t.hour(),
+            t.minute(),
+            t.second()
+        ),
+        None => format!("{unix}"),
     }
-    let secs = unix.round() as i64;
-    let (y, m, d) = civil_from_days(secs.div_euclid(86_400));
-    let rem = secs.rem_euclid(86_400);
-    format!(
-        "{y:04}-{m:02}-{d:02}T{:02}:{:02}:{:02}Z",
-        rem / 3600,
-        rem % 3600 / 60,
-        rem % 60
-    )
 }
 
 /// A parsed CF time unit: `value × scale + epoch` is Unix time.
@@ -88,9 +84,6 @@ impl TimeUnits {
         let y: i64 = dp.next()?.parse().ok()?;
         let m: u32 = dp.next().map_or(Some(1), |s| s.parse().ok())?;
         let d: u32 = dp.next().map_or(Some(1), |s| s.parse().ok())?;
-        if !(1..=12).contains(&m) || !(1..=31).contains(&d) {
-            return None;
-        }
         // Time of day, then an optional offset ("Z", "UTC", "+hh:mm", "-hh").
         let (clock, offset) = split_offset(time);
         let mut tp = clock.split(':');
@@ -100,12 +93,12 @@ impl TimeUnits {
             .map_or(Some(0), |s| s.parse().ok())?;
         let mm: u32 = tp.next().map_or(Some(0), |s| s.parse().ok())?;
         let ss: f64 = tp.next().map_or(Some(0.0), |s| s.parse().ok())?;
-        if hh > 24 || mm > 59 || !(0.0..61.0).contains(&ss) {
+        if !(0.0..61.0).contains(&ss) {
             return None;
         }
         Some(TimeUnits {
             scale,
-            epoch: unix_seconds(y, m, d, hh, mm, ss) - offset?,
+            epoch: unix_seconds(y, m, d, hh, mm, ss)? - offset?,
         })
     }
 
@@ -146,13 +139,22 @@ mod tests {
     use super::*;
 
     #[test]
-    fn civil_round_trip() {
-        for days in [-800_000_i64, -1, 0, 1, 18_000, 20_000, 2_000_000] {
-            let (y, m, d) = civil_from_days(days);
-            assert_eq!(days_from_civil(y, m, d), days);
-        }
-        assert_eq!(days_from_civil(1970, 1, 1), 0);
-        assert_eq!(days_from_civil(2000, 3, 1), 11_017);
+    fn dates_that_do_not_exist_are_refused() {
+        assert_eq!(unix_seconds(1970, 1, 1, 0, 0, 0.0), Some(0.0));
+        assert_eq!(
+            unix_seconds(2000, 3, 1, 0, 0, 0.0),
+            Some(11_017.0 * 86_400.0)
+        );
+        assert_eq!(unix_seconds(2026, 2, 31, 12, 0, 0.0), None);
+        assert_eq!(unix_seconds(2025, 2, 29, 12, 0, 0.0), None);
+        assert!(unix_seconds(2024, 2, 29, 12, 0, 0.0).is_some());
+        assert_eq!(unix_seconds(2026, 1, 1, 25, 0, 0.0), None);
+        assert!(TimeUnits::parse("hours since 1900-02-30 00:00:00").is_none());
+        assert_eq!(
+            utc_date(-1.0),
+            NaiveDate::from_ymd_opt(1969, 12, 31),
+            "the day a time falls in"
+        );
     }
 
     #[test]

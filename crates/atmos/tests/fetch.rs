@@ -63,7 +63,10 @@ const WYOMING_PAGE: &str = "<html><body><h2>02963 Jokioinen Observations</h2>\n<
 fn wyoming_by_station_and_date() {
     let (base, requests) = serve(200, WYOMING_PAGE.as_bytes().to_vec(), 1);
     let s = fetcher(&base)
-        .wyoming_sounding("02963", unix_seconds(2006, 4, 10, 12, 0, 0.0))
+        .wyoming_sounding(
+            "02963",
+            unix_seconds(2006, 4, 10, 12, 0, 0.0).expect("a valid date"),
+        )
         .expect("sounding");
     assert_eq!(s.levels.len(), 2);
     assert_eq!(s.station_elevation_m, Some(103.0));
@@ -78,14 +81,17 @@ fn wyoming_by_station_and_date() {
 fn http_errors_are_reported() {
     let (base, _requests) = serve(404, b"not found".to_vec(), 1);
     let e = fetcher(&base)
-        .wyoming_sounding("00000", unix_seconds(2006, 4, 10, 12, 0, 0.0))
+        .wyoming_sounding(
+            "00000",
+            unix_seconds(2006, 4, 10, 12, 0, 0.0).expect("a valid date"),
+        )
         .expect_err("404");
     assert!(matches!(e, AtmosError::Download { .. }), "{e}");
 }
 
 #[test]
 fn open_meteo_levels() {
-    let t0 = unix_seconds(2024, 6, 1, 0, 0, 0.0);
+    let t0 = unix_seconds(2024, 6, 1, 0, 0, 0.0).expect("a valid date");
     let mut hourly = format!("\"time\": [{}, {}]", t0, t0 + 3600.0);
     // Two levels with data at the second hour; every other level null.
     for (l, t, z, s, d) in [
@@ -185,7 +191,7 @@ fn gfs_through_ncss() {
     let (base, requests) = serve(200, classic_nc(&dims, &vars), 1);
     let request = GridRequest {
         dictionary: None,
-        unix_time: unix_seconds(2024, 6, 1, 12, 0, 0.0),
+        unix_time: unix_seconds(2024, 6, 1, 12, 0, 0.0).expect("a valid date"),
         latitude_deg: 40.0,
         longitude_deg: -8.0,
         member: None,

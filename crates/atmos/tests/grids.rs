@@ -98,7 +98,7 @@ fn synthetic(members: usize, skip: &str) -> Vec<u8> {
 fn request(hours: f64, lat: f64, lon: f64) -> GridRequest {
     GridRequest {
         dictionary: None,
-        unix_time: unix_seconds(2020, 1, 1, 0, 0, 0.0) + hours * 3600.0,
+        unix_time: unix_seconds(2020, 1, 1, 0, 0, 0.0).expect("a valid date") + hours * 3600.0,
         latitude_deg: lat,
         longitude_deg: lon,
         member: None,
@@ -258,7 +258,7 @@ fn truncated_and_corrupt_files_are_errors() {
         let bytes = std::fs::read(validation.dir.join(file)).expect("ERA5 file");
         for cut in [16, 1000, bytes.len() / 3, bytes.len() - 100] {
             let mut r = request(0.0, 47.2, 9.0);
-            r.unix_time = unix_seconds(2020, 2, 22, 13, 0, 0.0);
+            r.unix_time = unix_seconds(2020, 2, 22, 13, 0, 0.0).expect("a valid date");
             if let Ok(g) = WeatherGrid::from_bytes(bytes[..cut].to_vec(), file) {
                 assert!(g.profile(&r).is_err(), "{file} cut at {cut}");
             }
@@ -287,10 +287,10 @@ fn real_era5_files_dates_and_sites() {
         Some("ECMWF_v0".into())
     );
     let mut r = request(0.0, 47.213476, 9.003336);
-    r.unix_time = unix_seconds(2020, 2, 22, 13, 0, 0.0);
+    r.unix_time = unix_seconds(2020, 2, 22, 13, 0, 0.0).expect("a valid date");
     let p = g.profile(&r).expect("profile");
     assert_eq!(p.pressure_pa.len(), 14);
-    r.unix_time = unix_seconds(2021, 2, 22, 13, 0, 0.0);
+    r.unix_time = unix_seconds(2021, 2, 22, 13, 0, 0.0).expect("a valid date");
     assert!(matches!(
         g.profile(&r),
         Err(AtmosError::DateOutsideFile { .. })

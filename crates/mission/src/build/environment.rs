@@ -50,7 +50,8 @@ pub fn build_environment(mission: &Mission) -> Result<Environment, MissionError>
     Environment::new(&config, &constants).map_err(|e| model_err("environment", e))
 }
 
-/// Unix time (s, UTC) of the mission's date, if it has a full date-time with an offset.
+/// Unix time (s, UTC) of the mission's date, if it has a full date-time with an offset and
+/// the date exists.
 #[must_use]
 pub fn launch_unix_time(mission: &Mission) -> Option<f64> {
     let dt = mission.spec.environment.date.as_ref()?;
@@ -74,7 +75,7 @@ pub fn launch_unix_time(mission: &Mission) -> Option<f64> {
         h,
         m,
         s,
-    );
+    )?;
     Some(local - offset_minutes * 60.0)
 }
 
