@@ -72,7 +72,10 @@ const MEASURED_BANDS: &[(&str, f64, &str)] = &[
 
 struct Flight {
     name: String,
+    /// The summary in `"rocketpy_1_13"` equations (the parity run).
     summary: Value,
+    /// The summary in `"standard"` equations (the physically consistent form).
+    standard: Value,
     reference: Value,
     measured_apogee: Option<f64>,
     /// (t, altitude AGL) measured, and (t, altitude AGL) simulated.
@@ -149,24 +152,31 @@ fn fly(exe: &Path, dir: &Path, out: &Path) -> Result<Flight> {
         .map_err(|e| anyhow::anyhow!("{e}"))
         .context("mission does not load")?;
     let flight_out = out.join(&name);
-    let mut cmd = Command::new(exe);
-    cmd.arg("simulate")
-        .arg(&mission_path)
-        .arg("--json")
-        .arg("--out")
-        .arg(&flight_out);
-    for chute in mission.spec.rocket.parachutes.keys() {
+    // The parity run flies RocketPy 1.13's equations (with its outputs written); the second,
+    // the standard ones, for the report's comparison with the measured flight.
+    let summary_of = |equations: &str, out: Option<&Path>| -> Result<Value> {
+        let mut cmd = Command::new(exe);
+        cmd.arg("simulate").arg(&mission_path).arg("--json");
+        if let Some(out) = out {
+            cmd.arg("--out").arg(out);
+        }
         cmd.arg("--set")
-            .arg(format!("rocket.parachutes.{chute}.noise=[0,0,0]"));
-    }
-    let output = cmd.output().context("could not run karman")?;
-    if !output.status.success() {
-        bail!(
-            "karman simulate failed: {}",
-            String::from_utf8_lossy(&output.stderr)
-        );
-    }
-    let summary: Value = serde_json::from_slice(&output.stdout).context("summary JSON")?;
+            .arg(format!("flight.equations=\"{equations}\""));
+        for chute in mission.spec.rocket.parachutes.keys() {
+            cmd.arg("--set")
+                .arg(format!("rocket.parachutes.{chute}.noise=[0,0,0]"));
+        }
+        let output = cmd.output().context("could not run karman")?;
+        if !output.status.success() {
+            bail!(
+                "karman simulate failed: {}",
+                String::from_utf8_lossy(&output.stderr)
+            );
+        }
+        serde_json::from_slice(&output.stdout).context("summary JSON")
+    };
+    let summary = summary_of("rocketpy_1_13", Some(&flight_out))?;
+    let standard = summary_of("standard", None)?;
     let reference: Value =
         serde_json::from_str(&std::fs::read_to_string(dir.join("reference.json"))?)?;
     let measured_apogee = reference["measured"]["apogee_agl_m"].as_f64();
@@ -182,6 +192,7 @@ fn fly(exe: &Path, dir: &Path, out: &Path) -> Result<Flight> {
     let mut flight = Flight {
         name,
         summary,
+        standard,
         reference,
         measured_apogee,
         measured,
@@ -325,13 +336,15 @@ fn fmt_opt(v: Option<f64>, digits: usize) -> String {
 
 fn report_markdown(flights: &[Flight]) -> String {
     let mut s = String::from("# karman validation report\n\n");
-    s.push_str("| flight | karman apogee (m) | RocketPy apogee (m) | parity error | measured apogee (m) | karman vs measured | RocketPy vs measured | apogee time (s) | measured apogee time (s) | ascent RMSE (m) | rail-exit speed (m/s) | max Mach | status |\n");
-    s.push_str("|---|---|---|---|---|---|---|---|---|---|---|---|---|\n");
+    s.push_str("Apogees above ground; karman flies RocketPy 1.13's equations (`equations = \"rocketpy_1_13\"`) for the parity columns and the physically consistent ones (`\"standard\"`) for the standard columns.\n\n");
+    s.push_str("| flight | karman apogee (m) | RocketPy apogee (m) | parity error | measured apogee (m) | karman vs measured | RocketPy vs measured | standard apogee (m) | standard vs measured | apogee time (s) | measured apogee time (s) | ascent RMSE (m) | rail-exit speed (m/s) | max Mach | status |\n");
+    s.push_str("|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n");
     let (mut ours, mut theirs) = (Vec::new(), Vec::new());
     for f in flights {
         let r = &f.reference["summary"];
         let k = num(&f.summary, "apogee_agl_m");
         let p = num(r, "apogee_agl_m");
+        let std_apogee = num(&f.standard, "apogee_agl_m");
         let parity = k.zip(p).map(|(k, p)| 100.0 * (k - p) / p);
         let vs = |a: Option<f64>| a.zip(f.measured_apogee).map(|(a, m)| 100.0 * (a - m) / m);
         if let (Some(a), Some(b)) = (vs(k), vs(p)) {
@@ -341,7 +354,7 @@ fn report_markdown(flights: &[Flight]) -> String {
         let fit = ascent_fit(f);
         let _ = writeln!(
             s,
-            "| {} | {} | {} | {} % | {} | {} % | {} % | {} | {} | {} | {} | {} | {} |",
+            "| {} | {} | {} | {} % | {} | {} % | {} % | {} | {} % | {} | {} | {} | {} | {} | {} |",
             f.name,
             fmt_opt(k, 2),
             fmt_opt(p, 2),
@@ -349,6 +362,8 @@ fn report_markdown(flights: &[Flight]) -> String {
             fmt_opt(f.measured_apogee, 2),
             fmt_opt(vs(k), 2),
             fmt_opt(vs(p), 2),
+            fmt_opt(std_apogee, 2),
+            fmt_opt(vs(std_apogee), 2),
             fmt_opt(num(&f.summary, "apogee_time_s"), 3),
             fmt_opt(fit.map(|x| x.0), 2),
             fmt_opt(fit.map(|x| x.1), 1),
@@ -502,6 +517,7 @@ fn report_json(flights: &[Flight]) -> Value {
                 json!({
                     "flight": f.name,
                     "karman": f.summary,
+                    "karman_standard": f.standard,
                     "rocketpy": f.reference["summary"],
                     "measured_apogee_agl_m": f.measured_apogee,
                     "ascent_fit": ascent_fit(f).map(|(t, rmse)| json!({"measured_apogee_time_s": t, "rmse_m": rmse})),

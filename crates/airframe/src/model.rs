@@ -4,8 +4,8 @@
 
 use karman_math::Cursor;
 use karman_model::{
-    BodyFlow, Configuration, Loads, LocalFlow, MAX_CONTROLS, MassSample, ParachuteSpec,
-    RailButtonGeometry, SurfaceModel, TriggerKind, VehicleModel, VehicleSetup,
+    BodyFlow, Configuration, Loads, LocalFlow, MAX_CONTROLS, MassFlowLaw, MassSample,
+    ParachuteSpec, RailButtonGeometry, SurfaceModel, TriggerKind, VehicleModel, VehicleSetup,
 };
 use std::sync::Arc;
 
@@ -85,12 +85,18 @@ impl VehicleModel for Rocket {
     }
 
     #[inline]
-    fn mass(&self, t: f64, cursors: &mut [Cursor; 2]) -> MassSample {
+    fn mass(&self, t: f64, law: MassFlowLaw, cursors: &mut [Cursor; 2]) -> MassSample {
         let p = self.mass_properties_near(t, cursors);
+        let (mass_flow_rate, mass_flow_rate_derivative) = match law {
+            MassFlowLaw::ThrustOverExhaustVelocity => {
+                (p.mass_flow_rate, p.mass_flow_rate_derivative)
+            }
+            MassFlowLaw::MassDerivative => self.mass_rate_near(t, &mut cursors[1]),
+        };
         MassSample {
             total_mass: p.total_mass,
-            mass_flow_rate: p.mass_flow_rate,
-            mass_flow_rate_derivative: p.mass_flow_rate_derivative,
+            mass_flow_rate,
+            mass_flow_rate_derivative,
             com_to_cdm: p.com_to_cdm,
             com_to_cdm_rate: p.com_to_cdm_rate,
             com_to_cdm_accel: p.com_to_cdm_accel,

@@ -420,6 +420,15 @@ impl Rocket {
         self.mass.properties_near(t, cursors)
     }
 
+    /// The derivative of the total mass `dm/dt` (kg/s) and its rate (kg/s²) at `t`, with the
+    /// time located from `cursor` (on the propellant tables' times; updated): the motor's
+    /// mass-flow table when it has one, else the slopes of its propellant-mass table.
+    #[inline]
+    #[must_use]
+    pub fn mass_rate_near(&self, t: f64, cursor: &mut Cursor) -> (f64, f64) {
+        self.mass.mass_rate_near(t, cursor)
+    }
+
     /// Dry inertia about the CDM (rocket + unloaded motor), same layout (kg·m²).
     #[must_use]
     pub fn dry_inertia(&self) -> [f64; 6] {

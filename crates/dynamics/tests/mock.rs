@@ -2,8 +2,8 @@
 //! the mission files: an exponential atmosphere and a constant-thrust rocket.
 
 use karman_dynamics::{
-    AtmosphereModel, BodyFlow, Configuration, Cursor, Loads, LocalFlow, MassSample, ParachuteSpec,
-    RailButtonGeometry, SurfaceModel, TriggerKind, VehicleModel, VehicleSetup,
+    AtmosphereModel, BodyFlow, Configuration, Cursor, Loads, LocalFlow, MassFlowLaw, MassSample,
+    ParachuteSpec, RailButtonGeometry, SurfaceModel, TriggerKind, VehicleModel, VehicleSetup,
 };
 
 /// Exponential atmosphere with constant speed of sound, gravity and wind.
@@ -186,7 +186,7 @@ impl VehicleModel for MockRocket {
     fn surfaces(&self) -> &[MockSurface] {
         &self.surfaces
     }
-    fn mass(&self, t: f64, _cursors: &mut [Cursor; 2]) -> MassSample {
+    fn mass(&self, t: f64, _law: MassFlowLaw, _cursors: &mut [Cursor; 2]) -> MassSample {
         let m = self.total_mass(t);
         let md = self.mass_flow_rate(t);
         MassSample {

@@ -289,7 +289,8 @@ fn validate_camoes() {
         return;
     };
     let path = dir.join("camoes/mission.toml");
-    let mission = karman_mission::load(&path, &[]).unwrap_or_else(|e| panic!("{e}"));
+    let equations = Override::new("flight.equations", "\"rocketpy_1_13\"").expect("override");
+    let mission = karman_mission::load(&path, &[equations]).unwrap_or_else(|e| panic!("{e}"));
     let run = karman_mission::build::flight::simulate(&mission).unwrap_or_else(|e| panic!("{e}"));
     let reference = crate::common::load_reference(&path);
     let r = &reference["summary"];

@@ -107,12 +107,22 @@ pub struct VehicleSetup {
     pub initial_controls: [f64; MAX_CONTROLS],
 }
 
+/// Which mass-flow rate [`VehicleModel::mass`] gives (physics.md §6.2, §15.3).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum MassFlowLaw {
+    /// RocketPy 1.13's `ṁ = −T/v̄_e` for every motor, whatever its mass table.
+    ThrustOverExhaustVelocity,
+    /// The time derivative of the vehicle's mass `dm/dt` (of the motor's mass-flow table when
+    /// it has one, e.g. from its tanks), consistent with the mass the equations fly.
+    MassDerivative,
+}
+
 /// Every time-dependent mass quantity at one instant ([`VehicleModel::mass`]).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct MassSample {
     /// Total mass `m(t)`, kg.
     pub total_mass: f64,
-    /// RocketPy's signed mass-flow rate `ṁ(t) = −T/v̄_e`, kg/s (physics.md §6.2).
+    /// Signed mass-flow rate `ṁ(t)` of the requested [`MassFlowLaw`], kg/s.
     pub mass_flow_rate: f64,
     /// `m̈(t)` of [`MassSample::mass_flow_rate`], kg/s².
     pub mass_flow_rate_derivative: f64,
@@ -153,8 +163,9 @@ pub trait VehicleModel {
     fn setup(&self) -> VehicleSetup;
     /// Aerodynamic surfaces in insertion order.
     fn surfaces(&self) -> &[Self::Surface];
-    /// Every time-dependent mass quantity at `t`, with the time located from `cursors`.
-    fn mass(&self, t: f64, cursors: &mut [Cursor; 2]) -> MassSample;
+    /// Every time-dependent mass quantity at `t`, the mass flow by `law`, with the time
+    /// located from `cursors`.
+    fn mass(&self, t: f64, law: MassFlowLaw, cursors: &mut [Cursor; 2]) -> MassSample;
     /// Net thrust at `t` with the nozzle-pressure correction for the ambient pressure,
     /// clamped at 0, N (physics.md §6.3); `cursor` is the first of [`VehicleModel::mass`]'s.
     fn thrust(&self, t: f64, ambient_pressure: f64, cursor: &mut Cursor) -> f64;

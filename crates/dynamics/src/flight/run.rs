@@ -143,7 +143,7 @@ pub(super) fn fly<'a, A: AtmosphereModel, V: VehicleModel>(
     sampling: Sampling,
 ) -> Result<Flight, DynamicsError> {
     settings.validate()?;
-    let eq = Equations::new(atmosphere, vehicle);
+    let eq = Equations::new(atmosphere, vehicle, settings.equations);
     let setup = vehicle.setup();
     let elevation = atmosphere.elevation();
     let (t0, u0, configuration, kind0, rail_travel) = match start {
@@ -357,6 +357,7 @@ pub(super) fn fly<'a, A: AtmosphereModel, V: VehicleModel>(
         burn_out,
         elevation,
         noise_seed: settings.noise_seed,
+        equations: settings.equations,
         max_acceleration,
         stats: run.stats,
     })

@@ -64,6 +64,7 @@ pub fn flight_settings(mission: &Mission, seed: u64) -> FlightSettings {
     settings.atol = spec.atol.map_or(DEFAULT_ATOL, |a| a.per_state());
     settings.max_time_step = spec.max_time_step;
     settings.noise_seed = seed;
+    settings.equations = spec.equations;
     if let Some(ab) = &mission.spec.rocket.air_brakes
         && spec.time_overshoot
         && ab.sampling_rate > 0.0

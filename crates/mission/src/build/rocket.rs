@@ -30,6 +30,7 @@ pub fn motor_properties(motor: &Motor) -> MotorProperties {
         burn_out: motor.burn_out(),
         exhaust_velocity: motor.exhaust_velocity(),
         propellant_mass: motor.propellant_mass().clone(),
+        mass_flow: None,
         propellant_center_of_mass: motor.propellant_center_of_mass().clone(),
         propellant_i11: i11.clone(),
         propellant_i33: i33.clone(),
