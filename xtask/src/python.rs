@@ -45,10 +45,25 @@ pub fn test_package(root: &Path) -> Result<()> {
         &["-m", "venv", "--clear", &venv.to_string_lossy()],
         &[],
     )?;
-    let python = venv.join("bin").join("python");
+    let bin = venv.join("bin");
+    let python = bin.join("python");
+    // The environment's own `bin` first on PATH, as `activate` would do: maturin's build hook
+    // runs `maturin` by name, and pytest's subprocesses find the environment's tools.
+    let path = std::env::join_paths(
+        std::iter::once(bin.clone()).chain(
+            std::env::var_os("PATH")
+                .map(|p| std::env::split_paths(&p).collect::<Vec<_>>())
+                .unwrap_or_default(),
+        ),
+    )
+    .context("the virtual environment's path cannot go on PATH")?;
+    let venv_env: [(&str, &OsStr); 2] = [
+        ("PATH", path.as_os_str()),
+        ("VIRTUAL_ENV", venv.as_os_str()),
+    ];
     let mut install = vec!["-m", "pip", "install", "--quiet", "--upgrade"];
     install.extend_from_slice(REQUIREMENTS);
-    run(root, &python, &install, &[])?;
+    run(root, &python, &install, &venv_env)?;
     let requirements = started.elapsed();
     // The backend is already in the environment: no isolated build environment to fill.
     run(
@@ -62,7 +77,7 @@ pub fn test_package(root: &Path) -> Result<()> {
             "--no-build-isolation",
             "./crates/python",
         ],
-        &[],
+        &venv_env,
     )?;
     let built = started.elapsed();
     // The command-line binary for the tests that compare the package's files with its own.
@@ -79,6 +94,8 @@ pub fn test_package(root: &Path) -> Result<()> {
         &python,
         &["-m", "pytest", "-q", "crates/python/tests"],
         &[
+            venv_env[0],
+            venv_env[1],
             ("KARMAN_CLI", cli.as_os_str()),
             ("MPLBACKEND", OsStr::new("Agg")),
         ],
