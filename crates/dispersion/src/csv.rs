@@ -134,12 +134,17 @@ impl std::fmt::Display for Counts {
     }
 }
 
-/// A field as it appears in a row.
-pub fn escape(field: &str) -> String {
-    let flat: String = field
+/// A message as a row holds it: line breaks become spaces, so that every row is one line.
+fn one_line(field: &str) -> String {
+    field
         .chars()
         .map(|c| if c == '\n' || c == '\r' { ' ' } else { c })
-        .collect();
+        .collect()
+}
+
+/// A field as it appears in a row.
+pub fn escape(field: &str) -> String {
+    let flat = one_line(field);
     if flat.contains([',', '"']) {
         format!("\"{}\"", flat.replace('"', "\"\""))
     } else {
@@ -255,6 +260,37 @@ pub struct Row {
     pub outputs: Vec<Option<f64>>,
 }
 
+impl Row {
+    /// The row [`row`] writes for these values, as [`parse`] reads it back: the message on
+    /// one line, and `outputs` missing values for a failed sample (which has none). A study
+    /// kept in memory holds these, so that it is the very study its `samples.csv` would be.
+    pub fn of(
+        index: u64,
+        inputs: Vec<f64>,
+        status: Status,
+        values: Vec<Option<f64>>,
+        outputs: usize,
+    ) -> Self {
+        let (status, outputs) = match status {
+            Status::Completed => (Status::Completed, values),
+            Status::Ended { kind, message } => (
+                Status::Ended {
+                    kind,
+                    message: one_line(&message),
+                },
+                values,
+            ),
+            Status::Failed(message) => (Status::Failed(one_line(&message)), vec![None; outputs]),
+        };
+        Row {
+            index,
+            status,
+            inputs,
+            outputs,
+        }
+    }
+}
+
 /// Parses a row of a study with `inputs` input and `outputs` output columns; the error
 /// says what is wrong.
 pub fn parse(line: &str, inputs: usize, outputs: usize) -> Result<Row, String> {
@@ -346,6 +382,34 @@ mod tests {
         let parsed = parse(line.trim_end_matches('\n'), 3, 2).expect("valid row");
         assert_eq!(parsed.status, ended);
         assert_eq!(parsed.outputs, vec![Some(2.5), None]);
+    }
+
+    #[test]
+    fn rows_in_memory_are_the_rows_read_back() {
+        let inputs = vec![0.1, f64::NAN, -0.0];
+        let statuses = [
+            (Status::Completed, vec![Some(1.0 / 3.0), None]),
+            (
+                Status::Ended {
+                    kind: "max_time".to_owned(),
+                    message: "still \"up\",\r\nat 5 s".to_owned(),
+                },
+                vec![Some(f64::INFINITY), Some(2.0)],
+            ),
+            (Status::Failed("no\nflight, \"x\"".to_owned()), Vec::new()),
+        ];
+        for (status, values) in statuses {
+            let line = row(4, &inputs, &status, &values, 2);
+            let read = parse(line.trim_end_matches('\n'), 3, 2).expect("valid row");
+            let kept = Row::of(4, inputs.clone(), status, values, 2);
+            assert_eq!(kept.status, read.status);
+            assert_eq!(kept.index, read.index);
+            let bits =
+                |v: &[Option<f64>]| v.iter().map(|x| x.map(f64::to_bits)).collect::<Vec<_>>();
+            assert_eq!(bits(&kept.outputs), bits(&read.outputs));
+            let inputs_bits = |v: &[f64]| v.iter().map(|x| x.to_bits()).collect::<Vec<_>>();
+            assert_eq!(inputs_bits(&kept.inputs), inputs_bits(&read.inputs));
+        }
     }
 
     #[test]

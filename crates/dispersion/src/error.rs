@@ -125,6 +125,15 @@ pub enum DispersionError {
         /// Samples in the shard.
         total: u64,
     },
+    /// A study in memory ([`crate::run_in_memory`]) was stopped before every sample was
+    /// flown.
+    #[error("stopped after {written} of {total} samples")]
+    Stopped {
+        /// Samples flown, in index order from the first.
+        written: u64,
+        /// Samples in the study.
+        total: u64,
+    },
     /// The worker thread pool could not be created.
     #[error("cannot start {threads} worker threads: {message}")]
     ThreadPool {

@@ -61,11 +61,12 @@ pub use kml::offset_to_lat_lon;
 pub use merge::merge;
 pub use progress::ProgressMode;
 pub use runner::{
-    MAX_THREADS_PER_CORE, Outcome, RunOptions, RunReport, WINDOW_PER_THREAD, run, run_until,
+    MAX_THREADS_PER_CORE, MemoryRun, Outcome, RunOptions, RunReport, WINDOW_PER_THREAD, run,
+    run_in_memory, run_until,
 };
 pub use stats::{
     Ellipse, Moments, NORMAL_SIGMA_PROBABILITY, Statistics, k_sigma_probability, probability_scale,
     quantile,
 };
 pub use study::{DataFile, Points, Shard, Site, Study};
-pub use summary::{Column, Contour, EllipseSummary, Failure, Summary, summarize};
+pub use summary::{Column, Contour, EllipseSummary, Failure, Summary, summarize, summarize_rows};

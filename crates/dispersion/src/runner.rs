@@ -16,13 +16,13 @@
 //! A resume flies the first and the last kept rows again and requires the very same rows, so
 //! that rows flown by another model are not mixed into the study.
 
-use crate::csv::{self, Counts, Status};
+use crate::csv::{self, Counts, Row, Status};
 use crate::error::DispersionError;
 use crate::files::{self, SAMPLES_FILE, STUDY_FILE};
 use crate::progress::{Progress, ProgressMode};
 use crate::sampling::draw;
 use crate::study::{Record, Shard, Study};
-use crate::summary::{Summary, summarize};
+use crate::summary::{Summary, summarize, summarize_rows};
 use std::collections::BTreeMap;
 use std::fs::OpenOptions;
 use std::io::{BufWriter, Write as _};
@@ -161,18 +161,7 @@ where
     F: Fn(u64, &[f64]) -> Result<Outcome, String> + Sync,
 {
     study.validate()?;
-    let requested = options.threads.unwrap_or(0);
-    let cores = std::thread::available_parallelism().map_or(1, std::num::NonZeroUsize::get);
-    if requested > MAX_THREADS_PER_CORE * cores {
-        return Err(DispersionError::ThreadPool {
-            threads: requested,
-            message: format!(
-                "at most {MAX_THREADS_PER_CORE} per core ({} on this machine's {cores} cores): \
-                 more only share the same cores",
-                MAX_THREADS_PER_CORE * cores
-            ),
-        });
-    }
+    let pool = thread_pool(options)?;
     let shard = options.shard.unwrap_or(Shard::WHOLE);
     let record = Record::new(study, shard);
     std::fs::create_dir_all(dir).map_err(DispersionError::io(dir))?;
@@ -202,8 +191,8 @@ where
 
     let scan = files::scan(&samples_path, &record)?;
     for (position, line, kept) in &scan.ends {
-        let again = fly_sample(study, shard, &fly, *position);
-        if again.line.trim_end_matches('\n') != kept.trim_end_matches('\n') {
+        let again = fly_sample(study, shard, &fly, *position).line(study.outputs.len());
+        if again.trim_end_matches('\n') != kept.trim_end_matches('\n') {
             return Err(DispersionError::ChangedOutputs {
                 file: samples_path,
                 line: *line,
@@ -224,65 +213,34 @@ where
         .append(true)
         .open(&samples_path)
         .map_err(DispersionError::io(&samples_path))?;
-    let mut out = BufWriter::with_capacity(1 << 16, file);
+    let mut out = FileSink {
+        out: BufWriter::with_capacity(1 << 16, file),
+        outputs: study.outputs.len(),
+    };
     if !scan.has_header {
-        out.write_all(csv::header(&study.columns()).as_bytes())
-            .and_then(|()| out.flush())
+        out.out
+            .write_all(csv::header(&study.columns()).as_bytes())
+            .and_then(|()| out.out.flush())
             .map_err(DispersionError::io(&samples_path))?;
     }
-
-    let threads = options.threads.unwrap_or(0);
-    let pool = rayon::ThreadPoolBuilder::new()
-        .num_threads(threads)
-        .thread_name(|i| format!("karman-mc-{i}"))
-        .build()
-        .map_err(|e| DispersionError::ThreadPool {
-            threads,
-            message: e.to_string(),
-        })?;
-    let threads = pool.current_num_threads();
-    let total = shard.len(study.samples);
-    let mut progress = Progress::new(options.progress, total, scan.rows);
-    let started = Instant::now();
-    let engine = Engine {
+    let flown = fly_all(
+        &pool,
         study,
         shard,
-        total,
-        window: WINDOW_PER_THREAD * threads as u64,
-        next: AtomicU64::new(scan.rows),
-        abort: AtomicBool::new(false),
+        options.progress,
         stop,
-        written: Mutex::new(scan.rows),
-        advanced: Condvar::new(),
-    };
-    let (sender, receiver) = mpsc::channel::<Vec<Finished>>();
-    let mut written = Ok(Counts::default());
-    pool.in_place_scope(|scope| {
-        for _ in 0..threads {
-            let sender = sender.clone();
-            let engine = &engine;
-            let fly = &fly;
-            scope.spawn(move |_| engine.work(fly, &sender));
-        }
-        drop(sender);
-        written = engine.write(receiver, &mut out, &mut progress);
-        if written.is_err() {
-            engine.stop();
-        }
-    });
-    progress.finish();
-    let mut counts = written.map_err(DispersionError::io(&samples_path))?;
-    counts.merge(&scan.counts);
-    let elapsed = started.elapsed();
+        scan.rows,
+        &mut out,
+        &fly,
+    );
     drop(out);
-    let rows = *engine
-        .written
-        .lock()
-        .unwrap_or_else(PoisonError::into_inner);
-    if rows < total {
+    let mut counts = flown.written.map_err(DispersionError::io(&samples_path))?;
+    counts.merge(&scan.counts);
+    let total = shard.len(study.samples);
+    if flown.rows < total {
         return Err(DispersionError::Interrupted {
             dir: dir.to_owned(),
-            written: rows,
+            written: flown.rows,
             total,
         });
     }
@@ -298,17 +256,248 @@ where
         resumed: scan.rows,
         flown: total - scan.rows,
         counts,
-        threads,
-        elapsed,
+        threads: flown.threads,
+        elapsed: flown.elapsed,
         summary,
     })
+}
+
+/// A study run in memory ([`run_in_memory`]): every sample's row, in index order, and what
+/// the run did (with the summary).
+#[derive(Debug, Clone, PartialEq)]
+pub struct MemoryRun {
+    /// The rows, as `samples.csv` would hold them ([`Row::of`]).
+    pub rows: Vec<Row>,
+    /// What the run did; its summary is the one `summary.json` would hold.
+    pub report: RunReport,
+}
+
+/// [`run_until`] without an output directory: flies every sample of the whole `study`
+/// (`options.shard` must be absent or the whole study) and keeps the rows in memory; the
+/// rows and the summary are those a run into a directory writes, byte for byte once
+/// written. Stopped by `stop`, it returns [`DispersionError::Stopped`] (nothing to resume).
+pub fn run_in_memory<F>(
+    study: &Study,
+    options: &RunOptions,
+    stop: &AtomicBool,
+    fly: F,
+) -> Result<MemoryRun, DispersionError>
+where
+    F: Fn(u64, &[f64]) -> Result<Outcome, String> + Sync,
+{
+    study.validate()?;
+    if options.shard.is_some_and(|shard| shard != Shard::WHOLE) {
+        return Err(DispersionError::InvalidStudy {
+            reason: "a study in memory is the whole study; shards are written to a directory"
+                .to_owned(),
+        });
+    }
+    let pool = thread_pool(options)?;
+    let total = study.samples;
+    let mut sink = MemorySink {
+        rows: Vec::with_capacity(usize::try_from(total).unwrap_or(0)),
+        outputs: study.outputs.len(),
+    };
+    let flown = fly_all(
+        &pool,
+        study,
+        Shard::WHOLE,
+        options.progress,
+        stop,
+        0,
+        &mut sink,
+        &fly,
+    );
+    let Ok(counts) = flown.written;
+    if flown.rows < total {
+        return Err(DispersionError::Stopped {
+            written: flown.rows,
+            total,
+        });
+    }
+    let summary = summarize_rows(study, &sink.rows);
+    Ok(MemoryRun {
+        rows: sink.rows,
+        report: RunReport {
+            shard: Shard::WHOLE,
+            shard_samples: total,
+            resumed: 0,
+            flown: total,
+            counts,
+            threads: flown.threads,
+            elapsed: flown.elapsed,
+            summary: Some(summary),
+        },
+    })
+}
+
+/// The worker pool of `options.threads` (0 or absent: one thread per core), refused beyond
+/// [`MAX_THREADS_PER_CORE`] per core.
+fn thread_pool(options: &RunOptions) -> Result<rayon::ThreadPool, DispersionError> {
+    let requested = options.threads.unwrap_or(0);
+    let cores = std::thread::available_parallelism().map_or(1, std::num::NonZeroUsize::get);
+    if requested > MAX_THREADS_PER_CORE * cores {
+        return Err(DispersionError::ThreadPool {
+            threads: requested,
+            message: format!(
+                "at most {MAX_THREADS_PER_CORE} per core ({} on this machine's {cores} cores): \
+                 more only share the same cores",
+                MAX_THREADS_PER_CORE * cores
+            ),
+        });
+    }
+    rayon::ThreadPoolBuilder::new()
+        .num_threads(requested)
+        .thread_name(|i| format!("karman-mc-{i}"))
+        .build()
+        .map_err(|e| DispersionError::ThreadPool {
+            threads: requested,
+            message: e.to_string(),
+        })
+}
+
+/// Where the writer puts the rows, in position order.
+trait Sink {
+    /// The sink's error (none for memory).
+    type Error;
+    /// Takes the next row.
+    fn push(&mut self, row: Finished) -> Result<(), Self::Error>;
+    /// Makes the rows taken so far durable (after each batch).
+    fn flush(&mut self) -> Result<(), Self::Error>;
+}
+
+/// Rows appended to `samples.csv`.
+struct FileSink<W: std::io::Write> {
+    out: W,
+    outputs: usize,
+}
+
+impl<W: std::io::Write> Sink for FileSink<W> {
+    type Error = std::io::Error;
+
+    fn push(&mut self, row: Finished) -> std::io::Result<()> {
+        self.out.write_all(row.line(self.outputs).as_bytes())
+    }
+
+    fn flush(&mut self) -> std::io::Result<()> {
+        self.out.flush()
+    }
+}
+
+/// Rows kept in memory.
+struct MemorySink {
+    rows: Vec<Row>,
+    outputs: usize,
+}
+
+impl Sink for MemorySink {
+    type Error = std::convert::Infallible;
+
+    fn push(&mut self, row: Finished) -> Result<(), Self::Error> {
+        self.rows.push(row.into_row(self.outputs));
+        Ok(())
+    }
+
+    fn flush(&mut self) -> Result<(), Self::Error> {
+        Ok(())
+    }
+}
+
+/// What [`fly_all`] did.
+struct Flown<E> {
+    /// The counts of the rows written now, or the sink's error.
+    written: Result<Counts, E>,
+    /// Positions below this are written (kept and new).
+    rows: u64,
+    threads: usize,
+    elapsed: Duration,
+}
+
+/// Flies the positions of `shard` from `first` on in `pool` and hands their rows to `sink`
+/// in position order, until all are written, `stop` is set or the sink fails.
+#[allow(clippy::too_many_arguments)]
+fn fly_all<F, S>(
+    pool: &rayon::ThreadPool,
+    study: &Study,
+    shard: Shard,
+    progress: ProgressMode,
+    stop: &AtomicBool,
+    first: u64,
+    sink: &mut S,
+    fly: &F,
+) -> Flown<S::Error>
+where
+    F: Fn(u64, &[f64]) -> Result<Outcome, String> + Sync,
+    S: Sink,
+{
+    let threads = pool.current_num_threads();
+    let total = shard.len(study.samples);
+    let mut progress = Progress::new(progress, total, first);
+    let started = Instant::now();
+    let engine = Engine {
+        study,
+        shard,
+        total,
+        window: WINDOW_PER_THREAD * threads as u64,
+        next: AtomicU64::new(first),
+        abort: AtomicBool::new(false),
+        stop,
+        written: Mutex::new(first),
+        advanced: Condvar::new(),
+    };
+    let (sender, receiver) = mpsc::channel::<Vec<Finished>>();
+    let mut written = None;
+    pool.in_place_scope(|scope| {
+        for _ in 0..threads {
+            let sender = sender.clone();
+            let engine = &engine;
+            scope.spawn(move |_| engine.work(fly, &sender));
+        }
+        drop(sender);
+        let result = engine.write(receiver, sink, &mut progress);
+        if result.is_err() {
+            engine.stop();
+        }
+        written = Some(result);
+    });
+    progress.finish();
+    let rows = *engine
+        .written
+        .lock()
+        .unwrap_or_else(PoisonError::into_inner);
+    Flown {
+        written: written.unwrap_or_else(|| Ok(Counts::default())),
+        rows,
+        threads,
+        elapsed: started.elapsed(),
+    }
 }
 
 /// A flown sample's row.
 struct Finished {
     position: u64,
-    line: String,
+    index: u64,
+    inputs: Vec<f64>,
     status: Status,
+    values: Vec<Option<f64>>,
+}
+
+impl Finished {
+    /// Its line of `samples.csv` in a study of `outputs` outputs.
+    fn line(&self, outputs: usize) -> String {
+        csv::row(
+            self.index,
+            &self.inputs,
+            &self.status,
+            &self.values,
+            outputs,
+        )
+    }
+
+    /// Its row as read back from that line.
+    fn into_row(self, outputs: usize) -> Row {
+        Row::of(self.index, self.inputs, self.status, self.values, outputs)
+    }
 }
 
 /// Flies the sample at `position` of `shard` and formats its row.
@@ -344,8 +533,10 @@ where
     };
     Finished {
         position,
-        line: csv::row(index, &inputs, &status, &values, outputs),
+        index,
+        inputs,
         status,
+        values,
     }
 }
 
@@ -402,13 +593,13 @@ impl Engine<'_> {
         }
     }
 
-    /// The writer: appends rows in position order; returns the written rows' counts.
-    fn write(
+    /// The writer: hands rows to `sink` in position order; returns the written rows' counts.
+    fn write<S: Sink>(
         &self,
         receiver: mpsc::Receiver<Vec<Finished>>,
-        out: &mut impl std::io::Write,
+        sink: &mut S,
         progress: &mut Progress,
-    ) -> std::io::Result<Counts> {
+    ) -> Result<Counts, S::Error> {
         let mut pending = BTreeMap::new();
         let mut next = *self.written.lock().unwrap_or_else(PoisonError::into_inner);
         let mut counts = Counts::default();
@@ -416,12 +607,12 @@ impl Engine<'_> {
             pending.extend(batch.into_iter().map(|row| (row.position, row)));
             let first = next;
             while let Some(row) = pending.remove(&next) {
-                out.write_all(row.line.as_bytes())?;
                 counts.add(&row.status);
+                sink.push(row)?;
                 next += 1;
             }
             if next > first {
-                out.flush()?;
+                sink.flush()?;
                 *self.written.lock().unwrap_or_else(PoisonError::into_inner) = next;
                 self.advanced.notify_all();
                 progress.advance(next - first);

@@ -12,7 +12,7 @@
 //! (64 MB), one pass over the file per group; the ellipses use running moments; the KML and
 //! the scatter plot show at most the first `MAX_DRAWN_POINTS` landing points.
 
-use crate::csv::Counts;
+use crate::csv::{Counts, Row};
 use crate::error::DispersionError;
 use crate::files::{
     self, HISTOGRAM_PLOT_FILE, KML_FILE, LANDING_PLOT_FILE, SAMPLES_FILE, STUDY_FILE, SUMMARY_FILE,
@@ -22,7 +22,7 @@ use crate::plot;
 use crate::stats::{
     Ellipse, Moments, NORMAL_SIGMA_PROBABILITY, Statistics, k_sigma_probability, probability_scale,
 };
-use crate::study::{Record, Shard};
+use crate::study::{Record, Shard, Study};
 use serde::Serialize;
 use std::path::Path;
 
@@ -177,6 +177,84 @@ pub fn summarize(dir: &Path) -> Result<Summary, DispersionError> {
     }
     let study = record.study();
     let (n_inputs, n_outputs) = (study.inputs.len(), study.outputs.len());
+    let computed = compute(&study, &mut |f| {
+        files::for_each_row(&samples_path, n_inputs, n_outputs, |row| f(&row))
+    })?;
+    let summary = computed.summary;
+    let mut json = serde_json::to_string_pretty(&summary).unwrap_or_default();
+    json.push('\n');
+    files::write_atomic(&dir.join(SUMMARY_FILE), json.as_bytes())?;
+
+    if let Some((name, values)) = &computed.histogram {
+        plot::histogram(
+            &dir.join(HISTOGRAM_PLOT_FILE),
+            &format!("{name}: {} samples", values.len()),
+            name,
+            values,
+        )?;
+    }
+    let title = if study.context.is_empty() {
+        format!("Dispersion, {} samples, seed {}", study.samples, study.seed)
+    } else {
+        format!(
+            "{}: {} samples, seed {}",
+            study.context, study.samples, study.seed
+        )
+    };
+    if study.points.landing.is_some() {
+        let points: Vec<[f64; 2]> = computed.drawn.iter().map(|(_, p)| *p).collect();
+        let ellipse = computed.landing.ellipse();
+        plot::landing(
+            &dir.join(LANDING_PLOT_FILE),
+            &title,
+            &points,
+            ellipse.as_ref(),
+        )?;
+        if let Some(site) = &study.site {
+            let document = kml::document(
+                &title,
+                site,
+                &computed.kml_ellipses,
+                &computed.drawn,
+                computed.landing.count(),
+            );
+            files::write_atomic(&dir.join(KML_FILE), document.as_bytes())?;
+        }
+    }
+    Ok(summary)
+}
+
+/// The summary of a complete study whose rows, in index order, are in memory (as
+/// [`crate::run_in_memory`] keeps them): the [`summarize`] of the same rows in a directory,
+/// without its files.
+pub fn summarize_rows(study: &Study, rows: &[Row]) -> Summary {
+    let Ok(computed) = compute::<std::convert::Infallible>(study, &mut |f| {
+        rows.iter().for_each(&mut *f);
+        Ok(())
+    });
+    computed.summary
+}
+
+/// The summary and what its figures draw.
+struct Computed {
+    summary: Summary,
+    /// The histogram's output and its values (completed flights).
+    histogram: Option<(String, Vec<f64>)>,
+    /// The landing points drawn (at most [`MAX_DRAWN_POINTS`]) with their sample indices.
+    drawn: Vec<(u64, [f64; 2])>,
+    /// Moments of every landing point.
+    landing: Moments,
+    /// The ellipses with their KML labels.
+    kml_ellipses: Vec<(&'static str, Ellipse)>,
+}
+
+/// A pass over a study's rows: calls the function given on every row, in index order.
+type RowPass<'a, E> = dyn FnMut(&mut dyn FnMut(&Row)) -> Result<(), E> + 'a;
+
+/// Computes the summary of `study` from its rows, read by `rows` as many times as needed
+/// (once per group of columns, plus one).
+fn compute<E>(study: &Study, rows: &mut RowPass<'_, E>) -> Result<Computed, E> {
+    let (n_inputs, n_outputs) = (study.inputs.len(), study.outputs.len());
     let output_index = |name: &String| study.outputs.iter().position(|o| o == name);
     let pair = |names: &Option<[String; 2]>| {
         names
@@ -198,8 +276,8 @@ pub fn summarize(dir: &Path) -> Result<Summary, DispersionError> {
     let mut apogee = Moments::default();
     let mut landing = Moments::default();
     let mut drawn: Vec<(u64, [f64; 2])> = Vec::new();
-    let value = |row: &crate::csv::Row, i: usize| row.outputs.get(i).copied().flatten();
-    files::for_each_row(&samples_path, n_inputs, n_outputs, |row| {
+    let value = |row: &Row, i: usize| row.outputs.get(i).copied().flatten();
+    rows(&mut |row| {
         counts.add(&row.status);
         if !row.status.is_completed() {
             if failures.len() < MAX_LISTED_FAILURES {
@@ -212,12 +290,12 @@ pub fn summarize(dir: &Path) -> Result<Summary, DispersionError> {
             return;
         }
         if let Some((x, y)) = apogee_pair {
-            if let (Some(x), Some(y)) = (value(&row, x), value(&row, y)) {
+            if let (Some(x), Some(y)) = (value(row, x), value(row, y)) {
                 apogee.push(x, y);
             }
         }
         if let Some((x, y)) = landing_pair {
-            if let (Some(x), Some(y)) = (value(&row, x), value(&row, y)) {
+            if let (Some(x), Some(y)) = (value(row, x), value(row, y)) {
                 landing.push(x, y);
                 if drawn.len() < MAX_DRAWN_POINTS && x.is_finite() && y.is_finite() {
                     drawn.push((row.index, [x, y]));
@@ -228,18 +306,19 @@ pub fn summarize(dir: &Path) -> Result<Summary, DispersionError> {
 
     // Column statistics, a group of columns per pass.
     let columns = n_inputs + n_outputs;
-    let per_pass = (VALUES_PER_PASS / record.samples.max(1)).max(1) as usize;
+    let per_pass = (VALUES_PER_PASS / study.samples.max(1)).max(1) as usize;
     let mut statistics = Vec::with_capacity(columns);
+    let mut histogram = None;
     for first in (0..columns).step_by(per_pass) {
         let group = first..(first + per_pass).min(columns);
         let mut values: Vec<Vec<f64>> = group.clone().map(|_| Vec::new()).collect();
-        files::for_each_row(&samples_path, n_inputs, n_outputs, |row| {
+        rows(&mut |row| {
             let completed = row.status.is_completed();
             for (column, slot) in group.clone().zip(values.iter_mut()) {
                 let v = if column < n_inputs {
                     row.inputs.get(column).copied()
                 } else if completed {
-                    value(&row, column - n_inputs)
+                    value(row, column - n_inputs)
                 } else {
                     None
                 };
@@ -249,13 +328,7 @@ pub fn summarize(dir: &Path) -> Result<Summary, DispersionError> {
         for (column, mut column_values) in group.zip(values) {
             statistics.push(Statistics::of(&mut column_values));
             if Some(column) == histogram_column {
-                let name = &study.outputs[column - n_inputs];
-                plot::histogram(
-                    &dir.join(HISTOGRAM_PLOT_FILE),
-                    &format!("{name}: {} samples", column_values.len()),
-                    name,
-                    &column_values,
-                )?;
+                histogram = Some((study.outputs[column - n_inputs].clone(), column_values));
             }
         }
     }
@@ -282,42 +355,19 @@ pub fn summarize(dir: &Path) -> Result<Summary, DispersionError> {
         }
     }
     let summary = Summary {
-        seed: record.seed,
-        samples: record.samples,
+        seed: study.seed,
+        samples: study.samples,
         counts,
         failures,
         inputs: columns,
         outputs,
         ellipses,
     };
-    let mut json = serde_json::to_string_pretty(&summary).unwrap_or_default();
-    json.push('\n');
-    files::write_atomic(&dir.join(SUMMARY_FILE), json.as_bytes())?;
-
-    let title = if study.context.is_empty() {
-        format!(
-            "Dispersion, {} samples, seed {}",
-            record.samples, record.seed
-        )
-    } else {
-        format!(
-            "{}: {} samples, seed {}",
-            study.context, record.samples, record.seed
-        )
-    };
-    if study.points.landing.is_some() {
-        let points: Vec<[f64; 2]> = drawn.iter().map(|(_, p)| *p).collect();
-        let ellipse = landing.ellipse();
-        plot::landing(
-            &dir.join(LANDING_PLOT_FILE),
-            &title,
-            &points,
-            ellipse.as_ref(),
-        )?;
-        if let Some(site) = &study.site {
-            let document = kml::document(&title, site, &kml_ellipses, &drawn, landing.count());
-            files::write_atomic(&dir.join(KML_FILE), document.as_bytes())?;
-        }
-    }
-    Ok(summary)
+    Ok(Computed {
+        summary,
+        histogram,
+        drawn,
+        landing,
+        kml_ellipses,
+    })
 }

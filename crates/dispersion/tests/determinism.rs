@@ -130,3 +130,49 @@ fn three_shards_merge_into_a_single_run() {
     let error = merge(&tmp.path().join("mixed"), &mixed).expect_err("different studies");
     assert!(error.to_string().contains("seed"), "{error}");
 }
+
+#[test]
+fn a_study_in_memory_is_the_study_written_to_a_directory() {
+    use karman_dispersion::{parse_row, run_in_memory};
+    use std::sync::atomic::{AtomicBool, Ordering};
+
+    let study = study(300);
+    let tmp = tempfile::tempdir().expect("temporary directory");
+    let dir = tmp.path().join("study");
+    run(&study, &dir, &options(2, Shard::WHOLE), fly).expect("run into a directory");
+    let csv = std::fs::read_to_string(dir.join("samples.csv")).expect("samples.csv");
+    let written: Vec<_> = csv
+        .lines()
+        .skip(1)
+        .map(|line| parse_row(line, 7, 6).expect("a row"))
+        .collect();
+    let summary_json = std::fs::read_to_string(dir.join("summary.json")).expect("summary");
+    let never = AtomicBool::new(false);
+    for threads in [1, 2] {
+        let memory =
+            run_in_memory(&study, &options(threads, Shard::WHOLE), &never, fly).expect("memory");
+        // Debug text compares every number exactly (NaN included).
+        assert_eq!(format!("{:?}", memory.rows), format!("{written:?}"));
+        let summary = memory.report.summary.expect("a summary");
+        let mut json = serde_json::to_string_pretty(&summary).expect("json");
+        json.push('\n');
+        assert_eq!(json, summary_json, "{threads} threads");
+        assert_eq!(memory.report.counts, summary.counts);
+        assert_eq!((memory.report.flown, memory.report.threads), (300, threads));
+    }
+
+    let stop = AtomicBool::new(false);
+    let result = run_in_memory(&study, &options(2, Shard::WHOLE), &stop, |i, v| {
+        if i >= 50 {
+            stop.store(true, Ordering::Relaxed);
+        }
+        fly(i, v)
+    });
+    let Err(DispersionError::Stopped { written, total }) = result else {
+        panic!("expected a stop, got {result:?}");
+    };
+    assert!(written < 300 && total == 300, "{written} of {total}");
+    let shard = Shard::new(1, 2).expect("shard");
+    let error = run_in_memory(&study, &options(1, shard), &never, fly).expect_err("a shard");
+    assert!(error.to_string().contains("whole study"), "{error}");
+}

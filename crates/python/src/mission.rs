@@ -2,13 +2,16 @@
 
 use std::path::{Path, PathBuf};
 use std::sync::atomic::{AtomicBool, AtomicU64, Ordering};
+use std::sync::{Arc, OnceLock};
 use std::time::Duration;
 
 use karman_mission::build::environment::build_environment;
-use karman_mission::build::flight::simulate_with_seed;
+use karman_mission::build::flight::PreparedFlight;
 use karman_mission::build::motor::build_motor;
 use karman_mission::build::rocket::build_rocket;
-use karman_mission::dispersion::{ProgressMode, RunOptions, run_until};
+use karman_mission::dispersion::{
+    MemoryRun, ProgressMode, RunOptions, RunReport, run_in_memory, run_until,
+};
 use karman_mission::montecarlo::{MonteCarlo, StudyOverrides};
 use karman_mission::report::environment::{default_heights, environment_report};
 use karman_mission::report::motor::MotorReport;
@@ -27,14 +30,16 @@ use crate::study::Study;
 /// passed (relative data paths then resolve against the working directory).
 const UNNAMED: &str = "<mission>";
 
-/// A mission: the TOML text it was read from, the overrides applied to it, and the validated
-/// result.
+/// A mission: the TOML text it was read from, the overrides applied to it, the validated
+/// result, and its models once built (by the first `simulate`; every change — `set` — makes a
+/// new mission, whose models are built again).
 #[pyclass(module = "karman")]
 #[derive(Clone)]
 pub struct Mission {
     text: String,
     overrides: Vec<Override>,
     inner: karman_mission::Mission,
+    prepared: OnceLock<Arc<PreparedFlight>>,
 }
 
 /// The overrides of a `{path: value}` dict, values given as Python data.
@@ -66,7 +71,18 @@ impl Mission {
             text,
             overrides,
             inner,
+            prepared: OnceLock::new(),
         })
+    }
+
+    /// The mission's models, built and checked on first use and kept (copies of the mission
+    /// share them; they never change, since a change makes a new mission).
+    fn prepared(&self) -> Result<Arc<PreparedFlight>, RustMissionError> {
+        if let Some(prepared) = self.prepared.get() {
+            return Ok(Arc::clone(prepared));
+        }
+        let prepared = Arc::new(PreparedFlight::new(&self.inner)?);
+        Ok(Arc::clone(self.prepared.get_or_init(|| prepared)))
     }
 
     /// The validated mission.
@@ -207,12 +223,14 @@ impl Mission {
     }
 
     /// Flies the mission once (the GIL is released meanwhile); `seed` seeds the parachute
-    /// trigger noise. Raises `MissionError` when the models cannot be built or flown.
+    /// trigger noise. The models are built and checked by the first call and kept for the
+    /// next ones until the mission changes. Raises `MissionError` when the models cannot be
+    /// built or flown.
     #[pyo3(signature = (seed = 0))]
     fn simulate(&self, py: Python<'_>, seed: u64) -> PyResult<Flight> {
         let mission = &self.inner;
         let run = py
-            .detach(|| simulate_with_seed(mission, seed))
+            .detach(|| self.prepared()?.fly(mission, seed))
             .map_err(|e| mission_error(&e))?;
         let name = mission
             .spec
@@ -224,8 +242,8 @@ impl Mission {
 
     /// A Monte Carlo study of the mission, in memory: `samples` and `seed` default to the
     /// mission's `[dispersion]`, `vary` (`{path: distribution}` as in `[dispersion.vary]`)
-    /// replaces its inputs, `threads` defaults to one per core. `out` also writes the files of
-    /// `karman montecarlo --out` (resumable). The GIL is released; Ctrl-C stops the study
+    /// replaces its inputs, `threads` defaults to one per core. The study is kept in memory;
+    /// `out` also writes the files of `karman montecarlo --out` there (resumable). The GIL is released; Ctrl-C stops the study
     /// between samples (raising `KeyboardInterrupt`). `progress` shows a progress bar.
     #[pyo3(signature = (samples = None, seed = None, threads = None, vary = None, out = None, progress = true))]
     #[allow(clippy::too_many_arguments)]
@@ -267,17 +285,6 @@ impl Mission {
         };
         let study = MonteCarlo::new(&mission.inner, StudyOverrides { samples, seed })
             .map_err(|e| mission_error(&e))?;
-        let temporary = match out {
-            Some(_) => None,
-            None => Some(tempfile::tempdir().map_err(|e| {
-                PyRuntimeError::new_err(format!("cannot create a temporary folder: {e}"))
-            })?),
-        };
-        let dir = match (&out, &temporary) {
-            (Some(out), _) => out.clone(),
-            (None, Some(t)) => t.path().to_owned(),
-            (None, None) => unreachable!("a temporary folder exists when no out is given"),
-        };
         let options = RunOptions {
             threads,
             shard: None,
@@ -299,13 +306,19 @@ impl Mission {
         let (result, interrupted) = py.detach(|| {
             std::thread::scope(|scope| {
                 let (finished, wait) = std::sync::mpsc::channel::<()>();
-                let (study, dir, options, stop, done) = (&study, &dir, &options, &stop, &done);
+                let (study, out, options, stop, done) = (&study, &out, &options, &stop, &done);
                 let worker = scope.spawn(move || {
-                    let result = run_until(study.study(), dir, options, stop, |index, values| {
+                    let fly = |index, values: &[f64]| {
                         let outcome = study.fly(index, values);
                         done.fetch_add(1, Ordering::Relaxed);
                         outcome
-                    });
+                    };
+                    let result = match out {
+                        // The CLI's files, then the rows read back from its samples.csv.
+                        Some(dir) => run_until(study.study(), dir, options, stop, fly)
+                            .map(|report| Run::Written(dir.clone(), report)),
+                        None => run_in_memory(study.study(), options, stop, fly).map(Run::Memory),
+                    };
                     let _ = finished.send(());
                     result
                 });
@@ -336,10 +349,13 @@ impl Mission {
         if let Some(error) = interrupted {
             return Err(error);
         }
-        let report = result
+        let run = result
             .map_err(|_| PyRuntimeError::new_err("the Monte Carlo runner panicked"))?
             .map_err(|e| mission_error(&e))?;
-        Study::read(study.study(), &report, &dir, out.is_some())
+        match run {
+            Run::Memory(run) => Study::new(study.study(), run.rows, &run.report, None),
+            Run::Written(dir, report) => Study::read(study.study(), &report, &dir),
+        }
     }
 
     fn __repr__(&self) -> String {
@@ -355,3 +371,9 @@ impl Mission {
 
 /// How often a running study looks for Ctrl-C and updates its progress display.
 const POLL: Duration = Duration::from_millis(50);
+
+/// A finished study: kept in memory, or written to the `out=` folder.
+enum Run {
+    Memory(MemoryRun),
+    Written(PathBuf, RunReport),
+}

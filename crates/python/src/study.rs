@@ -4,7 +4,9 @@
 use std::path::{Path, PathBuf};
 use std::time::Duration;
 
-use karman_mission::dispersion::{RunReport, Status, Study as StudyDefinition, Summary, parse_row};
+use karman_mission::dispersion::{
+    Row, RunReport, Status, Study as StudyDefinition, Summary, parse_row,
+};
 use numpy::PyArray1;
 use pyo3::exceptions::{PyOSError, PyRuntimeError};
 use pyo3::prelude::*;
@@ -28,30 +30,20 @@ pub struct Study {
 }
 
 impl Study {
-    /// Reads the rows of a finished run back from its `samples.csv` in `dir`; `keep` records
-    /// `dir` as the study's output folder.
-    pub fn read(
+    /// A finished study from its rows in index order (as `samples.csv` holds them) and its
+    /// run's report; `out` is the folder it was written to, if any.
+    pub fn new(
         study: &StudyDefinition,
+        rows: Vec<Row>,
         report: &RunReport,
-        dir: &Path,
-        keep: bool,
+        out: Option<PathBuf>,
     ) -> PyResult<Self> {
-        let path = dir.join(karman_mission::dispersion::files::SAMPLES_FILE);
-        let text = std::fs::read_to_string(&path)
-            .map_err(|e| PyOSError::new_err(format!("cannot read {}: {e}", path.display())))?;
         let (n_in, n_out) = (study.inputs.len(), study.outputs.len());
-        let mut index = Vec::new();
-        let mut inputs: Vec<Vec<f64>> = vec![Vec::new(); n_in];
-        let mut outputs: Vec<Vec<f64>> = vec![Vec::new(); n_out];
+        let mut index = Vec::with_capacity(rows.len());
+        let mut inputs: Vec<Vec<f64>> = vec![Vec::with_capacity(rows.len()); n_in];
+        let mut outputs: Vec<Vec<f64>> = vec![Vec::with_capacity(rows.len()); n_out];
         let mut failures = Vec::new();
-        for (number, line) in text.lines().enumerate().skip(1) {
-            let row = parse_row(line, n_in, n_out).map_err(|reason| {
-                PyRuntimeError::new_err(format!(
-                    "{}, line {}: {reason}",
-                    path.display(),
-                    number + 1
-                ))
-            })?;
+        for row in rows {
             index.push(row.index);
             for (column, value) in inputs.iter_mut().zip(&row.inputs) {
                 column.push(*value);
@@ -86,8 +78,31 @@ impl Study {
             threads: report.threads,
             elapsed: report.elapsed,
             flown: report.flown,
-            out: keep.then(|| dir.to_owned()),
+            out,
         })
+    }
+
+    /// The study written to `dir`, its rows read back from its `samples.csv`.
+    pub fn read(study: &StudyDefinition, report: &RunReport, dir: &Path) -> PyResult<Self> {
+        let path = dir.join(karman_mission::dispersion::files::SAMPLES_FILE);
+        let text = std::fs::read_to_string(&path)
+            .map_err(|e| PyOSError::new_err(format!("cannot read {}: {e}", path.display())))?;
+        let (n_in, n_out) = (study.inputs.len(), study.outputs.len());
+        let rows = text
+            .lines()
+            .enumerate()
+            .skip(1)
+            .map(|(number, line)| {
+                parse_row(line, n_in, n_out).map_err(|reason| {
+                    PyRuntimeError::new_err(format!(
+                        "{}, line {}: {reason}",
+                        path.display(),
+                        number + 1
+                    ))
+                })
+            })
+            .collect::<PyResult<Vec<Row>>>()?;
+        Study::new(study, rows, report, Some(dir.to_owned()))
     }
 
     fn columns<'py>(

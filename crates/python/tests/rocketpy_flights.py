@@ -1,19 +1,65 @@
-"""Three validation flights built with RocketPy 1.13's API, as their sources do (RocketPy's
-first-simulation page for Calisto, the Valetudo and Prometheus notebooks), with the data
-files of the validation folder. Each builder returns (environment, rocket, flight kwargs)."""
+"""Four validation flights built with RocketPy 1.13's API, as their sources do (RocketPy's
+first-simulation page for Calisto, the Valetudo, Prometheus and Juno III notebooks), with the
+data files of the validation folder. Each builder returns (environment, rocket, flight
+kwargs); the steps they share (a standard-atmosphere site, a rocket with its motor, rail
+buttons, nose, trapezoidal fins, optional tail and parachutes) are `_site` and `_rocket`."""
 
 from __future__ import annotations
 
 import datetime
+import math
 from pathlib import Path
+from typing import Any
+
+
+def _site(latitude: float, longitude: float, elevation: float, **when: Any):
+    """A launch site under the standard atmosphere; ``when``: RocketPy's ``date`` and
+    ``timezone``."""
+    from rocketpy import Environment
+
+    env = Environment(latitude=latitude, longitude=longitude, elevation=elevation, **when)
+    env.set_atmospheric_model(type="standard_atmosphere")
+    return env
+
+
+def _rocket(
+    motor: Any,
+    *,
+    position: float,
+    buttons: tuple[float, float, float],
+    nose: dict[str, Any],
+    fins: dict[str, Any],
+    tail: dict[str, Any] | None = None,
+    parachutes: tuple[dict[str, Any], ...] = (),
+    **body: Any,
+):
+    """RocketPy's ``Rocket(**body)`` with ``motor`` at ``position``, rail buttons (upper,
+    lower, angular position), a nose cone, trapezoidal fins, an optional tail and the
+    parachutes in order."""
+    from rocketpy import Rocket
+
+    rocket = Rocket(**body)
+    rocket.add_motor(motor, position=position)
+    rocket.set_rail_buttons(*buttons)
+    rocket.add_nose(**nose)
+    rocket.add_trapezoidal_fins(**fins)
+    if tail is not None:
+        rocket.add_tail(**tail)
+    for parachute in parachutes:
+        rocket.add_parachute(**parachute)
+    return rocket
+
+
+def _noisy_parachute(name: str, cd_s: float, trigger: Any, lag: float, **more: Any):
+    """A parachute sampled at 105 Hz with RocketPy's example pressure noise (0, 8.3, 0.5)."""
+    return dict(name=name, cd_s=cd_s, trigger=trigger, sampling_rate=105, lag=lag,
+                noise=(0, 8.3, 0.5), **more)
 
 
 def calisto(data: Path):
-    from rocketpy import Environment, Rocket, SolidMotor
+    from rocketpy import SolidMotor
 
     d = data / "calisto"
-    env = Environment(latitude=32.990254, longitude=-106.974998, elevation=1400)
-    env.set_atmospheric_model(type="standard_atmosphere")
     motor = SolidMotor(
         thrust_source=str(d / "Cesaroni_M1670.eng"),
         dry_mass=1.815,
@@ -32,7 +78,17 @@ def calisto(data: Path):
         throat_radius=11 / 1000,
         coordinate_system_orientation="nozzle_to_combustion_chamber",
     )
-    rocket = Rocket(
+    canopy = dict(radius=1.5, height=1.5, porosity=0.0432)
+    rocket = _rocket(
+        motor,
+        position=-1.255,
+        buttons=(0.0818, -0.6182, 45),
+        nose=dict(length=0.55829, kind="von karman", position=1.278),
+        fins=dict(n=4, root_chord=0.120, tip_chord=0.060, span=0.110, position=-1.04956,
+                  cant_angle=0.5, airfoil=(str(d / "NACA0012-radians.txt"), "radians")),
+        tail=dict(top_radius=0.0635, bottom_radius=0.0435, length=0.060, position=-1.194656),
+        parachutes=(_noisy_parachute("main", 10.0, 800, 1.5, **canopy),
+                    _noisy_parachute("drogue", 1.0, "apogee", 1.5, **canopy)),
         radius=127 / 2000,
         mass=14.426,
         inertia=(6.321, 6.321, 0.034),
@@ -41,33 +97,14 @@ def calisto(data: Path):
         center_of_mass_without_motor=0,
         coordinate_system_orientation="tail_to_nose",
     )
-    rocket.add_motor(motor, position=-1.255)
-    rocket.set_rail_buttons(
-        upper_button_position=0.0818, lower_button_position=-0.6182, angular_position=45
-    )
-    rocket.add_nose(length=0.55829, kind="von karman", position=1.278)
-    rocket.add_trapezoidal_fins(
-        n=4, root_chord=0.120, tip_chord=0.060, span=0.110, position=-1.04956,
-        cant_angle=0.5, airfoil=(str(d / "NACA0012-radians.txt"), "radians"),
-    )
-    rocket.add_tail(top_radius=0.0635, bottom_radius=0.0435, length=0.060, position=-1.194656)
-    for name, cd_s, trigger in (("main", 10.0, 800), ("drogue", 1.0, "apogee")):
-        rocket.add_parachute(
-            name=name, cd_s=cd_s, trigger=trigger, sampling_rate=105, lag=1.5,
-            noise=(0, 8.3, 0.5), radius=1.5, height=1.5, porosity=0.0432,
-        )
+    env = _site(32.990254, -106.974998, 1400)
     return env, rocket, {"rail_length": 5.2, "inclination": 85, "heading": 0}
 
 
 def valetudo(data: Path):
-    from rocketpy import Environment, Rocket, SolidMotor
+    from rocketpy import SolidMotor
 
     d = data / "valetudo"
-    env = Environment(
-        latitude=-23.363611, longitude=-48.011389, elevation=668,
-        date=datetime.datetime(2019, 8, 10, 21, 0),
-    )
-    env.set_atmospheric_model(type="standard_atmosphere")
     motor = SolidMotor(
         thrust_source=str(d / "keron_thrust_curve.csv"),
         burn_time=5.274,
@@ -87,7 +124,13 @@ def valetudo(data: Path):
         dry_inertia=(0, 0, 0),
         center_of_dry_mass_position=0.42,
     )
-    rocket = Rocket(
+    rocket = _rocket(
+        motor,
+        position=-1.024,
+        buttons=(0.224, -0.93, 30),
+        nose=dict(length=0.274, kind="tangent", position=1.134),
+        fins=dict(n=3, span=0.077, root_chord=0.058, tip_chord=0.018, position=-0.906),
+        parachutes=(_noisy_parachute("Drogue", 0.349 * 1.3, "apogee", 1),),
         radius=0.04045,
         mass=8.257,
         inertia=(3.675, 3.675, 0.007),
@@ -95,30 +138,14 @@ def valetudo(data: Path):
         power_on_drag=str(d / "Cd_PowerOn_RASAero.csv"),
         center_of_mass_without_motor=0,
     )
-    rocket.add_motor(motor, position=-1.024)
-    rocket.set_rail_buttons(0.224, -0.93, 30)
-    rocket.add_nose(length=0.274, kind="tangent", position=1.134)
-    rocket.add_trapezoidal_fins(
-        n=3, span=0.077, root_chord=0.058, tip_chord=0.018, position=-0.906
-    )
-    rocket.add_parachute(
-        "Drogue", cd_s=0.349 * 1.3, trigger="apogee", sampling_rate=105, lag=1,
-        noise=(0, 8.3, 0.5),
-    )
+    env = _site(-23.363611, -48.011389, 668, date=datetime.datetime(2019, 8, 10, 21, 0))
     return env, rocket, {"rail_length": 5.7, "inclination": 84.7, "heading": 53}
 
 
 def prometheus(data: Path):
-    import math
-
-    from rocketpy import Environment, GenericMotor, Rocket
+    from rocketpy import GenericMotor
 
     d = data / "prometheus_2022"
-    env = Environment(
-        latitude=32.939377, longitude=-106.911986, elevation=1401,
-        date=(2023, 6, 24, 9), timezone="America/Denver",
-    )
-    env.set_atmospheric_model(type="standard_atmosphere")
     motor = GenericMotor(
         thrust_source=str(d / "Cesaroni_7579M1520-P.eng"),
         burn_time=4.897,
@@ -131,7 +158,15 @@ def prometheus(data: Path):
     )
     off = [(0.15, 0.422), (0.45, 0.38), (0.77, 0.32), (0.82, 0.3), (0.88, 0.3), (0.94, 0.32),
            (0.99, 0.37), (1.04, 0.44), (1.24, 0.43), (1.33, 0.42), (1.49, 0.39)]
-    rocket = Rocket(
+    rocket = _rocket(
+        motor,
+        position=0,
+        buttons=(0.69, 0.21, 60),
+        nose=dict(length=0.742, kind="Von Karman", position=2.229),
+        fins=dict(n=3, span=0.13, root_chord=0.268, tip_chord=0.136, position=0.273,
+                  sweep_length=0.066),
+        parachutes=(dict(name="Drogue", cd_s=1.6 * math.pi * 0.3048**2, trigger="apogee"),
+                    dict(name="Main", cd_s=2.2 * math.pi * 0.9144**2, trigger=457.2)),
         radius=0.06985,
         mass=13.93,
         inertia=(4.87, 4.87, 0.05),
@@ -140,26 +175,14 @@ def prometheus(data: Path):
         center_of_mass_without_motor=0.9549,
         coordinate_system_orientation="tail_to_nose",
     )
-    rocket.add_motor(motor, position=0)
-    rocket.set_rail_buttons(0.69, 0.21, 60)
-    rocket.add_nose(length=0.742, kind="Von Karman", position=2.229)
-    rocket.add_trapezoidal_fins(
-        n=3, span=0.13, root_chord=0.268, tip_chord=0.136, position=0.273, sweep_length=0.066
-    )
-    rocket.add_parachute("Drogue", cd_s=1.6 * math.pi * 0.3048**2, trigger="apogee")
-    rocket.add_parachute("Main", cd_s=2.2 * math.pi * 0.9144**2, trigger=457.2)
+    env = _site(32.939377, -106.911986, 1401, date=(2023, 6, 24, 9), timezone="America/Denver")
     return env, rocket, {"rail_length": 5.18, "inclination": 80, "heading": 75}
 
 
 def juno3(data: Path):
-    from rocketpy import Environment, Rocket, SolidMotor
+    from rocketpy import SolidMotor
 
     d = data / "juno3"
-    env = Environment(
-        latitude=32.939377, longitude=-106.911986, elevation=1480,
-        date=(2023, 6, 23, 17), timezone="America/Denver",
-    )
-    env.set_atmospheric_model(type="standard_atmosphere")
     motor = SolidMotor(
         thrust_source=str(d / "mandioca_thrust_curve.csv"),
         reshape_thrust_curve=(5.8, 8800),
@@ -178,7 +201,16 @@ def juno3(data: Path):
         grain_initial_height=0.156,
         grains_center_of_mass_position=-0.683,
     )
-    rocket = Rocket(
+    rocket = _rocket(
+        motor,
+        position=0,
+        buttons=(0.24, -1.17, 45),
+        nose=dict(length=0.565, kind="vonKarman", position=1.477),
+        fins=dict(n=4, root_chord=0.2, tip_chord=0.12, span=0.13, position=-0.928,
+                  cant_angle=0,
+                  airfoil=([[0, 0.0002], [2, 0.332], [4, 0.6335], [6, 0.6877]], "degrees")),
+        tail=dict(top_radius=0.0655, bottom_radius=0.0535, length=0.068, position=-1.226),
+        parachutes=(_noisy_parachute("Drogue", 0.885, "apogee", 0.5),),
         radius=0.0655,
         mass=24.05,
         inertia=(15.07, 15.07, 0.067),
@@ -187,18 +219,7 @@ def juno3(data: Path):
         center_of_mass_without_motor=0,
         coordinate_system_orientation="tail_to_nose",
     )
-    rocket.add_motor(motor, position=0)
-    rocket.set_rail_buttons(0.24, -1.17, 45)
-    rocket.add_nose(length=0.565, kind="vonKarman", position=1.477)
-    rocket.add_trapezoidal_fins(
-        n=4, root_chord=0.2, tip_chord=0.12, span=0.13, position=-0.928, cant_angle=0,
-        airfoil=([[0, 0.0002], [2, 0.332], [4, 0.6335], [6, 0.6877]], "degrees"),
-    )
-    rocket.add_tail(top_radius=0.0655, bottom_radius=0.0535, length=0.068, position=-1.226)
-    rocket.add_parachute(
-        "Drogue", cd_s=0.885, trigger="apogee", sampling_rate=105, lag=0.5,
-        noise=(0, 8.3, 0.5),
-    )
+    env = _site(32.939377, -106.911986, 1480, date=(2023, 6, 23, 17), timezone="America/Denver")
     kwargs = {"rail_length": 5.2, "inclination": 85, "heading": 105, "max_time": 600,
               "rtol": 1e-6, "atol": 1e-6}
     return env, rocket, kwargs

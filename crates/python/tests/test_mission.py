@@ -17,6 +17,21 @@ def test_load_with_overrides_matches_set(example):
     assert tilted.simulate().apogee_agl_m == example.simulate().apogee_agl_m
 
 
+def test_set_after_simulate_flies_the_changed_mission(example):
+    """simulate keeps the built models; a set() after it must fly the new inputs, and a copy
+    made before the set keeps flying the old ones."""
+    first = example.simulate()
+    before = example.copy()
+    assert example.simulate().to_dict() == first.to_dict(), "the kept models fly the same"
+    example.set("rocket.mass", example.to_dict()["rocket"]["mass"] + 2.0)
+    heavier = example.simulate()
+    assert heavier.apogee_agl_m < first.apogee_agl_m
+    assert heavier.to_dict() == karman.load(EXAMPLE, overrides={
+        "rocket.mass": before.to_dict()["rocket"]["mass"] + 2.0}).simulate().to_dict()
+    assert before.simulate().to_dict() == first.to_dict()
+    assert example.simulate(seed=5).seed == 5
+
+
 def test_set_takes_python_values(example):
     example.set("rocket.parachutes.main.noise", [0, 0, 0])
     example.set("environment.atmosphere.model", "standard")

@@ -4,6 +4,8 @@ Ctrl-C."""
 from __future__ import annotations
 
 import _thread
+import csv
+import json
 import subprocess
 import threading
 import time
@@ -64,6 +66,33 @@ def test_out_writes_the_cli_bytes(example, cli, tmp_path):
         assert (tmp_path / "py" / name).read_bytes() == (tmp_path / "cli" / name).read_bytes(), name
 
 
+def test_a_study_in_memory_is_the_cli_study(example, cli, tmp_path, monkeypatch):
+    """No folder is written (not even a temporary one: the temporary directory does not
+    exist), and the arrays and the summary are exactly the CLI's samples.csv and
+    summary.json."""
+    monkeypatch.setenv("TMPDIR", str(tmp_path / "absent"))
+    study = example.montecarlo(samples=12, seed=9, threads=2, progress=False)
+    assert study.out is None
+    monkeypatch.undo()
+    subprocess.run(
+        [cli, "montecarlo", str(EXAMPLE), "--samples", "12", "--seed", "9", "--threads", "1",
+         "--out", str(tmp_path / "cli"), "--quiet"],
+        check=True, capture_output=True,
+    )
+    assert study.to_dict() == json.loads((tmp_path / "cli" / "summary.json").read_text())
+    with open(tmp_path / "cli" / "samples.csv", newline="") as file:
+        rows = list(csv.DictReader(file))
+    assert [int(r["index"]) for r in rows] == list(study.index)
+    for columns in (study.inputs, study.outputs):
+        for name, values in columns.items():
+            written = np.array([float(r[name]) if r[name] else np.nan for r in rows])
+            assert np.array_equal(written, values, equal_nan=True), name
+    assert study.failures == [
+        (int(r["index"]), f"{r['status']}: {r['error']}" if r["status"] != "failed"
+         else r["error"]) for r in rows if r["status"] != "ok"
+    ]
+
+
 def test_a_python_thread_runs_during_a_study(example):
     ticks = []
     stop = threading.Event()
@@ -118,6 +147,16 @@ def test_progress_reports_to_the_python_helper(example, monkeypatch):
     monkeypatch.setattr(progress, "Progress", Recorder)
     example.montecarlo(samples=8, seed=1, progress=True)
     assert seen[0] == ("total", 8) and seen[-1] == ("close", 8)
+
+
+def test_progress_without_tqdm_is_a_text_line(example, monkeypatch, capsys):
+    import sys
+
+    monkeypatch.setitem(sys.modules, "tqdm", None)
+    monkeypatch.setitem(sys.modules, "tqdm.auto", None)
+    example.montecarlo(samples=8, seed=1, threads=1, progress=True)
+    lines = capsys.readouterr().err.splitlines()
+    assert lines and lines[-1].startswith("karman Monte Carlo: 8/8 samples (100 %)"), lines
 
 
 def test_plot_ellipses_when_matplotlib_is_installed(example, tmp_path):

@@ -77,15 +77,16 @@ pub fn flight_settings(mission: &Mission, seed: u64) -> FlightSettings {
     settings
 }
 
-/// A flown mission: the models it was built into, the settings, and the raw flight.
+/// A flown mission: the models it was built into (shared with the [`PreparedFlight`] that
+/// flew it), the settings, and the raw flight.
 #[derive(Debug, Clone)]
 pub struct FlightRun {
     /// The launch environment.
-    pub environment: Environment,
+    pub environment: Arc<Environment>,
     /// The motor.
-    pub motor: Motor,
+    pub motor: Arc<Motor>,
     /// The rocket with its motor.
-    pub rocket: Rocket,
+    pub rocket: Arc<Rocket>,
     /// The flight settings used.
     pub settings: FlightSettings,
     /// Stored points, events and integration counters.
@@ -101,56 +102,104 @@ impl FlightRun {
     /// The flight summary of the mission contract.
     #[must_use]
     pub fn summary(&self) -> Summary {
-        self.flight.summary(&self.environment, &self.rocket)
+        self.flight.summary(&*self.environment, &*self.rocket)
     }
 
     /// Post-processed quantities at every stored point.
     #[must_use]
     pub fn samples(&self) -> Vec<Sample> {
-        self.flight.samples(&self.environment, &self.rocket)
+        self.flight.samples(&*self.environment, &*self.rocket)
     }
 }
 
-/// Builds and checks the models of `mission` ([`prepare`]) and flies it, with parachute
-/// trigger noise seeded by `seed` (recorded in the flight).
+/// A mission ready to fly: its models built and checked ([`prepare`]) and its air-brake
+/// controller compiled, once, so that it flies any number of times (seeds) without rebuilding
+/// them. [`simulate_with_seed`] prepares and flies once; the Python package's `Mission` keeps
+/// one until the mission changes.
+#[derive(Debug, Clone)]
+pub struct PreparedFlight {
+    environment: Arc<Environment>,
+    motor: Arc<Motor>,
+    rocket: Arc<Rocket>,
+    /// The settings with trigger-noise seed 0 ([`PreparedFlight::fly`] sets the seed).
+    settings: FlightSettings,
+    warnings: Vec<String>,
+    script: Option<ControllerScript>,
+}
+
+impl PreparedFlight {
+    /// Builds and checks the models of `mission` and compiles its controller.
+    ///
+    /// # Errors
+    /// [`prepare`]'s [`MissionError`]s and the controller script's.
+    pub fn new(mission: &Mission) -> Result<Self, MissionError> {
+        let Models {
+            environment,
+            motor,
+            rocket,
+            settings,
+            warnings,
+        } = prepare(mission, 0)?;
+        Ok(PreparedFlight {
+            environment: Arc::new(environment),
+            motor: Arc::new(motor),
+            rocket: Arc::new(rocket),
+            settings,
+            warnings,
+            script: compile_controller(mission)?,
+        })
+    }
+
+    /// The warnings of [`prepare`], each starting with the mission key it concerns.
+    #[must_use]
+    pub fn warnings(&self) -> &[String] {
+        &self.warnings
+    }
+
+    /// Flies the prepared models of `mission` (the mission they were prepared from) with
+    /// parachute trigger noise seeded by `seed` (recorded in the flight).
+    ///
+    /// # Errors
+    /// [`MissionError::Model`] with section `flight` when the flight cannot be integrated (a
+    /// non-finite state, a stiff or unstable model), or the controller's section for a
+    /// script error.
+    pub fn fly(&self, mission: &Mission, seed: u64) -> Result<FlightRun, MissionError> {
+        let mut settings = self.settings.clone();
+        settings.noise_seed = seed;
+        let (flight, controller) = fly(
+            mission,
+            &*self.environment,
+            &self.rocket,
+            &settings,
+            self.script.as_ref(),
+            || {
+                Arc::new(ControllerEnvironment::new(
+                    Arc::clone(&self.environment),
+                    1.0,
+                    0.0,
+                ))
+            },
+        )?;
+        Ok(FlightRun {
+            environment: Arc::clone(&self.environment),
+            motor: Arc::clone(&self.motor),
+            rocket: Arc::clone(&self.rocket),
+            settings,
+            flight,
+            warnings: self.warnings.clone(),
+            controller,
+        })
+    }
+}
+
+/// Builds and checks the models of `mission` ([`PreparedFlight::new`]) and flies them once,
+/// with parachute trigger noise seeded by `seed` (recorded in the flight).
 ///
 /// # Errors
 /// [`prepare`]'s [`MissionError`]s, and [`MissionError::Model`] with section `flight` when the
 /// flight cannot be integrated (a non-finite state, a stiff or unstable model).
 pub fn simulate_with_seed(mission: &Mission, seed: u64) -> Result<FlightRun, MissionError> {
-    let Models {
-        environment,
-        motor,
-        rocket,
-        settings,
-        warnings,
-    } = prepare(mission, seed)?;
-    let script = compile_controller(mission)?;
-    let environment = Arc::new(environment);
-    let (flight, controller) = fly(
-        mission,
-        &*environment,
-        &rocket,
-        &settings,
-        script.as_ref(),
-        || {
-            Arc::new(ControllerEnvironment::new(
-                Arc::clone(&environment),
-                1.0,
-                0.0,
-            ))
-        },
-    )?;
-    let environment = Arc::try_unwrap(environment).unwrap_or_else(|shared| (*shared).clone());
-    Ok(FlightRun {
-        environment,
-        motor,
-        rocket,
-        settings,
-        flight,
-        warnings,
-        controller,
-    })
+    PreparedFlight::new(mission)?.fly(mission, seed)
 }
 
 /// Flies `rocket` in `atmosphere` with `settings`, and with the mission's air-brake

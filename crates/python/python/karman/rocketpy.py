@@ -4,7 +4,8 @@ Build the ``Environment``, the motor (``SolidMotor`` or ``GenericMotor``) and th
 with its surfaces, rail buttons and parachutes as usual, then call
 ``from_rocketpy(env, rocket, rail_length=..., inclination=..., heading=...)`` with the
 arguments that would go to RocketPy's ``Flight``. The result is a :class:`karman.Mission`
-that flies the same model (physics.md follows RocketPy 1.13's conventions one to one).
+that flies the same model (physics.md follows RocketPy 1.13's conventions one to one), with
+RocketPy 1.13's form of the equations of motion (``flight.equations = "rocketpy_1_13"``).
 
 What the adapter reads (attributes of RocketPy 1.13's objects):
 
@@ -503,6 +504,9 @@ def _flight(kwargs: dict[str, Any]) -> dict[str, Any]:
             raise UnsupportedError(f"flight.{key}", "not a Flight argument karman knows")
     if math.isinf(out.get("max_time_step", 0.0)):
         out.pop("max_time_step")
+    # RocketPy's Flight integrates its own form of the equations of motion (its lever arms and
+    # mass flow, docs/mission-format.md `[flight] equations`), which karman flies by name.
+    out["equations"] = "rocketpy_1_13"
     return out
 
 
