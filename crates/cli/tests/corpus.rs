@@ -403,3 +403,13 @@ fn a_fifo_as_data_file_is_an_error_within_a_second() {
         assert!(text.contains("not a regular file"), "{text}");
     }
 }
+
+#[test]
+fn a_rocket_that_coasts_off_the_rail_after_burn_out_is_warned_about() {
+    let (warnings, check) =
+        warnings_of(&corpus_mission(), &["motor.reshape_thrust_curve=[0.1, 60]"]);
+    let expected = "`motor.thrust`: the motor burns out (0.100 s) before rail exit; the rocket \
+                    coasts the last 1.649 m of the rail at 13.869 m/s";
+    assert!(warnings.iter().any(|w| w == expected), "{warnings:?}");
+    assert!(check.contains(&format!("warning: {expected}")), "{check}");
+}
