@@ -4,6 +4,7 @@
 use std::path::Path;
 
 use anyhow::{Result, anyhow};
+use karman_mission::dispersion::files::write_atomic;
 use plotters::prelude::*;
 
 /// One named curve of a chart.
@@ -41,7 +42,8 @@ fn range(values: impl Iterator<Item = f64>) -> (f64, f64) {
     (lo - pad, hi + pad)
 }
 
-/// Writes a line chart of `series` to the SVG file `path`.
+/// Writes a line chart of `series` to the SVG file `path`, atomically
+/// ([`write_atomic`]: the whole chart or, on an error naming `path`, no new file).
 pub fn line_chart(
     path: &Path,
     title: &str,
@@ -49,10 +51,25 @@ pub fn line_chart(
     y_label: &str,
     series: &[Series<'_>],
 ) -> Result<()> {
-    let err = |e: &dyn std::fmt::Display| anyhow!("{}: {e}", path.display());
+    let mut svg = String::new();
+    draw(&mut svg, title, x_label, y_label, series)
+        .map_err(|e| anyhow!("{}: cannot draw the chart: {e}", path.display()))?;
+    write_atomic(path, svg.as_bytes())?;
+    Ok(())
+}
+
+/// Draws the chart into `svg`.
+fn draw(
+    svg: &mut String,
+    title: &str,
+    x_label: &str,
+    y_label: &str,
+    series: &[Series<'_>],
+) -> Result<()> {
+    let err = |e: &dyn std::fmt::Display| anyhow!("{e}");
     let (x0, x1) = range(series.iter().flat_map(|s| s.points.iter().map(|p| p.0)));
     let (y0, y1) = range(series.iter().flat_map(|s| s.points.iter().map(|p| p.1)));
-    let root = SVGBackend::new(path, (900, 600)).into_drawing_area();
+    let root = SVGBackend::with_string(svg, (900, 600)).into_drawing_area();
     root.fill(&WHITE).map_err(|e| err(&e))?;
     let mut chart = ChartBuilder::on(&root)
         .caption(title, ("sans-serif", 22))

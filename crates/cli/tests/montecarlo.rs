@@ -38,7 +38,7 @@ fn assert_same_files(a: &Path, b: &Path) {
         .map(|e| e.expect("entry").file_name())
         .collect();
     names.sort();
-    assert_eq!(names.len(), 6, "{names:?}");
+    assert_eq!(names.len(), 7, "{names:?}");
     for name in names {
         let x = std::fs::read(a.join(&name)).expect("file");
         let y = std::fs::read(b.join(&name)).unwrap_or_default();
@@ -116,4 +116,195 @@ fn a_different_study_or_missing_shard_fails_cleanly() {
     let output = montecarlo(&fresh("bad-shard"), &["--shard", "3/2"]);
     assert_eq!(output.status.code(), Some(2), "a usage error");
     assert!(!stderr(&output).contains("panicked"));
+}
+
+/// A copy of the example mission and its data files in a fresh folder `name`, to edit.
+fn example_copy(name: &str) -> PathBuf {
+    let dir = fresh(name);
+    std::fs::create_dir_all(&dir).expect("folder");
+    let source = example();
+    let fixtures = source.parent().expect("fixtures folder");
+    for file in [
+        "example.toml",
+        "example_K1960.eng",
+        "power_off_drag.csv",
+        "power_on_drag.csv",
+    ] {
+        std::fs::copy(fixtures.join(file), dir.join(file)).expect("copy");
+    }
+    dir
+}
+
+fn run_copy(mission_dir: &Path, out: &Path, extra: &[&str]) -> std::process::Output {
+    let mission = mission_dir.join("example.toml").display().to_string();
+    let out = out.display().to_string();
+    let mut args = vec![
+        "montecarlo",
+        &mission,
+        "--samples",
+        "12",
+        "--quiet",
+        "--out",
+        &out,
+    ];
+    args.extend_from_slice(extra);
+    karman(&args)
+}
+
+#[test]
+fn a_drag_file_edited_before_the_resume_is_named_and_refused() {
+    let mission = example_copy("edited-drag-mission");
+    let out = fresh("edited-drag-out");
+    let output = run_copy(&mission, &out, &[]);
+    assert_eq!(output.status.code(), Some(0), "{}", stderr(&output));
+    let study: serde_json::Value =
+        serde_json::from_slice(&std::fs::read(out.join("study.json")).expect("study.json"))
+            .expect("JSON");
+    let roles: Vec<&str> = study["data"]
+        .as_array()
+        .expect("data files")
+        .iter()
+        .map(|f| f["role"].as_str().expect("role"))
+        .collect();
+    assert_eq!(
+        roles,
+        [
+            "mission",
+            "motor.thrust",
+            "rocket.power_off_drag",
+            "rocket.power_on_drag"
+        ]
+    );
+    // Killed half-way: a cut samples.csv. Then the drag curve is edited.
+    let csv = std::fs::read(out.join("samples.csv")).expect("samples.csv");
+    std::fs::write(out.join("samples.csv"), &csv[..csv.len() / 2]).expect("cut");
+    let drag = mission.join("power_off_drag.csv");
+    let text = std::fs::read_to_string(&drag).expect("drag curve");
+    std::fs::write(&drag, text.replacen("0.52", "0.53", 1)).expect("edited drag curve");
+    let before = std::fs::read(out.join("samples.csv")).expect("samples.csv");
+    let output = run_copy(&mission, &out, &[]);
+    let text = stderr(&output);
+    assert_eq!(output.status.code(), Some(1), "{text}");
+    assert!(
+        text.contains("power_off_drag.csv") && text.contains("different study"),
+        "{text}"
+    );
+    assert!(
+        !text.contains("power_on_drag.csv"),
+        "only the edited file: {text}"
+    );
+    assert_eq!(
+        std::fs::read(out.join("samples.csv")).expect("samples.csv"),
+        before,
+        "the refused resume wrote nothing"
+    );
+}
+
+#[test]
+fn shards_flown_on_different_weather_files_are_not_merged() {
+    // A custom atmosphere with its wind profile in a file; the second shard's file differs.
+    let wind = |dir: &Path, speed: &str| {
+        std::fs::write(
+            dir.join("wind_u.csv"),
+            format!("height_m,wind_mps\n0,{speed}\n5000,{speed}\n"),
+        )
+        .expect("wind file");
+    };
+    let weather = [
+        "--set",
+        "environment.atmosphere.model=\"custom\"",
+        "--set",
+        "environment.atmosphere.wind_u=\"wind_u.csv\"",
+    ];
+    let (a, b) = (example_copy("weather-a"), example_copy("weather-b"));
+    wind(&a, "3");
+    wind(&b, "4");
+    let (shard1, shard2) = (fresh("weather-shard1"), fresh("weather-shard2"));
+    let output = run_copy(&a, &shard1, &[&weather[..], &["--shard", "1/2"]].concat());
+    assert_eq!(output.status.code(), Some(0), "{}", stderr(&output));
+    let output = run_copy(&b, &shard2, &[&weather[..], &["--shard", "2/2"]].concat());
+    assert_eq!(output.status.code(), Some(0), "{}", stderr(&output));
+    let merged = fresh("weather-merged");
+    let text = failure(&[
+        "merge",
+        &merged.display().to_string(),
+        &shard1.display().to_string(),
+        &shard2.display().to_string(),
+    ]);
+    assert!(
+        text.contains("wind_u.csv") && text.contains("environment.atmosphere.wind_u"),
+        "{text}"
+    );
+    assert!(!merged.join("samples.csv").exists(), "nothing merged");
+    // The same weather in both shards merges.
+    wind(&b, "3");
+    let output = run_copy(
+        &b,
+        &fresh("weather-shard2"),
+        &[&weather[..], &["--shard", "2/2"]].concat(),
+    );
+    assert_eq!(output.status.code(), Some(0), "{}", stderr(&output));
+    let output = karman(&[
+        "merge",
+        &merged.display().to_string(),
+        &shard1.display().to_string(),
+        &shard2.display().to_string(),
+    ]);
+    assert_eq!(output.status.code(), Some(0), "{}", stderr(&output));
+}
+
+#[test]
+fn samples_that_reach_max_time_are_marked_counted_and_fail_the_study() {
+    let out = fresh("max-time");
+    let output = montecarlo(&out, &["--set", "flight.max_time=5"]);
+    let text = stderr(&output);
+    assert_eq!(output.status.code(), Some(1), "no sample landed: {text}");
+    assert!(!text.contains("panicked"), "{text}");
+    assert!(text.contains("no sample of shard 1/1 completed"), "{text}");
+    let stdout = String::from_utf8_lossy(&output.stdout);
+    assert!(
+        stdout.contains("0 completed, 12 ended early (max_time 12), 0 failed"),
+        "{stdout}"
+    );
+    let csv = std::fs::read_to_string(out.join("samples.csv")).expect("samples.csv");
+    let rows: Vec<&str> = csv.lines().skip(1).collect();
+    assert_eq!(rows.len(), 12);
+    assert!(
+        rows.iter()
+            .all(|r| r.contains(",max_time,the flight reached max_time (5 s) before landing")),
+        "{csv}"
+    );
+    let summary: serde_json::Value =
+        serde_json::from_slice(&std::fs::read(out.join("summary.json")).expect("summary.json"))
+            .expect("JSON");
+    assert_eq!(summary["completed"], 0);
+    assert_eq!(summary["ended_early"], 12);
+    assert_eq!(summary["ended_early_by_status"]["max_time"], 12);
+    assert_eq!(summary["failed"], 0);
+    assert_eq!(summary["failures"][0]["status"], "max_time");
+    // The statistics and ellipses use completed flights only: none here.
+    let apogee = summary["outputs"]
+        .as_array()
+        .expect("outputs")
+        .iter()
+        .find(|c| c["name"] == "apogee_agl_m")
+        .expect("apogee column");
+    assert!(apogee.get("mean").is_none(), "{apogee}");
+    assert_eq!(summary["ellipses"].as_array().map(Vec::len), Some(0));
+
+    // `simulate` counts the same flight as a failure, with the same message.
+    let example = example().display().to_string();
+    let text = failure(&["simulate", &example, "--set", "flight.max_time=5"]);
+    assert!(
+        text.contains("the flight reached max_time (5 s) before landing"),
+        "{text}"
+    );
+    // With the mission's own max_time every sample lands: exit 0.
+    let output = montecarlo(&fresh("max-time-ok"), &[]);
+    assert_eq!(output.status.code(), Some(0), "{}", stderr(&output));
+    let stdout = String::from_utf8_lossy(&output.stdout);
+    assert!(
+        stdout.contains("12 completed, 0 ended early, 0 failed"),
+        "{stdout}"
+    );
 }

@@ -118,6 +118,49 @@ fn out_writes_summary_trajectory_kml_and_plots() {
     }
 }
 
+/// A full disk for `simulate --out`, simulated portably on Unix: the child runs under a file
+/// size limit (`ulimit -f`, with SIGXFSZ ignored), so every write past the limit fails with
+/// EFBIG as it would with ENOSPC. The error names the file; no partial file is left under its
+/// name, and no temporary file either.
+#[cfg(unix)]
+#[test]
+fn a_full_disk_on_out_names_the_file_and_leaves_no_partial_file() {
+    let dir = Path::new(env!("CARGO_TARGET_TMPDIR")).join("karman-cli/simulate-full-disk");
+    let _ = std::fs::remove_dir_all(&dir);
+    // 16 blocks of 512 bytes: summary.json fits, trajectory.csv (hundreds of kB) does not.
+    let script = format!(
+        "trap '' XFSZ; ulimit -f 16 && exec '{}' simulate '{}' --out '{}'",
+        env!("CARGO_BIN_EXE_karman"),
+        example_arg(),
+        dir.display()
+    );
+    let output = std::process::Command::new("sh")
+        .args(["-c", &script])
+        .output()
+        .expect("sh runs");
+    let text = stderr(&output);
+    assert_eq!(output.status.code(), Some(1), "{text}");
+    assert!(!text.contains("panicked"), "{text}");
+    let named = dir.join("trajectory.csv");
+    assert!(
+        text.contains(&named.display().to_string()),
+        "the error names the file: {text}"
+    );
+    assert!(!named.exists(), "no partial trajectory.csv");
+    let mut left: Vec<String> = std::fs::read_dir(&dir)
+        .expect("the output folder")
+        .map(|e| e.expect("entry").file_name().to_string_lossy().into_owned())
+        .collect();
+    left.sort();
+    assert_eq!(
+        left,
+        ["summary.json"],
+        "only complete files, no temporary one"
+    );
+    let summary = std::fs::read_to_string(dir.join("summary.json")).expect("summary.json");
+    serde_json::from_str::<serde_json::Value>(&summary).expect("a whole JSON file");
+}
+
 #[test]
 fn max_time_reached_is_a_clear_failure() {
     let text = failure(&["simulate", &example_arg(), "--set", "flight.max_time=5"]);

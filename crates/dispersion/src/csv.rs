@@ -1,13 +1,138 @@
 //! The rows of `samples.csv` (RFC 4180): writing them and reading them back.
 //!
-//! One line per sample: `index,status,error,<inputs>,<outputs>`. `status` is `ok` or
-//! `failed`; `error` is empty for `ok`; a missing output is an empty field. Numbers are
+//! One line per sample: `index,status,error,<inputs>,<outputs>`. `status` is `ok` for a
+//! completed flight, the name of the way a flight ended early (`max_time`, `stuck_on_rail`,
+//! [`Status::Ended`]) with its message in `error` and the outputs it reached, or `failed` with
+//! the error and no outputs; `error` is empty for `ok`; a missing output is an empty field.
+//! Numbers are
 //! written in Rust's shortest round-trip form (`{:?}`), so reading a row back gives the very
 //! same `f64`. Fields with a comma or a quote are quoted with `"` (quotes doubled); line
 //! breaks inside a message become spaces, so every row is exactly one line.
 
+use serde::Serialize;
 use std::borrow::Cow;
+use std::collections::BTreeMap;
 use std::fmt::Write as _;
+
+/// How a sample ended.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub enum Status {
+    /// The flight the study asked for (status `ok`).
+    Completed,
+    /// A flight that ended before that (it reached its time limit in the air, never left the
+    /// rail): `kind` is the status written (lowercase letters, digits and `_`), `message`
+    /// says it in words. Its outputs are kept in `samples.csv` but not in the statistics.
+    Ended {
+        /// The status word, e.g. `max_time`.
+        kind: String,
+        /// The explanation.
+        message: String,
+    },
+    /// No flight: the error (status `failed`).
+    Failed(String),
+}
+
+/// The status written for a failed sample.
+pub const FAILED: &str = "failed";
+/// The status written for a completed sample.
+pub const COMPLETED: &str = "ok";
+
+impl Status {
+    /// The word of the `status` column.
+    pub fn label(&self) -> &str {
+        match self {
+            Status::Completed => COMPLETED,
+            Status::Ended { kind, .. } => kind,
+            Status::Failed(_) => FAILED,
+        }
+    }
+
+    /// The `error` column: empty for a completed sample.
+    pub fn message(&self) -> &str {
+        match self {
+            Status::Completed => "",
+            Status::Ended { message, .. } | Status::Failed(message) => message,
+        }
+    }
+
+    /// Whether the sample is a completed flight.
+    pub fn is_completed(&self) -> bool {
+        matches!(self, Status::Completed)
+    }
+}
+
+/// Whether `kind` can name an early ending: lowercase ASCII letters, digits and `_`, not
+/// `ok` or `failed`.
+pub fn is_ending_kind(kind: &str) -> bool {
+    !kind.is_empty()
+        && kind != COMPLETED
+        && kind != FAILED
+        && kind
+            .bytes()
+            .all(|b| b.is_ascii_lowercase() || b.is_ascii_digit() || b == b'_')
+}
+
+/// Samples counted by how they ended.
+#[derive(Debug, Clone, Default, PartialEq, Eq, Serialize)]
+pub struct Counts {
+    /// Completed flights: the only ones in the output statistics and the ellipses.
+    pub completed: u64,
+    /// Flights that ended early ([`Status::Ended`]).
+    pub ended_early: u64,
+    /// Of them, per status (`max_time`, `stuck_on_rail`, ...).
+    pub ended_early_by_status: BTreeMap<String, u64>,
+    /// Samples that failed with an error.
+    pub failed: u64,
+}
+
+impl Counts {
+    /// Counts one more sample.
+    pub fn add(&mut self, status: &Status) {
+        match status {
+            Status::Completed => self.completed += 1,
+            Status::Ended { kind, .. } => {
+                self.ended_early += 1;
+                *self.ended_early_by_status.entry(kind.clone()).or_default() += 1;
+            }
+            Status::Failed(_) => self.failed += 1,
+        }
+    }
+
+    /// Adds the counts of `other`.
+    pub fn merge(&mut self, other: &Counts) {
+        self.completed += other.completed;
+        self.ended_early += other.ended_early;
+        self.failed += other.failed;
+        for (kind, n) in &other.ended_early_by_status {
+            *self.ended_early_by_status.entry(kind.clone()).or_default() += n;
+        }
+    }
+
+    /// Every sample counted.
+    pub fn total(&self) -> u64 {
+        self.completed + self.ended_early + self.failed
+    }
+}
+
+impl std::fmt::Display for Counts {
+    /// `12 completed, 3 ended early (max_time 2, stuck_on_rail 1), 1 failed`.
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        write!(
+            f,
+            "{} completed, {} ended early",
+            self.completed, self.ended_early
+        )?;
+        if !self.ended_early_by_status.is_empty() {
+            let parts: Vec<String> = self
+                .ended_early_by_status
+                .iter()
+                .map(|(kind, n)| format!("{kind} {n}"))
+                .collect();
+            write!(f, " ({})", parts.join(", "))?;
+        }
+        write!(f, ", {} failed", self.failed)
+    }
+}
 
 /// A field as it appears in a row.
 pub fn escape(field: &str) -> String {
@@ -38,32 +163,35 @@ pub fn header(columns: &[String]) -> String {
     line
 }
 
-/// One sample's row, newline included: its outputs, or for a failed sample the message
-/// and `outputs` empty fields.
+/// One sample's row, newline included: its status and message, inputs and `values` (for a
+/// failed sample, which has none, `outputs` empty fields).
 pub fn row(
     index: u64,
     inputs: &[f64],
-    result: Result<&[Option<f64>], &str>,
+    status: &Status,
+    values: &[Option<f64>],
     outputs: usize,
 ) -> String {
     let mut line = String::with_capacity(32 + 24 * (inputs.len() + outputs));
     // Writing into a String cannot fail.
-    let _ = match result {
-        Ok(_) => write!(line, "{index},ok,"),
-        Err(message) => write!(line, "{index},failed,{}", escape(message)),
-    };
+    let _ = write!(
+        line,
+        "{index},{},{}",
+        status.label(),
+        escape(status.message())
+    );
     for value in inputs {
         line.push(',');
         line.push_str(&number(Some(*value)));
     }
-    match result {
-        Ok(values) => {
+    match status {
+        Status::Failed(_) => line.push_str(&",".repeat(outputs)),
+        _ => {
             for value in values {
                 line.push(',');
                 line.push_str(&number(*value));
             }
         }
-        Err(_) => line.push_str(&",".repeat(outputs)),
     }
     line.push('\n');
     line
@@ -119,8 +247,8 @@ pub fn split(line: &str) -> Result<Vec<Cow<'_, str>>, RowError> {
 pub struct Row {
     /// Sample index.
     pub index: u64,
-    /// `None` for `ok`, the message for `failed`.
-    pub error: Option<String>,
+    /// How it ended.
+    pub status: Status,
     /// Input values.
     pub inputs: Vec<f64>,
     /// Output values (`None`: missing).
@@ -138,11 +266,20 @@ pub fn parse(line: &str, inputs: usize, outputs: usize) -> Result<Row, String> {
     let index = fields[0]
         .parse::<u64>()
         .map_err(|_| format!("index {:?} is not a number", fields[0]))?;
-    let error = match fields[1].as_ref() {
-        "ok" if fields[2].is_empty() => None,
-        "ok" => return Err("status ok with an error message".to_owned()),
-        "failed" => Some(fields[2].clone().into_owned()),
-        other => return Err(format!("status {other:?} is neither ok nor failed")),
+    let message = fields[2].clone().into_owned();
+    let status = match fields[1].as_ref() {
+        COMPLETED if message.is_empty() => Status::Completed,
+        COMPLETED => return Err("status ok with an error message".to_owned()),
+        FAILED => Status::Failed(message),
+        kind if is_ending_kind(kind) => Status::Ended {
+            kind: kind.to_owned(),
+            message,
+        },
+        other => {
+            return Err(format!(
+                "status {other:?} is not ok, failed or an early ending such as max_time"
+            ));
+        }
     };
     let value = |text: &Cow<'_, str>| -> Result<Option<f64>, String> {
         if text.is_empty() {
@@ -161,12 +298,12 @@ pub fn parse(line: &str, inputs: usize, outputs: usize) -> Result<Row, String> {
     for text in &fields[3 + inputs..] {
         output_values.push(value(text)?);
     }
-    if error.is_some() && output_values.iter().any(Option::is_some) {
+    if matches!(status, Status::Failed(_)) && output_values.iter().any(Option::is_some) {
         return Err("a failed sample with output values".to_owned());
     }
     Ok(Row {
         index,
-        error,
+        status,
         inputs: input_values,
         outputs: output_values,
     })
@@ -179,27 +316,68 @@ mod tests {
     #[test]
     fn rows_round_trip() {
         let inputs = [0.1, -1e-300, 12345.678];
-        let ok = row(7, &inputs, Ok(&[Some(1.0 / 3.0), None]), 2);
+        let ok = row(7, &inputs, &Status::Completed, &[Some(1.0 / 3.0), None], 2);
         assert!(ok.ends_with('\n'));
         let parsed = parse(ok.trim_end_matches('\n'), 3, 2).expect("valid row");
         assert_eq!(parsed.index, 7);
-        assert_eq!(parsed.error, None);
+        assert_eq!(parsed.status, Status::Completed);
         assert_eq!(parsed.inputs[1].to_bits(), (-1e-300f64).to_bits());
         assert_eq!(parsed.outputs, vec![Some(1.0 / 3.0), None]);
 
         let message = "bad \"value\", line\nbreak";
-        let failed = row(8, &inputs, Err(message), 2);
+        let failed = row(8, &inputs, &Status::Failed(message.to_owned()), &[], 2);
         assert_eq!(failed.lines().count(), 1);
         let parsed = parse(failed.trim_end_matches('\n'), 3, 2).expect("valid row");
-        assert_eq!(parsed.error.as_deref(), Some("bad \"value\", line break"));
+        assert_eq!(
+            parsed.status,
+            Status::Failed("bad \"value\", line break".to_owned())
+        );
         assert_eq!(parsed.outputs, vec![None, None]);
+
+        let ended = Status::Ended {
+            kind: "max_time".to_owned(),
+            message: "reached max_time, 5 s".to_owned(),
+        };
+        let line = row(9, &inputs, &ended, &[Some(2.5), None], 2);
+        assert!(
+            line.starts_with("9,max_time,\"reached max_time, 5 s\","),
+            "{line}"
+        );
+        let parsed = parse(line.trim_end_matches('\n'), 3, 2).expect("valid row");
+        assert_eq!(parsed.status, ended);
+        assert_eq!(parsed.outputs, vec![Some(2.5), None]);
+    }
+
+    #[test]
+    fn counts_by_status() {
+        let mut counts = Counts::default();
+        let ended = |kind: &str| Status::Ended {
+            kind: kind.to_owned(),
+            message: String::new(),
+        };
+        for status in [
+            Status::Completed,
+            ended("max_time"),
+            Status::Failed("x".to_owned()),
+            ended("max_time"),
+            ended("stuck_on_rail"),
+        ] {
+            counts.add(&status);
+        }
+        assert_eq!(counts.total(), 5);
+        assert_eq!(
+            counts.to_string(),
+            "1 completed, 3 ended early (max_time 2, stuck_on_rail 1), 1 failed"
+        );
+        assert!(is_ending_kind("max_time") && !is_ending_kind("ok") && !is_ending_kind("Max"));
     }
 
     #[test]
     fn malformed_rows_are_errors() {
         assert!(parse("1,ok,,2", 2, 0).is_err());
         assert!(parse("x,ok,,2", 1, 0).is_err());
-        assert!(parse("1,maybe,,2", 1, 0).is_err());
+        assert!(parse("1,Maybe,,2", 1, 0).is_err());
+        assert!(parse("1,max time,,2", 1, 0).is_err());
         assert!(parse("1,ok,,abc", 1, 0).is_err());
         assert!(parse("1,failed,\"unterminated,2", 1, 0).is_err());
         assert!(parse("1,failed,e,2,3", 1, 1).is_err());

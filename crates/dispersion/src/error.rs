@@ -36,13 +36,14 @@ pub enum DispersionError {
         /// The argument as given.
         text: String,
     },
-    /// Reading or writing a file failed.
-    #[error("{}: {source}", path.display())]
+    /// Reading or writing a file failed. (The operating system's error is part of the
+    /// message, not a separate source, so that an error chain names it once.)
+    #[error("{}: {error}", path.display())]
     Io {
         /// The file or directory.
         path: PathBuf,
         /// The operating system's error.
-        source: std::io::Error,
+        error: std::io::Error,
     },
     /// The output directory holds a different study, so it cannot be resumed.
     #[error(
@@ -55,6 +56,32 @@ pub enum DispersionError {
         dir: PathBuf,
         /// The `study.json` fields that differ (`seed`, `samples`, `inputs`, ...).
         fields: Vec<String>,
+    },
+    /// Another run (or merge) holds the output directory's lock.
+    #[error(
+        "{} is being written by another karman run (its study.lock is held); wait for that run \
+         to finish or use another directory",
+        dir.display()
+    )]
+    Locked {
+        /// The output directory.
+        dir: PathBuf,
+    },
+    /// A kept row of `samples.csv`, flown again on resume, does not give the same row: the
+    /// model changed since it was written (another program version, or data the fingerprint
+    /// does not cover).
+    #[error(
+        "{}, line {line}: sample {index} flown again gives another row than the one kept \
+         (the model changed since it was written); use another --out directory or remove it",
+        file.display()
+    )]
+    ChangedOutputs {
+        /// The file.
+        file: PathBuf,
+        /// 1-based line number of the kept row.
+        line: u64,
+        /// The sample index.
+        index: u64,
     },
     /// `samples.csv` exists without the `study.json` that identifies it.
     #[error("{} has samples.csv but no study.json; it was not written by this program", dir.display())]
@@ -109,6 +136,6 @@ impl DispersionError {
     /// Wraps an I/O error with the path it concerns.
     pub(crate) fn io(path: impl Into<PathBuf>) -> impl FnOnce(std::io::Error) -> Self {
         let path = path.into();
-        move |source| DispersionError::Io { path, source }
+        move |error| DispersionError::Io { path, error }
     }
 }

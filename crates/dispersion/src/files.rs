@@ -1,13 +1,16 @@
-//! The files of an output directory and the checked reading of `samples.csv`.
+//! The files of an output directory, its lock, atomic writes and the checked reading of
+//! `samples.csv`.
 
-use crate::csv;
+use crate::csv::{self, Counts};
 use crate::error::DispersionError;
 use crate::sampling::draw;
 use crate::study::Record;
-use std::fs::File;
-use std::io::{BufRead, BufReader};
-use std::path::{Path, PathBuf};
+use std::fs::{File, OpenOptions};
+use std::io::{BufRead, BufReader, Write as _};
+use std::path::Path;
 
+/// The lock of an output directory: one run (or merge) writes a study at a time.
+pub const LOCK_FILE: &str = "study.lock";
 /// The study's identity (seed, samples, inputs, outputs, shard, fingerprint).
 pub const STUDY_FILE: &str = "study.json";
 /// One row per sample, in index order.
@@ -22,16 +25,19 @@ pub const LANDING_PLOT_FILE: &str = "landing.svg";
 pub const HISTOGRAM_PLOT_FILE: &str = "apogee_histogram.svg";
 
 /// What a scan of `samples.csv` found.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+#[derive(Debug, Clone, PartialEq, Eq)]
 pub(crate) struct Scan {
     /// Complete, valid rows (the first positions of the shard).
     pub rows: u64,
-    /// Of them, failed samples.
-    pub failed: u64,
+    /// Those rows by status.
+    pub counts: Counts,
     /// Byte length of the header and those rows; anything after it is a partial line.
     pub valid_len: u64,
     /// Whether the header line is complete.
     pub has_header: bool,
+    /// The first and the last complete row (the same row once when there is one): position,
+    /// line number and text, for a resume to fly them again.
+    pub ends: Vec<(u64, u64, String)>,
 }
 
 /// Scans `samples.csv` of `record`: the header must be the study's and every complete row
@@ -41,9 +47,10 @@ pub(crate) struct Scan {
 pub(crate) fn scan(path: &Path, record: &Record) -> Result<Scan, DispersionError> {
     let mut scan = Scan {
         rows: 0,
-        failed: 0,
+        counts: Counts::default(),
         valid_len: 0,
         has_header: false,
+        ends: Vec::new(),
     };
     let file = match File::open(path) {
         Ok(file) => file,
@@ -117,8 +124,13 @@ pub(crate) fn scan(path: &Path, record: &Record) -> Result<Scan, DispersionError
                         .to_owned(),
                 ));
             }
+            scan.counts.add(&row.status);
+            let kept = (scan.rows, line_number, text.to_owned());
+            match scan.ends.len() {
+                0 | 1 => scan.ends.push(kept),
+                _ => scan.ends[1] = kept,
+            }
             scan.rows += 1;
-            scan.failed += u64::from(row.error.is_some());
         }
         scan.valid_len += n as u64;
     }
@@ -157,11 +169,55 @@ pub(crate) fn shard_is_complete(scan: &Scan, record: &Record) -> bool {
     scan.rows == record.shard.len(record.samples)
 }
 
-/// Writes `text` to `path` atomically (a temporary file renamed over it).
-pub(crate) fn write_atomic(path: &Path, text: &[u8]) -> Result<(), DispersionError> {
-    let mut temporary = path.as_os_str().to_owned();
-    temporary.push(".tmp");
-    let temporary = PathBuf::from(temporary);
-    std::fs::write(&temporary, text).map_err(DispersionError::io(&temporary))?;
-    std::fs::rename(&temporary, path).map_err(DispersionError::io(path))
+/// Writes `bytes` to `path` atomically: into a temporary file beside it (`.NAME.tmp`),
+/// flushed to the disk, then renamed over `path`. A reader sees the old file or the whole
+/// new one, never a part; on an error (a full disk) the temporary file is removed, `path` is
+/// left as it was, and the error names `path`.
+///
+/// # Errors
+/// [`DispersionError::Io`] naming `path`.
+pub fn write_atomic(path: &Path, bytes: &[u8]) -> Result<(), DispersionError> {
+    let name = path.file_name().unwrap_or_default().to_string_lossy();
+    let temporary = path.with_file_name(format!(".{name}.tmp"));
+    let written = File::create(&temporary)
+        .and_then(|mut file| file.write_all(bytes).and_then(|()| file.sync_all()))
+        .and_then(|()| std::fs::rename(&temporary, path));
+    written.map_err(|e| {
+        let _ = std::fs::remove_file(&temporary);
+        DispersionError::io(path)(e)
+    })
+}
+
+/// An exclusive lock on an output directory, held while the value lives. The operating
+/// system releases it when the process ends, however it ends (a killed run leaves no stale
+/// lock).
+#[derive(Debug)]
+pub(crate) struct DirLock {
+    _file: File,
+}
+
+/// Locks the output directory `dir` (creating its [`LOCK_FILE`]); `Locked` when another run
+/// holds it. `create` false: a directory without a lock file is not locked (and not touched).
+pub(crate) fn lock(dir: &Path, create: bool) -> Result<Option<DirLock>, DispersionError> {
+    let path = dir.join(LOCK_FILE);
+    let file = if create {
+        OpenOptions::new()
+            .create(true)
+            .truncate(false)
+            .write(true)
+            .open(&path)
+    } else {
+        match File::open(&path) {
+            Err(e) if e.kind() == std::io::ErrorKind::NotFound => return Ok(None),
+            other => other,
+        }
+    }
+    .map_err(DispersionError::io(&path))?;
+    match fs4::FileExt::try_lock(&file) {
+        Ok(()) => Ok(Some(DirLock { _file: file })),
+        Err(fs4::TryLockError::WouldBlock) => Err(DispersionError::Locked {
+            dir: dir.to_owned(),
+        }),
+        Err(fs4::TryLockError::Error(e)) => Err(DispersionError::io(&path)(e)),
+    }
 }

@@ -27,9 +27,11 @@
 //! # Ok::<(), karman_dispersion::DispersionError>(())
 //! ```
 //!
-//! Output directory (see [`files`]): `study.json` (seed, samples, inputs, outputs,
-//! fingerprint), `samples.csv` (one row per sample in index order, failures included),
-//! `summary.json`, `dispersion.kml`, `landing.svg`, `apogee_histogram.svg`.
+//! Output directory (see [`files`]): `study.lock` (held by the one run writing it),
+//! `study.json` (seed, samples, inputs, outputs, data files and fingerprint), `samples.csv`
+//! (one row per sample in index order with its status: completed, ended early, failed),
+//! `summary.json`, `dispersion.kml`, `landing.svg`, `apogee_histogram.svg`, each written
+//! atomically.
 //!
 //! - Reproducible: sample `i` draws from streams keyed by (seed, i) ([`sampling`]); the
 //!   results are byte-identical for any thread count, shard split or interruption.
@@ -52,7 +54,7 @@ mod stats;
 mod study;
 mod summary;
 
-pub use csv::{Row, parse as parse_row};
+pub use csv::{Counts, Row, Status, parse as parse_row};
 pub use distribution::{Distribution, Meaning, Target, Variation, VariedInput};
 pub use error::DispersionError;
 pub use kml::offset_to_lat_lon;
@@ -63,5 +65,5 @@ pub use stats::{
     Ellipse, Moments, NORMAL_SIGMA_PROBABILITY, Statistics, k_sigma_probability, probability_scale,
     quantile,
 };
-pub use study::{Points, Shard, Site, Study};
+pub use study::{DataFile, Points, Shard, Site, Study};
 pub use summary::{Column, Contour, EllipseSummary, Failure, Summary, summarize};

@@ -12,9 +12,21 @@ use std::path::{Path, PathBuf};
 /// Merges the complete shard directories `dirs` (every shard `K/N` of one study exactly
 /// once, in any order) into `out`: `study.json` and `samples.csv` byte-identical to those of
 /// an unsharded run, then the summary, KML and plots. Rows are streamed, so memory does not
-/// grow with the number of samples.
+/// grow with the number of samples. The shards must be of one study, data fingerprint
+/// included (a shard flown on another weather file is refused, naming it); a shard still
+/// being written (its lock held) and an `out` another run writes are refused.
 pub fn merge(out: &Path, dirs: &[PathBuf]) -> Result<Summary, DispersionError> {
     let fail = |reason: String| Err(DispersionError::Merge { reason });
+    // Each shard directory locked once (one given twice is reported below).
+    let mut locks = Vec::with_capacity(dirs.len() + 1);
+    let mut locked: Vec<PathBuf> = Vec::with_capacity(dirs.len());
+    for dir in dirs {
+        let canonical = dir.canonicalize().unwrap_or_else(|_| dir.clone());
+        if !locked.contains(&canonical) {
+            locks.push(files::lock(dir, false)?);
+            locked.push(canonical);
+        }
+    }
     let mut shards: Vec<(Record, &PathBuf)> = Vec::with_capacity(dirs.len());
     for dir in dirs {
         let record = Record::read(&dir.join(STUDY_FILE))?
@@ -100,6 +112,7 @@ pub fn merge(out: &Path, dirs: &[PathBuf]) -> Result<Summary, DispersionError> {
     }
 
     std::fs::create_dir_all(out).map_err(DispersionError::io(out))?;
+    locks.push(files::lock(out, true)?);
     if let Some(existing) = Record::read(&out.join(STUDY_FILE))? {
         let fields = whole.differences(&existing);
         if !fields.is_empty() {
@@ -137,5 +150,7 @@ pub fn merge(out: &Path, dirs: &[PathBuf]) -> Result<Summary, DispersionError> {
     writer.flush().map_err(DispersionError::io(&temporary))?;
     drop(writer);
     std::fs::rename(&temporary, &samples_path).map_err(DispersionError::io(&samples_path))?;
-    summarize(out)
+    let summary = summarize(out);
+    drop(locks);
+    summary
 }

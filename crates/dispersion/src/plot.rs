@@ -25,11 +25,13 @@ pub fn landing(
     points: &[[f64; 2]],
     ellipse: Option<&Ellipse>,
 ) -> Result<(), DispersionError> {
-    draw_landing(path, title, points, ellipse).map_err(failed(path))
+    let mut svg = String::new();
+    draw_landing(&mut svg, title, points, ellipse).map_err(failed(path))?;
+    crate::files::write_atomic(path, svg.as_bytes())
 }
 
 fn draw_landing(
-    path: &Path,
+    svg: &mut String,
     title: &str,
     points: &[[f64; 2]],
     ellipse: Option<&Ellipse>,
@@ -51,7 +53,7 @@ fn draw_landing(
     // Equal scales on both axes, 5 % margin.
     let half = 0.55 * (x1 - x0).max(y1 - y0).max(1.0);
     let (cx, cy) = (0.5 * (x0 + x1), 0.5 * (y0 + y1));
-    let root = SVGBackend::new(path, (800, 800)).into_drawing_area();
+    let root = SVGBackend::with_string(svg, (800, 800)).into_drawing_area();
     root.fill(&WHITE)?;
     let mut chart = ChartBuilder::on(&root)
         .caption(title, ("sans-serif", 22))
@@ -109,10 +111,15 @@ pub fn histogram(
     name: &str,
     sorted: &[f64],
 ) -> Result<(), DispersionError> {
-    draw_histogram(path, title, name, sorted).map_err(failed(path))
+    let mut svg = String::new();
+    draw_histogram(&mut svg, title, name, sorted).map_err(failed(path))?;
+    if svg.is_empty() {
+        return Ok(());
+    }
+    crate::files::write_atomic(path, svg.as_bytes())
 }
 
-fn draw_histogram(path: &Path, title: &str, name: &str, sorted: &[f64]) -> PlotResult {
+fn draw_histogram(svg: &mut String, title: &str, name: &str, sorted: &[f64]) -> PlotResult {
     let (Some(&low), Some(&high)) = (sorted.first(), sorted.last()) else {
         return Ok(());
     };
@@ -131,7 +138,7 @@ fn draw_histogram(path: &Path, title: &str, name: &str, sorted: &[f64]) -> PlotR
         }
     }
     let top = counts.iter().copied().max().unwrap_or(1) as f64 * 1.1;
-    let root = SVGBackend::new(path, (900, 600)).into_drawing_area();
+    let root = SVGBackend::with_string(svg, (900, 600)).into_drawing_area();
     root.fill(&WHITE)?;
     let mut chart = ChartBuilder::on(&root)
         .caption(title, ("sans-serif", 22))

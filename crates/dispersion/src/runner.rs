@@ -10,8 +10,13 @@
 //! reaching more than `WINDOW_PER_THREAD × threads` ahead of the last written row, so memory
 //! stays bounded whatever the number of samples. Because each sample depends only on (seed,
 //! index), `samples.csv` is byte-identical for any thread count and any interruption.
+//!
+//! The run holds the directory's lock (`study.lock`) from before it reads anything until its
+//! last file is written: a second run on the same directory fails at once and touches nothing.
+//! A resume flies the first and the last kept rows again and requires the very same rows, so
+//! that rows flown by another model are not mixed into the study.
 
-use crate::csv;
+use crate::csv::{self, Counts, Status};
 use crate::error::DispersionError;
 use crate::files::{self, SAMPLES_FILE, STUDY_FILE};
 use crate::progress::{Progress, ProgressMode};
@@ -36,21 +41,44 @@ pub const WINDOW_PER_THREAD: u64 = 64;
 const CLAIM: u64 = 8;
 
 /// What one flight measured: one value per output of the study, `None` for a quantity that
-/// did not occur (no impact when the flight stops at apogee).
+/// did not occur (no impact when the flight stops at apogee), and how it ended.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Outcome {
     values: Vec<Option<f64>>,
+    status: Status,
 }
 
 impl Outcome {
-    /// The outputs' values, in the order of [`Study::outputs`].
+    /// A completed flight: the outputs' values, in the order of [`Study::outputs`].
     pub fn new(values: Vec<Option<f64>>) -> Self {
-        Outcome { values }
+        Outcome {
+            values,
+            status: Status::Completed,
+        }
+    }
+
+    /// A flight that ended before the end the study asks for (its time limit reached in the
+    /// air, the rail never left): `kind` is the status recorded (lowercase letters, digits and
+    /// `_`, e.g. `max_time`), `message` the explanation. Its values are kept in `samples.csv`
+    /// but left out of the output statistics and the ellipses.
+    pub fn ended(values: Vec<Option<f64>>, kind: &str, message: String) -> Self {
+        Outcome {
+            values,
+            status: Status::Ended {
+                kind: kind.to_owned(),
+                message,
+            },
+        }
     }
 
     /// The values.
     pub fn values(&self) -> &[Option<f64>] {
         &self.values
+    }
+
+    /// How the flight ended.
+    pub fn status(&self) -> &Status {
+        &self.status
     }
 }
 
@@ -80,8 +108,8 @@ pub struct RunReport {
     pub resumed: u64,
     /// Samples flown now.
     pub flown: u64,
-    /// Failed samples in the shard (kept and new).
-    pub failed: u64,
+    /// The shard's samples (kept and new) by how they ended.
+    pub counts: Counts,
     /// Worker threads used.
     pub threads: usize,
     /// Wall time of the flights.
@@ -97,11 +125,12 @@ impl RunReport {
     }
 }
 
-/// Runs (or resumes) `study` in `dir`: creates `study.json` and `samples.csv`, or checks
-/// that they hold this very study and shard and keeps their complete rows; flies the
-/// missing samples with `fly(index, sampled values)`; for a whole study writes
-/// `summary.json`, `dispersion.kml` and the plots. A sample whose `fly` returns `Err` (or
-/// panics) is recorded as failed with its inputs and message, and the run goes on.
+/// Runs (or resumes) `study` in `dir`: locks it, creates `study.json` and `samples.csv`, or
+/// checks that they hold this very study and shard (data fingerprint included) and keeps
+/// their complete rows, after flying the first and last of them again; flies the missing
+/// samples with `fly(index, sampled values)`; for a whole study writes `summary.json`,
+/// `dispersion.kml` and the plots. A sample whose `fly` returns `Err` (or panics) is recorded
+/// as failed with its inputs and message, and the run goes on.
 pub fn run<F>(
     study: &Study,
     dir: &Path,
@@ -127,6 +156,7 @@ where
     let shard = options.shard.unwrap_or(Shard::WHOLE);
     let record = Record::new(study, shard);
     std::fs::create_dir_all(dir).map_err(DispersionError::io(dir))?;
+    let _lock = files::lock(dir, true)?;
     let study_path = dir.join(STUDY_FILE);
     let samples_path = dir.join(SAMPLES_FILE);
     match Record::read(&study_path)? {
@@ -151,6 +181,16 @@ where
     }
 
     let scan = files::scan(&samples_path, &record)?;
+    for (position, line, kept) in &scan.ends {
+        let again = fly_sample(study, shard, &fly, *position);
+        if again.line.trim_end_matches('\n') != kept.trim_end_matches('\n') {
+            return Err(DispersionError::ChangedOutputs {
+                file: samples_path,
+                line: *line,
+                index: shard.index(*position),
+            });
+        }
+    }
     let file = OpenOptions::new()
         .create(true)
         .write(true)
@@ -195,7 +235,7 @@ where
         advanced: Condvar::new(),
     };
     let (sender, receiver) = mpsc::channel::<Vec<Finished>>();
-    let mut written = Ok(0);
+    let mut written = Ok(Counts::default());
     pool.in_place_scope(|scope| {
         for _ in 0..threads {
             let sender = sender.clone();
@@ -210,7 +250,8 @@ where
         }
     });
     progress.finish();
-    let new_failures = written.map_err(DispersionError::io(&samples_path))?;
+    let mut counts = written.map_err(DispersionError::io(&samples_path))?;
+    counts.merge(&scan.counts);
     let elapsed = started.elapsed();
     drop(out);
 
@@ -224,7 +265,7 @@ where
         shard_samples: total,
         resumed: scan.rows,
         flown: total - scan.rows,
-        failed: scan.failed + new_failures,
+        counts,
         threads,
         elapsed,
         summary,
@@ -235,7 +276,45 @@ where
 struct Finished {
     position: u64,
     line: String,
-    failed: bool,
+    status: Status,
+}
+
+/// Flies the sample at `position` of `shard` and formats its row.
+fn fly_sample<F>(study: &Study, shard: Shard, fly: &F, position: u64) -> Finished
+where
+    F: Fn(u64, &[f64]) -> Result<Outcome, String> + Sync,
+{
+    let index = shard.index(position);
+    let inputs = draw(study.seed, index, &study.inputs);
+    let outputs = study.outputs.len();
+    let outcome = match catch_unwind(AssertUnwindSafe(|| fly(index, &inputs))) {
+        Ok(Ok(outcome)) if outcome.values.len() != outputs => Err(format!(
+            "the flight returned {} values for {outputs} outputs",
+            outcome.values.len()
+        )),
+        Ok(Ok(Outcome {
+            status: Status::Ended { kind, .. },
+            ..
+        })) if !csv::is_ending_kind(&kind) => {
+            Err(format!("the flight ended with the invalid status {kind:?}"))
+        }
+        Ok(Ok(Outcome {
+            status: Status::Failed(message),
+            ..
+        })) => Err(message),
+        Ok(Ok(outcome)) => Ok(outcome),
+        Ok(Err(message)) => Err(message),
+        Err(payload) => Err(format!("panicked: {}", panic_message(payload.as_ref()))),
+    };
+    let (status, values) = match outcome {
+        Ok(outcome) => (outcome.status, outcome.values),
+        Err(message) => (Status::Failed(message), Vec::new()),
+    };
+    Finished {
+        position,
+        line: csv::row(index, &inputs, &status, &values, outputs),
+        status,
+    }
 }
 
 /// State shared by the workers and the writer.
@@ -277,7 +356,7 @@ impl Engine<'_> {
                 if self.abort.load(Ordering::Relaxed) {
                     return;
                 }
-                rows.push(self.fly_one(fly, position));
+                rows.push(fly_sample(self.study, self.shard, fly, position));
             }
             if sender.send(rows).is_err() {
                 return;
@@ -285,50 +364,22 @@ impl Engine<'_> {
         }
     }
 
-    /// Flies the sample at `position` and formats its row.
-    fn fly_one<F>(&self, fly: &F, position: u64) -> Finished
-    where
-        F: Fn(u64, &[f64]) -> Result<Outcome, String> + Sync,
-    {
-        let index = self.shard.index(position);
-        let inputs = draw(self.study.seed, index, &self.study.inputs);
-        let outputs = self.study.outputs.len();
-        let result = match catch_unwind(AssertUnwindSafe(|| fly(index, &inputs))) {
-            Ok(Ok(outcome)) if outcome.values.len() == outputs => Ok(outcome.values),
-            Ok(Ok(outcome)) => Err(format!(
-                "the flight returned {} values for {outputs} outputs",
-                outcome.values.len()
-            )),
-            Ok(Err(message)) => Err(message),
-            Err(payload) => Err(format!("panicked: {}", panic_message(payload.as_ref()))),
-        };
-        let line = match &result {
-            Ok(values) => csv::row(index, &inputs, Ok(values), outputs),
-            Err(message) => csv::row(index, &inputs, Err(message), outputs),
-        };
-        Finished {
-            position,
-            line,
-            failed: result.is_err(),
-        }
-    }
-
-    /// The writer: appends rows in position order; returns the number of failed samples.
+    /// The writer: appends rows in position order; returns the written rows' counts.
     fn write(
         &self,
         receiver: mpsc::Receiver<Vec<Finished>>,
         out: &mut impl std::io::Write,
         progress: &mut Progress,
-    ) -> std::io::Result<u64> {
+    ) -> std::io::Result<Counts> {
         let mut pending = BTreeMap::new();
         let mut next = *self.written.lock().unwrap_or_else(PoisonError::into_inner);
-        let mut failed = 0;
+        let mut counts = Counts::default();
         for batch in receiver {
             pending.extend(batch.into_iter().map(|row| (row.position, row)));
             let first = next;
             while let Some(row) = pending.remove(&next) {
                 out.write_all(row.line.as_bytes())?;
-                failed += u64::from(row.failed);
+                counts.add(&row.status);
                 next += 1;
             }
             if next > first {
@@ -338,7 +389,7 @@ impl Engine<'_> {
                 progress.advance(next - first);
             }
         }
-        Ok(failed)
+        Ok(counts)
     }
 
     /// Stops the workers (after a write error).

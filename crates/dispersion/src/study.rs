@@ -32,6 +32,22 @@ pub struct Site {
     pub earth_radius: f64,
 }
 
+/// Something the model is made of, identified by the hash of its content: a data file the
+/// mission reads (thrust curve, drag curve, weather file, script), or the mission itself after
+/// its overrides. Part of the study's identity: a study is not resumed or merged with rows
+/// flown on other data.
+#[derive(Debug, Clone, PartialEq, Eq, Serialize, Deserialize)]
+pub struct DataFile {
+    /// What it is to the model: the mission key that names the file (`rocket.power_off_drag`),
+    /// or `mission` for the mission after overrides.
+    pub role: String,
+    /// The file as the mission names it (relative to the mission's folder when written so);
+    /// for the mission, its file name.
+    pub path: String,
+    /// SHA-256 of the content, lowercase hexadecimal.
+    pub sha256: String,
+}
+
 /// A Monte Carlo study.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Study {
@@ -47,9 +63,11 @@ pub struct Study {
     pub points: Points,
     /// Launch site for the KML export; none: no `dispersion.kml`.
     pub site: Option<Site>,
-    /// Free text identifying the model (e.g. the mission file's name and a hash of its
-    /// content): part of the fingerprint, so a changed model is not resumed.
+    /// Free text naming the model (the mission's name): the title of the plots and the KML.
     pub context: String,
+    /// The data the model is made of ([`DataFile`]): part of the fingerprint, so a study is
+    /// not resumed or merged with rows flown on other data.
+    pub data: Vec<DataFile>,
 }
 
 impl Study {
@@ -63,6 +81,7 @@ impl Study {
             points: Points::default(),
             site: None,
             context: String::new(),
+            data: Vec::new(),
         }
     }
 
@@ -187,8 +206,8 @@ impl fmt::Display for Shard {
     }
 }
 
-/// Version of the output files' layout.
-const FORMAT_VERSION: u32 = 1;
+/// Version of the output files' layout (2: the data fingerprint and the sample statuses).
+const FORMAT_VERSION: u32 = 2;
 
 /// The content of `study.json`.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
@@ -206,6 +225,8 @@ pub(crate) struct Record {
     pub points: Points,
     pub site: Option<Site>,
     pub context: String,
+    #[serde(default)]
+    pub data: Vec<DataFile>,
 }
 
 const FORMAT: &str = "karman-dispersion study";
@@ -226,6 +247,7 @@ impl Record {
             points: study.points.clone(),
             site: study.site,
             context: study.context.clone(),
+            data: study.data.clone(),
         };
         // The fingerprint covers everything but the shard (all shards share it).
         let canonical = serde_json::to_string(&record).unwrap_or_default();
@@ -244,6 +266,7 @@ impl Record {
             points: self.points.clone(),
             site: self.site,
             context: self.context.clone(),
+            data: self.data.clone(),
         }
     }
 
@@ -292,11 +315,39 @@ impl Record {
         differ("points", self.points == other.points);
         differ("site", self.site == other.site);
         differ("context", self.context == other.context);
+        fields.extend(data_differences(&self.data, &other.data));
         if fields.is_empty() && self.fingerprint != other.fingerprint {
             fields.push("fingerprint".to_owned());
         }
         fields
     }
+}
+
+/// The data files in which `b` differs from `a`, each named: a changed content, or a file
+/// only one of them reads. (Paths are not compared: a file's path is part of the mission,
+/// whose own hash covers it, and the same study may be flown from different folders.)
+fn data_differences(a: &[DataFile], b: &[DataFile]) -> Vec<String> {
+    let mut out = Vec::new();
+    let describe = |f: &DataFile| {
+        if f.role == "mission" {
+            format!("the mission {} (after overrides)", f.path)
+        } else {
+            format!("{} (`{}`)", f.path, f.role)
+        }
+    };
+    for x in a {
+        match b.iter().find(|y| y.role == x.role) {
+            None => out.push(format!("{} is not read by the other", describe(x))),
+            Some(y) if y.sha256 != x.sha256 => {
+                out.push(format!("the content of {}", describe(x)));
+            }
+            Some(_) => {}
+        }
+    }
+    for y in b.iter().filter(|y| a.iter().all(|x| x.role != y.role)) {
+        out.push(format!("{} is read only by the other", describe(y)));
+    }
+    out
 }
 
 #[cfg(test)]
@@ -336,8 +387,47 @@ mod tests {
         let part = Record::new(&study, Shard::new(2, 3).expect("valid"));
         assert_eq!(whole.fingerprint, part.fingerprint);
         assert_eq!(whole.differences(&part), ["shard"]);
-        let other = Record::new(&Study { seed: 2, ..study }, Shard::WHOLE);
+        let other = Record::new(
+            &Study {
+                seed: 2,
+                ..study.clone()
+            },
+            Shard::WHOLE,
+        );
         assert_ne!(whole.fingerprint, other.fingerprint);
         assert_eq!(whole.differences(&other), ["seed"]);
+    }
+
+    #[test]
+    fn a_changed_data_file_is_named() {
+        let file = |role: &str, path: &str, sha256: &str| DataFile {
+            role: role.to_owned(),
+            path: path.to_owned(),
+            sha256: sha256.to_owned(),
+        };
+        let mut study = Study::new(1, 10, vec![], vec!["a".to_owned()]);
+        study.data = vec![
+            file("mission", "m.toml", "00"),
+            file("rocket.power_off_drag", "drag.csv", "11"),
+            file("motor.thrust", "m.eng", "22"),
+        ];
+        let before = Record::new(&study, Shard::WHOLE);
+        study.data[1].sha256 = "12".to_owned();
+        study.data[0].sha256 = "01".to_owned();
+        study.data.pop();
+        study
+            .data
+            .push(file("environment.atmosphere.file", "w.nc", "33"));
+        let after = Record::new(&study, Shard::WHOLE);
+        assert_ne!(before.fingerprint, after.fingerprint);
+        assert_eq!(
+            before.differences(&after),
+            [
+                "the content of the mission m.toml (after overrides)",
+                "the content of drag.csv (`rocket.power_off_drag`)",
+                "m.eng (`motor.thrust`) is not read by the other",
+                "w.nc (`environment.atmosphere.file`) is read only by the other",
+            ]
+        );
     }
 }

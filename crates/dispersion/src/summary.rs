@@ -1,11 +1,18 @@
 //! `summary.json`, `dispersion.kml` and the plots of a complete study, computed from its
 //! `samples.csv` (so a resumed or merged study summarizes exactly as an uninterrupted one).
 //!
+//! Which samples count where: the input statistics cover every sample (the draws do not
+//! depend on how a flight ended); the output statistics, the ellipses, the landing points and
+//! the histogram cover the completed flights only (status `ok`), the flights the study asked
+//! for. Samples that ended early (`max_time`, `stuck_on_rail`) or failed are counted
+//! separately and listed with their messages.
+//!
 //! Memory does not grow without bound with the number of samples: the quantiles need every
 //! value of a column, so columns are read in groups of at most `VALUES_PER_PASS` values
 //! (64 MB), one pass over the file per group; the ellipses use running moments; the KML and
 //! the scatter plot show at most the first `MAX_DRAWN_POINTS` landing points.
 
+use crate::csv::Counts;
 use crate::error::DispersionError;
 use crate::files::{
     self, HISTOGRAM_PLOT_FILE, KML_FILE, LANDING_PLOT_FILE, SAMPLES_FILE, STUDY_FILE, SUMMARY_FILE,
@@ -21,7 +28,8 @@ use std::path::Path;
 
 /// Values held in memory per pass over `samples.csv`.
 const VALUES_PER_PASS: u64 = 8 * 1024 * 1024;
-/// Failed samples listed by index and message in `summary.json` (all are counted).
+/// Samples that did not complete listed by index, status and message in `summary.json` (all
+/// are counted).
 const MAX_LISTED_FAILURES: usize = 100;
 /// Landing points drawn in the KML file and the scatter plot.
 const MAX_DRAWN_POINTS: usize = 10_000;
@@ -33,26 +41,28 @@ pub struct Summary {
     pub seed: u64,
     /// Number of samples.
     pub samples: u64,
-    /// Samples flown successfully.
-    pub succeeded: u64,
-    /// Samples that failed.
-    pub failed: u64,
-    /// The first failed samples (at most 100), in index order.
+    /// The samples by how they ended: completed, ended early (per status), failed.
+    #[serde(flatten)]
+    pub counts: Counts,
+    /// The first samples that did not complete (at most 100), in index order.
     pub failures: Vec<Failure>,
     /// Statistics of the sampled inputs (all samples; a factor or offset column as drawn).
     pub inputs: Vec<Column>,
-    /// Statistics of the outputs (successful samples where the quantity occurred).
+    /// Statistics of the outputs (completed flights where the quantity occurred).
     pub outputs: Vec<Column>,
-    /// Apogee and landing ellipses, where the study names their outputs.
+    /// Apogee and landing ellipses of the completed flights, where the study names their
+    /// outputs.
     pub ellipses: Vec<EllipseSummary>,
 }
 
-/// A failed sample.
+/// A sample that did not complete.
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct Failure {
     /// Sample index.
     pub index: u64,
-    /// The error message.
+    /// Its status: `failed`, or how it ended early (`max_time`, ...).
+    pub status: String,
+    /// The error or the explanation.
     pub error: String,
 }
 
@@ -184,20 +194,22 @@ pub fn summarize(dir: &Path) -> Result<Summary, DispersionError> {
 
     // First pass: counts, failures, moments, landing points.
     let mut failures = Vec::new();
-    let mut failed = 0;
+    let mut counts = Counts::default();
     let mut apogee = Moments::default();
     let mut landing = Moments::default();
     let mut drawn: Vec<(u64, [f64; 2])> = Vec::new();
     let value = |row: &crate::csv::Row, i: usize| row.outputs.get(i).copied().flatten();
     files::for_each_row(&samples_path, n_inputs, n_outputs, |row| {
-        if let Some(error) = &row.error {
-            failed += 1;
+        counts.add(&row.status);
+        if !row.status.is_completed() {
             if failures.len() < MAX_LISTED_FAILURES {
                 failures.push(Failure {
                     index: row.index,
-                    error: error.clone(),
+                    status: row.status.label().to_owned(),
+                    error: row.status.message().to_owned(),
                 });
             }
+            return;
         }
         if let Some((x, y)) = apogee_pair {
             if let (Some(x), Some(y)) = (value(&row, x), value(&row, y)) {
@@ -222,11 +234,14 @@ pub fn summarize(dir: &Path) -> Result<Summary, DispersionError> {
         let group = first..(first + per_pass).min(columns);
         let mut values: Vec<Vec<f64>> = group.clone().map(|_| Vec::new()).collect();
         files::for_each_row(&samples_path, n_inputs, n_outputs, |row| {
+            let completed = row.status.is_completed();
             for (column, slot) in group.clone().zip(values.iter_mut()) {
                 let v = if column < n_inputs {
                     row.inputs.get(column).copied()
-                } else {
+                } else if completed {
                     value(&row, column - n_inputs)
+                } else {
+                    None
                 };
                 slot.extend(v);
             }
@@ -269,8 +284,7 @@ pub fn summarize(dir: &Path) -> Result<Summary, DispersionError> {
     let summary = Summary {
         seed: record.seed,
         samples: record.samples,
-        succeeded: record.samples - failed,
-        failed,
+        counts,
         failures,
         inputs: columns,
         outputs,

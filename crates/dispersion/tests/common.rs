@@ -84,7 +84,7 @@ pub fn study(samples: u64) -> Study {
 }
 
 /// The synthetic "flight": deterministic in its inputs; samples with a large drag factor
-/// fail, and a few have no impact.
+/// fail, a few have no impact, and samples with index % 29 == 3 end early (`max_time`).
 pub fn fly(index: u64, values: &[f64]) -> Result<Outcome, String> {
     let [
         mass,
@@ -108,6 +108,21 @@ pub fn fly(index: u64, values: &[f64]) -> Result<Outcome, String> {
     let (sin_h, cos_h) = heading_deg.to_radians().sin_cos();
     let apogee_x = drift * sin_h;
     let apogee_y = drift * cos_h;
+    if index % 29 == 3 {
+        let message = format!("sample {index} reached max_time before landing");
+        return Ok(Outcome::ended(
+            vec![
+                Some(apogee),
+                Some(apogee_x),
+                Some(apogee_y),
+                None,
+                None,
+                None,
+            ],
+            "max_time",
+            message,
+        ));
+    }
     let impact = if index % 17 == 5 {
         None
     } else {

@@ -24,33 +24,63 @@ fn threads_do_not_change_the_outputs() {
             "landing.svg",
             "samples.csv",
             "study.json",
+            "study.lock",
             "summary.json"
         ]
     );
     // The synthetic flight fails when the drag factor N(1, 0.05) exceeds 1.1 (2.3 % of the
     // samples) and has no impact for index % 17 == 5.
     let summary = report.summary.expect("a whole study is summarized");
-    assert_eq!(summary.succeeded + summary.failed, 600);
-    assert_eq!(report.failed, summary.failed);
+    let counts = &summary.counts;
+    assert_eq!(counts.total(), 600);
+    assert_eq!(&report.counts, counts);
+    assert!((3..=30).contains(&counts.failed), "{counts}");
+    // index % 29 == 3 ends early, unless the drag draw makes it fail first.
+    let early = (0..600u64).filter(|i| i % 29 == 3).count() as u64;
     assert!(
-        (3..=30).contains(&summary.failed),
-        "{} failures",
-        summary.failed
+        counts.ended_early <= early && counts.ended_early + counts.failed >= early,
+        "{counts}"
     );
-    assert_eq!(summary.failures.len() as u64, summary.failed);
+    assert_eq!(
+        counts.ended_early_by_status.get("max_time"),
+        Some(&counts.ended_early)
+    );
+    assert_eq!(
+        summary.failures.len() as u64,
+        (counts.failed + counts.ended_early).min(100)
+    );
+    // The output statistics count completed flights only: the impact column has exactly the
+    // completed rows with an impact.
+    let csv = std::fs::read_to_string(one.join("samples.csv")).expect("samples.csv");
+    let rows: Vec<karman_dispersion::Row> = csv
+        .lines()
+        .skip(1)
+        .map(|line| karman_dispersion::parse_row(line, 7, 6).expect("a row"))
+        .collect();
+    let expected = rows
+        .iter()
+        .filter(|r| r.status.is_completed() && r.outputs[3].is_some())
+        .count() as u64;
     let impact = summary
         .outputs
         .iter()
         .find(|c| c.name == "impact_x_m")
         .expect("column");
-    let expected = (0..600u64).filter(|i| i % 17 != 5).count() as u64 - summary.failed;
-    let count = impact.statistics.expect("statistics").count;
-    // Failures and missing impacts can coincide: the count is at least the bound above.
-    assert!(
-        count >= expected && count <= expected + 36,
-        "{count} vs {expected}"
+    assert_eq!(impact.statistics.expect("statistics").count, expected);
+    let apogee = summary
+        .outputs
+        .iter()
+        .find(|c| c.name == "apogee_agl_m")
+        .expect("column");
+    assert_eq!(
+        apogee.statistics.expect("statistics").count,
+        counts.completed,
+        "an early ending's apogee is kept in samples.csv, not in the statistics"
     );
-    let csv = std::fs::read_to_string(one.join("samples.csv")).expect("samples.csv");
+    assert!(
+        rows.iter()
+            .any(|r| r.outputs[0].is_some() && !r.status.is_completed())
+    );
     assert_eq!(csv.lines().count(), 601);
     assert!(csv.starts_with(
         "index,status,error,rocket.mass,rocket.power_off_drag:factor,flight.heading,"

@@ -101,3 +101,55 @@ fn a_corrupt_complete_row_is_an_error_naming_the_line() {
     let error = run(&study, &dir, &options(1, Shard::WHOLE), fly).expect_err("edited inputs");
     assert!(error.to_string().contains("draws"), "{error}");
 }
+
+#[test]
+fn a_resume_with_other_data_or_another_model_is_refused() {
+    use karman_dispersion::DataFile;
+    let mut study = study(40);
+    study.data = vec![DataFile {
+        role: "rocket.power_off_drag".to_owned(),
+        path: "powerOffDragCurve.csv".to_owned(),
+        sha256: "aa".to_owned(),
+    }];
+    let tmp = tempfile::tempdir().expect("temporary directory");
+    let dir = tmp.path().join("out");
+    run(&study, &dir, &options(1, Shard::WHOLE), fly).expect("run");
+    let path = dir.join("samples.csv");
+    let csv = std::fs::read(&path).expect("samples.csv");
+    std::fs::write(&path, &csv[..csv.len() / 2]).expect("an interrupted run");
+
+    // The drag file edited since: refused, naming the file.
+    let mut edited = study.clone();
+    edited.data[0].sha256 = "ab".to_owned();
+    let error = run(&edited, &dir, &options(1, Shard::WHOLE), fly).expect_err("other data");
+    let text = error.to_string();
+    assert!(
+        text.contains("powerOffDragCurve.csv") && text.contains("rocket.power_off_drag"),
+        "{text}"
+    );
+
+    // The same study flown by a model that gives other outputs: the kept rows flown again
+    // differ, and the resume is refused before anything is written.
+    let other_model = |index: u64, values: &[f64]| {
+        fly(index, values).map(|o| {
+            let values = o.values().iter().map(|v| v.map(|x| x + 1e-9)).collect();
+            karman_dispersion::Outcome::new(values)
+        })
+    };
+    let before = std::fs::read(&path).expect("samples.csv");
+    let error = run(&study, &dir, &options(1, Shard::WHOLE), other_model).expect_err("changed");
+    assert!(
+        matches!(
+            error,
+            DispersionError::ChangedOutputs {
+                line: 2,
+                index: 0,
+                ..
+            }
+        ),
+        "{error}"
+    );
+    assert_eq!(std::fs::read(&path).expect("samples.csv"), before);
+    // The right model resumes.
+    run(&study, &dir, &options(1, Shard::WHOLE), fly).expect("resumed");
+}

@@ -28,7 +28,7 @@
 //! apart, about 1 m per km of drift).
 
 use crate::build::environment::build_environment;
-use crate::build::flight::flight_settings;
+use crate::build::flight::{early_ending, flight_settings};
 use crate::build::motor::{build_motor_with, thrust_source};
 use crate::build::rocket::build_rocket;
 use crate::paths::{self, DerivedKnob, Input};
@@ -36,14 +36,16 @@ use crate::schema::{Curve, Distribution, MissionSpec};
 use crate::{Mission, MissionError};
 use karman_airframe::Rocket;
 use karman_atmos::Environment;
-use karman_dispersion::sampling::{flight_seed, fnv1a64};
+use karman_dispersion::sampling::flight_seed;
 use karman_dispersion::{
-    DispersionError, Distribution as Draw, Meaning, Outcome, Points, Site, Study, Target,
+    DataFile, DispersionError, Distribution as Draw, Meaning, Outcome, Points, Site, Study, Target,
     Variation, VariedInput,
 };
 use karman_dynamics::{Air, AtmosphereModel, Summary};
 use karman_math::Cursor;
 use karman_propulsion::{Motor, ThrustSource};
+use sha2::{Digest, Sha256};
+use std::fmt::Write as _;
 
 /// The outputs of every sample: the scalar keys of the flight summary (mission-format.md
 /// "The summary").
@@ -68,8 +70,9 @@ pub const OUTPUTS: [&str; 18] = [
     "impact_velocity_mps",
 ];
 
-fn outcome(s: &Summary) -> Outcome {
-    Outcome::new(vec![
+/// The values of [`OUTPUTS`] in a flight summary.
+fn output_values(s: &Summary) -> Vec<Option<f64>> {
+    vec![
         s.apogee_agl_m,
         s.apogee_asl_m,
         s.apogee_time_s,
@@ -88,7 +91,7 @@ fn outcome(s: &Summary) -> Outcome {
         s.impact_x_m,
         s.impact_y_m,
         s.impact_velocity_mps,
-    ])
+    ]
 }
 
 /// How a varied input is applied to the mission.
@@ -281,14 +284,11 @@ impl MonteCarlo {
             longitude_deg: spec.environment.longitude_deg,
             earth_radius: environment.datum_radius(),
         });
-        // The whole mission, overrides applied (Debug prints every number exactly), so a
-        // changed mission is not resumed into an old study.
-        let name = spec
+        study.context = spec
             .name
             .clone()
             .unwrap_or_else(|| mission.path.display().to_string());
-        let fingerprint = fnv1a64(format!("{spec:?}").as_bytes());
-        study.context = format!("{name} (mission {fingerprint:016x})");
+        study.data = data_fingerprint(mission)?;
         study.validate().map_err(|e| dispersion_error(mission, e))?;
         let mut base = mission.clone();
         inline_rocket_curves(&mut base)?;
@@ -392,8 +392,51 @@ impl MonteCarlo {
         let atmosphere = WindAdjusted::new(environment, factor, offset_deg);
         let flight =
             karman_dynamics::simulate(&atmosphere, rocket, &settings).map_err(|e| chain(&e))?;
-        Ok(outcome(&flight.summary(&atmosphere, rocket)))
+        let values = output_values(&flight.summary(&atmosphere, rocket));
+        Ok(match early_ending(flight.termination, &settings) {
+            None => Outcome::new(values),
+            Some((kind, message)) => Outcome::ended(values, kind, message),
+        })
     }
+}
+
+/// The study's data ([`DataFile`]): the mission after overrides (its `Debug` text, which
+/// prints every number exactly) and every data file it names ([`MissionSpec::data_files`]),
+/// each with the SHA-256 of its content, so that a study is not resumed or merged with rows
+/// flown on other data.
+///
+/// # Errors
+/// [`MissionError::Model`] at the file's key when a data file cannot be read.
+pub fn data_fingerprint(mission: &Mission) -> Result<Vec<DataFile>, MissionError> {
+    let hex = |bytes: &[u8]| {
+        Sha256::digest(bytes)
+            .iter()
+            .fold(String::with_capacity(64), |mut s, b| {
+                let _ = write!(s, "{b:02x}");
+                s
+            })
+    };
+    let spec = &mission.spec;
+    let mut data = vec![DataFile {
+        role: "mission".to_owned(),
+        path: mission.path.file_name().map_or_else(
+            || mission.path.display().to_string(),
+            |name| name.to_string_lossy().into_owned(),
+        ),
+        sha256: hex(format!("{spec:?}").as_bytes()),
+    }];
+    for (key, path) in spec.data_files() {
+        let resolved = mission.dir.join(&path);
+        let bytes = std::fs::read(&resolved).map_err(|e| {
+            mission.model_error(&key, format!("cannot read {}: {e}", resolved.display()))
+        })?;
+        data.push(DataFile {
+            role: key,
+            path: path.display().to_string(),
+            sha256: hex(&bytes),
+        });
+    }
+    Ok(data)
 }
 
 /// Reads the rocket's curve files (drag, airfoil lift) into inline points, so that samples
@@ -574,7 +617,7 @@ mod tests {
         let neutral = [0.0, 1.0, 1.0, 85.0, 0.0, 1.0, 1.2];
         let outcome = mc.fly(4, &neutral).expect("flight");
         let nominal = simulate_with_seed(&mission, flight_seed(3, 4)).expect("nominal flight");
-        let expected = outcome_values(&nominal.summary());
+        let expected = output_values(&nominal.summary());
         for (name, (a, b)) in OUTPUTS.iter().zip(outcome.values().iter().zip(&expected)) {
             assert_eq!(
                 a.map(f64::to_bits),
@@ -615,15 +658,11 @@ mod tests {
             assert_eq!([r.environment, r.motor, r.rocket], reach, "{vary}");
             let outcome = mc.fly(2, &[neutral]).expect("flight");
             let nominal = simulate_with_seed(&mission, flight_seed(3, 2)).expect("nominal");
-            let expected = outcome_values(&nominal.summary());
+            let expected = output_values(&nominal.summary());
             let bits =
                 |v: &[Option<f64>]| v.iter().map(|x| x.map(f64::to_bits)).collect::<Vec<_>>();
             assert_eq!(bits(outcome.values()), bits(&expected), "{vary}");
         }
-    }
-
-    fn outcome_values(summary: &Summary) -> Vec<Option<f64>> {
-        outcome(summary).values().to_vec()
     }
 
     #[test]

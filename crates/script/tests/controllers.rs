@@ -79,12 +79,14 @@ fn row(t: f64) -> [f64; 14] {
 
 #[test]
 fn camoes_controller_replays_the_deployment() {
-    let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../../shared/validation/camoes");
-    let file = dir.join("camoes_controller.rhai");
-    let Ok(source) = std::fs::read_to_string(&file) else {
-        eprintln!("skipped: {} not found", file.display());
+    let Some(folder) = karman_validation::folder() else {
         return;
     };
+    let Some(camoes) = folder.flight("camoes") else {
+        return;
+    };
+    let file = camoes.dir.join("camoes_controller.rhai");
+    let source = std::fs::read_to_string(&file).expect("the camoes controller");
     let script = ControllerScript::compile(&file, &source).expect("camoes compiles");
     let mut c = Controller::new(&script, setup(true)).expect("controller");
     let poly = |t: f64| -0.002906 * t.powf(3.0) + 0.1497 * t.powf(2.0) + -2.563 * t + 14.96;

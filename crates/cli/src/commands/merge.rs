@@ -1,8 +1,9 @@
 //! `karman merge OUT DIR...`: join the output directories of every shard of one Monte Carlo
-//! study into OUT, with exactly the files a single run makes.
+//! study into OUT, with exactly the files a single run makes. Exit code 1 when no sample of
+//! the study completed its flight, as `karman montecarlo`.
 
 use super::montecarlo::print_summary;
-use anyhow::Result;
+use anyhow::{Result, bail};
 use clap::Args;
 use karman_mission::dispersion::merge;
 use std::io::Write;
@@ -30,5 +31,11 @@ pub fn run(args: &MergeArgs) -> Result<()> {
         summary.seed,
         args.out.display()
     )?;
+    if summary.counts.completed == 0 {
+        bail!(
+            "no sample of the study completed its flight ({})",
+            summary.counts
+        );
+    }
     Ok(())
 }

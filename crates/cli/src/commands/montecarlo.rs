@@ -5,9 +5,13 @@
 //! Writes `study.json` and `samples.csv` into DIR (rows flushed in index order as samples
 //! finish); a whole study also gets `summary.json`, `dispersion.kml`, `landing.svg` and
 //! `apogee_histogram.svg`. Rerunning the same command resumes an interrupted study.
+//!
+//! Exit code: 0 when at least one sample of the shard flown (the whole study without
+//! `--shard`) completed its flight; 1 when none did (every sample failed or ended early), after
+//! writing the files, and on any error.
 
 use super::MissionArgs;
-use anyhow::Result;
+use anyhow::{Result, bail};
 use clap::Args;
 use karman_mission::dispersion::{self, ProgressMode, RunOptions, Shard, Summary};
 use karman_mission::montecarlo::{MonteCarlo, StudyOverrides};
@@ -63,7 +67,7 @@ pub fn run(args: &MonteCarloArgs) -> Result<()> {
     let mut out = std::io::stdout().lock();
     writeln!(
         out,
-        "{} samples (shard {}): {} resumed, {} flown in {:.1} s ({:.1} flights/s on {} threads), {} failed",
+        "{} samples (shard {}): {} resumed, {} flown in {:.1} s ({:.1} flights/s on {} threads); {}",
         report.shard_samples,
         report.shard,
         report.resumed,
@@ -71,7 +75,7 @@ pub fn run(args: &MonteCarloArgs) -> Result<()> {
         report.elapsed.as_secs_f64(),
         report.rate(),
         report.threads,
-        report.failed
+        report.counts
     )?;
     match &report.summary {
         Some(summary) => print_summary(&mut out, summary)?,
@@ -87,18 +91,26 @@ pub fn run(args: &MonteCarloArgs) -> Result<()> {
         study.study().seed,
         args.out.display()
     )?;
+    if report.counts.completed == 0 {
+        bail!(
+            "no sample of shard {} completed its flight ({}); see samples.csv in {}",
+            report.shard,
+            report.counts,
+            args.out.display()
+        );
+    }
     Ok(())
 }
 
 /// A few lines of the summary: apogee, impact, ellipses.
 pub fn print_summary(out: &mut impl Write, summary: &Summary) -> Result<()> {
-    writeln!(
-        out,
-        "{} of {} samples succeeded, {} failed",
-        summary.succeeded, summary.samples, summary.failed
-    )?;
+    writeln!(out, "{} samples: {}", summary.samples, summary.counts)?;
     for failure in summary.failures.iter().take(3) {
-        writeln!(out, "  sample {} failed: {}", failure.index, failure.error)?;
+        writeln!(
+            out,
+            "  sample {} {}: {}",
+            failure.index, failure.status, failure.error
+        )?;
     }
     writeln!(
         out,

@@ -12,8 +12,9 @@ use std::path::Path;
 
 use anyhow::{Context, Result, bail};
 use clap::Args;
-use karman_mission::build::flight::{FlightRun, simulate_with_seed};
-use karman_mission::dynamics::{Sample, Termination};
+use karman_mission::build::flight::{FlightRun, early_ending, simulate_with_seed};
+use karman_mission::dispersion::files::write_atomic;
+use karman_mission::dynamics::Sample;
 
 use super::MissionArgs;
 use crate::plot::{Series, line_chart};
@@ -67,24 +68,15 @@ pub fn run(args: &SimulateArgs) -> Result<()> {
             dir,
         )?;
     }
-    match summary.termination {
-        Termination::Impact
-        | Termination::Apogee
-        | Termination::Terminated
-        | Termination::Separation => Ok(()),
-        Termination::MaxTime => bail!(
-            "the flight reached max_time ({} s) before landing; raise [flight] max_time",
-            run.settings.max_time
-        ),
-        Termination::StuckOnRail => {
-            bail!(
-                "the rocket never left the rail: thrust minus drag never exceeded its weight \
-                 along the rail"
-            )
-        }
+    match early_ending(summary.termination, &run.settings) {
+        None => Ok(()),
+        Some((_, message)) => bail!(message),
     }
 }
 
+/// Writes the files of `--out`, each atomically ([`write_atomic`]): a file is the whole new
+/// content or absent (a full disk leaves no truncated file under its name), and an I/O error
+/// names the file.
 fn write_outputs(run: &FlightRun, name: &str, seed: u64, dir: &Path) -> Result<()> {
     std::fs::create_dir_all(dir).with_context(|| format!("cannot create {}", dir.display()))?;
     let summary = run.summary();
@@ -93,13 +85,16 @@ fn write_outputs(run: &FlightRun, name: &str, seed: u64, dir: &Path) -> Result<(
     json["seed"] = seed.into();
     json["integration"] = serde_json::to_value(run.flight.stats)?;
     json["warnings"] = serde_json::to_value(&run.warnings)?;
-    std::fs::write(
-        dir.join("summary.json"),
-        serde_json::to_string_pretty(&json)?,
+    write_atomic(
+        &dir.join("summary.json"),
+        serde_json::to_string_pretty(&json)?.as_bytes(),
     )?;
     let samples = run.samples();
-    std::fs::write(dir.join("trajectory.csv"), trajectory_csv(run, &samples))?;
-    std::fs::write(dir.join("flight.kml"), kml(run, name, &samples))?;
+    write_atomic(
+        &dir.join("trajectory.csv"),
+        trajectory_csv(run, &samples).as_bytes(),
+    )?;
+    write_atomic(&dir.join("flight.kml"), kml(run, name, &samples).as_bytes())?;
     plots(run, &samples, dir)
 }
 

@@ -12,6 +12,7 @@ fuzz_target!(|data: &[u8]| {
     if let Ok(row) = karman_dispersion::parse_row(&line, inputs, outputs) {
         assert_eq!(row.inputs.len(), inputs);
         assert_eq!(row.outputs.len(), outputs);
-        assert!(row.error.is_none() || row.outputs.iter().all(Option::is_none));
+        let failed = matches!(row.status, karman_dispersion::Status::Failed(_));
+        assert!(!failed || row.outputs.iter().all(Option::is_none));
     }
 });

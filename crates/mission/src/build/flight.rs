@@ -8,11 +8,42 @@
 
 use karman_airframe::Rocket;
 use karman_atmos::Environment;
-use karman_dynamics::{DEFAULT_ATOL, Flight, FlightSettings, Sample, Summary};
+use karman_dynamics::{DEFAULT_ATOL, Flight, FlightSettings, Sample, Summary, Termination};
 use karman_propulsion::Motor;
 
 use super::preflight::{Models, prepare};
 use crate::{Mission, MissionError};
+
+/// How a flight ended against the end a mission asks for: `None` for a completed flight
+/// (ground impact, apogee under `terminate_on_apogee`, a stop or a stage separation asked
+/// for by a trigger or controller); otherwise the status word and the
+/// explanation: `max_time` (still in the air at `flight.max_time`: it never landed) or
+/// `stuck_on_rail` (it never left the rail). `karman simulate` fails with the explanation and
+/// a Monte Carlo sample records the status, so both count the same flights as failures.
+pub fn early_ending(
+    termination: Termination,
+    settings: &FlightSettings,
+) -> Option<(&'static str, String)> {
+    match termination {
+        Termination::Impact
+        | Termination::Apogee
+        | Termination::Terminated
+        | Termination::Separation => None,
+        Termination::MaxTime => Some((
+            "max_time",
+            format!(
+                "the flight reached max_time ({} s) before landing; raise [flight] max_time",
+                settings.max_time
+            ),
+        )),
+        Termination::StuckOnRail => Some((
+            "stuck_on_rail",
+            "the rocket never left the rail: thrust minus drag never exceeded its weight along \
+             the rail"
+                .to_owned(),
+        )),
+    }
+}
 
 /// The flight settings of a mission, with the trigger-noise `seed` of its parachutes.
 #[must_use]

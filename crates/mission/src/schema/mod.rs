@@ -56,6 +56,48 @@ pub struct MissionSpec {
     pub dispersion: Option<DispersionSpec>,
 }
 
+impl MissionSpec {
+    /// Every data file the mission names, with the dotted key that names it, as written
+    /// (relative paths are relative to the mission's folder): the atmosphere's file and
+    /// curves, the thrust curve, the drag curves (not `"estimate"`), the fins' airfoils, the
+    /// air brakes' drag curve and controller script. The Monte Carlo data fingerprint hashes
+    /// exactly these files, so every key that names a file belongs here.
+    pub fn data_files(&self) -> Vec<(String, PathBuf)> {
+        let mut files = Vec::new();
+        let mut curve = |key: &str, curve: Option<&Curve>| {
+            if let Some(Curve::File(path)) = curve.filter(|c| !c.is_estimate()) {
+                files.push((key.to_owned(), path.clone()));
+            }
+        };
+        let atm = &self.environment.atmosphere;
+        curve("environment.atmosphere.pressure", atm.pressure.as_ref());
+        curve(
+            "environment.atmosphere.temperature",
+            atm.temperature.as_ref(),
+        );
+        curve("environment.atmosphere.wind_u", atm.wind_u.as_ref());
+        curve("environment.atmosphere.wind_v", atm.wind_v.as_ref());
+        curve("motor.thrust", Some(&self.motor.thrust));
+        curve("rocket.power_off_drag", Some(&self.rocket.power_off_drag));
+        curve("rocket.power_on_drag", Some(&self.rocket.power_on_drag));
+        for (name, surface) in &self.rocket.surfaces {
+            let lift = surface.airfoil().map(|a| &a.lift);
+            curve(&format!("rocket.surfaces.{name}.airfoil"), lift);
+        }
+        if let Some(file) = &atm.file {
+            files.insert(0, ("environment.atmosphere.file".to_owned(), file.clone()));
+        }
+        if let Some(brakes) = &self.rocket.air_brakes {
+            let key = "rocket.air_brakes";
+            if let AirBrakesCurve::File(path) = &brakes.drag_coefficient_curve {
+                files.push((format!("{key}.drag_coefficient_curve"), path.clone()));
+            }
+            files.push((format!("{key}.controller"), brakes.controller.clone()));
+        }
+        files
+    }
+}
+
 /// `[environment]` (RocketPy `Environment`).
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]

@@ -1,0 +1,73 @@
+//! One writer per output directory: a second run (or a merge) on a directory that a run is
+//! writing fails at once and touches nothing; the first run completes as if undisturbed.
+
+use crate::common::{assert_same_outputs, files, fly, options, study};
+use karman_dispersion::{DispersionError, Outcome, Shard, merge, run};
+use std::sync::atomic::{AtomicBool, Ordering};
+use std::time::{Duration, Instant};
+
+/// Waits (polling) until `ready` holds, at most a minute.
+fn wait_for(ready: impl Fn() -> bool) {
+    let start = Instant::now();
+    while !ready() {
+        assert!(
+            start.elapsed() < Duration::from_secs(60),
+            "the first run never started"
+        );
+        std::thread::sleep(Duration::from_millis(5));
+    }
+}
+
+#[test]
+fn a_second_run_on_a_directory_being_written_fails_and_touches_nothing() {
+    let study = study(120);
+    let tmp = tempfile::tempdir().expect("temporary directory");
+    let undisturbed = tmp.path().join("undisturbed");
+    run(&study, &undisturbed, &options(2, Shard::WHOLE), fly).expect("undisturbed run");
+
+    // The first run's flights wait until the second run has been refused, so the first run
+    // holds the directory the whole time.
+    let dir = tmp.path().join("shared");
+    let refused = AtomicBool::new(false);
+    let held = |index: u64, values: &[f64]| -> Result<Outcome, String> {
+        let start = Instant::now();
+        while !refused.load(Ordering::Acquire) && start.elapsed() < Duration::from_secs(60) {
+            std::thread::sleep(Duration::from_millis(1));
+        }
+        fly(index, values)
+    };
+    std::thread::scope(|scope| {
+        let first = scope.spawn(|| run(&study, &dir, &options(2, Shard::WHOLE), held));
+        wait_for(|| dir.join("samples.csv").is_file());
+        let before = files(&dir);
+        let second = run(&study, &dir, &options(1, Shard::WHOLE), fly);
+        match &second {
+            Err(DispersionError::Locked { dir: named }) => assert_eq!(named, &dir),
+            other => panic!("expected the directory to be locked, got {other:?}"),
+        }
+        assert!(
+            second
+                .expect_err("locked")
+                .to_string()
+                .contains("another karman run"),
+        );
+        // A merge reading a shard that is being written is refused too, as is a merge into
+        // the directory.
+        let error = merge(&tmp.path().join("merged"), std::slice::from_ref(&dir))
+            .expect_err("a shard being written");
+        assert!(matches!(error, DispersionError::Locked { .. }), "{error}");
+        let error = merge(&dir, std::slice::from_ref(&undisturbed)).expect_err("locked output");
+        assert!(matches!(error, DispersionError::Locked { .. }), "{error}");
+        assert_eq!(files(&dir), before, "the refused runs touched nothing");
+        refused.store(true, Ordering::Release);
+        let report = first
+            .join()
+            .expect("no panic")
+            .expect("the first run completes");
+        assert_eq!(report.flown, 120);
+    });
+    assert_same_outputs(&undisturbed, &dir);
+    // The lock is released with the run: the directory can be run (resumed) again.
+    run(&study, &dir, &options(1, Shard::WHOLE), fly).expect("a later run");
+    assert_same_outputs(&undisturbed, &dir);
+}
