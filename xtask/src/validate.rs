@@ -33,6 +33,16 @@ const MEASURED_BANDS: &[(&str, f64, &str)] = &[
         "ERA5 weather, constant Cd 0.43; RocketPy +0.3 %",
     ),
     (
+        "halcyon",
+        0.09,
+        "hybrid; ERA5 weather, OpenRocket drag curves, COTS altimeter; RocketPy −7.4 %",
+    ),
+    (
+        "hedy",
+        0.02,
+        "liquid, four tanks; ERA5 weather, CoolProp densities; RocketPy +0.3 %",
+    ),
+    (
         "juno3",
         0.03,
         "ISA fallback (weather file unpublished); RocketPy −1.9 %",

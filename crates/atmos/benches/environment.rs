@@ -23,6 +23,7 @@ fn evaluate(env: &Environment, z: f64) -> f64 {
 fn bench(c: &mut Criterion) {
     let constants = PhysicalConstants::SI;
     let isa = EnvironmentConfig {
+        earth_model: None,
         latitude_deg: 32.990254,
         elevation: 1400.0,
         ..EnvironmentConfig::default()
@@ -39,6 +40,7 @@ fn bench(c: &mut Criterion) {
         barometric_points: None,
     };
     let table = EnvironmentConfig {
+        earth_model: None,
         atmosphere: Atmosphere::Profiles(profiles),
         ..EnvironmentConfig::default()
     };

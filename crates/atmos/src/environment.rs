@@ -55,6 +55,20 @@ pub struct EnvironmentConfig {
     pub gravity: Gravity,
     /// Atmosphere model.
     pub atmosphere: Atmosphere,
+    /// Where the Earth quantities come from, if not from the launch site ([`EarthModel`]).
+    pub earth_model: Option<EarthModel>,
+}
+
+/// The latitude and height range from which gravity, the local Earth radius and the
+/// Earth-rotation vector are computed, when they differ from the launch site's (physics.md
+/// §18: RocketPy computes them once, in `Environment()`, from the arguments given there; a
+/// script that sets the location afterwards flies with those of the first latitude).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct EarthModel {
+    /// Latitude (deg) of the Somigliana gravity, the Earth radius and the rotation vector.
+    pub latitude_deg: f64,
+    /// Top of the gravity table (m): 100 samples on `[0, gravity_max_height]`.
+    pub gravity_max_height: f64,
 }
 
 /// Every height-dependent quantity of an [`Environment`] at one height ([`Environment::sample`]).
@@ -267,11 +281,29 @@ impl Environment {
             (Derived::Pointwise, Derived::Pointwise)
         };
 
+        let (earth_lat, gravity_top) = match config.earth_model {
+            Some(model) => {
+                check(
+                    "earth_model latitude",
+                    model.latitude_deg,
+                    (-90.0..=90.0).contains(&model.latitude_deg),
+                    "must be within [-90, 90] deg",
+                )?;
+                check(
+                    "earth_model gravity_max_height",
+                    model.gravity_max_height,
+                    model.gravity_max_height > 0.0,
+                    "must be positive",
+                )?;
+                (model.latitude_deg, model.gravity_max_height)
+            }
+            None => (lat, c.table_top_height),
+        };
         let gravity = match config.gravity {
             Gravity::Somigliana => Table1::sample(
-                |h| somigliana_gravity(lat, h, c),
+                |h| somigliana_gravity(earth_lat, h, c),
                 0.0,
-                c.table_top_height,
+                gravity_top,
                 100,
                 Interpolation::Spline,
                 Extrapolation::Constant,
@@ -306,8 +338,8 @@ impl Environment {
             latitude_deg: lat,
             longitude_deg: config.longitude_deg,
             datum: config.datum,
-            datum_radius: config.datum.radius(lat, c),
-            earth_rotation: earth_rotation_enu(lat, c),
+            datum_radius: config.datum.radius(earth_lat, c),
+            earth_rotation: earth_rotation_enu(earth_lat, c),
             pressure,
             temperature,
             density,
@@ -601,6 +633,7 @@ mod tests {
 
     fn isa_env() -> Environment {
         let config = EnvironmentConfig {
+            earth_model: None,
             latitude_deg: 32.990254,
             longitude_deg: -106.974998,
             elevation: 1400.0,
@@ -646,6 +679,7 @@ mod tests {
         let custom = |gravity, profiles: &Profiles| {
             Environment::new(
                 &EnvironmentConfig {
+                    earth_model: None,
                     atmosphere: Atmosphere::Profiles(profiles.clone()),
                     gravity,
                     ..Default::default()
@@ -719,6 +753,7 @@ mod tests {
             barometric_points: None,
         };
         let config = EnvironmentConfig {
+            earth_model: None,
             atmosphere: Atmosphere::Profiles(profiles),
             ..Default::default()
         };
@@ -737,6 +772,7 @@ mod tests {
         let calm = isa_env();
         let steady = Environment::new(
             &EnvironmentConfig {
+                earth_model: None,
                 atmosphere: Atmosphere::Profiles(Profiles::wind_only(
                     "inline",
                     Curve::Constant(5.0),
@@ -760,6 +796,7 @@ mod tests {
     #[test]
     fn bad_inputs_are_errors() {
         let mut config = EnvironmentConfig {
+            earth_model: None,
             latitude_deg: 95.0,
             ..Default::default()
         };

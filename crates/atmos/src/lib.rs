@@ -32,7 +32,7 @@ pub mod time;
 pub use curve::{Curve, parse_table};
 pub use earth::Datum;
 pub use environment::{
-    AirSample, Atmosphere, AtmosphereSample, Environment, EnvironmentConfig, Gravity,
+    AirSample, Atmosphere, AtmosphereSample, EarthModel, Environment, EnvironmentConfig, Gravity,
 };
 pub use error::AtmosError;
 pub use grid::{GridDictionary, GridRequest, WeatherGrid};

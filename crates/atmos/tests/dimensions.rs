@@ -52,6 +52,7 @@ fn custom_profiles(u: &Units) -> Profiles {
 
 fn environment(u: &Units, atmosphere: Atmosphere, gravity: Gravity) -> Environment {
     let config = EnvironmentConfig {
+        earth_model: None,
         latitude_deg: 32.990254,
         longitude_deg: -106.974998,
         elevation: u.scale(1400.0, Dimension::LENGTH),

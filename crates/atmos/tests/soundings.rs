@@ -23,6 +23,7 @@ fn jokioinen_sounding_builds_an_environment() {
     let c = PhysicalConstants::SI;
     let radius = karman_atmos::Datum::Wgs84.radius(60.8, &c);
     let config = EnvironmentConfig {
+        earth_model: None,
         latitude_deg: 60.8,
         longitude_deg: 23.5,
         elevation: 103.0,

@@ -135,6 +135,18 @@ pub struct PhysicalConstants {
     /// tip circle of an elliptical nose is tested against the profile. Numerical; kept here so
     /// that it follows the unit of length (karman-airframe nose cones).
     pub nose_shape_tolerance: f64,
+    /// RocketPy's guard of a tank's moment tables (m): a height range `[lo, up]` shorter than
+    /// this (an empty fluid column) is widened by [`PhysicalConstants::tank_degenerate_widening`]
+    /// (`TankGeometry.volume_moment`, karman-propulsion). Numerical; follows the unit of length.
+    pub tank_degenerate_range: f64,
+    /// The widening of a degenerate tank moment range (m), RocketPy's `1e-12`.
+    pub tank_degenerate_widening: f64,
+    /// RocketPy's slack of a tank's gas-mass check (kg): below minus this is an error.
+    pub tank_gas_mass_slack: f64,
+    /// RocketPy's slack of a tank's volume checks (m³).
+    pub tank_volume_slack: f64,
+    /// RocketPy's slack of a tank's height checks (m).
+    pub tank_height_slack: f64,
 }
 
 const fn layer(h: f64, t: f64, beta: f64, p: f64) -> AtmosphereLayer {
@@ -180,6 +192,11 @@ impl PhysicalConstants {
         propellant_grid_step: 0.005,
         time_difference_step: 1e-6,
         nose_shape_tolerance: 1e-3,
+        tank_degenerate_range: 1e-8,
+        tank_degenerate_widening: 1e-12,
+        tank_gas_mass_slack: 1e-6,
+        tank_volume_slack: 1e-6,
+        tank_height_slack: 1e-4,
     };
 
     /// The same constants expressed in the unit system `u`.
@@ -216,6 +233,11 @@ impl PhysicalConstants {
             propellant_grid_step: self.propellant_grid_step * u.time,
             time_difference_step: self.time_difference_step * u.time,
             nose_shape_tolerance: self.nose_shape_tolerance * len,
+            tank_degenerate_range: self.tank_degenerate_range * len,
+            tank_degenerate_widening: self.tank_degenerate_widening * len,
+            tank_gas_mass_slack: self.tank_gas_mass_slack * u.mass,
+            tank_volume_slack: self.tank_volume_slack * len * len * len,
+            tank_height_slack: self.tank_height_slack * len,
         }
     }
 }

@@ -1,16 +1,19 @@
 //! The Calisto validation mission (`fixtures/validation/calisto`, or
 //! `$KARMAN_VALIDATION_DATA/calisto`) flown to the ground, once with the parachute noise zeroed
 //! (`calisto_flight/to_ground`) and once with the mission's trigger noise kept and a fixed
-//! noise seed (`calisto_flight/noisy`, the flight a Monte Carlo run repeats): the models are
-//! built once, the timing covers `karman_dynamics::simulate` only. The throughput is declared
-//! in right-hand-side evaluations, so that `cargo xtask bench` prints the ns per evaluation
-//! beside the median; the step counts are printed once.
+//! noise seed (`calisto_flight/noisy`, the flight a Monte Carlo run repeats); and the liquid
+//! (`hedy_flight/to_ground`) and hybrid (`halcyon_flight/to_ground`) validation flights, noise
+//! zeroed, whose ns per evaluation set against Calisto's measure what the tank-derived mass
+//! tables cost (issue 24: at most 1.5 times a solid flight). The models are built once, the
+//! timing covers `karman_dynamics::simulate` only. The throughput is declared in right-hand-side
+//! evaluations, so that `cargo xtask bench` prints the ns per evaluation beside the median;
+//! the step counts are printed once.
 
 use std::path::Path;
 
 mod common;
 
-use common::calisto;
+use common::{calisto, validation_mission};
 use criterion::measurement::WallTime;
 use criterion::{BenchmarkGroup, Criterion, Throughput, criterion_group, criterion_main};
 use karman_mission::Override;
@@ -30,7 +33,7 @@ fn bench_one(
     overrides: &[Override],
     seed: u64,
 ) {
-    let mission = karman_mission::load(path, overrides).expect("calisto loads");
+    let mission = karman_mission::load(path, overrides).expect("mission loads");
     let environment = build_environment(&mission).expect("environment");
     let motor = build_motor(&mission).expect("motor");
     let rocket = build_rocket(&mission, &motor).expect("rocket");
@@ -65,6 +68,17 @@ fn flight(c: &mut Criterion) {
     bench_one(&mut group, "to_ground", &path, &quiet, 0);
     bench_one(&mut group, "noisy", &path, &[], NOISE_SEED);
     group.finish();
+    for flight in ["hedy", "halcyon"] {
+        let Some(path) = validation_mission(flight) else {
+            eprintln!("{flight} mission not found: its flight bench skipped");
+            continue;
+        };
+        let nominal = karman_mission::load(&path, &[]).expect("mission loads");
+        let quiet = nominal.parachute_noise_off().expect("noise overrides");
+        let mut group = c.benchmark_group(format!("{flight}_flight"));
+        bench_one(&mut group, "to_ground", &path, &quiet, 0);
+        group.finish();
+    }
 }
 
 criterion_group!(benches, flight);

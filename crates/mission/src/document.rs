@@ -138,7 +138,9 @@ impl<'a> Document<'a> {
             }));
         };
         let mut table = self.root.get_mut();
-        for (depth, segment) in tables.iter().enumerate() {
+        let mut depth = 0;
+        while depth < tables.len() {
+            let segment = &tables[depth];
             let here = item.path[..=depth].join(".");
             let available: Vec<String> = table.keys().map(|k| k.get_ref().to_string()).collect();
             let entry = table.get_mut(&key(segment)).ok_or_else(|| {
@@ -156,6 +158,30 @@ impl<'a> Document<'a> {
             })?;
             match entry.get_mut() {
                 DeValue::Table(inner) => table = inner,
+                // An array of tables is entered by a 0-based index (`motor.tanks.0.position`).
+                DeValue::Array(items) => {
+                    let count = items.len();
+                    let entry = tables
+                        .get(depth + 1)
+                        .and_then(|i| i.parse::<usize>().ok())
+                        .and_then(|i| items.get_mut(i))
+                        .map(Spanned::get_mut);
+                    match entry {
+                        Some(DeValue::Table(inner)) => {
+                            table = inner;
+                            depth += 1;
+                        }
+                        _ => {
+                            return Err(fail(ProblemKind::UnknownPath {
+                                path: item.path.join("."),
+                                reason: format!(
+                                    "`{here}` holds {count} entries, addressed by their index \
+                                     0..{count} followed by a key"
+                                ),
+                            }));
+                        }
+                    }
+                }
                 _ => {
                     return Err(fail(ProblemKind::UnknownPath {
                         path: item.path.join("."),
@@ -163,6 +189,7 @@ impl<'a> Document<'a> {
                     }));
                 }
             }
+            depth += 1;
         }
         let value = respan(value.into_inner(), &span);
         table.insert(Spanned::new(span, Cow::Borrowed(last.as_str())), value);
@@ -194,11 +221,13 @@ impl<'a> Document<'a> {
         best
     }
 
-    /// The span of the value at a dotted path, or of its deepest existing table.
+    /// The span of the value at a dotted path, or of its deepest existing table. A numeric
+    /// segment indexes an array of tables (`motor.tanks.0.position`).
     pub fn span_of(&self, path: &[&str]) -> Range<usize> {
         let mut span = 0..0;
         let mut table = self.root.get_ref();
-        for segment in path {
+        let mut segments = path.iter();
+        while let Some(segment) = segments.next() {
             let Some((k, v)) = table.get_key_value(&key(segment)) else {
                 break;
             };
@@ -209,6 +238,28 @@ impl<'a> Document<'a> {
             };
             match v.get_ref() {
                 DeValue::Table(inner) => table = inner,
+                DeValue::Array(items) => {
+                    let Some(item) = segments
+                        .next()
+                        .and_then(|i| i.parse::<usize>().ok())
+                        .and_then(|i| items.get(i))
+                    else {
+                        break;
+                    };
+                    match item.get_ref() {
+                        DeValue::Table(inner) => {
+                            span = inner
+                                .iter()
+                                .next()
+                                .map_or_else(|| item.span(), |(k, _)| k.span());
+                            table = inner;
+                        }
+                        _ => {
+                            span = item.span();
+                            break;
+                        }
+                    }
+                }
                 _ => break,
             }
         }
@@ -246,6 +297,22 @@ impl<'a> Document<'a> {
                     DeValue::Table(inner) => {
                         out.insert(path.clone(), doc.location(k.span().start));
                         walk(doc, inner, &path, out);
+                    }
+                    // An array of tables (`[[motor.tanks]]`): entries by index, each located
+                    // at its first key.
+                    DeValue::Array(items) if items.iter().any(|item| item.get_ref().is_table()) => {
+                        out.insert(path.clone(), doc.location(k.span().start));
+                        for (index, item) in items.iter().enumerate() {
+                            let entry = format!("{path}.{index}");
+                            if let DeValue::Table(inner) = item.get_ref() {
+                                let start = inner
+                                    .iter()
+                                    .next()
+                                    .map_or(item.span().start, |(k, _)| k.span().start);
+                                out.insert(entry.clone(), doc.location(start));
+                                walk(doc, inner, &entry, out);
+                            }
+                        }
                     }
                     _ => {
                         out.insert(path, doc.location(v.span().start));

@@ -469,6 +469,11 @@ fn inline_rocket_curves(mission: &mut Mission) -> Result<(), MissionError> {
 
 /// The curve-valued key at `path`.
 fn curve_mut<'a>(spec: &'a mut MissionSpec, path: &str) -> Option<&'a mut Curve> {
+    if let Some(rest) = path.strip_prefix("motor.tanks.") {
+        let (index, key) = rest.split_once('.')?;
+        let tank = spec.motor.tanks.get_mut(index.parse::<usize>().ok()?)?;
+        return paths::tank_curve_mut(tank, key);
+    }
     let atm = &mut spec.environment.atmosphere;
     match path {
         "motor.thrust" => Some(&mut spec.motor.thrust),

@@ -8,7 +8,8 @@
 //! are inputs too. Besides stored keys, four derived knobs exist ([`DerivedKnob`]).
 
 use crate::schema::{
-    AirBrakesCurve, Atol, Curve, Distribution, MissionSpec, RocketSpec, SurfaceSpec, Sweep, Trigger,
+    AirBrakesCurve, Atol, Curve, DensitySpec, Discretize, Distribution, MissionSpec, RocketSpec,
+    SurfaceSpec, Sweep, TankSpec, Trigger,
 };
 use thiserror::Error;
 
@@ -104,9 +105,55 @@ fn hint(available: &[String]) -> String {
     }
 }
 
+/// The tank and the key within it of a `motor.tanks.<index>.<key>` path.
+fn tank_path(path: &str) -> Option<(usize, &str)> {
+    let rest = path.strip_prefix("motor.tanks.")?;
+    let (index, key) = rest.split_once('.')?;
+    Some((index.parse().ok()?, key))
+}
+
+/// The curve-valued key `key` of a tank (its curves of time and a custom geometry's radius).
+fn tank_curve<'a>(tank: &'a TankSpec, key: &str) -> Option<&'a Curve> {
+    match key {
+        "geometry.radius" => Some(&tank.geometry.radius),
+        "temperature" => tank.temperature.as_ref(),
+        "pressure" => tank.pressure.as_ref(),
+        "liquid_mass_flow_rate_in" => tank.liquid_mass_flow_rate_in.as_ref(),
+        "liquid_mass_flow_rate_out" => tank.liquid_mass_flow_rate_out.as_ref(),
+        "gas_mass_flow_rate_in" => tank.gas_mass_flow_rate_in.as_ref(),
+        "gas_mass_flow_rate_out" => tank.gas_mass_flow_rate_out.as_ref(),
+        "ullage" => tank.ullage.as_ref(),
+        "liquid_height" => tank.liquid_height.as_ref(),
+        "liquid_mass" => tank.liquid_mass.as_ref(),
+        "gas_mass" => tank.gas_mass.as_ref(),
+        _ => None,
+    }
+}
+
+/// [`tank_curve`], mutable.
+pub(crate) fn tank_curve_mut<'a>(tank: &'a mut TankSpec, key: &str) -> Option<&'a mut Curve> {
+    match key {
+        "geometry.radius" => Some(&mut tank.geometry.radius),
+        "temperature" => tank.temperature.as_mut(),
+        "pressure" => tank.pressure.as_mut(),
+        "liquid_mass_flow_rate_in" => tank.liquid_mass_flow_rate_in.as_mut(),
+        "liquid_mass_flow_rate_out" => tank.liquid_mass_flow_rate_out.as_mut(),
+        "gas_mass_flow_rate_in" => tank.gas_mass_flow_rate_in.as_mut(),
+        "gas_mass_flow_rate_out" => tank.gas_mass_flow_rate_out.as_mut(),
+        "ullage" => tank.ullage.as_mut(),
+        "liquid_height" => tank.liquid_height.as_mut(),
+        "liquid_mass" => tank.liquid_mass.as_mut(),
+        "gas_mass" => tank.gas_mass.as_mut(),
+        _ => None,
+    }
+}
+
 /// Paths of the curve-valued keys (a `Constant` curve among them resolves to a number).
 fn curve_at<'a>(spec: &'a MissionSpec, path: &str) -> Option<&'a Curve> {
     let atm = &spec.environment.atmosphere;
+    if let Some((index, key)) = tank_path(path) {
+        return tank_curve(spec.motor.tanks.get(index)?, key);
+    }
     match path {
         "motor.thrust" => Some(&spec.motor.thrust),
         "rocket.power_off_drag" => Some(&spec.rocket.power_off_drag),
@@ -152,10 +199,23 @@ fn walk<'t>(table: &'t mut toml::Table, path: &str) -> Result<&'t mut toml::Valu
         return Err(unknown(Vec::new()));
     }
     let mut here = table;
-    for segment in tables {
+    let mut segments = tables.iter();
+    while let Some(segment) = segments.next() {
         let available: Vec<String> = here.keys().cloned().collect();
         match here.get_mut(*segment) {
             Some(toml::Value::Table(inner)) => here = inner,
+            // An array of tables (`motor.tanks`) is entered by a 0-based index.
+            Some(toml::Value::Array(items)) => {
+                let count = items.len();
+                let entry = segments
+                    .next()
+                    .and_then(|i| i.parse::<usize>().ok())
+                    .and_then(|i| items.get_mut(i));
+                match entry {
+                    Some(toml::Value::Table(inner)) => here = inner,
+                    _ => return Err(unknown((0..count).map(|i| i.to_string()).collect())),
+                }
+            }
             _ => return Err(unknown(available)),
         }
     }
@@ -176,6 +236,15 @@ pub fn resolve<'a>(spec: &'a MissionSpec, path: &str) -> Result<Input<'a>, PathE
             },
             Curve::Points(_) | Curve::File(_) => Input::Curve(curve),
         });
+    }
+    // A tank's flux time is addressed as a number: its end.
+    if let Some((index, "flux_time")) = tank_path(path) {
+        if let Some(tank) = spec.motor.tanks.get(index) {
+            return Ok(Input::Number {
+                value: tank.flux_time.end,
+                integer: false,
+            });
+        }
     }
     let mut table = as_table(spec);
     match walk(&mut table, path)? {
@@ -208,6 +277,13 @@ pub fn numeric_inputs(spec: &MissionSpec) -> Vec<(String, f64)> {
                 toml::Value::Float(v) => out.push((path, *v)),
                 toml::Value::Integer(v) => out.push((path, *v as f64)),
                 toml::Value::Table(inner) if path != "dispersion" => collect(inner, &path, out),
+                toml::Value::Array(items) => {
+                    for (index, item) in items.iter().enumerate() {
+                        if let toml::Value::Table(inner) = item {
+                            collect(inner, &format!("{path}.{index}"), out);
+                        }
+                    }
+                }
                 _ => {}
             }
         }
@@ -240,6 +316,10 @@ fn slot<'a>(spec: &'a mut MissionSpec, path: &str) -> Option<Slot<'a>> {
                 "elevation" => Float(&mut env.elevation),
                 "gravity" => Float(env.gravity.as_mut()?),
                 "max_expected_height" => Float(env.max_expected_height.as_mut()?),
+                "earth_model.latitude" => Float(env.earth_model.as_mut()?.latitude_deg.as_mut()?),
+                "earth_model.gravity_max_height" => {
+                    Float(env.earth_model.as_mut()?.gravity_max_height.as_mut()?)
+                }
                 "atmosphere.member" => Integer(env.atmosphere.member.as_mut()?),
                 "atmosphere.pressure" => constant(env.atmosphere.pressure.as_mut()?)?,
                 "atmosphere.temperature" => constant(env.atmosphere.temperature.as_mut()?)?,
@@ -250,6 +330,9 @@ fn slot<'a>(spec: &'a mut MissionSpec, path: &str) -> Option<Slot<'a>> {
         }
         "motor" => {
             let m = &mut spec.motor;
+            if let Some((index, key)) = tank_path(path) {
+                return tank_slot(m.tanks.get_mut(index)?, key);
+            }
             Some(match rest {
                 "thrust" => constant(&mut m.thrust)?,
                 "dry_mass" => Float(&mut m.dry_mass),
@@ -294,6 +377,32 @@ fn slot<'a>(spec: &'a mut MissionSpec, path: &str) -> Option<Slot<'a>> {
                 _ => return None,
             }))
         }
+        _ => None,
+    }
+}
+
+/// The numeric slot `key` of one tank.
+fn tank_slot<'a>(tank: &'a mut TankSpec, key: &str) -> Option<Slot<'a>> {
+    use Slot::{Float, Integer};
+    if tank_curve(tank, key).is_some() {
+        return constant(tank_curve_mut(tank, key)?);
+    }
+    let density = |d: &'a mut DensitySpec| match d {
+        DensitySpec::Constant(rho) => Some(Float(rho)),
+        DensitySpec::Rows(_) | DensitySpec::File(_) => None,
+    };
+    match key {
+        "position" => Some(Float(&mut tank.position)),
+        "flux_time" => Some(Float(&mut tank.flux_time.end)),
+        "geometry.height" => Some(Float(tank.geometry.height.as_mut()?)),
+        "liquid.density" => density(&mut tank.liquid.density),
+        "gas.density" => density(&mut tank.gas.density),
+        "initial_liquid_mass" => Some(Float(tank.initial_liquid_mass.as_mut()?)),
+        "initial_gas_mass" => Some(Float(tank.initial_gas_mass.as_mut()?)),
+        "discretize" => match tank.discretize.as_mut()? {
+            Discretize::Nodes(n) => Some(Integer(n)),
+            Discretize::Flag(_) => None,
+        },
         _ => None,
     }
 }

@@ -7,7 +7,8 @@ use crate::document::Document;
 use crate::error::{Problem, ProblemKind};
 use crate::paths;
 use crate::schema::{
-    AtmosphereModel, Curve, MissionSpec, MotorKind, RocketSpec, SurfaceSpec, Sweep, Trigger,
+    AtmosphereModel, Curve, DensitySpec, Discretize, MissionSpec, MotorKind, RocketSpec,
+    SurfaceSpec, Sweep, TankGeometryKind, TankKindName, TankSpec, Trigger,
 };
 use karman_airframe::AirBrakesDrag;
 use karman_math::{Extrapolation, Interpolation};
@@ -329,19 +330,28 @@ fn motor(c: &mut Checker<'_, '_>, spec: &MissionSpec) {
             m.chamber_position,
         ),
     ];
-    let (needed, foreign) = match m.kind {
-        MotorKind::Solid => (&solid[..], &generic[..]),
-        MotorKind::Generic => (&generic[..], &solid[..]),
-        MotorKind::Hybrid | MotorKind::Liquid => {
-            c.report(
-                "motor.kind",
-                ProblemKind::Unsupported {
-                    what: format!("a {} motor", m.kind),
-                },
-            );
-            return;
-        }
+    let none: [(&str, &'static str, Option<f64>); 0] = [];
+    let (needed, foreign): (&[_], Vec<_>) = match m.kind {
+        MotorKind::Solid | MotorKind::Hybrid => (&solid[..], generic.to_vec()),
+        MotorKind::Generic => (&generic[..], solid.to_vec()),
+        MotorKind::Liquid => (&none[..], solid.iter().chain(&generic).copied().collect()),
     };
+    match m.kind {
+        MotorKind::Hybrid | MotorKind::Liquid => {
+            if m.tanks.is_empty() {
+                c.required("motor.tanks", "tanks", None::<&()>, &what);
+            }
+            for (index, tank) in m.tanks.iter().enumerate() {
+                tank_checks(c, index, tank);
+            }
+        }
+        MotorKind::Solid | MotorKind::Generic => {
+            c.unused("motor.tanks", m.tanks.first(), &what);
+        }
+    }
+    if matches!(m.kind, MotorKind::Generic | MotorKind::Liquid) {
+        c.unused("motor.only_radial_burn", m.only_radial_burn.as_ref(), &what);
+    }
     for (key, name, value) in needed {
         c.required(key, name, value.as_ref(), &what);
     }
@@ -349,7 +359,7 @@ fn motor(c: &mut Checker<'_, '_>, spec: &MissionSpec) {
         c.unused(key, value.as_ref(), &what);
     }
     match m.kind {
-        MotorKind::Solid => {
+        MotorKind::Solid | MotorKind::Hybrid => {
             c.required(
                 "motor.center_of_dry_mass_position",
                 "center_of_dry_mass_position",
@@ -388,7 +398,9 @@ fn motor(c: &mut Checker<'_, '_>, spec: &MissionSpec) {
                 );
             }
         }
-        MotorKind::Hybrid | MotorKind::Liquid => {}
+        MotorKind::Liquid => {
+            c.unused("motor.throat_radius", m.throat_radius.as_ref(), &what);
+        }
         MotorKind::Generic => {
             c.unused("motor.throat_radius", m.throat_radius.as_ref(), &what);
             let positives = [
@@ -474,6 +486,190 @@ fn drag_estimate(c: &mut Checker<'_, '_>, d: &crate::schema::DragEstimateSpec, r
             c.non_negative(&format!("{key}.{k}"), v);
         }
     }
+}
+
+/// One `[[motor.tanks]]` entry: the keys its kind needs and uses, its geometry, fluids, flux
+/// time and curves (the contents are checked against the volume when the tank is built).
+fn tank_checks(c: &mut Checker<'_, '_>, index: usize, t: &TankSpec) {
+    let key = |name: &str| format!("motor.tanks.{index}.{name}");
+    let what = format!("a {} tank", t.kind);
+    let g = &t.geometry;
+    match (&g.kind, &g.radius) {
+        (TankGeometryKind::Cylindrical | TankGeometryKind::Spherical, Curve::Constant(r)) => {
+            c.positive(&key("geometry.radius"), *r);
+        }
+        (TankGeometryKind::Cylindrical | TankGeometryKind::Spherical, _) => c.report(
+            &key("geometry.radius"),
+            ProblemKind::OutOfRange {
+                value: f64::NAN,
+                expected: "must be a number for a cylindrical or spherical tank",
+            },
+        ),
+        (TankGeometryKind::Custom, radius) => c.curve(&key("geometry.radius"), radius),
+    }
+    match g.kind {
+        TankGeometryKind::Cylindrical => {
+            let geometry = "a cylindrical tank";
+            c.required(
+                &key("geometry.height"),
+                "height",
+                g.height.as_ref(),
+                geometry,
+            );
+            if let Some(h) = g.height {
+                c.positive(&key("geometry.height"), h);
+                if let (true, Curve::Constant(r)) = (g.spherical_caps, &g.radius) {
+                    c.range(
+                        &key("geometry.height"),
+                        h,
+                        h >= 2.0 * r,
+                        "must be at least twice the radius with spherical caps",
+                    );
+                }
+            }
+        }
+        TankGeometryKind::Spherical | TankGeometryKind::Custom => {
+            let geometry = format!("a {} tank", g.kind);
+            c.unused(&key("geometry.height"), g.height.as_ref(), &geometry);
+            if g.spherical_caps {
+                c.unused(&key("geometry.spherical_caps"), Some(&()), &geometry);
+            }
+        }
+    }
+    c.range(
+        &key("flux_time"),
+        t.flux_time.end,
+        t.flux_time.start >= 0.0 && t.flux_time.end > t.flux_time.start,
+        "needs 0 <= start < end",
+    );
+    for (name, fluid) in [("liquid", &t.liquid), ("gas", &t.gas)] {
+        let at = key(&format!("{name}.density"));
+        match &fluid.density {
+            DensitySpec::Constant(rho) => c.positive(&at, *rho),
+            DensitySpec::Rows(rows) => {
+                if rows.is_empty() {
+                    c.report(
+                        &at,
+                        ProblemKind::OutOfRange {
+                            value: 0.0,
+                            expected: "needs at least one [temperature, pressure, density] row",
+                        },
+                    );
+                }
+                for row in rows {
+                    c.positive(&at, row[2]);
+                }
+            }
+            DensitySpec::File(path) => c.file(&at, path, &[]),
+        }
+    }
+    match t.discretize {
+        Some(Discretize::Nodes(n)) => c.range(
+            &key("discretize"),
+            f64::from(n),
+            n >= 2,
+            "needs at least 2 grid nodes",
+        ),
+        Some(Discretize::Flag(false)) => c.report(
+            &key("discretize"),
+            ProblemKind::Unsupported {
+                what: "a tank without resampling (discretize = false)".to_owned(),
+            },
+        ),
+        None | Some(Discretize::Flag(true)) => {}
+    }
+    let curves = [
+        ("temperature", t.temperature.as_ref()),
+        ("pressure", t.pressure.as_ref()),
+        (
+            "liquid_mass_flow_rate_in",
+            t.liquid_mass_flow_rate_in.as_ref(),
+        ),
+        (
+            "liquid_mass_flow_rate_out",
+            t.liquid_mass_flow_rate_out.as_ref(),
+        ),
+        ("gas_mass_flow_rate_in", t.gas_mass_flow_rate_in.as_ref()),
+        ("gas_mass_flow_rate_out", t.gas_mass_flow_rate_out.as_ref()),
+        ("ullage", t.ullage.as_ref()),
+        ("liquid_height", t.liquid_height.as_ref()),
+        ("liquid_mass", t.liquid_mass.as_ref()),
+        ("gas_mass", t.gas_mass.as_ref()),
+    ];
+    for (name, curve) in curves {
+        if let Some(curve) = curve {
+            c.curve(&key(name), curve);
+        }
+    }
+    let masses = [
+        ("initial_liquid_mass", t.initial_liquid_mass),
+        ("initial_gas_mass", t.initial_gas_mass),
+    ];
+    let (needed, used): (&[&str], &[&str]) = match t.kind {
+        TankKindName::MassFlowRate => (
+            &["initial_liquid_mass", "initial_gas_mass"],
+            &[
+                "initial_liquid_mass",
+                "initial_gas_mass",
+                "liquid_mass_flow_rate_in",
+                "liquid_mass_flow_rate_out",
+                "gas_mass_flow_rate_in",
+                "gas_mass_flow_rate_out",
+            ],
+        ),
+        TankKindName::Ullage => (&["ullage"], &["ullage"]),
+        TankKindName::Level => (&["liquid_height"], &["liquid_height"]),
+        TankKindName::Mass => (&["liquid_mass", "gas_mass"], &["liquid_mass", "gas_mass"]),
+    };
+    let present = |name: &str| {
+        masses.iter().any(|(n, v)| *n == name && v.is_some())
+            || curves.iter().any(|(n, v)| *n == name && v.is_some())
+    };
+    for name in needed {
+        if !present(name) {
+            c.report(
+                &key(name),
+                ProblemKind::MissingKey {
+                    key: tank_key_name(name),
+                    needed_by: what.clone(),
+                },
+            );
+        }
+    }
+    let all = masses
+        .iter()
+        .map(|(n, _)| *n)
+        .chain(curves[2..].iter().map(|(n, _)| *n));
+    for name in all {
+        if present(name) && !used.contains(&name) {
+            c.report(
+                &key(name),
+                ProblemKind::NotApplicable {
+                    model: what.clone(),
+                },
+            );
+        }
+    }
+    for (name, value) in masses {
+        if let Some(v) = value {
+            c.non_negative(&key(name), v);
+        }
+    }
+}
+
+/// The `'static` name of a tank key (for [`ProblemKind::MissingKey`]).
+fn tank_key_name(name: &str) -> &'static str {
+    [
+        "initial_liquid_mass",
+        "initial_gas_mass",
+        "ullage",
+        "liquid_height",
+        "liquid_mass",
+        "gas_mass",
+    ]
+    .into_iter()
+    .find(|n| *n == name)
+    .unwrap_or("tank curve")
 }
 
 fn rocket(c: &mut Checker<'_, '_>, spec: &MissionSpec) {

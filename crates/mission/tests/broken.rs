@@ -266,15 +266,19 @@ fn validation_problem_in_override_names_the_override() {
 }
 
 #[test]
-fn hybrid_and_liquid_motors_are_named_as_not_supported_yet() {
-    for kind in ["hybrid", "Liquid"] {
-        let text = edited(&[("kind = \"solid\"", &format!("kind = \"{kind}\""))]);
-        let found = problems(&text, &[]);
-        assert_eq!(found.len(), 1, "{found:?}");
-        assert_eq!(found[0].key, "motor.kind");
-        assert!(matches!(found[0].kind, ProblemKind::Unsupported { .. }));
-        let message = error_text(&text, &[]);
-        assert!(message.contains("motor is not supported yet"), "{message}");
-        assert!(message.contains("broken.toml:"), "{message}");
-    }
+fn hybrid_and_liquid_motors_need_tanks() {
+    // A hybrid takes the solid motor's keys: only the tanks are missing.
+    let text = edited(&[("kind = \"solid\"", "kind = \"hybrid\"")]);
+    let found = problems(&text, &[]);
+    assert_eq!(found.len(), 1, "{found:?}");
+    assert_eq!(found[0].key, "motor.tanks");
+    assert!(matches!(found[0].kind, ProblemKind::MissingKey { .. }));
+    let message = error_text(&text, &[]);
+    assert!(message.contains("broken.toml:"), "{message}");
+    // A liquid motor has no grain: the grain keys are foreign to it.
+    let text = edited(&[("kind = \"solid\"", "kind = \"Liquid\"")]);
+    let keys: Vec<String> = problems(&text, &[]).into_iter().map(|p| p.key).collect();
+    assert!(keys.contains(&"motor.tanks".to_owned()), "{keys:?}");
+    assert!(keys.contains(&"motor.grain_density".to_owned()), "{keys:?}");
+    assert!(keys.contains(&"motor.throat_radius".to_owned()), "{keys:?}");
 }

@@ -61,6 +61,7 @@ fn environment(u: &Units, c: &PhysicalConstants) -> Environment {
         )
     };
     let config = EnvironmentConfig {
+        earth_model: None,
         latitude_deg: 32.990254,
         longitude_deg: -106.974998,
         elevation: u.scale(1400.0, L),

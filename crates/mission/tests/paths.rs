@@ -208,10 +208,24 @@ fn set_through_toml(
     let mut table = toml::Table::try_from(spec).expect("serializable");
     let (tables, last) = path.rsplit_once('.').expect("dotted");
     let mut here = &mut table;
-    for segment in tables.split('.') {
-        here = here
+    let mut segments = tables.split('.');
+    while let Some(segment) = segments.next() {
+        let value = here
             .get_mut(segment)
-            .and_then(toml::Value::as_table_mut)
+            .unwrap_or_else(|| panic!("{path}: no key {segment}"));
+        // An array of tables is entered by the next segment, its index.
+        let value = match value {
+            toml::Value::Array(items) => {
+                let index: usize = segments
+                    .next()
+                    .and_then(|i| i.parse().ok())
+                    .unwrap_or_else(|| panic!("{path}: no index after {segment}"));
+                &mut items[index]
+            }
+            other => other,
+        };
+        here = value
+            .as_table_mut()
             .unwrap_or_else(|| panic!("{path}: no table {segment}"));
     }
     let slot = here.get_mut(last).expect("key");

@@ -109,6 +109,23 @@ pub enum PropulsionError {
         /// The computed impulse, N·s.
         impulse: f64,
     },
+    /// A tank's fluids over- or underfill it at a node of its time grid (RocketPy's
+    /// consistency checks of `Tank`).
+    #[error("tank '{tank}': {quantity} {value} at t = {time} s {reason} {limit}")]
+    TankContents {
+        /// The tank's name.
+        tank: String,
+        /// The quantity, with its unit.
+        quantity: &'static str,
+        /// Time of the grid node, s.
+        time: f64,
+        /// The value there.
+        value: f64,
+        /// The limit it breaks.
+        limit: f64,
+        /// How it breaks it.
+        reason: &'static str,
+    },
     /// A table could not be built from the derived values.
     #[error("{what}: {source}")]
     Table {

@@ -11,10 +11,12 @@
 
 use karman_math::{Extrapolation, Interpolation, PhysicalConstants, Table1};
 
+use crate::hybrid::HybridPropellant;
+use crate::liquid::LiquidPropellant;
 use crate::propellant::{finite, non_negative};
 use crate::{
-    BatesGrains, CylindricalChamber, PropellantModel, PropellantTables, PropulsionError,
-    ThrustCurve,
+    BatesGrains, CylindricalChamber, PositionedTank, PropellantModel, PropellantTables,
+    PropulsionError, ThrustCurve,
 };
 
 /// Orientation of the motor's axial coordinate.
@@ -88,6 +90,10 @@ pub enum MotorKind {
     Solid(BatesGrains),
     /// Generic motor (propellant as a cylinder filling the chamber).
     Generic(CylindricalChamber),
+    /// Liquid motor: all the propellant is in the tanks.
+    Liquid(Vec<PositionedTank>),
+    /// Hybrid motor: a solid fuel grain and oxidiser tanks.
+    Hybrid(BatesGrains, Vec<PositionedTank>),
     /// No motor: no thrust, no mass (RocketPy `EmptyMotor`).
     Empty,
 }
@@ -154,6 +160,64 @@ impl Motor {
             Self::propellant(&thrust, &structure, &chamber, &PhysicalConstants::SI)?;
         Ok(Motor {
             kind: MotorKind::Generic(chamber),
+            structure,
+            thrust,
+            propellant_initial_mass,
+            exhaust_velocity,
+            propellant,
+        })
+    }
+
+    /// A liquid motor (RocketPy `LiquidMotor` with its `add_tank` calls, in order), inputs in
+    /// SI: the propellant is the tanks' contents (physics.md §15.3).
+    ///
+    /// # Errors
+    /// As [`Motor::solid`]; no tanks is an [`PropulsionError::InvalidParameter`].
+    pub fn liquid(
+        thrust: ThrustCurve,
+        structure: MotorStructure,
+        tanks: Vec<PositionedTank>,
+    ) -> Result<Motor, PropulsionError> {
+        let model = LiquidPropellant {
+            tanks: &tanks,
+            burn_start: thrust.burn_start(),
+        };
+        let (propellant_initial_mass, exhaust_velocity, propellant) =
+            Self::propellant(&thrust, &structure, &model, &PhysicalConstants::SI)?;
+        Ok(Motor {
+            kind: MotorKind::Liquid(tanks),
+            structure,
+            thrust,
+            propellant_initial_mass,
+            exhaust_velocity,
+            propellant,
+        })
+    }
+
+    /// A hybrid motor (RocketPy `HybridMotor` with its `add_tank` calls, in order), inputs in
+    /// the unit system of `constants` (which sets the time spacing of the grain's tables):
+    /// the grain regresses with the flow the tanks do not supply (physics.md §15.4).
+    ///
+    /// # Errors
+    /// As [`Motor::liquid`].
+    pub fn hybrid(
+        thrust: ThrustCurve,
+        structure: MotorStructure,
+        grains: BatesGrains,
+        tanks: Vec<PositionedTank>,
+        constants: &PhysicalConstants,
+    ) -> Result<Motor, PropulsionError> {
+        let model = HybridPropellant {
+            grains: &grains,
+            tanks: LiquidPropellant {
+                tanks: &tanks,
+                burn_start: thrust.burn_start(),
+            },
+        };
+        let (propellant_initial_mass, exhaust_velocity, propellant) =
+            Self::propellant(&thrust, &structure, &model, constants)?;
+        Ok(Motor {
+            kind: MotorKind::Hybrid(grains, tanks),
             structure,
             thrust,
             propellant_initial_mass,
@@ -271,6 +335,24 @@ impl Motor {
     pub fn exhaust_velocity(&self) -> f64 {
         self.exhaust_velocity
     }
+    /// The exhaust velocity RocketPy reports at `t` (`motor.exhaust_velocity(t)`), m/s: for a
+    /// liquid motor the tanks' `−T(t)/ṁ_tanks(t)` (0 where the tanks do not flow; physics.md
+    /// §15.3, for reports only: the equations of motion use [`Motor::exhaust_velocity`]),
+    /// for every other motor `v̄_e`.
+    #[must_use]
+    pub fn reported_exhaust_velocity(&self, t: f64) -> f64 {
+        match &self.kind {
+            MotorKind::Liquid(tanks) => {
+                let flow: f64 = tanks.iter().map(|p| p.tank.net_mass_flow().eval(t)).sum();
+                if flow == 0.0 {
+                    0.0
+                } else {
+                    -self.thrust(t) / flow
+                }
+            }
+            _ => self.exhaust_velocity,
+        }
+    }
     /// Signed propellant mass flow `ṁ = −T(t)/v̄_e`, kg/s (negative while burning).
     #[inline]
     #[must_use]
@@ -323,12 +405,20 @@ impl Motor {
     pub fn nozzle_radius(&self) -> f64 {
         self.structure.nozzle_radius
     }
-    /// Nozzle throat radius, m (solid motors only).
+    /// The motor's tanks with their positions (liquid and hybrid motors; empty otherwise).
+    #[must_use]
+    pub fn tanks(&self) -> &[PositionedTank] {
+        match &self.kind {
+            MotorKind::Liquid(tanks) | MotorKind::Hybrid(_, tanks) => tanks,
+            _ => &[],
+        }
+    }
+    /// Nozzle throat radius, m (solid and hybrid motors only).
     #[must_use]
     pub fn throat_radius(&self) -> Option<f64> {
         match &self.kind {
-            MotorKind::Solid(g) => Some(g.throat_radius),
-            MotorKind::Generic(_) | MotorKind::Empty => None,
+            MotorKind::Solid(g) | MotorKind::Hybrid(g, _) => Some(g.throat_radius),
+            MotorKind::Generic(_) | MotorKind::Liquid(_) | MotorKind::Empty => None,
         }
     }
     /// Orientation of the motor coordinates.

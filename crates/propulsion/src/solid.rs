@@ -276,67 +276,8 @@ impl PropellantModel for BatesGrains {
         // The grid advances through the thrust curve, so its intervals are found from the
         // previous one's.
         let mut cursor = Cursor::default();
-        let mut mass_at = |t_prev: f64, m_prev: f64, t: f64| {
-            m_prev - curve.integral_with(t_prev, t, &mut cursor) / exhaust_velocity
-        };
-        let nodes = curve.xs();
-        let (start, end) = curve.domain();
-        let step = constants
-            .propellant_grid_step
-            .max((end - start) / MAX_GRID_POINTS);
-        // An interval that is a whole number of steps up to rounding gets that number of
-        // pieces: the count must not depend on the rounding of (b − a)/step, which differs
-        // between unit systems (found by the dimensional-analysis tests).
-        let pieces_of =
-            |a: f64, b: f64| ((b - a) / step * (1.0 - PIECE_ROUNDING)).ceil().max(1.0) as usize;
-        let points = 1 + nodes
-            .windows(2)
-            .map(|w| pieces_of(w[0], w[1]))
-            .sum::<usize>();
-        let mut times = Vec::with_capacity(points);
-        let mut masses = Vec::with_capacity(points);
-        times.push(nodes[0]);
-        masses.push(m0);
-        'nodes: for pair in nodes.windows(2) {
-            let (a, b) = (pair[0], pair[1]);
-            let pieces = pieces_of(a, b);
-            for k in 1..=pieces {
-                let t = if k == pieces {
-                    b
-                } else {
-                    a + (b - a) * k as f64 / pieces as f64
-                };
-                let (t_prev, m_prev) = (times[times.len() - 1], masses[masses.len() - 1]);
-                let m = mass_at(t_prev, m_prev, t);
-                // Since v̄_e = I_tot/m_p0 the mass reaches 0 exactly at the end of a
-                // non-negative curve, and the sum above lands within rounding of it on either
-                // side; only a clearly negative mass means the grain is gone before the end
-                // (a negative tail). Otherwise a thrust tapering to 0 would place a spurious
-                // burn-out a few 1e-8 of the burn early, wherever the rounding falls (found by
-                // the dimensional-analysis tests: it differed between unit systems).
-                if m > -MASS_ROUNDING * m0 {
-                    times.push(t);
-                    masses.push(m.max(0.0));
-                    continue;
-                }
-                // Grain consumed inside (t_prev, t]: find the instant and stop there.
-                let (mut lo, mut hi) = (t_prev, t);
-                for _ in 0..200 {
-                    let mid = 0.5 * (lo + hi);
-                    if mid <= lo || mid >= hi {
-                        break;
-                    }
-                    if mass_at(t_prev, m_prev, mid) > 0.0 {
-                        lo = mid;
-                    } else {
-                        hi = mid;
-                    }
-                }
-                times.push(hi);
-                masses.push(0.0);
-                break 'nodes;
-            }
-        }
+        let burnt = |a: f64, b: f64| -curve.integral_with(a, b, &mut cursor) / exhaust_velocity;
+        let (times, masses) = regress(&grain_grid(curve, constants), m0, burnt);
         let mut i11 = Vec::with_capacity(times.len());
         let mut i33 = Vec::with_capacity(times.len());
         let spread = self.spread();
@@ -361,6 +302,75 @@ impl PropellantModel for BatesGrains {
             mass,
         })
     }
+}
+
+/// The time grid of a grain's tables: the thrust-curve nodes, every interval split into equal
+/// pieces of at most [`PhysicalConstants::propellant_grid_step`] (longer for very long burns).
+pub(crate) fn grain_grid(curve: &Table1, constants: &PhysicalConstants) -> Vec<f64> {
+    let nodes = curve.xs();
+    let (start, end) = curve.domain();
+    let step = constants
+        .propellant_grid_step
+        .max((end - start) / MAX_GRID_POINTS);
+    // An interval that is a whole number of steps up to rounding gets that number of
+    // pieces: the count must not depend on the rounding of (b − a)/step, which differs
+    // between unit systems (found by the dimensional-analysis tests).
+    let pieces_of =
+        |a: f64, b: f64| ((b - a) / step * (1.0 - PIECE_ROUNDING)).ceil().max(1.0) as usize;
+    let mut times = vec![nodes[0]];
+    for pair in nodes.windows(2) {
+        let (a, b) = (pair[0], pair[1]);
+        let pieces = pieces_of(a, b);
+        times.extend((1..pieces).map(|k| a + (b - a) * k as f64 / pieces as f64));
+        times.push(b);
+    }
+    times
+}
+
+/// The grain mass at the nodes of `grid` from `m0` and the mass change `flow(a, b)` over each
+/// interval, up to the instant the grain is consumed (found by bisection inside its interval;
+/// the returned times stop there).
+pub(crate) fn regress(
+    grid: &[f64],
+    m0: f64,
+    mut flow: impl FnMut(f64, f64) -> f64,
+) -> (Vec<f64>, Vec<f64>) {
+    let mut times = Vec::with_capacity(grid.len());
+    let mut masses = Vec::with_capacity(grid.len());
+    times.push(grid[0]);
+    masses.push(m0);
+    for &t in &grid[1..] {
+        let (t_prev, m_prev) = (times[times.len() - 1], masses[masses.len() - 1]);
+        let m = m_prev + flow(t_prev, t);
+        // Since v̄_e = I_tot/m_p0 the mass reaches 0 exactly at the end of a non-negative
+        // curve, and the sum above lands within rounding of it on either side; only a clearly
+        // negative mass means the grain is gone before the end (a negative tail). Otherwise a
+        // thrust tapering to 0 would place a spurious burn-out a few 1e-8 of the burn early,
+        // wherever the rounding falls (found by the dimensional-analysis tests: it differed
+        // between unit systems).
+        if m > -MASS_ROUNDING * m0 {
+            times.push(t);
+            masses.push(m.max(0.0));
+            continue;
+        }
+        // Grain consumed inside (t_prev, t]: find the instant and stop there.
+        let (mut lo, mut hi) = (t_prev, t);
+        for _ in 0..200 {
+            let mid = 0.5 * (lo + hi);
+            if mid <= lo || mid >= hi {
+                break;
+            }
+            if m_prev + flow(t_prev, mid) > 0.0 {
+                lo = mid;
+            } else {
+                hi = mid;
+            }
+        }
+        times.push(hi);
+        masses.push(0.0);
+        break;
+    }
+    (times, masses)
 }
 
 #[cfg(test)]

@@ -3,5 +3,6 @@
 mod dimensions;
 mod motors;
 mod parsers;
+mod tanks;
 mod thrust_files;
 mod validate_calisto;

@@ -515,18 +515,24 @@ pub(crate) fn free_form(
             down = true;
         }
     }
+    // RocketPy's root chord is the distance between the first and the last point: 0 for a
+    // closed outline (Hedy's fins), which it accepts; it only labels the fin. The outline's
+    // chordwise extent is what must not vanish.
     let (first, last) = (pts[0], pts[pts.len() - 1]);
     let root_chord = (first[0] - last[0]).abs();
-    let (ymin, ymax) = pts
-        .iter()
-        .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), p| {
-            (a.min(p[1]), b.max(p[1]))
-        });
-    let span = ymax - ymin;
-    if span <= 0.0 || root_chord <= 0.0 {
+    let extent = |axis: usize| {
+        let (lo, hi) = pts
+            .iter()
+            .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), p| {
+                (a.min(p[axis]), b.max(p[axis]))
+            });
+        hi - lo
+    };
+    let (span, chord) = (extent(1), extent(0));
+    if span <= 0.0 || chord <= 0.0 {
         return Err(AirframeError::Geometry {
             component: name.to_owned(),
-            reason: format!("shape points give span {span} m and root chord {root_chord} m"),
+            reason: format!("shape points give span {span} m and chordwise extent {chord} m"),
         });
     }
     let area = pts
@@ -536,7 +542,7 @@ pub(crate) fn free_form(
         .abs()
         / 2.0;
     // A sliver: less than 1e-4 of its bounding box (1 mm² for a 10 cm × 10 cm fin).
-    if area < 1e-4 * span * root_chord {
+    if area < 1e-4 * span * chord {
         return Err(AirframeError::Geometry {
             component: name.to_owned(),
             reason: format!("fin area {area} m² is too small"),

@@ -15,6 +15,7 @@ fuzz_target!(|data: &[u8]| {
             ..Profiles::wind_only("fuzz", Curve::Points(points.clone()), Curve::Points(points))
         };
         let config = EnvironmentConfig {
+            earth_model: None,
             atmosphere: Atmosphere::Profiles(profiles),
             ..Default::default()
         };

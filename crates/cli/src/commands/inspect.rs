@@ -1,7 +1,9 @@
-//! `karman inspect MISSION`: the models a mission builds — environment, motor and rocket — as
-//! readable tables or, with `--json`, one object `{environment, motor, rocket}` shaped like
-//! the validation `reference.json` files. `--plot DIR` writes SVG profiles and curves,
-//! `--draw FILE.svg` a to-scale drawing of the rocket with its CG and CP.
+//! `karman inspect MISSION`: the models a mission builds — environment, motor (with its tanks)
+//! and rocket — as readable tables or, with `--json`, one object `{environment, motor, rocket}`
+//! shaped like the validation `reference.json` files, plus `tanks` (one object per tank) for
+//! hybrid and liquid motors. `--plot DIR` writes SVG profiles and curves (per tank: liquid and
+//! gas mass, level and centre of mass), `--draw FILE.svg` a to-scale drawing of the rocket
+//! with its CG and CP.
 
 use std::io::Write;
 use std::path::{Path, PathBuf};
@@ -18,7 +20,7 @@ use karman_mission::build::{
 use karman_mission::math::linspace;
 use karman_mission::propulsion::Motor;
 use karman_mission::report::environment::{default_heights, environment_report};
-use karman_mission::report::motor::MotorReport;
+use karman_mission::report::motor::{MotorReport, TankReport};
 use karman_mission::report::rocket::{RocketReport, draw_rocket_svg};
 
 use super::MissionArgs;
@@ -29,7 +31,7 @@ use crate::plot::{Series, line_chart};
 pub struct InspectArgs {
     #[command(flatten)]
     pub mission: MissionArgs,
-    /// Print one JSON object {environment, motor, rocket} instead of tables.
+    /// Print one JSON object {environment, motor, rocket} (and tanks) instead of tables.
     #[arg(long)]
     pub json: bool,
     /// Heights above sea level (m) for the environment, comma-separated; default: the launch
@@ -65,20 +67,25 @@ pub fn run(args: &InspectArgs) -> Result<()> {
         Some(times) => MotorReport::at_times(&motor, times),
         None => MotorReport::new(&motor),
     };
+    let tanks = TankReport::for_motor(&motor, &motor_report.times_s);
     let rocket_report = RocketReport::new(&rocket);
     let mut out = std::io::stdout().lock();
     if args.json {
-        let value = serde_json::json!({
+        let mut value = serde_json::json!({
             "environment": env_report,
             "motor": motor_report,
             "rocket": rocket_report,
         });
+        if !tanks.is_empty() {
+            value["tanks"] = serde_json::to_value(&tanks)?;
+        }
         writeln!(out, "{}", serde_json::to_string_pretty(&value)?)?;
     } else {
-        writeln!(
-            out,
-            "Environment\n{env_report}\n{motor_report}\n{rocket_report}"
-        )?;
+        writeln!(out, "Environment\n{env_report}\n{motor_report}")?;
+        for tank in &tanks {
+            writeln!(out, "{tank}")?;
+        }
+        writeln!(out, "{rocket_report}")?;
     }
     for warning in rocket.warnings() {
         eprintln!("warning: {warning}");
@@ -216,6 +223,42 @@ fn plot_motor(motor: &Motor, dir: &Path) -> Result<()> {
             },
         ],
     )?;
+    for (index, p) in motor.tanks().iter().enumerate() {
+        let tank = &p.tank;
+        let title = |what: &str| format!("Tank {index} '{}': {what}", tank.name());
+        line_chart(
+            &dir.join(format!("tank_{index}_mass.svg")),
+            &title("fluid masses"),
+            "time (s)",
+            "mass (kg)",
+            &[
+                Series {
+                    label: "liquid",
+                    points: curve(&|t| tank.liquid_mass().eval(t)),
+                },
+                Series {
+                    label: "gas",
+                    points: curve(&|t| tank.gas_mass().eval(t)),
+                },
+            ],
+        )?;
+        line_chart(
+            &dir.join(format!("tank_{index}_level.svg")),
+            &title("liquid level and centre of mass"),
+            "time (s)",
+            "height (m, motor coordinates)",
+            &[
+                Series {
+                    label: "liquid level",
+                    points: curve(&|t| p.position + tank.liquid_height().eval(t)),
+                },
+                Series {
+                    label: "centre of mass",
+                    points: curve(&|t| p.position + tank.center_of_mass().eval(t)),
+                },
+            ],
+        )?;
+    }
     Ok(())
 }
 

@@ -11,12 +11,15 @@
 //! - `max_expected_height` does not change the gravity table: RocketPy samples it on
 //!   0–80 000 m when the notebooks construct the environment (validation README caveat); it
 //!   only sets the default extent of the environment report.
+//! - `[environment.earth_model]` states the latitude and gravity height range RocketPy's
+//!   `Environment()` was built with (physics.md §18): they give the gravity table, the Earth
+//!   radius (also that of a weather grid's geopotential heights) and the rotation vector.
 
 use crate::schema::{AtmosphereModel, Curve, Datum, SoundingFormat};
 use crate::{Mission, MissionError};
 use karman_atmos::{
-    AtmosError, Atmosphere, Environment, EnvironmentConfig, Gravity, GridDictionary, GridRequest,
-    Profiles, Sounding, WeatherGrid,
+    AtmosError, Atmosphere, EarthModel, Environment, EnvironmentConfig, Gravity, GridDictionary,
+    GridRequest, Profiles, Sounding, WeatherGrid,
 };
 use karman_math::PhysicalConstants;
 
@@ -40,6 +43,7 @@ pub fn build_environment(mission: &Mission) -> Result<Environment, MissionError>
     let atmosphere = build_atmosphere(mission, datum, &constants)
         .map_err(|e| model_err("environment.atmosphere", e))?;
     let config = EnvironmentConfig {
+        earth_model: earth_model(mission, &constants),
         latitude_deg: env.latitude_deg,
         longitude_deg: env.longitude_deg,
         elevation: env.elevation,
@@ -48,6 +52,24 @@ pub fn build_environment(mission: &Mission) -> Result<Environment, MissionError>
         atmosphere,
     };
     Environment::new(&config, &constants).map_err(|e| model_err("environment", e))
+}
+
+/// `[environment.earth_model]` with its defaults, if present.
+fn earth_model(mission: &Mission, constants: &PhysicalConstants) -> Option<EarthModel> {
+    let env = &mission.spec.environment;
+    env.earth_model.as_ref().map(|m| EarthModel {
+        latitude_deg: m.latitude_deg.unwrap_or(env.latitude_deg),
+        gravity_max_height: m.gravity_max_height.unwrap_or(constants.table_top_height),
+    })
+}
+
+/// The latitude of the Earth radius: the earth model's, else the site's.
+fn earth_latitude(mission: &Mission) -> f64 {
+    let env = &mission.spec.environment;
+    env.earth_model
+        .as_ref()
+        .and_then(|m| m.latitude_deg)
+        .unwrap_or(env.latitude_deg)
 }
 
 /// Unix time (s, UTC) of the mission's date, if it has a full date-time with an offset and
@@ -86,7 +108,7 @@ fn build_atmosphere(
 ) -> Result<Atmosphere, AtmosError> {
     let env = &mission.spec.environment;
     let spec = &env.atmosphere;
-    let radius = datum.radius(env.latitude_deg, constants);
+    let radius = datum.radius(earth_latitude(mission), constants);
     let data_file = || -> Result<std::path::PathBuf, AtmosError> {
         spec.file
             .as_ref()

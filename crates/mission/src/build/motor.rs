@@ -15,12 +15,18 @@
 //! rejected there); errors here come from the thrust data (file, line and value) or from
 //! combinations the model rejects, wrapped in [`MissionError::Model`] with section `motor`.
 
+use karman_math::PhysicalConstants;
 use karman_propulsion::{
-    BatesGrains, BurnTime, CoordinateSystem, CylindricalChamber, Motor, MotorStructure,
-    PropulsionError, ThrustCurve, ThrustData, ThrustOptions, ThrustSource,
+    BatesGrains, BurnTime, CoordinateSystem, CylindricalChamber, DEFAULT_DISCRETIZE,
+    DEFAULT_PRESSURE, DEFAULT_TEMPERATURE, Fluid, Motor, MotorStructure, PositionedTank,
+    PropulsionError, Tank, TankCurve, TankGeometry, TankKind, TankShape, ThrustCurve, ThrustData,
+    ThrustOptions, ThrustSource,
 };
 
-use crate::schema::{Curve, MotorCoordinateSystem, MotorKind, MotorSpec};
+use crate::schema::{
+    Curve, DensitySpec, Discretize, FluidSpec, MotorCoordinateSystem, MotorKind, MotorSpec,
+    TankGeometryKind, TankKindName, TankSpec,
+};
 use crate::{Mission, MissionError};
 
 /// RocketPy's default nozzle throat radius of a solid motor, m (`SolidMotor(throat_radius=0.01)`).
@@ -73,8 +79,9 @@ pub fn build_motor_with(mission: &Mission, source: &ThrustSource) -> Result<Moto
         dry_inertia: spec.dry_inertia.0,
         center_of_dry_mass: match spec.kind {
             MotorKind::Generic => spec.center_of_dry_mass_position.unwrap_or(chamber_position),
-            MotorKind::Solid => spec.center_of_dry_mass_position.unwrap_or(0.0),
-            MotorKind::Hybrid | MotorKind::Liquid => return Err(unsupported(mission)),
+            MotorKind::Solid | MotorKind::Hybrid | MotorKind::Liquid => {
+                spec.center_of_dry_mass_position.unwrap_or(0.0)
+            }
         },
         nozzle_position: spec.nozzle_position,
         nozzle_radius: spec.nozzle_radius,
@@ -88,23 +95,27 @@ pub fn build_motor_with(mission: &Mission, source: &ThrustSource) -> Result<Moto
         },
         reference_pressure: spec.reference_pressure,
     };
+    let grains = |only_radial_burn: bool| BatesGrains {
+        number: spec.grain_number.unwrap_or(0),
+        density: spec.grain_density.unwrap_or(f64::NAN),
+        outer_radius: spec.grain_outer_radius.unwrap_or(f64::NAN),
+        initial_inner_radius: spec.grain_initial_inner_radius.unwrap_or(f64::NAN),
+        initial_height: spec.grain_initial_height.unwrap_or(f64::NAN),
+        separation: spec.grain_separation.unwrap_or(0.0),
+        center_of_mass_position: spec.grains_center_of_mass_position.unwrap_or(f64::NAN),
+        throat_radius: spec.throat_radius.unwrap_or(DEFAULT_THROAT_RADIUS),
+        only_radial_burn: spec.only_radial_burn.unwrap_or(only_radial_burn),
+    };
     let motor = match spec.kind {
-        MotorKind::Solid => Motor::solid(
+        MotorKind::Solid => Motor::solid(thrust, structure, grains(false)),
+        MotorKind::Hybrid => Motor::hybrid(
             thrust,
             structure,
-            BatesGrains {
-                number: spec.grain_number.unwrap_or(0),
-                density: spec.grain_density.unwrap_or(f64::NAN),
-                outer_radius: spec.grain_outer_radius.unwrap_or(f64::NAN),
-                initial_inner_radius: spec.grain_initial_inner_radius.unwrap_or(f64::NAN),
-                initial_height: spec.grain_initial_height.unwrap_or(f64::NAN),
-                separation: spec.grain_separation.unwrap_or(0.0),
-                center_of_mass_position: spec.grains_center_of_mass_position.unwrap_or(f64::NAN),
-                throat_radius: spec.throat_radius.unwrap_or(DEFAULT_THROAT_RADIUS),
-                only_radial_burn: false,
-            },
+            grains(true),
+            build_tanks(mission)?,
+            &PhysicalConstants::SI,
         ),
-        MotorKind::Hybrid | MotorKind::Liquid => return Err(unsupported(mission)),
+        MotorKind::Liquid => Motor::liquid(thrust, structure, build_tanks(mission)?),
         MotorKind::Generic => Motor::generic(
             thrust,
             structure,
@@ -125,12 +136,146 @@ pub fn build_motor_with(mission: &Mission, source: &ThrustSource) -> Result<Moto
     })
 }
 
-/// The error for a motor kind the format names but karman does not model yet (`load`
-/// rejects it already; a hand-made [`Mission`] gets the same answer here).
-fn unsupported(mission: &Mission) -> MissionError {
-    mission.model_error(
-        "motor.kind",
-        format!("a {} motor is not supported yet", mission.spec.motor.kind),
+/// The `[[motor.tanks]]` of `mission`, built in order (errors name `motor.tanks.<index>`).
+fn build_tanks(mission: &Mission) -> Result<Vec<PositionedTank>, MissionError> {
+    mission
+        .spec
+        .motor
+        .tanks
+        .iter()
+        .enumerate()
+        .map(|(index, spec)| {
+            let err = |e: PropulsionError| mission.model_error(&tank_key(index, &e), e);
+            Ok(PositionedTank {
+                tank: build_tank(mission, index, spec).map_err(err)?,
+                position: spec.position,
+            })
+        })
+        .collect()
+}
+
+/// The mission key a tank's model error belongs to: the parameter's own key where the error
+/// names one, else the tank.
+fn tank_key(index: usize, e: &PropulsionError) -> String {
+    let key = match e {
+        PropulsionError::InvalidParameter { name, .. } => match *name {
+            "tank radius" => "geometry.radius",
+            "tank height" => "geometry.height",
+            "liquid density" => "liquid.density",
+            "gas density" => "gas.density",
+            other => other,
+        },
+        _ => "",
+    };
+    if key.is_empty() || key.contains(' ') {
+        format!("motor.tanks.{index}")
+    } else {
+        format!("motor.tanks.{index}.{key}")
+    }
+}
+
+/// A mission curve of time as a tank curve (files read as two columns, inline points sorted
+/// stably by time).
+fn tank_curve(mission: &Mission, curve: &Curve) -> Result<TankCurve, PropulsionError> {
+    let points = match curve {
+        Curve::Constant(value) => return Ok(TankCurve::Constant(*value)),
+        Curve::Points(_) => curve.sorted_points().unwrap_or_default(),
+        Curve::File(path) => karman_math::read_curve(mission.resolve(path))?,
+    };
+    Ok(TankCurve::Points {
+        times: points.iter().map(|p| p[0]).collect(),
+        values: points.iter().map(|p| p[1]).collect(),
+    })
+}
+
+fn fluid(mission: &Mission, spec: &FluidSpec) -> Result<Fluid, PropulsionError> {
+    match &spec.density {
+        DensitySpec::Constant(rho) => Ok(Fluid::constant(&spec.name, *rho)),
+        DensitySpec::Rows(rows) => Fluid::tabulated(&spec.name, rows),
+        DensitySpec::File(path) => {
+            let rows = karman_math::read_columns(mission.resolve(path))?;
+            let rows: Vec<[f64; 3]> = rows
+                .iter()
+                .map(|r| match r.as_slice() {
+                    &[t, p, rho] => Ok([t, p, rho]),
+                    _ => Err(PropulsionError::InvalidParameter {
+                        name: "density",
+                        value: r.len() as f64,
+                        reason: "a density file needs three columns: temperature, pressure, density",
+                    }),
+                })
+                .collect::<Result<_, _>>()?;
+            Fluid::tabulated(&spec.name, &rows)
+        }
+    }
+}
+
+fn build_tank(mission: &Mission, index: usize, spec: &TankSpec) -> Result<Tank, PropulsionError> {
+    let g = &spec.geometry;
+    let number = |curve: &Curve| match curve {
+        Curve::Constant(v) => *v,
+        Curve::Points(_) | Curve::File(_) => f64::NAN,
+    };
+    let shape = match g.kind {
+        TankGeometryKind::Cylindrical => TankShape::Cylindrical {
+            radius: number(&g.radius),
+            height: g.height.unwrap_or(f64::NAN),
+            spherical_caps: g.spherical_caps,
+        },
+        TankGeometryKind::Spherical => TankShape::Spherical {
+            radius: number(&g.radius),
+        },
+        TankGeometryKind::Custom => match tank_curve(mission, &g.radius)? {
+            TankCurve::Points { times, values } => TankShape::Custom {
+                heights: times,
+                radii: values,
+            },
+            TankCurve::Constant(_) => TankShape::Custom {
+                heights: Vec::new(),
+                radii: Vec::new(),
+            },
+        },
+    };
+    let curve = |c: &Option<Curve>, default: f64| {
+        c.as_ref()
+            .map_or(Ok(TankCurve::Constant(default)), |c| tank_curve(mission, c))
+    };
+    let kind = match spec.kind {
+        TankKindName::MassFlowRate => TankKind::MassFlowRate {
+            initial_liquid_mass: spec.initial_liquid_mass.unwrap_or(f64::NAN),
+            initial_gas_mass: spec.initial_gas_mass.unwrap_or(f64::NAN),
+            liquid_in: curve(&spec.liquid_mass_flow_rate_in, 0.0)?,
+            liquid_out: curve(&spec.liquid_mass_flow_rate_out, 0.0)?,
+            gas_in: curve(&spec.gas_mass_flow_rate_in, 0.0)?,
+            gas_out: curve(&spec.gas_mass_flow_rate_out, 0.0)?,
+        },
+        TankKindName::Ullage => TankKind::Ullage(curve(&spec.ullage, f64::NAN)?),
+        TankKindName::Level => TankKind::Level(curve(&spec.liquid_height, f64::NAN)?),
+        TankKindName::Mass => TankKind::Mass {
+            liquid: curve(&spec.liquid_mass, f64::NAN)?,
+            gas: curve(&spec.gas_mass, f64::NAN)?,
+        },
+    };
+    let discretize = match spec.discretize {
+        None | Some(Discretize::Flag(true)) => DEFAULT_DISCRETIZE,
+        Some(Discretize::Nodes(n)) => n as usize,
+        // Validation rejects `false` (no resampling is not modelled).
+        Some(Discretize::Flag(false)) => 0,
+    };
+    let constants = PhysicalConstants::SI;
+    Tank::new(
+        karman_propulsion::TankSpec {
+            name: spec.name.clone().unwrap_or_else(|| format!("tank {index}")),
+            kind,
+            geometry: TankGeometry::new(shape, &constants)?,
+            flux_time: (spec.flux_time.start, spec.flux_time.end),
+            liquid: fluid(mission, &spec.liquid)?,
+            gas: fluid(mission, &spec.gas)?,
+            discretize,
+            temperature: curve(&spec.temperature, DEFAULT_TEMPERATURE)?,
+            pressure: curve(&spec.pressure, DEFAULT_PRESSURE)?,
+        },
+        &constants,
     )
 }
 

@@ -1,6 +1,7 @@
 //! Motor report: the `motor` figures of `reference.json` ([`MotorReport`]) — thrust-curve
 //! figures and, at chosen times, thrust, masses, centre of mass (motor coordinates) and
-//! inertia about the motor's centre of mass.
+//! inertia about the motor's centre of mass — and, for hybrid and liquid motors, each tank's
+//! contents at the same times ([`TankReport`]).
 
 use std::fmt;
 
@@ -25,7 +26,8 @@ pub struct MotorReport {
     pub average_thrust_n: f64,
     /// Largest thrust sample, N.
     pub max_thrust_n: f64,
-    /// Average exhaust velocity `I_tot / m_p0`, m/s.
+    /// Exhaust velocity as RocketPy reports it at burn start, m/s: `I_tot / m_p0`, except for
+    /// liquid motors, whose tanks give `−T/ṁ_tanks` (physics.md §15.5).
     pub exhaust_velocity_mps: f64,
     /// Sample times, s.
     pub times_s: Vec<f64>,
@@ -43,6 +45,33 @@ pub struct MotorReport {
     /// Axial inertia about the motor's centre of mass, kg·m².
     #[serde(rename = "I33_kgm2")]
     pub i33_kgm2: Vec<f64>,
+}
+
+/// One tank of a hybrid or liquid motor at chosen times (`karman inspect` lists them after
+/// the motor; `reference.json` has no such object).
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct TankReport {
+    /// Sample times, s.
+    pub times_s: Vec<f64>,
+    /// The tank's name.
+    pub name: String,
+    /// RocketPy's class of the tank.
+    pub kind: &'static str,
+    /// Motor coordinate of the tank's height origin, m.
+    pub position_m: f64,
+    /// Inner volume, m³.
+    pub total_volume_m3: f64,
+    /// Liquid mass, kg.
+    pub liquid_mass_kg: Vec<f64>,
+    /// Gas mass, kg.
+    pub gas_mass_kg: Vec<f64>,
+    /// Liquid level, m, tank frame.
+    pub liquid_height_m: Vec<f64>,
+    /// Centre of mass of the fluids, m, motor coordinates.
+    pub center_of_mass_m: Vec<f64>,
+    /// Transverse inertia of the fluids about their centre of mass, kg·m².
+    #[serde(rename = "I11_kgm2")]
+    pub i11_kgm2: Vec<f64>,
 }
 
 /// The reference's sample times: burn start + k/10 of the burn (k = 0..10), then burn-out
@@ -78,7 +107,7 @@ impl MotorReport {
             burn_out_s: motor.burn_out(),
             average_thrust_n: motor.average_thrust(),
             max_thrust_n: motor.max_thrust(),
-            exhaust_velocity_mps: motor.exhaust_velocity(),
+            exhaust_velocity_mps: motor.reported_exhaust_velocity(motor.burn_start()),
             times_s: times.to_vec(),
             thrust_n: column(&|t| motor.thrust(t)),
             total_mass_kg: column(&|t| motor.total_mass(t)),
@@ -87,6 +116,61 @@ impl MotorReport {
             i11_kgm2: column(&|t| motor.inertia(t).0),
             i33_kgm2: column(&|t| motor.inertia(t).1),
         }
+    }
+}
+
+impl TankReport {
+    /// Every tank of `motor` (none for solid and generic motors) at `times`, s.
+    #[must_use]
+    pub fn for_motor(motor: &Motor, times: &[f64]) -> Vec<TankReport> {
+        let column = |f: &dyn Fn(f64) -> f64| times.iter().map(|&t| f(t)).collect::<Vec<_>>();
+        motor
+            .tanks()
+            .iter()
+            .map(|p| {
+                let tank = &p.tank;
+                TankReport {
+                    times_s: times.to_vec(),
+                    name: tank.name().to_owned(),
+                    kind: tank.spec().kind.class_name(),
+                    position_m: p.position,
+                    total_volume_m3: tank.spec().geometry.total_volume(),
+                    liquid_mass_kg: column(&|t| tank.liquid_mass().eval(t)),
+                    gas_mass_kg: column(&|t| tank.gas_mass().eval(t)),
+                    liquid_height_m: column(&|t| tank.liquid_height().eval(t)),
+                    center_of_mass_m: column(&|t| p.position + tank.center_of_mass().eval(t)),
+                    i11_kgm2: column(&|t| tank.inertia().eval(t)),
+                }
+            })
+            .collect()
+    }
+}
+
+impl fmt::Display for TankReport {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        writeln!(
+            f,
+            "Tank '{}' ({}, at {:.6} m, volume {:.6e} m³)",
+            self.name, self.kind, self.position_m, self.total_volume_m3
+        )?;
+        writeln!(
+            f,
+            "  {:>9} {:>12} {:>12} {:>12} {:>12} {:>12}",
+            "t [s]", "liquid [kg]", "gas [kg]", "level [m]", "CM [m]", "I11 [kg·m²]"
+        )?;
+        for (i, t) in self.times_s.iter().enumerate() {
+            let cell = |v: &[f64]| v.get(i).copied().unwrap_or(f64::NAN);
+            writeln!(
+                f,
+                "  {t:>9.4} {:>12.6} {:>12.6} {:>12.6} {:>12.6} {:>12.6e}",
+                cell(&self.liquid_mass_kg),
+                cell(&self.gas_mass_kg),
+                cell(&self.liquid_height_m),
+                cell(&self.center_of_mass_m),
+                cell(&self.i11_kgm2),
+            )?;
+        }
+        Ok(())
     }
 }
 

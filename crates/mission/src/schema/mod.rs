@@ -24,7 +24,7 @@ pub use drag::{DragEstimateSpec, FinDragSpec, LaunchLugSpec, RailButtonSizeSpec}
 pub use names::{
     AngleUnit, AtmosphereModel, Datum, ExtrapolationKind, FinCrossSection, InterpolationKind,
     MotorCoordinateSystem, MotorKind, NoseKind, RocketCoordinateSystem, SoundingFormat,
-    SurfaceFinish, SurfaceType,
+    SurfaceFinish, SurfaceType, TankGeometryKind, TankKindName,
 };
 pub use surfaces::{
     AirfoilSpec, EllipticalFinsSpec, FreeFormFinsSpec, NoseSpec, SurfaceSpec, Sweep, TailSpec,
@@ -126,6 +126,22 @@ pub struct EnvironmentSpec {
     /// `[environment.atmosphere]`; absent: the standard atmosphere.
     #[serde(default)]
     pub atmosphere: AtmosphereSpec,
+    /// `[environment.earth_model]`: the latitude and height range RocketPy's `Environment()`
+    /// computed gravity, the Earth radius and the rotation vector from; absent: the site's.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub earth_model: Option<EarthModelSpec>,
+}
+
+/// `[environment.earth_model]` (physics.md §18).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct EarthModelSpec {
+    /// Latitude of gravity, Earth radius and rotation, deg; absent: `environment.latitude`.
+    #[serde(rename = "latitude", default, skip_serializing_if = "Option::is_none")]
+    pub latitude_deg: Option<f64>,
+    /// Top of the gravity table, m; RocketPy's default 80 000 m.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub gravity_max_height: Option<f64>,
 }
 
 /// `[environment.atmosphere]`: which model, and that model's inputs. Which keys a model needs
@@ -261,6 +277,123 @@ pub struct MotorSpec {
     /// Centre of the propellant cylinder, motor coordinates, m (generic).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub chamber_position: Option<f64>,
+    /// Burn only on the grain bore (solid default false, hybrid default true).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub only_radial_burn: Option<bool>,
+    /// `[[motor.tanks]]` (hybrid and liquid), in `add_tank` order.
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub tanks: Vec<TankSpec>,
+}
+
+/// One `[[motor.tanks]]` entry (RocketPy's tank classes and `add_tank(tank, position)`).
+/// Which curves a kind needs is checked by validation.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct TankSpec {
+    /// Tank kind.
+    pub kind: TankKindName,
+    /// Name shown in reports; absent: `tank <index>`.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub name: Option<String>,
+    /// Motor coordinate of the tank's height origin, m.
+    pub position: f64,
+    /// Geometry.
+    pub geometry: TankGeometrySpec,
+    /// Flux time, s: end, or `[start, end]`.
+    pub flux_time: BurnTime,
+    /// The liquid.
+    pub liquid: FluidSpec,
+    /// The gas.
+    pub gas: FluidSpec,
+    /// Grid nodes of the tank's tables; RocketPy default 100.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub discretize: Option<Discretize>,
+    /// Temperature of time, K; default 273.15 K.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub temperature: Option<Curve>,
+    /// Pressure of time, Pa; default 101 325 Pa.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub pressure: Option<Curve>,
+    /// Initial liquid mass, kg (`mass_flow_rate`).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub initial_liquid_mass: Option<f64>,
+    /// Initial gas mass, kg (`mass_flow_rate`).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub initial_gas_mass: Option<f64>,
+    /// Liquid flowing in, kg/s (`mass_flow_rate`; default 0).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub liquid_mass_flow_rate_in: Option<Curve>,
+    /// Liquid flowing out, kg/s (`mass_flow_rate`; default 0).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub liquid_mass_flow_rate_out: Option<Curve>,
+    /// Gas flowing in, kg/s (`mass_flow_rate`; default 0).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub gas_mass_flow_rate_in: Option<Curve>,
+    /// Gas flowing out, kg/s (`mass_flow_rate`; default 0).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub gas_mass_flow_rate_out: Option<Curve>,
+    /// Gas volume, m³ (`ullage`).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub ullage: Option<Curve>,
+    /// Liquid surface height in the tank frame, m (`level`).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub liquid_height: Option<Curve>,
+    /// Liquid mass, kg (`mass`).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub liquid_mass: Option<Curve>,
+    /// Gas mass, kg (`mass`).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub gas_mass: Option<Curve>,
+}
+
+/// `geometry = { kind, radius, height, spherical_caps }` of a tank.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct TankGeometrySpec {
+    /// Shape.
+    pub kind: TankGeometryKind,
+    /// Radius, m (a number; `custom`: a curve of height). RocketPy 1.13 spells it
+    /// `radius_function`.
+    #[serde(alias = "radius_function")]
+    pub radius: Curve,
+    /// Total height, m (`cylindrical`).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub height: Option<f64>,
+    /// Hemispherical caps inside the height (`cylindrical`).
+    #[serde(default, skip_serializing_if = "std::ops::Not::not")]
+    pub spherical_caps: bool,
+}
+
+/// `liquid = { name, density }` / `gas = { ... }`.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct FluidSpec {
+    /// Name.
+    pub name: String,
+    /// Density: kg/m³, or `[T K, p Pa, ρ]` rows, or a three-column file of them.
+    pub density: DensitySpec,
+}
+
+/// A fluid density.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(untagged)]
+pub enum DensitySpec {
+    /// Constant, kg/m³.
+    Constant(f64),
+    /// `[temperature K, pressure Pa, density kg/m³]` rows.
+    Rows(Vec<[f64; 3]>),
+    /// A three-column file of such rows, relative to the mission.
+    File(PathBuf),
+}
+
+/// `discretize`: the number of grid nodes, or `false` for no resampling.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[serde(untagged)]
+pub enum Discretize {
+    /// Grid nodes.
+    Nodes(u32),
+    /// `false`: no resampling (`true` means the default grid).
+    Flag(bool),
 }
 
 fn default_hold() -> ExtrapolationKind {

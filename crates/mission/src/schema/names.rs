@@ -153,10 +153,36 @@ names! {
         Solid => ["solid", "solid motor"],
         /// A generic motor: a cylindrical propellant mass (RocketPy `GenericMotor`).
         Generic => ["generic", "generic motor"],
-        /// A hybrid motor (RocketPy `HybridMotor`): named by the format, not modelled yet.
+        /// A hybrid motor: a solid grain and oxidiser tanks (RocketPy `HybridMotor`).
         Hybrid => ["hybrid", "hybrid motor"],
-        /// A liquid motor (RocketPy `LiquidMotor`): named by the format, not modelled yet.
+        /// A liquid motor: tanks only (RocketPy `LiquidMotor`).
         Liquid => ["liquid", "liquid motor"],
+    }
+}
+
+names! {
+    /// `motor.tanks[].kind`.
+    pub enum TankKindName ("tank kind") {
+        /// Given by its flows (RocketPy `MassFlowRateBasedTank`).
+        MassFlowRate => ["mass_flow_rate", "mass flow rate based"],
+        /// Given by its gas volume (RocketPy `UllageBasedTank`).
+        Ullage => ["ullage", "ullage based"],
+        /// Given by its liquid level (RocketPy `LevelBasedTank`).
+        Level => ["level", "level based"],
+        /// Given by its masses (RocketPy `MassBasedTank`).
+        Mass => ["mass", "mass based"],
+    }
+}
+
+names! {
+    /// `motor.tanks[].geometry.kind`.
+    pub enum TankGeometryKind ("tank geometry") {
+        /// A cylinder, optionally with spherical caps (RocketPy `CylindricalTank`).
+        Cylindrical => ["cylindrical"],
+        /// A sphere (RocketPy `SphericalTank`).
+        Spherical => ["spherical"],
+        /// A radius-of-height profile (RocketPy `TankGeometry`).
+        Custom => ["custom"],
     }
 }
 

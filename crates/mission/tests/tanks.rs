@@ -1,0 +1,182 @@
+//! Hybrid and liquid motors through the mission: the liquid fixture (one tank of each kind and
+//! geometry) loads, builds and flies; bad tank inputs are located at their key; tank inputs are
+//! reachable by `--set`; and arbitrary tank numbers never panic the build.
+
+use crate::common::fixture;
+use karman_mission::build::motor::build_motor;
+use karman_mission::{Location, MissionError, Override, ProblemKind, load, parse};
+use proptest::prelude::*;
+
+fn overrides(items: &[&str]) -> Vec<Override> {
+    items
+        .iter()
+        .map(|o| o.parse().expect("well-formed override"))
+        .collect()
+}
+
+fn liquid_text() -> String {
+    std::fs::read_to_string(fixture("liquid.toml")).expect("fixture readable")
+}
+
+#[test]
+fn the_liquid_fixture_builds_its_four_tanks() {
+    let mission = load(&fixture("liquid.toml"), &[]).expect("loads");
+    let motor = build_motor(&mission).expect("builds");
+    let tanks = motor.tanks();
+    let kinds: Vec<&str> = tanks
+        .iter()
+        .map(|p| p.tank.spec().kind.class_name())
+        .collect();
+    assert_eq!(
+        kinds,
+        [
+            "MassFlowRateBasedTank",
+            "UllageBasedTank",
+            "LevelBasedTank",
+            "MassBasedTank"
+        ]
+    );
+    // The tanks are on different grids (the level tank has 50 nodes): the propellant is their
+    // pointwise sum, tabulated on the union of the grids.
+    for &t in tanks[2].tank.mass().xs().iter().step_by(7) {
+        let sum: f64 = tanks.iter().map(|p| p.tank.mass().eval(t)).sum();
+        assert!((motor.propellant_mass().eval(t) - sum).abs() < 1e-12, "{t}");
+    }
+    assert!((motor.propellant_initial_mass() - motor.propellant_mass().eval(0.0)).abs() < 1e-15);
+    // The mass tank holds no liquid; the level tank's gas density is read from its (T, p)
+    // table at 290 K.
+    assert!(tanks[3].tank.liquid_mass().eval(2.0).abs() < 1e-15);
+    let gas = tanks[2].tank.gas_mass().eval(0.0);
+    let volume =
+        tanks[2].tank.spec().geometry.total_volume() - tanks[2].tank.spec().geometry.volume(0.08);
+    let rho = gas / volume;
+    assert!(rho > 1.18 && rho < 1.29, "{rho}");
+    let run = karman_mission::build::flight::simulate(&mission).expect("flies");
+    let summary = karman_mission::report::flight::flight_summary(&run);
+    assert!(summary.apogee_agl_m.is_some_and(|a| a > 100.0));
+}
+
+#[test]
+fn bad_tank_inputs_name_their_key_and_line() {
+    let path = fixture("liquid.toml");
+    // A checked key: located at its value.
+    let text = liquid_text().replacen("initial_liquid_mass = 2.5", "initial_liquid_mass = -2.5", 1);
+    match parse(&text, &path, &[]) {
+        Err(MissionError::Invalid { problems, .. }) => {
+            let p = &problems[0];
+            assert_eq!(p.key, "motor.tanks.0.initial_liquid_mass");
+            assert!(
+                matches!(p.location, Location::File { line: 33, .. }),
+                "{p:?}"
+            );
+            assert!(matches!(p.kind, ProblemKind::OutOfRange { .. }));
+        }
+        other => panic!("{other:?}"),
+    }
+    // A key of another kind.
+    let text = liquid_text().replacen("ullage = [[0", "liquid_mass = 1\nullage = [[0", 1);
+    let Err(MissionError::Invalid { problems, .. }) = parse(&text, &path, &[]) else {
+        panic!("accepted a liquid_mass in an ullage tank");
+    };
+    assert_eq!(problems[0].key, "motor.tanks.1.liquid_mass");
+    // An overfilled tank is a model error located at the tank.
+    let mission = load(
+        &path,
+        &overrides(&["motor.tanks.0.initial_liquid_mass=5.0"]),
+    )
+    .expect("loads");
+    let error = build_motor(&mission).expect_err("overfilled");
+    let source = std::error::Error::source(&error).map(ToString::to_string);
+    let text = format!("{error}: {}", source.unwrap_or_default());
+    assert!(
+        text.contains("motor.tanks.0") && text.contains("exceeds the tank volume"),
+        "{text}"
+    );
+    let MissionError::Model { location, .. } = &error else {
+        panic!("{error:?}");
+    };
+    assert!(location.is_some(), "{error:?}");
+    // A missing tank list, and a tank list on a solid motor.
+    let text = liquid_text();
+    let cut = text.find("[[motor.tanks]]").expect("tanks");
+    let end = text.find("[rocket]").expect("rocket");
+    let without = format!("{}{}", &text[..cut], &text[end..]);
+    let Err(MissionError::Invalid { problems, .. }) = parse(&without, &path, &[]) else {
+        panic!("a liquid motor without tanks loaded");
+    };
+    assert_eq!(problems[0].key, "motor.tanks");
+}
+
+#[test]
+fn tank_inputs_are_reachable_by_set() {
+    let path = fixture("liquid.toml");
+    let set = overrides(&[
+        "motor.tanks.0.position=0.55",
+        "motor.tanks.0.liquid.density=800",
+        "motor.tanks.1.geometry.radius=0.125",
+        "motor.tanks.3.flux_time=[0, 4.0]",
+        "environment.earth_model.latitude=10",
+    ]);
+    let mission = load(&path, &set).expect("loads");
+    let tanks = &mission.spec.motor.tanks;
+    assert!((tanks[0].position - 0.55).abs() < 1e-15);
+    assert!((tanks[3].flux_time.end - 4.0).abs() < 1e-15);
+    let motor = build_motor(&mission).expect("builds");
+    assert!((motor.tanks()[0].position - 0.55).abs() < 1e-15);
+    let Err(MissionError::Invalid { problems, .. }) =
+        load(&path, &overrides(&["motor.tanks.7.position=1"]))
+    else {
+        panic!("an index past the tanks was accepted");
+    };
+    assert!(matches!(problems[0].kind, ProblemKind::UnknownPath { .. }));
+    // Dotted paths (Monte Carlo): numbers and curves of tanks.
+    let spec = &mission.spec;
+    for (path, value) in [
+        ("motor.tanks.0.initial_liquid_mass", 2.5),
+        ("motor.tanks.0.flux_time", 4.5),
+        ("motor.tanks.2.discretize", 50.0),
+        ("motor.tanks.0.gas_mass_flow_rate_in", 0.02),
+    ] {
+        match karman_mission::paths::resolve(spec, path).expect(path) {
+            karman_mission::paths::Input::Number { value: v, .. } => {
+                assert!((v - value).abs() < 1e-12, "{path}");
+            }
+            other => panic!("{path}: {other:?}"),
+        }
+    }
+    assert!(matches!(
+        karman_mission::paths::resolve(spec, "motor.tanks.1.ullage"),
+        Ok(karman_mission::paths::Input::Curve(_))
+    ));
+    let mut varied = spec.clone();
+    karman_mission::paths::set_number(&mut varied, "motor.tanks.0.initial_liquid_mass", 2.0)
+        .expect("settable");
+    assert_eq!(varied.motor.tanks[0].initial_liquid_mass, Some(2.0));
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(64))]
+
+    /// Any number in any tank input: the mission is rejected or builds, never panics.
+    #[test]
+    fn arbitrary_tank_numbers_never_panic(
+        tank in 0usize..4,
+        key in prop::sample::select(vec![
+            "position", "flux_time", "initial_liquid_mass", "initial_gas_mass",
+            "geometry.radius", "geometry.height", "liquid.density", "gas.density",
+            "discretize", "ullage", "liquid_height", "gas_mass", "temperature",
+            "liquid_mass_flow_rate_out",
+        ]),
+        value in prop::sample::select(vec![
+            "0", "-1", "1e300", "-1e-300", "nan", "inf", "0.5", "1e-9", "100", "[[0, 1]]",
+            "[[1, 0], [0, 1]]", "[]", "\"x\"", "true",
+        ]),
+    ) {
+        let item = format!("motor.tanks.{tank}.{key}={value}");
+        if let Ok(item) = item.parse::<Override>() {
+            if let Ok(mission) = parse(&liquid_text(), &fixture("liquid.toml"), &[item]) {
+                let _ = build_motor(&mission);
+            }
+        }
+    }
+}

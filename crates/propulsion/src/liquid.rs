@@ -1,0 +1,144 @@
+//! Liquid motor: the propellant is the contents of its tanks (physics.md §15.3; RocketPy
+//! `LiquidMotor`, rocketpy/motors/liquid_motor.py).
+//!
+//! With tank `i` at `position_i` (motor coordinates of its height origin; a tank height adds
+//! with a plus sign whatever the motor's coordinate system):
+//!
+//! ```text
+//! m_p(t)  = Σ m_i(t)
+//! z_pc(t) = Σ m_i (position_i + c_i) / Σ m_i
+//! I11_p   = Σ [ I_i + m_i (position_i + c_i − z_pc)² ],   I33_p = 0
+//! ```
+//!
+//! RocketPy forms these with `Function` arithmetic: tanks on one time grid (same flux time
+//! and `discretize`) give node-wise sums with the first tank's interpolation (its mass tables'
+//! for the mass and the centre of mass, linear for the inertia), reproduced exactly here; on
+//! different grids RocketPy evaluates the formulas pointwise, which is tabulated here on the
+//! union of the grids, linear between its nodes (the tanks' own tables are smooth on their
+//! grid spacing, so the difference is of second order in it).
+//!
+//! The motor's mass flow in the equations of motion is still `−T/v̄_e` with
+//! `v̄_e = I_tot/m_p(burn start)` ([`crate::Motor::mass_flow_rate`]), not the tanks' flow.
+
+use karman_math::{Extrapolation, Interpolation, PhysicalConstants, Table1};
+
+use crate::propellant::finite;
+use crate::{PropellantModel, PropellantTables, PropulsionError, Tank, ThrustCurve};
+
+/// A tank placed in the motor (RocketPy `add_tank(tank, position)`).
+#[derive(Debug, Clone, PartialEq)]
+pub struct PositionedTank {
+    /// The tank with its tables.
+    pub tank: Tank,
+    /// Motor coordinate of the tank's height origin, m.
+    pub position: f64,
+}
+
+/// The tanks' combined mass, centre of mass and inertia at one instant, pointwise.
+pub(crate) fn tanks_at(tanks: &[PositionedTank], t: f64) -> (f64, f64, f64) {
+    let mut mass = 0.0;
+    let mut moment = 0.0;
+    for p in tanks {
+        let m = p.tank.mass().eval(t);
+        mass += m;
+        moment += m * (p.position + p.tank.center_of_mass().eval(t));
+    }
+    let center = if mass != 0.0 {
+        moment / mass
+    } else {
+        tanks.first().map_or(0.0, |p| p.position)
+    };
+    let inertia = tanks
+        .iter()
+        .map(|p| {
+            let m = p.tank.mass().eval(t);
+            let d = p.position + p.tank.center_of_mass().eval(t) - center;
+            p.tank.inertia().eval(t) + m * d * d
+        })
+        .sum();
+    (mass, center, inertia)
+}
+
+/// The sorted union of the tanks' time grids.
+pub(crate) fn union_grid(grids: impl Iterator<Item = f64>) -> Vec<f64> {
+    let mut times: Vec<f64> = grids.collect();
+    times.sort_by(f64::total_cmp);
+    times.dedup();
+    times
+}
+
+/// The tanks of a liquid motor as its propellant model.
+pub(crate) struct LiquidPropellant<'a> {
+    pub tanks: &'a [PositionedTank],
+    /// Burn start, s: the initial propellant mass is the tanks' mass then.
+    pub burn_start: f64,
+}
+
+impl PropellantModel for LiquidPropellant<'_> {
+    fn initial_mass(&self) -> f64 {
+        tanks_at(self.tanks, self.burn_start).0
+    }
+
+    fn validate(&self) -> Result<(), PropulsionError> {
+        if self.tanks.is_empty() {
+            return Err(PropulsionError::InvalidParameter {
+                name: "tanks",
+                value: 0.0,
+                reason: "a liquid or hybrid motor needs at least one tank",
+            });
+        }
+        for p in self.tanks {
+            finite("tank position", p.position)?;
+        }
+        Ok(())
+    }
+
+    fn tables(
+        &self,
+        _thrust: &ThrustCurve,
+        _exhaust_velocity: f64,
+        _constants: &PhysicalConstants,
+    ) -> Result<PropellantTables, PropulsionError> {
+        let first = self.tanks[0].tank.mass();
+        let one_grid = self.tanks.iter().all(|p| p.tank.mass().xs() == first.xs());
+        let (times, interpolation) = if one_grid {
+            (first.xs().to_vec(), first.interpolation())
+        } else {
+            let all = self
+                .tanks
+                .iter()
+                .flat_map(|p| p.tank.mass().xs().iter().copied());
+            (union_grid(all), Interpolation::Linear)
+        };
+        // On one grid the tank tables' ordinates are the node values; elsewhere the tables are
+        // evaluated.
+        let (mut mass, mut center, mut inertia) = (
+            Vec::with_capacity(times.len()),
+            Vec::with_capacity(times.len()),
+            Vec::with_capacity(times.len()),
+        );
+        for &t in &times {
+            let (m, c, i) = tanks_at(self.tanks, t);
+            mass.push(m);
+            center.push(c);
+            inertia.push(i);
+        }
+        let hold = Extrapolation::Constant;
+        let mass = Table1::new(times, mass, interpolation, hold)
+            .map_err(PropulsionError::table("propellant mass"))?;
+        let like = |ys, interpolation, what| {
+            Table1::on_same_abscissae(&mass, ys, interpolation, hold)
+                .map_err(PropulsionError::table(what))
+        };
+        Ok(PropellantTables {
+            center_of_mass: like(center, interpolation, "propellant centre of mass")?,
+            i11: like(inertia, Interpolation::Linear, "propellant I11")?,
+            i33: like(
+                vec![0.0; mass.xs().len()],
+                Interpolation::Linear,
+                "propellant I33",
+            )?,
+            mass,
+        })
+    }
+}
