@@ -2,8 +2,9 @@
 //! `.cargo/config.toml`, after matklad's cargo-xtask pattern).
 //!
 //! - `ci`: everything CI checks — formatting, clippy with warnings denied, the whole test
-//!   suite, and the validation run on the repository's `fixtures/validation` (a missing or
-//!   incomplete folder is skipped with a message, and fails when `CI` is set).
+//!   suite, the Python package built into a fresh virtual environment with its pytest suite
+//!   (`python.rs`), and the validation run on the repository's `fixtures/validation` (a
+//!   missing or incomplete folder is skipped with a message, and fails when `CI` is set).
 //! - `validate [--data DIR]`: fly every validation mission in release and compare with
 //!   RocketPy 1.13 and the measured flights (see `validate.rs`).
 //! - `bench [FILTER]`: run the criterion benchmarks and print their medians.
@@ -11,6 +12,7 @@
 //!   ARCHITECTURE.md, read from `cargo metadata`).
 
 mod bench;
+mod python;
 mod tidy;
 mod validate;
 
@@ -119,6 +121,7 @@ fn ci(root: &Path) -> Result<()> {
         root,
         &["test", "--package", "karman-atmos", "--features", "fetch"],
     )?;
+    python::test_package(root)?;
     // The release validation run; with `CI` set an unavailable folder fails (as the tests do).
     match karman_validation::locate() {
         Ok(_) => validate::run(root, &[])?,

@@ -31,6 +31,7 @@ pub const ALLOWED: &[(&str, &[&str])] = &[
         ],
     ),
     ("karman", &["karman-mission"]),
+    ("karman-python", &["karman-mission"]),
     ("karman-validation", &[]),
     (
         "xtask",

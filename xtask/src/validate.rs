@@ -3,8 +3,14 @@
 //! zeroed) and (b) with the measured flight (`measured.apogee_agl_m`, and `flight_data.csv`:
 //! altitude RMSE over the ascent and the time of apogee).
 //!
-//! Prints a table, writes `target/validation/report.md`, `report.json` and SVG figures, and
-//! fails when a parity tolerance or a per-flight measured band is exceeded.
+//! Then (issue 20) the same flights with the drag estimated from the geometry instead of the
+//! team's curve (karman-airframe `drag`), against the measured apogee beside the team curve's
+//! error; and every single-stage OpenRocket design of `fixtures/openrocket` imported, flown
+//! and compared with OpenRocket's stored flights (karman-mission `report::openrocket`).
+//!
+//! Prints the tables, writes `target/validation/report.md`, `report.json` and SVG figures,
+//! and fails when a parity tolerance, a per-flight measured band or an OpenRocket acceptance
+//! tolerance is exceeded.
 
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
@@ -66,7 +72,10 @@ const MEASURED_BANDS: &[(&str, f64, &str)] = &[
 
 struct Flight {
     name: String,
+    /// The summary in `"rocketpy_1_13"` equations (the parity run).
     summary: Value,
+    /// The summary in `"standard"` equations (the physically consistent form).
+    standard: Value,
     reference: Value,
     measured_apogee: Option<f64>,
     /// (t, altitude AGL) measured, and (t, altitude AGL) simulated.
@@ -97,7 +106,10 @@ pub fn run(root: &Path, args: &[String]) -> Result<()> {
                 .with_context(|| format!("flight {}", flight.dir.display()))?,
         );
     }
-    let report = report_markdown(&flights);
+    let mut report = report_markdown(&flights);
+    report += &estimated_drag_report(&data, &flights);
+    let (openrocket, openrocket_failures) = openrocket_report(root)?;
+    report += &openrocket;
     print!("{report}");
     std::fs::write(out.join("report.md"), &report)?;
     std::fs::write(
@@ -112,6 +124,7 @@ pub fn run(root: &Path, args: &[String]) -> Result<()> {
     let failed: Vec<String> = flights
         .iter()
         .flat_map(|f| f.failures.iter().map(|m| format!("{}: {m}", f.name)))
+        .chain(openrocket_failures)
         .collect();
     if !failed.is_empty() {
         bail!("validation failed:\n  {}", failed.join("\n  "));
@@ -139,24 +152,31 @@ fn fly(exe: &Path, dir: &Path, out: &Path) -> Result<Flight> {
         .map_err(|e| anyhow::anyhow!("{e}"))
         .context("mission does not load")?;
     let flight_out = out.join(&name);
-    let mut cmd = Command::new(exe);
-    cmd.arg("simulate")
-        .arg(&mission_path)
-        .arg("--json")
-        .arg("--out")
-        .arg(&flight_out);
-    for chute in mission.spec.rocket.parachutes.keys() {
+    // The parity run flies RocketPy 1.13's equations (with its outputs written); the second,
+    // the standard ones, for the report's comparison with the measured flight.
+    let summary_of = |equations: &str, out: Option<&Path>| -> Result<Value> {
+        let mut cmd = Command::new(exe);
+        cmd.arg("simulate").arg(&mission_path).arg("--json");
+        if let Some(out) = out {
+            cmd.arg("--out").arg(out);
+        }
         cmd.arg("--set")
-            .arg(format!("rocket.parachutes.{chute}.noise=[0,0,0]"));
-    }
-    let output = cmd.output().context("could not run karman")?;
-    if !output.status.success() {
-        bail!(
-            "karman simulate failed: {}",
-            String::from_utf8_lossy(&output.stderr)
-        );
-    }
-    let summary: Value = serde_json::from_slice(&output.stdout).context("summary JSON")?;
+            .arg(format!("flight.equations=\"{equations}\""));
+        for chute in mission.spec.rocket.parachutes.keys() {
+            cmd.arg("--set")
+                .arg(format!("rocket.parachutes.{chute}.noise=[0,0,0]"));
+        }
+        let output = cmd.output().context("could not run karman")?;
+        if !output.status.success() {
+            bail!(
+                "karman simulate failed: {}",
+                String::from_utf8_lossy(&output.stderr)
+            );
+        }
+        serde_json::from_slice(&output.stdout).context("summary JSON")
+    };
+    let summary = summary_of("rocketpy_1_13", Some(&flight_out))?;
+    let standard = summary_of("standard", None)?;
     let reference: Value =
         serde_json::from_str(&std::fs::read_to_string(dir.join("reference.json"))?)?;
     let measured_apogee = reference["measured"]["apogee_agl_m"].as_f64();
@@ -172,6 +192,7 @@ fn fly(exe: &Path, dir: &Path, out: &Path) -> Result<Flight> {
     let mut flight = Flight {
         name,
         summary,
+        standard,
         reference,
         measured_apogee,
         measured,
@@ -315,13 +336,15 @@ fn fmt_opt(v: Option<f64>, digits: usize) -> String {
 
 fn report_markdown(flights: &[Flight]) -> String {
     let mut s = String::from("# karman validation report\n\n");
-    s.push_str("| flight | karman apogee (m) | RocketPy apogee (m) | parity error | measured apogee (m) | karman vs measured | RocketPy vs measured | apogee time (s) | measured apogee time (s) | ascent RMSE (m) | rail-exit speed (m/s) | max Mach | status |\n");
-    s.push_str("|---|---|---|---|---|---|---|---|---|---|---|---|---|\n");
+    s.push_str("Apogees above ground; karman flies RocketPy 1.13's equations (`equations = \"rocketpy_1_13\"`) for the parity columns and the physically consistent ones (`\"standard\"`) for the standard columns.\n\n");
+    s.push_str("| flight | karman apogee (m) | RocketPy apogee (m) | parity error | measured apogee (m) | karman vs measured | RocketPy vs measured | standard apogee (m) | standard vs measured | apogee time (s) | measured apogee time (s) | ascent RMSE (m) | rail-exit speed (m/s) | max Mach | status |\n");
+    s.push_str("|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n");
     let (mut ours, mut theirs) = (Vec::new(), Vec::new());
     for f in flights {
         let r = &f.reference["summary"];
         let k = num(&f.summary, "apogee_agl_m");
         let p = num(r, "apogee_agl_m");
+        let std_apogee = num(&f.standard, "apogee_agl_m");
         let parity = k.zip(p).map(|(k, p)| 100.0 * (k - p) / p);
         let vs = |a: Option<f64>| a.zip(f.measured_apogee).map(|(a, m)| 100.0 * (a - m) / m);
         if let (Some(a), Some(b)) = (vs(k), vs(p)) {
@@ -331,7 +354,7 @@ fn report_markdown(flights: &[Flight]) -> String {
         let fit = ascent_fit(f);
         let _ = writeln!(
             s,
-            "| {} | {} | {} | {} % | {} | {} % | {} % | {} | {} | {} | {} | {} | {} |",
+            "| {} | {} | {} | {} % | {} | {} % | {} % | {} | {} % | {} | {} | {} | {} | {} | {} |",
             f.name,
             fmt_opt(k, 2),
             fmt_opt(p, 2),
@@ -339,6 +362,8 @@ fn report_markdown(flights: &[Flight]) -> String {
             fmt_opt(f.measured_apogee, 2),
             fmt_opt(vs(k), 2),
             fmt_opt(vs(p), 2),
+            fmt_opt(std_apogee, 2),
+            fmt_opt(vs(std_apogee), 2),
             fmt_opt(num(&f.summary, "apogee_time_s"), 3),
             fmt_opt(fit.map(|x| x.0), 2),
             fmt_opt(fit.map(|x| x.1), 1),
@@ -362,6 +387,128 @@ fn report_markdown(flights: &[Flight]) -> String {
     s
 }
 
+/// Fin thickness assumed for the estimate where a validation mission gives none (OpenRocket's
+/// default fin, 3 mm with square edges).
+const ASSUMED_FIN_THICKNESS: f64 = 0.003;
+
+/// The validation flights flown with `power_off_drag = power_on_drag = "estimate"`: the
+/// estimate against the team's curve (mean and largest relative difference, power off, from
+/// Mach 0.05 to the flight's max Mach) and the apogee error against the measured flight
+/// beside the team curve's.
+fn estimated_drag_report(data: &Path, flights: &[Flight]) -> String {
+    use karman_mission::build::flight::simulate;
+    use karman_mission::schema::{
+        Curve, DragEstimateSpec, ESTIMATE, FinCrossSection, FinDragSpec, SurfaceFinish, SurfaceSpec,
+    };
+    let mut s = String::from(
+        "\n## Validation flights with the drag estimated from the geometry\n\n\
+         Fins assumed 3 mm thick with square edges, regular paint (the missions give neither).\n\n\
+         | flight | estimate / team Cd, mean | largest difference | apogee, estimate (m) | vs measured | team curve vs measured |\n|---|---|---|---|---|---|\n",
+    );
+    for f in flights {
+        let path = data.join(&f.name).join("mission.toml");
+        let row = (|| -> std::result::Result<String, String> {
+            let team = karman_mission::load(&path, &[]).map_err(|e| e.to_string())?;
+            let quiet = team.parachute_noise_off().map_err(|e| e.to_string())?;
+            let team = karman_mission::load(&path, &quiet).map_err(|e| e.to_string())?;
+            let mut mission = team.clone();
+            let rocket = &mut mission.spec.rocket;
+            rocket.power_off_drag = Curve::File(ESTIMATE.into());
+            rocket.power_on_drag = Curve::File(ESTIMATE.into());
+            let fins = rocket
+                .surfaces
+                .iter()
+                .filter(|(_, s)| {
+                    matches!(
+                        s,
+                        SurfaceSpec::TrapezoidalFins(_)
+                            | SurfaceSpec::EllipticalFins(_)
+                            | SurfaceSpec::FreeFormFins(_)
+                    )
+                })
+                .map(|(name, _)| {
+                    (
+                        name.clone(),
+                        FinDragSpec {
+                            thickness: ASSUMED_FIN_THICKNESS,
+                            cross_section: FinCrossSection::Square,
+                            finish: None,
+                        },
+                    )
+                })
+                .collect();
+            rocket.drag_estimate = Some(DragEstimateSpec {
+                body_length: None,
+                finish: SurfaceFinish::Normal,
+                roughness: None,
+                fins,
+                launch_lugs: Default::default(),
+                overrides: Default::default(),
+                rail_buttons: None,
+            });
+            let run = simulate(&mission).map_err(|e| {
+                let source = std::error::Error::source(&e).map(ToString::to_string);
+                format!("{e}: {}", source.unwrap_or_default())
+            })?;
+            let team_motor =
+                karman_mission::build::motor::build_motor(&team).map_err(|e| e.to_string())?;
+            let team_rocket = karman_mission::build::rocket::build_rocket(&team, &team_motor)
+                .map_err(|e| e.to_string())?;
+            let max_mach = num(&f.summary, "max_mach").unwrap_or(0.3).max(0.1);
+            let (mut sum, mut worst, mut count) = (0.0, 0.0_f64, 0);
+            for i in 0..=50 {
+                let m = 0.05 + (max_mach - 0.05) * f64::from(i) / 50.0;
+                let ratio =
+                    run.rocket.drag_coefficient(false, m) / team_rocket.drag_coefficient(false, m);
+                sum += ratio;
+                worst = worst.max((ratio - 1.0).abs());
+                count += 1;
+            }
+            let apogee = run.summary().apogee_agl_m;
+            let vs = |a: Option<f64>| a.zip(f.measured_apogee).map(|(a, m)| 100.0 * (a - m) / m);
+            Ok(format!(
+                "| {} | {:.2} | {:.0} % | {} | {} % | {} % |",
+                f.name,
+                sum / f64::from(count),
+                100.0 * worst,
+                fmt_opt(apogee, 1),
+                fmt_opt(vs(apogee), 2),
+                fmt_opt(vs(num(&f.summary, "apogee_agl_m")), 2),
+            ))
+        })();
+        let _ = writeln!(
+            s,
+            "{}",
+            row.unwrap_or_else(|e| format!("| {} | not estimated: {e} | | | | |", f.name))
+        );
+    }
+    s
+}
+
+/// The OpenRocket designs: one line per stored simulation, and the acceptance misses.
+fn openrocket_report(root: &Path) -> Result<(String, Vec<String>)> {
+    use karman_mission::report::openrocket::{DESIGNS, compare_design};
+    let mut s = String::from(
+        "\n## OpenRocket designs imported and flown (fixtures/openrocket)\n\n\
+         karman / OpenRocket; CP and margin at the ascent row of least angle of attack.\n\n```\n",
+    );
+    let mut failures = Vec::new();
+    for (design, cp_holds) in DESIGNS {
+        let results = compare_design(&root.join("fixtures/openrocket").join(design))
+            .map_err(|e| anyhow::anyhow!("{design}: {e}"))?;
+        for r in results {
+            let _ = writeln!(s, "{design:<28} {r}");
+            failures.extend(
+                r.failures(cp_holds)
+                    .into_iter()
+                    .map(|m| format!("{design} {}: {m}", r.simulation)),
+            );
+        }
+    }
+    s.push_str("```\n");
+    Ok((s, failures))
+}
+
 fn report_json(flights: &[Flight]) -> Value {
     Value::Array(
         flights
@@ -370,6 +517,7 @@ fn report_json(flights: &[Flight]) -> Value {
                 json!({
                     "flight": f.name,
                     "karman": f.summary,
+                    "karman_standard": f.standard,
                     "rocketpy": f.reference["summary"],
                     "measured_apogee_agl_m": f.measured_apogee,
                     "ascent_fit": ascent_fit(f).map(|(t, rmse)| json!({"measured_apogee_time_s": t, "rmse_m": rmse})),

@@ -12,6 +12,10 @@
 use crate::error::{AirframeError, finite, positive};
 use karman_math::ScatteredTable;
 
+/// The control input of the vehicle's [`karman_model::Configuration`] that carries the
+/// deployment level.
+pub const AIR_BRAKES_CONTROL: usize = 0;
+
 /// RocketPy's Shepard power: weights `d^{-3}`.
 const SHEPARD_POWER: f64 = 3.0;
 

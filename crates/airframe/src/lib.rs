@@ -25,6 +25,7 @@
 //!     burn_out: 2.0,
 //!     exhaust_velocity: 2000.0,
 //!     propellant_mass: table(vec![0.2, 0.1, 0.0], Extrapolation::Constant)?,
+//!     mass_flow: None,
 //!     propellant_center_of_mass: table(vec![0.15; 3], Extrapolation::Constant)?,
 //!     propellant_i11: table(vec![1e-3, 5e-4, 0.0], Extrapolation::Constant)?,
 //!     propellant_i33: table(vec![1e-4, 5e-5, 0.0], Extrapolation::Constant)?,
@@ -77,7 +78,7 @@ mod recovery;
 mod rocket;
 pub mod surfaces;
 
-pub use air_brakes::{AirBrakes, AirBrakesDrag, AirBrakesSpec};
+pub use air_brakes::{AIR_BRAKES_CONTROL, AirBrakes, AirBrakesDrag, AirBrakesSpec};
 pub use drag::{
     BodySegment, DragComponents, DragEstimate, DragGeometry, DragModel, FinCrossSection,
     FinSetDrag, FlowReference, LaunchLug, Profile, RailButtonDrag,

@@ -224,6 +224,25 @@ impl MassModel {
         -self.motor.thrust.derivative(t) * self.inverse_exhaust_velocity
     }
 
+    /// `(dm/dt, d²m/dt²)` at `t`: the motor's mass-flow table and its slope when it has one,
+    /// else the slopes of the propellant-mass table (physics.md §6.2; the mass the equations
+    /// fly), with the time located from `cursor` (updated).
+    #[inline]
+    pub(crate) fn mass_rate_near(&self, t: f64, cursor: &mut Cursor) -> (f64, f64) {
+        let m = &self.motor;
+        match &m.mass_flow {
+            Some(flow) => {
+                let at = flow.locate_with(t, cursor);
+                (flow.eval_at(at, t), flow.derivative_at(at, t))
+            }
+            None => {
+                let mass = &m.propellant_mass;
+                let at = mass.locate_with(t, cursor);
+                (mass.derivative_at(at, t), mass.second_derivative_at(at, t))
+            }
+        }
+    }
+
     /// c for propellant mass `mp` at `zp` (user coordinates).
     fn offset_of(&self, mp: f64, zp: f64) -> f64 {
         -self.csys * (zp - self.cdm) * mp / (self.dry_mass + mp)

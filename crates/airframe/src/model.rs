@@ -4,10 +4,12 @@
 
 use karman_math::Cursor;
 use karman_model::{
-    BodyFlow, Configuration, Loads, LocalFlow, MassSample, ParachuteSpec, RailButtonGeometry,
-    SurfaceModel, TriggerKind, VehicleModel, VehicleSetup,
+    BodyFlow, Configuration, Loads, LocalFlow, MAX_CONTROLS, MassFlowLaw, MassSample,
+    ParachuteSpec, RailButtonGeometry, SurfaceModel, TriggerKind, VehicleModel, VehicleSetup,
 };
+use std::sync::Arc;
 
+use crate::air_brakes::AIR_BRAKES_CONTROL;
 use crate::{Rocket, Surface, Trigger};
 
 impl SurfaceModel for Surface {
@@ -49,9 +51,10 @@ impl VehicleModel for Rocket {
                 .map(|p| ParachuteSpec {
                     name: p.name.clone(),
                     cd_s: p.cd_s,
-                    trigger: match p.trigger {
+                    trigger: match &p.trigger {
                         Trigger::Apogee => TriggerKind::Apogee,
-                        Trigger::HeightAboveGround(h) => TriggerKind::HeightAboveGround(h),
+                        Trigger::HeightAboveGround(h) => TriggerKind::HeightAboveGround(*h),
+                        Trigger::Custom(condition) => TriggerKind::Custom(Arc::clone(condition)),
                     },
                     sampling_rate: p.sampling_rate,
                     lag: p.lag,
@@ -66,6 +69,13 @@ impl VehicleModel for Rocket {
             nozzle_to_cdm: self.nozzle_to_cdm(),
             nozzle_gyration: self.nozzle_gyration(),
             static_margins: [self.static_margin(0.0), self.static_margin(self.burn_out())],
+            initial_controls: {
+                let mut controls = [0.0; MAX_CONTROLS];
+                if let Some(brakes) = self.air_brakes() {
+                    controls[AIR_BRAKES_CONTROL] = brakes.initial_level();
+                }
+                controls
+            },
         }
     }
 
@@ -75,12 +85,18 @@ impl VehicleModel for Rocket {
     }
 
     #[inline]
-    fn mass(&self, t: f64, cursors: &mut [Cursor; 2]) -> MassSample {
+    fn mass(&self, t: f64, law: MassFlowLaw, cursors: &mut [Cursor; 2]) -> MassSample {
         let p = self.mass_properties_near(t, cursors);
+        let (mass_flow_rate, mass_flow_rate_derivative) = match law {
+            MassFlowLaw::ThrustOverExhaustVelocity => {
+                (p.mass_flow_rate, p.mass_flow_rate_derivative)
+            }
+            MassFlowLaw::MassDerivative => self.mass_rate_near(t, &mut cursors[1]),
+        };
         MassSample {
             total_mass: p.total_mass,
-            mass_flow_rate: p.mass_flow_rate,
-            mass_flow_rate_derivative: p.mass_flow_rate_derivative,
+            mass_flow_rate,
+            mass_flow_rate_derivative,
             com_to_cdm: p.com_to_cdm,
             com_to_cdm_rate: p.com_to_cdm_rate,
             com_to_cdm_accel: p.com_to_cdm_accel,
@@ -94,16 +110,28 @@ impl VehicleModel for Rocket {
         self.net_thrust_near(t, ambient_pressure, cursor)
     }
 
-    /// The drag `−½ ρ |v|² A C_D(Mach)` of the power-on or power-off curve (physics.md §7.1).
+    /// The drag `−½ ρ |v|² A C_D(Mach)` of the power-on or power-off curve (physics.md §7.1),
+    /// with the air brakes' drag added or substituted while their level (control
+    /// [`AIR_BRAKES_CONTROL`]) is above 0 (§16.1).
     #[inline]
     fn axial_load(
         &self,
         flow: &BodyFlow,
-        _configuration: &Configuration,
+        configuration: &Configuration,
         cursor: &mut Cursor,
     ) -> f64 {
         let cd = self.drag_coefficient_near(flow.power_on, flow.mach, cursor);
-        -0.5 * flow.density * flow.speed * flow.speed * self.reference_area() * cd
+        let minus_half_rho_v2 = -0.5 * flow.density * flow.speed * flow.speed;
+        let rocket = minus_half_rho_v2 * self.reference_area() * cd;
+        match self.air_brakes() {
+            Some(brakes) => brakes.axial_force(
+                configuration.control(AIR_BRAKES_CONTROL),
+                flow.mach,
+                minus_half_rho_v2,
+                rocket,
+            ),
+            None => rocket,
+        }
     }
 
     fn stability_margin(&self, mach: f64, t: f64) -> f64 {

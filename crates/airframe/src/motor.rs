@@ -26,6 +26,10 @@ pub struct MotorProperties {
     pub exhaust_velocity: f64,
     /// Propellant mass m_p(t) (kg).
     pub propellant_mass: Table1,
+    /// Signed mass-flow rate `dm_p/dt` (kg/s) consistent with `propellant_mass`, for a motor
+    /// whose mass comes from elsewhere than its thrust (tanks); `None`: the derivative of
+    /// `propellant_mass` (the `standard` equations, [`karman_model::MassFlowLaw`]).
+    pub mass_flow: Option<Table1>,
     /// Propellant centre of mass z_pc(t) in motor coordinates (m).
     pub propellant_center_of_mass: Table1,
     /// Propellant I11 about the propellant centre of mass (kg·m²); I22 is taken equal.

@@ -2,6 +2,9 @@
 //! launch rail (RocketPy `Parachute`, `RailButtons`; physics.md §1, §8.1, §8.4, §9.4).
 
 use std::f64::consts::PI;
+use std::sync::Arc;
+
+use karman_model::TriggerCondition;
 
 use crate::error::{AirframeError, finite, non_negative, positive};
 
@@ -14,12 +17,29 @@ pub const DEFAULT_POROSITY: f64 = 0.0432;
 pub const DEFAULT_SAMPLING_RATE: f64 = 100.0;
 
 /// When a parachute is ejected.
-#[derive(Debug, Clone, Copy, PartialEq)]
+#[derive(Debug, Clone)]
 pub enum Trigger {
     /// At the first sampling instant with `vz < 0`.
     Apogee,
     /// On descent (`vz < 0`) below this barometric height above ground level (m).
     HeightAboveGround(f64),
+    /// At the first sampling instant where the condition holds, ascent included (RocketPy's
+    /// callable trigger, a time trigger).
+    Custom(Arc<dyn TriggerCondition>),
+}
+
+impl PartialEq for Trigger {
+    /// Built-in triggers compare by value, custom conditions by identity.
+    fn eq(&self, other: &Self) -> bool {
+        match (self, other) {
+            (Trigger::Apogee, Trigger::Apogee) => true,
+            (Trigger::HeightAboveGround(a), Trigger::HeightAboveGround(b)) => {
+                a.to_bits() == b.to_bits()
+            }
+            (Trigger::Custom(a), Trigger::Custom(b)) => Arc::ptr_eq(a, b),
+            _ => false,
+        }
+    }
 }
 
 /// The user's description of a parachute; `None` fields take RocketPy's defaults.
@@ -82,7 +102,8 @@ impl Parachute {
     pub fn new(spec: &ParachuteSpec) -> Result<Self, AirframeError> {
         let c = spec.name.as_str();
         let cd_s = positive(c, "cd_s", spec.cd_s)?;
-        if let Trigger::HeightAboveGround(h) = spec.trigger {
+        if let Trigger::HeightAboveGround(h) = &spec.trigger {
+            let h = *h;
             finite(c, "trigger", h)?;
         }
         let sampling_rate = positive(
@@ -131,7 +152,7 @@ impl Parachute {
         Ok(Parachute {
             name: spec.name.clone(),
             cd_s,
-            trigger: spec.trigger,
+            trigger: spec.trigger.clone(),
             sampling_rate,
             lag,
             noise,

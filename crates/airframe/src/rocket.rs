@@ -5,6 +5,7 @@ use std::f64::consts::PI;
 
 use karman_math::{Cursor, Extrapolation, Interpolation, PhysicalConstants, Table1};
 
+use crate::air_brakes::AirBrakes;
 use crate::error::{AirframeError, finite, non_negative, positive};
 use crate::mass::{MassModel, MassProperties};
 use crate::motor::{INERTIA_NAMES, MotorProperties};
@@ -107,6 +108,7 @@ pub struct Rocket {
     nozzle_gyration: [f64; 3],
     static_margin: Option<Table1>,
     warnings: Vec<String>,
+    air_brakes: Option<AirBrakes>,
 }
 
 impl Rocket {
@@ -219,6 +221,7 @@ impl Rocket {
             nozzle_gyration: [s11, s11, s33],
             static_margin: None,
             warnings,
+            air_brakes: None,
         };
         rocket.check_layout();
         if burn_out > 0.0 {
@@ -417,6 +420,15 @@ impl Rocket {
         self.mass.properties_near(t, cursors)
     }
 
+    /// The derivative of the total mass `dm/dt` (kg/s) and its rate (kg/s²) at `t`, with the
+    /// time located from `cursor` (on the propellant tables' times; updated): the motor's
+    /// mass-flow table when it has one, else the slopes of its propellant-mass table.
+    #[inline]
+    #[must_use]
+    pub fn mass_rate_near(&self, t: f64, cursor: &mut Cursor) -> (f64, f64) {
+        self.mass.mass_rate_near(t, cursor)
+    }
+
     /// Dry inertia about the CDM (rocket + unloaded motor), same layout (kg·m²).
     #[must_use]
     pub fn dry_inertia(&self) -> [f64; 6] {
@@ -595,6 +607,20 @@ impl Rocket {
     #[must_use]
     pub fn parachutes(&self) -> &[Parachute] {
         &self.parachutes
+    }
+
+    /// The rocket with `air_brakes` (RocketPy's `add_air_brakes`; physics.md §16).
+    #[must_use]
+    pub fn with_air_brakes(mut self, air_brakes: AirBrakes) -> Self {
+        self.air_brakes = Some(air_brakes);
+        self
+    }
+
+    /// The air brakes, if any.
+    #[inline]
+    #[must_use]
+    pub fn air_brakes(&self) -> Option<&AirBrakes> {
+        self.air_brakes.as_ref()
     }
 
     /// The rail buttons, if any.

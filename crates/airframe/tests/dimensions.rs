@@ -57,6 +57,7 @@ fn motor(u: &Units, common_grid: bool) -> MotorProperties {
         burn_out: u.scale(burn, T),
         exhaust_velocity: u.scale(ve, Dimension::VELOCITY),
         propellant_mass: tab(&grid, grid.iter().map(|&t| m(mp(t))).collect(), lin, hold),
+        mass_flow: None,
         propellant_center_of_mass: tab(&com_grid, com, lin, hold),
         propellant_i11: tab(
             &grid,

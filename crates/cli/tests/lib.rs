@@ -6,3 +6,4 @@ mod corpus;
 mod inspect;
 mod montecarlo;
 mod simulate;
+mod sweep;

@@ -114,6 +114,17 @@ pub enum DispersionError {
         /// Why.
         reason: String,
     },
+    /// The run was stopped before every sample of the shard was written
+    /// ([`crate::run_until`]); running it again resumes it.
+    #[error("{}: interrupted after {written} of {total} samples; run again to resume", dir.display())]
+    Interrupted {
+        /// The output directory.
+        dir: PathBuf,
+        /// Samples of the shard in `samples.csv`.
+        written: u64,
+        /// Samples in the shard.
+        total: u64,
+    },
     /// The worker thread pool could not be created.
     #[error("cannot start {threads} worker threads: {message}")]
     ThreadPool {

@@ -60,7 +60,9 @@ pub use error::DispersionError;
 pub use kml::offset_to_lat_lon;
 pub use merge::merge;
 pub use progress::ProgressMode;
-pub use runner::{MAX_THREADS_PER_CORE, Outcome, RunOptions, RunReport, WINDOW_PER_THREAD, run};
+pub use runner::{
+    MAX_THREADS_PER_CORE, Outcome, RunOptions, RunReport, WINDOW_PER_THREAD, run, run_until,
+};
 pub use stats::{
     Ellipse, Moments, NORMAL_SIGMA_PROBABILITY, Statistics, k_sigma_probability, probability_scale,
     quantile,

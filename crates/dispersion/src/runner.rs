@@ -40,6 +40,9 @@ pub const WINDOW_PER_THREAD: u64 = 64;
 /// Consecutive positions a worker claims, flies and sends at once.
 const CLAIM: u64 = 8;
 
+/// How often a worker waiting for the writer looks at the caller's stop flag.
+const STOP_POLL: Duration = Duration::from_millis(50);
+
 /// What one flight measured: one value per output of the study, `None` for a quantity that
 /// did not occur (no impact when the flight stops at apogee), and how it ended.
 #[derive(Debug, Clone, PartialEq)]
@@ -140,6 +143,23 @@ pub fn run<F>(
 where
     F: Fn(u64, &[f64]) -> Result<Outcome, String> + Sync,
 {
+    run_until(study, dir, options, &AtomicBool::new(false), fly)
+}
+
+/// [`run`] that stops early once `stop` is set (by another thread, e.g. on Ctrl-C): no
+/// sample starts after that, the samples in flight finish and every row before the first
+/// missing one is written, so `samples.csv` stays a valid prefix that a later run resumes;
+/// the result is then [`DispersionError::Interrupted`].
+pub fn run_until<F>(
+    study: &Study,
+    dir: &Path,
+    options: &RunOptions,
+    stop: &AtomicBool,
+    fly: F,
+) -> Result<RunReport, DispersionError>
+where
+    F: Fn(u64, &[f64]) -> Result<Outcome, String> + Sync,
+{
     study.validate()?;
     let requested = options.threads.unwrap_or(0);
     let cores = std::thread::available_parallelism().map_or(1, std::num::NonZeroUsize::get);
@@ -231,6 +251,7 @@ where
         window: WINDOW_PER_THREAD * threads as u64,
         next: AtomicU64::new(scan.rows),
         abort: AtomicBool::new(false),
+        stop,
         written: Mutex::new(scan.rows),
         advanced: Condvar::new(),
     };
@@ -254,6 +275,17 @@ where
     counts.merge(&scan.counts);
     let elapsed = started.elapsed();
     drop(out);
+    let rows = *engine
+        .written
+        .lock()
+        .unwrap_or_else(PoisonError::into_inner);
+    if rows < total {
+        return Err(DispersionError::Interrupted {
+            dir: dir.to_owned(),
+            written: rows,
+            total,
+        });
+    }
 
     let summary = if shard == Shard::WHOLE {
         Some(summarize(dir)?)
@@ -325,6 +357,8 @@ struct Engine<'a> {
     window: u64,
     next: AtomicU64,
     abort: AtomicBool,
+    /// Set by the caller to stop the run early.
+    stop: &'a AtomicBool,
     /// Positions below this are written.
     written: Mutex<u64>,
     advanced: Condvar,
@@ -338,22 +372,26 @@ impl Engine<'_> {
     {
         loop {
             let first = self.next.fetch_add(CLAIM, Ordering::Relaxed);
-            if first >= self.total || self.abort.load(Ordering::Relaxed) {
+            if first >= self.total || self.stopped() {
                 return;
             }
             let end = (first + CLAIM).min(self.total);
             {
                 let mut written = self.written.lock().unwrap_or_else(PoisonError::into_inner);
-                while end > *written + self.window && !self.abort.load(Ordering::Relaxed) {
+                // `stop` is set without a notification: wake up now and then to see it.
+                while end > *written + self.window && !self.stopped() {
                     written = self
                         .advanced
-                        .wait(written)
-                        .unwrap_or_else(PoisonError::into_inner);
+                        .wait_timeout(written, STOP_POLL)
+                        .unwrap_or_else(PoisonError::into_inner)
+                        .0;
                 }
             }
             let mut rows = Vec::with_capacity((end - first) as usize);
             for position in first..end {
-                if self.abort.load(Ordering::Relaxed) {
+                if self.stopped() {
+                    // Send the rows already flown: they may extend the written prefix.
+                    let _ = sender.send(rows);
                     return;
                 }
                 rows.push(fly_sample(self.study, self.shard, fly, position));
@@ -390,6 +428,11 @@ impl Engine<'_> {
             }
         }
         Ok(counts)
+    }
+
+    /// Whether workers must stop claiming and flying samples.
+    fn stopped(&self) -> bool {
+        self.abort.load(Ordering::Relaxed) || self.stop.load(Ordering::Relaxed)
     }
 
     /// Stops the workers (after a write error).

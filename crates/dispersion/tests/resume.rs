@@ -103,6 +103,44 @@ fn a_corrupt_complete_row_is_an_error_naming_the_line() {
 }
 
 #[test]
+fn a_stopped_run_leaves_a_prefix_that_resumes_to_identical_bytes() {
+    use karman_dispersion::run_until;
+    use std::sync::atomic::{AtomicBool, Ordering};
+
+    let study = study(400);
+    let tmp = tempfile::tempdir().expect("temporary directory");
+    let full = tmp.path().join("full");
+    run(&study, &full, &options(2, Shard::WHOLE), fly).expect("uninterrupted run");
+
+    // Stop from inside the flights once sample 100 is reached, as a Ctrl-C handler would.
+    let stopped = tmp.path().join("stopped");
+    let stop = AtomicBool::new(false);
+    let result = run_until(
+        &study,
+        &stopped,
+        &options(2, Shard::WHOLE),
+        &stop,
+        |i, v| {
+            if i >= 100 {
+                stop.store(true, Ordering::Relaxed);
+            }
+            fly(i, v)
+        },
+    );
+    let Err(DispersionError::Interrupted { written, total, .. }) = result else {
+        panic!("expected an interruption, got {result:?}");
+    };
+    assert_eq!(total, 400);
+    // Samples in flight on other workers stop too, so the prefix may end before sample 100.
+    assert!(written < 400, "{written} rows written");
+    assert!(!stopped.join("summary.json").exists());
+
+    let report = run(&study, &stopped, &options(3, Shard::WHOLE), fly).expect("resumed run");
+    assert_eq!((report.resumed, report.flown), (written, 400 - written));
+    assert_same_outputs(&full, &stopped);
+}
+
+#[test]
 fn a_resume_with_other_data_or_another_model_is_refused() {
     use karman_dispersion::DataFile;
     let mut study = study(40);

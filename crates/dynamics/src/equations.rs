@@ -14,8 +14,11 @@ use crate::state::{
     quaternion_rate, rotation, scale, sub, tensor,
 };
 use karman_model::{
-    Air, AtmosphereModel, BodyFlow, Configuration, Cursor, LocalFlow, SurfaceModel, VehicleModel,
+    Air, AtmosphereModel, BodyFlow, Configuration, Cursor, LocalFlow, MAX_CONTROLS, MassFlowLaw,
+    SurfaceModel, VehicleModel,
 };
+
+use crate::settings::EquationsForm;
 
 /// State derivative and the loads behind it (body axes, about the CDM).
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -58,6 +61,11 @@ pub struct Equations<'a, A, V> {
     coast: Option<CoastMass>,
     /// The wind when it does not vary with height (read once; no per-height lookups then).
     uniform_wind: Option<[f64; 2]>,
+    /// The sign of the lever arms: `+1` for RocketPy's CM→CDM and nozzle→CDM vectors, `−1`
+    /// for the CDM→CM and CDM→nozzle vectors of the standard form ([`EquationsForm`]).
+    lever_sign: f64,
+    /// The mass flow of the form.
+    law: MassFlowLaw,
 }
 
 /// The table cursors of the models' lookups, kept by the caller between evaluations so
@@ -119,8 +127,9 @@ fn inverse_cm_inertia(inertia: &Mat3, mass: f64, c: f64) -> Mat3 {
 fn coast_mass<V: VehicleModel>(vehicle: &V, burn_out: f64) -> Option<CoastMass> {
     let b1 = burn_out;
     let cursors = &mut [Cursor::default(); 2];
-    let p1 = vehicle.mass(b1 + 1.0, cursors);
-    let p2 = vehicle.mass(b1 + 1e4, cursors);
+    let law = MassFlowLaw::ThrustOverExhaustVelocity;
+    let p1 = vehicle.mass(b1 + 1.0, law, cursors);
+    let p2 = vehicle.mass(b1 + 1e4, law, cursors);
     let (m1, c1, i1) = (p1.total_mass, p1.com_to_cdm, p1.inertia);
     let (m2, c2, i2) = (p2.total_mass, p2.com_to_cdm, p2.inertia);
     let same = |a: f64, b: f64| (a - b).abs() <= 1e-12 * a.abs().max(b.abs());
@@ -140,21 +149,27 @@ fn coast_mass<V: VehicleModel>(vehicle: &V, burn_out: f64) -> Option<CoastMass> 
 }
 
 impl<'a, A: AtmosphereModel, V: VehicleModel> Equations<'a, A, V> {
-    /// Reads the constant model quantities once.
-    pub fn new(atmosphere: &'a A, vehicle: &'a V) -> Self {
+    /// Reads the constant model quantities once; the 6-DOF equations take the given form.
+    pub fn new(atmosphere: &'a A, vehicle: &'a V, form: EquationsForm) -> Self {
         let setup = vehicle.setup();
         let s = setup.nozzle_gyration;
+        let (lever_sign, law) = match form {
+            EquationsForm::RocketPy113 => (1.0, MassFlowLaw::ThrustOverExhaustVelocity),
+            EquationsForm::Standard => (-1.0, MassFlowLaw::MassDerivative),
+        };
         Self {
             atmosphere,
             vehicle,
             earth_rotation: atmosphere.earth_rotation_enu(),
             burn_start: setup.burn_start,
             burn_out: setup.burn_out,
-            nozzle: [0.0, 0.0, setup.nozzle_to_cdm],
+            nozzle: [0.0, 0.0, lever_sign * setup.nozzle_to_cdm],
             nozzle_gyration: [[s[0], 0.0, 0.0], [0.0, s[1], 0.0], [0.0, 0.0, s[2]]],
             dry_mass: setup.dry_mass,
             coast: coast_mass(vehicle, setup.burn_out),
             uniform_wind: atmosphere.uniform_wind(),
+            lever_sign,
+            law,
         }
     }
 
@@ -218,9 +233,14 @@ impl<'a, A: AtmosphereModel, V: VehicleModel> Equations<'a, A, V> {
             mach,
             density: air.density,
         };
-        let r3 = veh.axial_load(&flow, configuration, &mut cursors.mach);
+        // Control inputs (air brakes) do not act on the rail (RocketPy's rail equations).
+        let on_rail = Configuration {
+            controls: [0.0; MAX_CONTROLS],
+            ..*configuration
+        };
+        let r3 = veh.axial_load(&flow, &on_rail, &mut cursors.mach);
         let net_thrust = veh.thrust(t, air.pressure, &mut cursors.time[0]);
-        let mass = veh.mass(t, &mut cursors.time).total_mass;
+        let mass = veh.mass(t, self.law, &mut cursors.time).total_mass;
         let a3 = (r3 + net_thrust) / mass - (e0 * e0 - e1 * e1 - e2 * e2 + e3 * e3) * air.gravity;
         let (ax, ay, az) = if a3 > 0.0 {
             (
@@ -379,7 +399,7 @@ impl<'a, A: AtmosphereModel, V: VehicleModel> Equations<'a, A, V> {
                 0.0,
             ),
             _ => {
-                let p = veh.mass(t, &mut cursors.time);
+                let p = veh.mass(t, self.law, &mut cursors.time);
                 let (mass, c) = (p.total_mass, p.com_to_cdm);
                 let inertia = tensor(p.inertia);
                 let c_ddot = if t < self.burn_out {
@@ -415,9 +435,12 @@ impl<'a, A: AtmosphereModel, V: VehicleModel> Equations<'a, A, V> {
             inertia_dot,
             inverse_cm_inertia: i_cm_inv,
         } = ms;
-        let r_cm = [0.0, 0.0, c];
-        let r_cm_dot = [0.0, 0.0, c_dot];
-        let r_cm_ddot = [0.0, 0.0, c_ddot];
+        // RocketPy's `c` is the CM→CDM offset (physics.md §5.4); the standard form flies the
+        // CDM→CM vector, its opposite (`I_CM` depends on `c²` only).
+        let s = self.lever_sign;
+        let r_cm = [0.0, 0.0, s * c];
+        let r_cm_dot = [0.0, 0.0, s * c_dot];
+        let r_cm_ddot = [0.0, 0.0, s * c_ddot];
 
         let air = atm.air_near(z, &mut cursors.height);
         let (force, moment, net_thrust) = self.loads(t, u, &k, &air, configuration, cursors);

@@ -39,8 +39,8 @@ pub use flight::{
 };
 pub use karman_model::{
     Air, AtmosphereModel, BodyFlow, Configuration, Cursor, Loads, LocalFlow, MAX_CONTROLS,
-    MassSample, ParachuteSpec, RailButtonGeometry, SurfaceModel, TriggerKind, VehicleModel,
-    VehicleSetup,
+    MassFlowLaw, MassSample, ParachuteSpec, RailButtonGeometry, SurfaceModel, TriggerKind,
+    VehicleModel, VehicleSetup,
 };
 pub use output::{EventRecord, Sample, Summary};
-pub use settings::{DEFAULT_ATOL, FlightSettings};
+pub use settings::{DEFAULT_ATOL, EquationsForm, FlightSettings};

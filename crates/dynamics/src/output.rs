@@ -9,7 +9,7 @@
 
 use serde::Serialize;
 
-use karman_model::{AtmosphereModel, Cursor, VehicleModel};
+use karman_model::{AtmosphereModel, Cursor, MassFlowLaw, VehicleModel};
 
 use crate::equations::{Cursors, Equations};
 use crate::flight::{Flight, PhaseKind, SolutionPoint, Termination, evaluate};
@@ -166,7 +166,14 @@ fn sample<A: AtmosphereModel, V: VehicleModel>(
     let a2 = (-e2).atan2(-e1);
     let mass = match kind {
         PhaseKind::Parachute(_) => eq.dry_mass(),
-        _ => veh.mass(t, &mut [Cursor::default(); 2]).total_mass,
+        _ => {
+            veh.mass(
+                t,
+                MassFlowLaw::ThrustOverExhaustVelocity,
+                &mut [Cursor::default(); 2],
+            )
+            .total_mass
+        }
     };
     Sample {
         t,
@@ -211,7 +218,7 @@ impl Flight {
         atmosphere: &A,
         vehicle: &V,
     ) -> Vec<Sample> {
-        let eq = Equations::new(atmosphere, vehicle);
+        let eq = Equations::new(atmosphere, vehicle, self.equations);
         let mut cursors = Cursors::default();
         self.points
             .iter()

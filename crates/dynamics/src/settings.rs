@@ -8,6 +8,22 @@ pub const DEFAULT_ATOL: [f64; 13] = [
     1e-3, 1e-3, 1e-3, 1e-3, 1e-3, 1e-3, 1e-6, 1e-6, 1e-6, 1e-6, 1e-3, 1e-3, 1e-3,
 ];
 
+/// Which form of the 6-DOF equations a flight integrates (`[flight] equations`).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, serde::Serialize, serde::Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum EquationsForm {
+    /// The physically consistent form (default): the CM and nozzle vectors from the CDM to the
+    /// CM and to the nozzle, and a mass flow that is the derivative of the vehicle's mass
+    /// (physics.md §5.4, §5.6, §15.3; RocketPy issue #1186, PR #1196).
+    #[default]
+    Standard,
+    /// RocketPy 1.13 exactly: its CM→CDM and nozzle→CDM vectors (the mirrored lever arms of
+    /// physics.md §5.4, §5.6) and `ṁ = −T/v̄_e` for every motor (§15.3). The parity tests
+    /// and `cargo xtask validate` fly this form against the RocketPy references.
+    #[serde(rename = "rocketpy_1_13")]
+    RocketPy113,
+}
+
 /// Launch and integration settings of one flight.
 #[derive(Debug, Clone, PartialEq)]
 pub struct FlightSettings {
@@ -49,6 +65,8 @@ pub struct FlightSettings {
     /// a noise-free trigger; with trigger noise it moves where the noise stream jumps over
     /// skipped instants, which changes the drawn noise as a different seed would.
     pub trigger_band: f64,
+    /// The form of the 6-DOF equations (default [`EquationsForm::Standard`]).
+    pub equations: EquationsForm,
 }
 
 impl FlightSettings {
@@ -70,6 +88,7 @@ impl FlightSettings {
             noise_seed: 0,
             stop_at_thrust_knots: true,
             trigger_band: 1.0,
+            equations: EquationsForm::Standard,
         }
     }
 

@@ -2,8 +2,8 @@
 //! the mission files: an exponential atmosphere and a constant-thrust rocket.
 
 use karman_dynamics::{
-    AtmosphereModel, BodyFlow, Configuration, Cursor, Loads, LocalFlow, MassSample, ParachuteSpec,
-    RailButtonGeometry, SurfaceModel, TriggerKind, VehicleModel, VehicleSetup,
+    AtmosphereModel, BodyFlow, Configuration, Cursor, Loads, LocalFlow, MassFlowLaw, MassSample,
+    ParachuteSpec, RailButtonGeometry, SurfaceModel, TriggerKind, VehicleModel, VehicleSetup,
 };
 
 /// Exponential atmosphere with constant speed of sound, gravity and wind.
@@ -180,12 +180,13 @@ impl VehicleModel for MockRocket {
             nozzle_to_cdm: 1.0,
             nozzle_gyration: [0.25, 0.25, 0.0005],
             static_margins: [0.0; 2],
+            initial_controls: [0.0; karman_model::MAX_CONTROLS],
         }
     }
     fn surfaces(&self) -> &[MockSurface] {
         &self.surfaces
     }
-    fn mass(&self, t: f64, _cursors: &mut [Cursor; 2]) -> MassSample {
+    fn mass(&self, t: f64, _law: MassFlowLaw, _cursors: &mut [Cursor; 2]) -> MassSample {
         let m = self.total_mass(t);
         let md = self.mass_flow_rate(t);
         MassSample {

@@ -37,7 +37,10 @@ fn bench_one(
     let environment = build_environment(&mission).expect("environment");
     let motor = build_motor(&mission).expect("motor");
     let rocket = build_rocket(&mission, &motor).expect("rocket");
-    let settings = flight_settings(&mission, seed);
+    let mut settings = flight_settings(&mission, seed);
+    // RocketPy 1.13's form of the equations, the one timed before the `equations` key
+    // existed (comparable figures across versions).
+    settings.equations = karman_mission::dynamics::EquationsForm::RocketPy113;
     let once = karman_mission::dynamics::simulate(&environment, &rocket, &settings).expect("flies");
     eprintln!(
         "{name}: {} steps ({} rejected), {} right-hand-side evaluations, parachutes {:?}",

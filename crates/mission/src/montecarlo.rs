@@ -28,13 +28,14 @@
 //! apart, about 1 m per km of drift).
 
 use crate::build::environment::build_environment;
-use crate::build::flight::{early_ending, flight_settings};
+use crate::build::flight::{early_ending, flight_settings, fly};
 use crate::build::motor::{build_motor_with, thrust_source};
 use crate::build::rocket::build_rocket;
+use crate::build::scripts::{ControllerEnvironment, compile_controller};
 use crate::paths::{self, DerivedKnob, Input};
-use crate::schema::{Curve, Distribution, MissionSpec};
+use crate::schema::{AirBrakesCurve, Curve, Distribution, MissionSpec};
 use crate::{Mission, MissionError};
-use karman_airframe::Rocket;
+use karman_airframe::{AirBrakesDrag, Rocket};
 use karman_atmos::Environment;
 use karman_dispersion::sampling::flight_seed;
 use karman_dispersion::{
@@ -44,8 +45,10 @@ use karman_dispersion::{
 use karman_dynamics::{Air, AtmosphereModel, Summary};
 use karman_math::Cursor;
 use karman_propulsion::{Motor, ThrustSource};
+use karman_script::ControllerScript;
 use sha2::{Digest, Sha256};
 use std::fmt::Write as _;
+use std::sync::Arc;
 
 /// The outputs of every sample: the scalar keys of the flight summary (mission-format.md
 /// "The summary").
@@ -101,6 +104,8 @@ enum Apply {
     Number { path: String, nominal: f64 },
     /// A curve at this path, with its nominal points.
     Curve { path: String, points: Vec<[f64; 2]> },
+    /// The air brakes' drag table, with its nominal rows (the Cd column varies).
+    Rows { rows: Vec<[f64; 3]> },
     /// A derived knob, with its nominal value.
     Knob { knob: DerivedKnob, nominal: f64 },
 }
@@ -138,7 +143,9 @@ pub struct MonteCarlo {
     applies: Vec<Apply>,
     reach: Reach,
     /// The nominal environment, shared by the samples when no stored environment input varies.
-    environment: Option<Environment>,
+    environment: Option<Arc<Environment>>,
+    /// The air-brake controller script, compiled once.
+    controller: Option<ControllerScript>,
     /// The nominal thrust data, read once.
     thrust: ThrustSource,
     /// The nominal motor and rocket, shared by the samples that do not vary them.
@@ -259,6 +266,16 @@ impl MonteCarlo {
                     };
                     (Target::Curve, apply)
                 }
+                Input::Table(curve) => {
+                    let rows = match curve
+                        .to_drag(&mission.dir)
+                        .map_err(|e| invalid(format!("`{path}`: {e}")))?
+                    {
+                        AirBrakesDrag::Table(rows) => rows,
+                        AirBrakesDrag::Constant(cd) => vec![[0.0, 0.0, cd]],
+                    };
+                    (Target::Curve, Apply::Rows { rows })
+                }
                 Input::Knob(knob) => {
                     let nominal = match knob {
                         DerivedKnob::TotalImpulse => motor.total_impulse(),
@@ -297,7 +314,8 @@ impl MonteCarlo {
             study,
             applies,
             reach,
-            environment: (!reach.environment).then_some(environment),
+            environment: (!reach.environment).then(|| Arc::new(environment)),
+            controller: compile_controller(mission)?,
             thrust,
             nominal_reshape: [motor.burn_out(), motor.total_impulse()],
             motor,
@@ -333,6 +351,12 @@ impl MonteCarlo {
                         .ok_or_else(|| format!("`{path}` is not a curve"))?;
                     *slot = Curve::Points(scaled);
                 }
+                Apply::Rows { rows } => {
+                    let scaled = rows.iter().map(|&[l, m, cd]| [l, m, combine(cd)]).collect();
+                    if let Some(ab) = spec.rocket.air_brakes.as_mut() {
+                        ab.drag_coefficient_curve = AirBrakesCurve::Rows(scaled);
+                    }
+                }
                 Apply::Knob { knob, nominal } => match knob {
                     DerivedKnob::TotalImpulse => reshape[1] = Some(combine(*nominal)),
                     DerivedKnob::BurnTime => reshape[0] = Some(combine(*nominal)),
@@ -359,13 +383,9 @@ impl MonteCarlo {
             spec,
             keys: self.mission.keys.clone(),
         };
-        let built;
         let environment = match &self.environment {
-            Some(environment) => environment,
-            None => {
-                built = build_environment(&mission).map_err(|e| chain(&e))?;
-                &built
-            }
+            Some(environment) => Arc::clone(environment),
+            None => Arc::new(build_environment(&mission).map_err(|e| chain(&e))?),
         };
         let (sample_motor, sample_rocket);
         let rocket = if self.reach.rocket {
@@ -389,9 +409,22 @@ impl MonteCarlo {
         };
         let noise_seed = flight_seed(self.study.seed, index);
         let settings = flight_settings(&mission, noise_seed);
-        let atmosphere = WindAdjusted::new(environment, factor, offset_deg);
-        let flight =
-            karman_dynamics::simulate(&atmosphere, rocket, &settings).map_err(|e| chain(&e))?;
+        let atmosphere = WindAdjusted::new(&environment, factor, offset_deg);
+        let (flight, _) = fly(
+            &mission,
+            &atmosphere,
+            rocket,
+            &settings,
+            self.controller.as_ref(),
+            || {
+                Arc::new(ControllerEnvironment::new(
+                    Arc::clone(&environment),
+                    factor,
+                    offset_deg,
+                ))
+            },
+        )
+        .map_err(|e| chain(&e))?;
         let values = output_values(&flight.summary(&atmosphere, rocket));
         Ok(match early_ending(flight.termination, &settings) {
             None => Outcome::new(values),
@@ -445,6 +478,22 @@ fn inline_rocket_curves(mission: &mut Mission) -> Result<(), MissionError> {
     let dir = mission.dir.clone();
     let path = mission.path.clone();
     let rocket = &mut mission.spec.rocket;
+    if let Some(ab) = rocket.air_brakes.as_mut()
+        && matches!(ab.drag_coefficient_curve, AirBrakesCurve::File(_))
+    {
+        let rows = match ab.drag_coefficient_curve.to_drag(&dir) {
+            Ok(AirBrakesDrag::Table(rows)) => rows,
+            Ok(AirBrakesDrag::Constant(cd)) => vec![[0.0, 0.0, cd]],
+            Err(source) => {
+                return Err(MissionError::Curve {
+                    file: path.clone(),
+                    key: paths::AIR_BRAKES_CURVE.into(),
+                    source,
+                });
+            }
+        };
+        ab.drag_coefficient_curve = AirBrakesCurve::Rows(rows);
+    }
     let mut curves: Vec<(String, &mut Curve)> = vec![
         ("rocket.power_off_drag".into(), &mut rocket.power_off_drag),
         ("rocket.power_on_drag".into(), &mut rocket.power_on_drag),

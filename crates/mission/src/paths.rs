@@ -64,6 +64,9 @@ pub enum Input<'a> {
     },
     /// A curve from a file or inline points: only `factor` / `offset` fit.
     Curve(&'a Curve),
+    /// The air brakes' `[level, Mach, Cd]` table (a file or inline rows): only `factor` /
+    /// `offset` fit, and act on the Cd column.
+    Table(&'a AirBrakesCurve),
     /// A derived knob.
     Knob(DerivedKnob),
 }
@@ -104,6 +107,9 @@ fn hint(available: &[String]) -> String {
         format!(" (keys there: {})", available.join(", "))
     }
 }
+
+/// The path of the air brakes' drag table.
+pub const AIR_BRAKES_CURVE: &str = "rocket.air_brakes.drag_coefficient_curve";
 
 /// The tank and the key within it of a `motor.tanks.<index>.<key>` path.
 fn tank_path(path: &str) -> Option<(usize, &str)> {
@@ -227,6 +233,12 @@ fn walk<'t>(table: &'t mut toml::Table, path: &str) -> Result<&'t mut toml::Valu
 pub fn resolve<'a>(spec: &'a MissionSpec, path: &str) -> Result<Input<'a>, PathError> {
     if let Some(knob) = DerivedKnob::from_path(path) {
         return Ok(Input::Knob(knob));
+    }
+    if path == AIR_BRAKES_CURVE
+        && let Some(ab) = &spec.rocket.air_brakes
+        && !matches!(ab.drag_coefficient_curve, AirBrakesCurve::Constant(_))
+    {
+        return Ok(Input::Table(&ab.drag_coefficient_curve));
     }
     if let Some(curve) = curve_at(spec, path) {
         return Ok(match curve {
@@ -553,7 +565,7 @@ pub fn set_number(spec: &mut MissionSpec, path: &str, value: f64) -> Result<(), 
         None => {
             // Not a stored number: say what the path names instead.
             let found = match resolve(spec, path)? {
-                Input::Curve(_) => "a curve",
+                Input::Curve(_) | Input::Table(_) => "a curve",
                 Input::Knob(_) => "a derived knob",
                 Input::Number { .. } => "a number without a typed slot",
             };
@@ -582,7 +594,7 @@ pub fn check_distribution(input: &Input<'_>, distribution: &Distribution) -> Res
             }
             well_formed(inner)
         }
-        (Input::Curve(_), _) => {
+        (Input::Curve(_) | Input::Table(_), _) => {
             Err("a curve only takes `factor = ...` or `offset = ...`".to_owned())
         }
         (Input::Number { integer: true, .. }, Distribution::Choice(values)) => {

@@ -51,7 +51,7 @@ fn equations_and_steps_do_not_allocate() {
         let settings = flight_settings(&mission, 0);
         let flight = simulate(&env, &rocket, &settings).expect("mission flies");
         let points: &[SolutionPoint] = &flight.points;
-        let eq = Equations::new(&env, &rocket);
+        let eq = Equations::new(&env, &rocket, settings.equations);
         let tol = tolerances(settings.rtol, settings.atol);
         let first = |kind: fn(&PhaseKind) -> bool| points.iter().find(|p| kind(&p.phase));
         let six_dof_start = first(|k| matches!(k, PhaseKind::SixDof));

@@ -21,7 +21,8 @@ use karman_atmos::{Atmosphere, Curve, Datum, Environment, EnvironmentConfig, Gra
 use karman_dynamics::equations::{CanopyState, Cursors, Equations};
 use karman_dynamics::state::State;
 use karman_dynamics::{
-    Configuration, DEFAULT_ATOL, Flight, FlightSettings, PhaseKind, Summary, simulate,
+    Configuration, DEFAULT_ATOL, EquationsForm, Flight, FlightSettings, PhaseKind, Summary,
+    simulate,
 };
 use karman_math::dimensions::{Dimension, ScaledComparison, test_seeds};
 use karman_math::{PhysicalConstants, Table1, Units};
@@ -388,13 +389,13 @@ fn equations_of_motion_scale_with_their_units() {
     let si_c = PhysicalConstants::SI;
     let (env, vehicle) = (environment(&Units::SI, &si_c), rocket(&Units::SI, &si_c));
     let flight = simulate(&env, &vehicle, &settings(&Units::SI)).expect("the rocket flies");
-    let eq = Equations::new(&env, &vehicle);
+    let eq = Equations::new(&env, &vehicle, EquationsForm::Standard);
     for seed in test_seeds(3) {
         let mut check = ScaledComparison::new(seed, TOL);
         let u = *check.units();
         let c = PhysicalConstants::SI.in_units(&u);
         let (env_s, vehicle_s) = (environment(&u, &c), rocket(&u, &c));
-        let eq_s = Equations::new(&env_s, &vehicle_s);
+        let eq_s = Equations::new(&env_s, &vehicle_s, EquationsForm::Standard);
         let mut counts = [0usize; 3];
         let (mut worst_lift, mut worst_other) = (0.0f64, 0.0f64);
         for pair in flight.points.windows(2) {

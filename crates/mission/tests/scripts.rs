@@ -142,3 +142,217 @@ fn air_brake_inputs_are_checked() {
         assert!(keys.iter().any(|k| k == key), "{key} not in {keys:?}");
     }
 }
+
+#[test]
+fn the_air_brake_table_takes_factor_and_offset_only() {
+    use karman_mission::schema::Distribution;
+    let m = load(&mission("200", BRAKES), &[]).unwrap_or_else(|e| panic!("{e}"));
+    let input = paths::resolve(&m.spec, paths::AIR_BRAKES_CURVE).expect("resolves");
+    assert!(matches!(input, paths::Input::Table(_)));
+    let factor = Distribution::Factor(Box::new(Distribution::Normal([1.0, 0.05])));
+    assert!(paths::check_distribution(&input, &factor).is_ok());
+    assert!(paths::check_distribution(&input, &Distribution::Std(0.1)).is_err());
+    let constant = BRAKES.replace(
+        "drag_coefficient_curve = [[0.0, 0.1, 0.0], [1.0, 0.1, 0.8], [0.0, 0.9, 0.0], [1.0, 0.9, 1.1]]",
+        "drag_coefficient_curve = 0.9",
+    );
+    let m = load(&mission("200", &constant), &[]).unwrap_or_else(|e| panic!("{e}"));
+    let input = paths::resolve(&m.spec, paths::AIR_BRAKES_CURVE).expect("resolves");
+    assert!(matches!(input, paths::Input::Number { .. }));
+}
+
+/// The mission with `brakes` and `sets` applied, flown.
+fn fly(
+    trigger: &str,
+    brakes: &str,
+    sets: &[(&str, &str)],
+) -> Result<karman_mission::build::flight::FlightRun, MissionError> {
+    let m = load(&mission(trigger, brakes), sets)?;
+    karman_mission::build::flight::simulate(&m)
+}
+
+fn brakes_with(script: &str, extra: &str) -> String {
+    format!(
+        "[rocket.air_brakes]\ndrag_coefficient_curve = [[0.0, 0.1, 0.0], [1.0, 0.1, 0.8], \
+         [0.0, 0.9, 0.0], [1.0, 0.9, 1.1]]\ncontroller = \"{script}\"\nsampling_rate = 20\n{extra}"
+    )
+}
+
+fn same_flight(a: &karman_mission::dynamics::Flight, b: &karman_mission::dynamics::Flight) {
+    assert_eq!(a.points.len(), b.points.len());
+    for (p, q) in a.points.iter().zip(&b.points) {
+        assert_eq!(p.t.to_bits(), q.t.to_bits());
+        for (x, y) in p.state.iter().zip(&q.state) {
+            assert_eq!(x.to_bits(), y.to_bits());
+        }
+    }
+}
+
+#[test]
+fn shut_brakes_fly_as_no_brakes_bit_for_bit() {
+    // Without overshoot the steps are the solver's own; with it they are at most one sampling
+    // interval long, so the flight without brakes gets the same limit.
+    let bare = fly("200", "", &[]).unwrap_or_else(|e| panic!("{e}"));
+    let shut = fly(
+        "200",
+        &brakes_with("shut.rhai", ""),
+        &[("flight.time_overshoot", "false")],
+    )
+    .unwrap_or_else(|e| panic!("{e}"));
+    same_flight(&bare.flight, &shut.flight);
+    let record = shut.controller.expect("record");
+    assert!(record.levels.iter().all(|r| r.level.to_bits() == 0));
+    let bare =
+        fly("200", "", &[("flight.max_time_step", "0.05")]).unwrap_or_else(|e| panic!("{e}"));
+    let shut = fly("200", &brakes_with("shut.rhai", ""), &[]).unwrap_or_else(|e| panic!("{e}"));
+    same_flight(&bare.flight, &shut.flight);
+    // Called at j / 20 from launch, the rail included, in order.
+    let times: Vec<f64> = shut
+        .controller
+        .expect("record")
+        .levels
+        .iter()
+        .map(|r| r.time)
+        .collect();
+    assert_eq!(times[0].to_bits(), 0.0f64.to_bits());
+    assert_eq!(times[1].to_bits(), 0.05f64.to_bits());
+    assert!(times.windows(2).all(|w| w[1] > w[0]));
+}
+
+#[test]
+fn a_runaway_controller_ends_the_flight_with_its_location() {
+    let error = fly("200", &brakes_with("runaway.rhai", ""), &[])
+        .map(|_| ())
+        .unwrap_err();
+    let text = format!(
+        "{error}: {}",
+        std::error::Error::source(&error)
+            .map(ToString::to_string)
+            .unwrap_or_default()
+    );
+    assert!(text.contains("runaway.rhai:2:1"), "{text}");
+    assert!(text.contains("operations"), "{text}");
+}
+
+#[test]
+fn levels_above_one_are_clamped_unless_clamp_is_off() {
+    let clamped =
+        fly("200", &brakes_with("overdrive.rhai", ""), &[]).unwrap_or_else(|e| panic!("{e}"));
+    let free = fly("200", &brakes_with("overdrive.rhai", "clamp = false"), &[])
+        .unwrap_or_else(|e| panic!("{e}"));
+    let max = |run: &karman_mission::build::flight::FlightRun| {
+        run.controller
+            .as_ref()
+            .expect("record")
+            .levels
+            .iter()
+            .map(|r| r.level)
+            .fold(0.0, f64::max)
+    };
+    assert_eq!(max(&clamped).to_bits(), 1.0f64.to_bits());
+    assert_eq!(max(&free).to_bits(), 1.5f64.to_bits());
+    // More drag with the level kept at 1.5 (the curve extrapolates).
+    assert!(free.summary().apogee_agl_m < clamped.summary().apogee_agl_m);
+    let bare = fly("200", "", &[]).unwrap_or_else(|e| panic!("{e}"));
+    assert!(clamped.summary().apogee_agl_m < bare.summary().apogee_agl_m);
+}
+
+#[test]
+fn triggers_by_time_burnout_and_expression() {
+    let deploy = |trigger: &str| {
+        let run = fly(trigger, "", &[]).unwrap_or_else(|e| panic!("{trigger}: {e}"));
+        run.flight.parachute_events[0].trigger_time
+    };
+    // The first sampling instant (100 Hz) at or after the time, ascent included.
+    assert!((deploy("\"launch + 2.5\"") - 2.5).abs() < 1e-12);
+    let burn_out = 2.2;
+    let t = deploy("\"burnout + 1.0\"");
+    assert!(
+        t >= burn_out + 1.0 && t < burn_out + 1.0 + 0.01 + 1e-12,
+        "{t}"
+    );
+    // On the ascent, below 20 m/s: before the apogee.
+    let run = fly("{ expression = \"vz < 20.0 && z > 1500.0\" }", "", &[])
+        .unwrap_or_else(|e| panic!("{e}"));
+    let fired = run.flight.parachute_events[0].trigger_time;
+    let apogee = run.summary().apogee_time_s.expect("apogee");
+    assert!(fired < apogee, "{fired} {apogee}");
+}
+
+/// Camoes (air brakes with the team's open-loop controller, a custom drogue trigger) against
+/// RocketPy 1.13: the summary within the tolerances of the other flights, and the recorded
+/// deployment level at every call equal to the notebook's schedule of that call's time.
+#[test]
+fn validate_camoes() {
+    let Some(dir) = crate::common::validation_dir() else {
+        println!("skipped: validation data folder not found");
+        return;
+    };
+    let path = dir.join("camoes/mission.toml");
+    let equations = Override::new("flight.equations", "\"rocketpy_1_13\"").expect("override");
+    let mission = karman_mission::load(&path, &[equations]).unwrap_or_else(|e| panic!("{e}"));
+    let run = karman_mission::build::flight::simulate(&mission).unwrap_or_else(|e| panic!("{e}"));
+    let reference = crate::common::load_reference(&path);
+    let r = &reference["summary"];
+    let s = serde_json::to_value(run.summary()).expect("summary");
+    let rel = |key: &str| {
+        let (k, r) = (s[key].as_f64().expect(key), r[key].as_f64().expect(key));
+        ((k - r) / r).abs()
+    };
+    for (key, tolerance) in [
+        ("apogee_agl_m", 1e-3),
+        ("apogee_time_s", 2e-3),
+        ("out_of_rail_velocity_mps", 5e-3),
+        ("max_speed_mps", 5e-3),
+    ] {
+        println!("camoes {key}: {:.4} %", 100.0 * rel(key));
+        assert!(rel(key) < tolerance, "{key}: {} against {}", s[key], r[key]);
+    }
+    let range = r["impact_x_m"]
+        .as_f64()
+        .unwrap()
+        .hypot(r["impact_y_m"].as_f64().unwrap());
+    let miss = (s["impact_x_m"].as_f64().unwrap() - r["impact_x_m"].as_f64().unwrap())
+        .hypot(s["impact_y_m"].as_f64().unwrap() - r["impact_y_m"].as_f64().unwrap());
+    println!("camoes impact: {:.4} % of range", 100.0 * miss / range);
+    assert!(miss / range < 1e-2);
+    // The drogue fires on the ascent (vz < 5 m/s above 300 m), before the apogee.
+    let drogue = run.flight.parachute_events[0].trigger_time;
+    assert!(drogue < s["apogee_time_s"].as_f64().unwrap());
+    assert!((drogue - 22.5175).abs() < 0.02, "drogue at {drogue}");
+    // The schedule of camoes_controller.rhai (C pow, as the script's `**`), clipped.
+    let schedule = |t: f64| {
+        let level = if t <= 11.4 {
+            1.0
+        } else {
+            -0.002906 * t.powf(3.0) + 0.1497 * t.powf(2.0) + -2.563 * t + 14.96
+        };
+        let level = if (3.8..=19.6).contains(&t) {
+            level
+        } else {
+            0.0
+        };
+        level.clamp(0.0, 1.0)
+    };
+    let record = run.controller.expect("record");
+    // RocketPy 1.13: 1082 calls from 0 to 108.3 s, 1083 records with the initial one.
+    assert!(
+        (1075..=1090).contains(&record.levels.len()),
+        "{}",
+        record.levels.len()
+    );
+    assert_eq!(record.observed_variables.len(), record.levels.len() + 1);
+    for (call, observed) in record.levels.iter().zip(&record.observed_variables[1..]) {
+        assert_eq!(
+            call.level.to_bits(),
+            schedule(call.time).to_bits(),
+            "t = {}",
+            call.time
+        );
+        assert_eq!(observed[0].as_f64().unwrap().to_bits(), call.time.to_bits());
+        assert_eq!(
+            observed[1].as_f64().unwrap().to_bits(),
+            call.level.to_bits()
+        );
+    }
+}

@@ -23,7 +23,12 @@ fn validate_flight() {
     for path in missions {
         let name = flight_name(&path);
         let nominal = karman_mission::load(&path, &[]).expect("mission loads");
-        let quiet = nominal.parachute_noise_off().expect("noise overrides");
+        let mut quiet = nominal.parachute_noise_off().expect("noise overrides");
+        // The references are RocketPy 1.13's: its form of the equations.
+        quiet.push(
+            karman_mission::Override::new("flight.equations", "\"rocketpy_1_13\"")
+                .expect("override parses"),
+        );
         let mission = karman_mission::load(&path, &quiet).expect("mission loads with overrides");
         let run = simulate(&mission).expect("mission flies");
         let summary = flight_summary(&run);
@@ -142,7 +147,7 @@ fn validate_equations_of_motion_vectors() {
     let env = karman_mission::build::environment::build_environment(&mission).expect("env");
     let motor = karman_mission::build::motor::build_motor(&mission).expect("motor");
     let rocket = karman_mission::build::rocket::build_rocket(&mission, &motor).expect("rocket");
-    let eq = Equations::new(&env, &rocket);
+    let eq = Equations::new(&env, &rocket, karman_dynamics::EquationsForm::RocketPy113);
     let (configuration, cursors) = (&Configuration::default(), &mut Cursors::default());
 
     let e = [0.9230002039, -0.0402990592, 0.0166924169, 0.3823192025];
@@ -345,4 +350,46 @@ fn a_dense_thrust_curve_flies_within_the_step_limits() {
         "{} steps",
         run.flight.stats.steps
     );
+}
+
+/// The two forms of the 6-DOF equations (`[flight] equations`) on Calisto: the standard form's
+/// mass flow is the slope of the propellant-mass table, and its apogee differs from RocketPy
+/// 1.13's by the lever arms only (physics.md §5.4: a few tenths of a per cent at most).
+#[test]
+fn standard_and_rocketpy_equations() {
+    use karman_mission::dynamics::{MassFlowLaw, VehicleModel};
+    use karman_mission::math::Cursor;
+    let Some(dir) = crate::common::validation_dir() else {
+        println!("standard_and_rocketpy_equations: skipped, the validation folder is absent");
+        return;
+    };
+    let path = dir.join("calisto/mission.toml");
+    let fly = |form: &str| {
+        let set = Override::new("flight.equations", &format!("\"{form}\"")).expect("parses");
+        let mission = karman_mission::load(&path, &[set]).expect("Calisto loads");
+        simulate(&mission).expect("flies")
+    };
+    let (rocketpy, standard) = (fly("rocketpy_1_13"), fly("standard"));
+    let apogee = |run: &karman_mission::build::flight::FlightRun| {
+        run.summary().apogee_agl_m.expect("apogee")
+    };
+    let (a, b) = (apogee(&rocketpy), apogee(&standard));
+    println!("Calisto apogee: rocketpy_1_13 {a} m, standard {b} m");
+    assert!((a - b).abs() > 1e-6, "the forms differ");
+    assert!((a - b).abs() < 3e-3 * a, "{a} vs {b}");
+
+    let rocket = &standard.rocket;
+    let cursors = &mut [Cursor::default(); 2];
+    // Off the table's knots, where the central difference is the slope to rounding.
+    let (t, h) = (1.0137, 1e-6);
+    let flow = rocket.mass(t, MassFlowLaw::MassDerivative, cursors);
+    let (before, after) = (rocket.total_mass(t - h), rocket.total_mass(t + h));
+    let slope = (after - before) / (2.0 * h);
+    assert!(
+        (flow.mass_flow_rate - slope).abs() < 1e-6 * slope.abs(),
+        "{} vs {slope}",
+        flow.mass_flow_rate
+    );
+    let thrust = rocket.mass(t, MassFlowLaw::ThrustOverExhaustVelocity, cursors);
+    assert!((thrust.mass_flow_rate - rocket.mass_flow_rate(t)).abs() < f64::MIN_POSITIVE);
 }

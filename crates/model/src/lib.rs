@@ -56,6 +56,6 @@ pub use configuration::{Configuration, MAX_CONTROLS};
 pub use karman_math::Cursor;
 pub use surface::{Loads, LocalFlow, SurfaceModel};
 pub use vehicle::{
-    BodyFlow, MassSample, ParachuteSpec, RailButtonGeometry, TriggerKind, VehicleModel,
-    VehicleSetup,
+    BodyFlow, MassFlowLaw, MassSample, ParachuteSpec, RailButtonGeometry, TriggerCondition,
+    TriggerKind, VehicleModel, VehicleSetup,
 };

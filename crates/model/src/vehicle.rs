@@ -1,8 +1,11 @@
 //! The vehicle the engine flies (physics.md §5–§7, §9.4).
 
+use std::fmt;
+use std::sync::Arc;
+
 use karman_math::Cursor;
 
-use crate::{Configuration, SurfaceModel};
+use crate::{Configuration, MAX_CONTROLS, SurfaceModel};
 
 /// Rail-button geometry in the rocket's user coordinates (physics.md §2.5, §8.1).
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -15,13 +18,39 @@ pub struct RailButtonGeometry {
     pub angular_position_rad: f64,
 }
 
-/// What fires a parachute (physics.md §9.4).
-#[derive(Debug, Clone, Copy, PartialEq)]
+/// A parachute trigger decided from the whole sampled state, as RocketPy's callable trigger
+/// `trigger(p, h, y)` (physics.md §17): sampled at every instant while the parachute is
+/// pending, ascent included.
+pub trait TriggerCondition: fmt::Debug + Send + Sync {
+    /// Whether the parachute fires at sampling instant `t` (s), with the noisy pressure
+    /// signal `pressure` (Pa), the barometric height above ground derived from it `height`
+    /// (m, physics.md §4.4) and the 13-component `state` there.
+    fn fires(&self, t: f64, pressure: f64, height: f64, state: &[f64; 13]) -> bool;
+}
+
+/// What fires a parachute (physics.md §9.4, §17).
+#[derive(Debug, Clone)]
 pub enum TriggerKind {
     /// Vertical velocity negative.
     Apogee,
     /// Descending and barometric height above ground below this value, m.
     HeightAboveGround(f64),
+    /// A condition evaluated at every sampling instant, ascent included.
+    Custom(Arc<dyn TriggerCondition>),
+}
+
+impl PartialEq for TriggerKind {
+    /// Built-in triggers compare by value, custom conditions by identity.
+    fn eq(&self, other: &Self) -> bool {
+        match (self, other) {
+            (TriggerKind::Apogee, TriggerKind::Apogee) => true,
+            (TriggerKind::HeightAboveGround(a), TriggerKind::HeightAboveGround(b)) => {
+                a.to_bits() == b.to_bits()
+            }
+            (TriggerKind::Custom(a), TriggerKind::Custom(b)) => Arc::ptr_eq(a, b),
+            _ => false,
+        }
+    }
 }
 
 /// A parachute as the flight engine needs it (resolved defaults, physics.md §1, §8.4, §9.4).
@@ -74,6 +103,18 @@ pub struct VehicleSetup {
     pub nozzle_gyration: [f64; 3],
     /// Static margin (CP at Mach 0) at `t = 0` and at burn-out, calibers (post-processing).
     pub static_margins: [f64; 2],
+    /// The control inputs at launch (e.g. an air brake's initial deployment level).
+    pub initial_controls: [f64; MAX_CONTROLS],
+}
+
+/// Which mass-flow rate [`VehicleModel::mass`] gives (physics.md §6.2, §15.3).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum MassFlowLaw {
+    /// RocketPy 1.13's `ṁ = −T/v̄_e` for every motor, whatever its mass table.
+    ThrustOverExhaustVelocity,
+    /// The time derivative of the vehicle's mass `dm/dt` (of the motor's mass-flow table when
+    /// it has one, e.g. from its tanks), consistent with the mass the equations fly.
+    MassDerivative,
 }
 
 /// Every time-dependent mass quantity at one instant ([`VehicleModel::mass`]).
@@ -81,7 +122,7 @@ pub struct VehicleSetup {
 pub struct MassSample {
     /// Total mass `m(t)`, kg.
     pub total_mass: f64,
-    /// RocketPy's signed mass-flow rate `ṁ(t) = −T/v̄_e`, kg/s (physics.md §6.2).
+    /// Signed mass-flow rate `ṁ(t)` of the requested [`MassFlowLaw`], kg/s.
     pub mass_flow_rate: f64,
     /// `m̈(t)` of [`MassSample::mass_flow_rate`], kg/s².
     pub mass_flow_rate_derivative: f64,
@@ -122,8 +163,9 @@ pub trait VehicleModel {
     fn setup(&self) -> VehicleSetup;
     /// Aerodynamic surfaces in insertion order.
     fn surfaces(&self) -> &[Self::Surface];
-    /// Every time-dependent mass quantity at `t`, with the time located from `cursors`.
-    fn mass(&self, t: f64, cursors: &mut [Cursor; 2]) -> MassSample;
+    /// Every time-dependent mass quantity at `t`, the mass flow by `law`, with the time
+    /// located from `cursors`.
+    fn mass(&self, t: f64, law: MassFlowLaw, cursors: &mut [Cursor; 2]) -> MassSample;
     /// Net thrust at `t` with the nozzle-pressure correction for the ambient pressure,
     /// clamped at 0, N (physics.md §6.3); `cursor` is the first of [`VehicleModel::mass`]'s.
     fn thrust(&self, t: f64, ambient_pressure: f64, cursor: &mut Cursor) -> f64;

@@ -13,7 +13,9 @@
 //! its flight with a located [`ScriptError`] instead of hanging.
 
 use crate::sandbox;
-use rhai::{AST, Array, CallFnOptions, Dynamic, Engine, EvalAltResult, Map, Position, Scope};
+use rhai::{
+    AST, Array, CallFnOptions, Dynamic, Engine, EvalAltResult, Map, Module, Position, Scope,
+};
 use std::fmt;
 use std::path::{Path, PathBuf};
 use std::sync::Arc;
@@ -22,6 +24,9 @@ use thiserror::Error;
 
 /// The function a controller script defines.
 pub const CONTROLLER_FUNCTION: &str = "controller_function";
+
+/// The namespace of a script's top-level constants inside its functions (`global::NAME`).
+const GLOBAL: &str = "global";
 
 /// A compile or run-time error of a script, located in the script file.
 #[derive(Debug, Clone, PartialEq, Eq, Error)]
@@ -300,6 +305,25 @@ pub struct ControllerRecord {
     pub levels: Vec<LevelRecord>,
 }
 
+impl ControllerRecord {
+    /// The record as JSON: `{"calls": [[time, level], ...], "observed_variables": [...]}`,
+    /// one `calls` row per call with the level it left, the observed variables in record
+    /// order (what `simulate --json` and `controller.json` hold).
+    #[must_use]
+    pub fn to_json(&self) -> serde_json::Value {
+        let number =
+            |v: f64| serde_json::Number::from_f64(v).map_or(serde_json::Value::Null, Into::into);
+        serde_json::json!({
+            "calls": self
+                .levels
+                .iter()
+                .map(|r| serde_json::Value::Array(vec![number(r.time), number(r.level)]))
+                .collect::<Vec<_>>(),
+            "observed_variables": self.observed_variables,
+        })
+    }
+}
+
 /// A flight's controller: the compiled script bound to its air brakes and environment.
 pub struct Controller {
     engine: Engine,
@@ -333,23 +357,36 @@ impl Controller {
     /// [`ScriptError`] when a constant of `setup` is not one of the script's top-level
     /// constants.
     pub fn new(script: &ControllerScript, setup: ControllerSetup) -> Result<Self, ScriptError> {
-        let engine = sandbox::engine(&sandbox::motor_module(setup.burn_start, setup.burn_out));
-        let mut ast = script.ast.clone();
-        if !setup.constants.is_empty() {
-            for (name, _) in &setup.constants {
-                if !script.constants.iter().any(|(n, _)| n == name) {
-                    return Err(ScriptError {
-                        file: script.file.clone(),
-                        position: None,
-                        message: format!(
-                            "the mission sets the constant `{name}`, which the script does not \
-                             declare (`const {name} = ...;` at its top level)"
-                        ),
-                    });
-                }
+        let mut engine = sandbox::engine(&sandbox::motor_module(setup.burn_start, setup.burn_out));
+        for (name, _) in &setup.constants {
+            if !script.constants.iter().any(|(n, _)| n == name) {
+                return Err(ScriptError {
+                    file: script.file.clone(),
+                    position: None,
+                    message: format!(
+                        "the mission sets the constant `{name}`, which the script does not \
+                         declare (`const {name} = ...;` at its top level)"
+                    ),
+                });
             }
-            ast = ast.merge(&constants_ast(&engine, &setup.constants));
         }
+        // The top-level statements run once per flight; the constants they leave are what
+        // `global::NAME` reads inside functions, the mission's values replacing the script's.
+        let mut scope = Scope::new();
+        engine
+            .run_ast_with_scope(&mut scope, &script.ast)
+            .map_err(|e| runtime(&script.file, None, &e))?;
+        let mut globals = Module::new();
+        for (name, constant, value) in scope.iter() {
+            if constant {
+                globals.set_var(name, value);
+            }
+        }
+        for (name, value) in &setup.constants {
+            globals.set_var(name.as_str(), *value);
+        }
+        engine.register_static_module(GLOBAL, globals.into());
+        let ast = script.ast.clone_functions_only();
         let air_brakes = AirBrakesHandle {
             level: Arc::new(AtomicU64::new(0.0f64.to_bits())),
             setup: setup.air_brakes,
@@ -431,7 +468,7 @@ impl Controller {
         let returned = self
             .engine
             .call_fn_with_options::<Dynamic>(
-                CallFnOptions::new(),
+                CallFnOptions::new().eval_ast(false),
                 &mut scope,
                 &self.ast,
                 CONTROLLER_FUNCTION,
@@ -454,18 +491,6 @@ impl Controller {
             levels: self.levels.clone(),
         }
     }
-}
-
-/// An AST of `const NAME = value;` statements (values written with Rust's shortest
-/// round-trip formatting, so they parse back to the same `f64`).
-fn constants_ast(engine: &Engine, constants: &[(String, f64)]) -> AST {
-    let text: String = constants
-        .iter()
-        .map(|(name, value)| format!("const {name} = {value:?};\n"))
-        .collect();
-    // The names are the script's own constants and the values finite numbers, so the text
-    // always compiles; an empty AST otherwise.
-    engine.compile(&text).unwrap_or_default()
 }
 
 /// A recorded value as JSON: numbers, booleans, strings, arrays and maps (keys sorted, as Rhai

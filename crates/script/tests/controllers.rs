@@ -359,3 +359,30 @@ fn the_sandbox_has_no_clock_modules_or_eval() {
         assert!(failed, "{body} must fail");
     }
 }
+
+#[test]
+fn the_closed_loop_fixture_opens_in_proportion_to_the_overshoot() {
+    let file =
+        Path::new(env!("CARGO_MANIFEST_DIR")).join("../mission/tests/fixtures/closed_loop.rhai");
+    let source = std::fs::read_to_string(&file).expect("fixture");
+    let script = ControllerScript::compile(&file, &source).expect("compiles");
+    let mut s = setup(true);
+    s.constants = vec![("TARGET".into(), 2500.0)];
+    let mut c = Controller::new(&script, s).expect("controller");
+    // Before burn-out: nothing recorded, brakes shut.
+    assert_eq!(
+        c.call(1.0, &STATE, &row(1.0)).expect("call").to_bits(),
+        0.0f64.to_bits()
+    );
+    let mut climbing = STATE;
+    climbing[2] = 2500.0;
+    climbing[5] = 150.0;
+    let level = c.call(5.0, &climbing, &row(5.0)).expect("call");
+    assert!(level > 0.0 && level <= 1.0, "{level} {:?}", c.record());
+    let record = c.record();
+    assert_eq!(record.observed_variables.len(), 2);
+    let predicted = record.observed_variables[1]["predicted"]
+        .as_f64()
+        .expect("predicted");
+    assert!(predicted > 2500.0 - 107.0, "{predicted}");
+}

@@ -6,6 +6,7 @@ mod inspect;
 mod merge;
 mod montecarlo;
 mod simulate;
+mod sweep;
 
 use clap::{Args, Subcommand};
 use karman_mission::Override;
@@ -30,6 +31,9 @@ pub enum Command {
     Montecarlo(montecarlo::MonteCarloArgs),
     /// Join the output directories of the shards of one Monte Carlo study.
     Merge(merge::MergeArgs),
+    /// Fly the mission with one input set to each of several values: a table of summaries
+    /// and one SVG per chosen series with the variants overlaid.
+    Sweep(sweep::SweepArgs),
 }
 
 /// The mission file and its `--set` overrides, shared by every command that reads a mission.
@@ -69,5 +73,6 @@ pub fn run(command: Command) -> anyhow::Result<()> {
         Command::Simulate(args) => simulate::run(&args),
         Command::Montecarlo(args) => montecarlo::run(&args),
         Command::Merge(args) => merge::run(&args),
+        Command::Sweep(args) => sweep::run(&args),
     }
 }

@@ -2,11 +2,12 @@
 //!
 //! Warnings about the mission (physical sanity, odd data files) go to stderr. Without `--json`
 //! a readable summary (RocketPy's `flight.info()`); with `--json` the summary object of the
-//! mission contract with the warnings under `warnings`. `--out DIR` writes `summary.json`,
-//! `trajectory.csv` (every post-processed series, units in the header), `flight.kml` (the path
-//! in latitude/longitude/altitude for Google Earth) and SVG plots.
+//! mission contract with the warnings under `warnings` (and, with air brakes, the controller's
+//! record under `controller`). `--out DIR` writes `summary.json`, `trajectory.csv` (every
+//! post-processed series, units in the header), `controller.json` (with air brakes: the level
+//! after each controller call and the observed variables), `flight.kml` (the path in
+//! latitude/longitude/altitude for Google Earth) and SVG plots.
 
-use std::fmt::Write as _;
 use std::io::Write;
 use std::path::Path;
 
@@ -15,6 +16,7 @@ use clap::Args;
 use karman_mission::build::flight::{FlightRun, early_ending, simulate_with_seed};
 use karman_mission::dispersion::files::write_atomic;
 use karman_mission::dynamics::Sample;
+use karman_mission::report::trajectory;
 
 use super::MissionArgs;
 use crate::plot::{Series, line_chart};
@@ -45,6 +47,9 @@ pub fn run(args: &SimulateArgs) -> Result<()> {
     if args.json {
         let mut json = serde_json::to_value(&summary)?;
         json["warnings"] = serde_json::to_value(&run.warnings)?;
+        if let Some(record) = &run.controller {
+            json["controller"] = record.to_json();
+        }
         writeln!(out, "{}", serde_json::to_string_pretty(&json)?)?;
     } else {
         writeln!(out, "{summary}")?;
@@ -89,112 +94,22 @@ fn write_outputs(run: &FlightRun, name: &str, seed: u64, dir: &Path) -> Result<(
         &dir.join("summary.json"),
         serde_json::to_string_pretty(&json)?.as_bytes(),
     )?;
+    if let Some(record) = &run.controller {
+        std::fs::write(
+            dir.join("controller.json"),
+            serde_json::to_string_pretty(&record.to_json())?,
+        )?;
+    }
     let samples = run.samples();
     write_atomic(
         &dir.join("trajectory.csv"),
-        trajectory_csv(run, &samples).as_bytes(),
+        trajectory::csv(run, &samples).as_bytes(),
     )?;
-    write_atomic(&dir.join("flight.kml"), kml(run, name, &samples).as_bytes())?;
+    write_atomic(
+        &dir.join("flight.kml"),
+        trajectory::kml(run, name, &samples).as_bytes(),
+    )?;
     plots(run, &samples, dir)
-}
-
-/// Column names (with units) and extractors of trajectory.csv.
-type Column = (&'static str, fn(&FlightRun, &Sample) -> f64);
-
-const COLUMNS: &[Column] = &[
-    ("time_s", |_, s| s.t),
-    ("x_m", |_, s| s.x),
-    ("y_m", |_, s| s.y),
-    ("z_asl_m", |_, s| s.z),
-    ("altitude_agl_m", |_, s| s.altitude_agl),
-    ("latitude_deg", |r, s| r.environment.geodetic(s.x, s.y).0),
-    ("longitude_deg", |r, s| r.environment.geodetic(s.x, s.y).1),
-    ("vx_mps", |_, s| s.vx),
-    ("vy_mps", |_, s| s.vy),
-    ("vz_mps", |_, s| s.vz),
-    ("ax_mps2", |_, s| s.ax),
-    ("ay_mps2", |_, s| s.ay),
-    ("az_mps2", |_, s| s.az),
-    ("e0", |_, s| s.e[0]),
-    ("e1", |_, s| s.e[1]),
-    ("e2", |_, s| s.e[2]),
-    ("e3", |_, s| s.e[3]),
-    ("omega1_radps", |_, s| s.omega[0]),
-    ("omega2_radps", |_, s| s.omega[1]),
-    ("omega3_radps", |_, s| s.omega[2]),
-    ("alpha1_radps2", |_, s| s.omega_dot[0]),
-    ("alpha2_radps2", |_, s| s.omega_dot[1]),
-    ("alpha3_radps2", |_, s| s.omega_dot[2]),
-    ("speed_mps", |_, s| s.speed),
-    ("free_stream_speed_mps", |_, s| s.free_stream_speed),
-    ("mach", |_, s| s.mach),
-    ("dynamic_pressure_pa", |_, s| s.dynamic_pressure),
-    ("angle_of_attack_deg", |_, s| s.angle_of_attack_deg),
-    ("path_angle_deg", |_, s| s.path_angle_deg),
-    ("attitude_angle_deg", |_, s| s.attitude_angle_deg),
-    ("precession_deg", |_, s| s.euler_deg[0]),
-    ("nutation_deg", |_, s| s.euler_deg[1]),
-    ("spin_deg", |_, s| s.euler_deg[2]),
-    ("static_margin_cal", |r, s| r.rocket.static_margin(s.t)),
-    ("stability_margin_cal", |_, s| s.stability_margin),
-    ("aero_force_r1_n", |_, s| s.force[0]),
-    ("aero_force_r2_n", |_, s| s.force[1]),
-    ("aero_force_r3_n", |_, s| s.force[2]),
-    ("aero_moment_m1_nm", |_, s| s.moment[0]),
-    ("aero_moment_m2_nm", |_, s| s.moment[1]),
-    ("aero_moment_m3_nm", |_, s| s.moment[2]),
-    ("net_thrust_n", |_, s| s.net_thrust),
-    ("mass_kg", |_, s| s.mass),
-];
-
-fn trajectory_csv(run: &FlightRun, samples: &[Sample]) -> String {
-    let mut csv = COLUMNS.iter().map(|c| c.0).collect::<Vec<_>>().join(",");
-    csv.push('\n');
-    for s in samples {
-        let row: Vec<String> = COLUMNS
-            .iter()
-            .map(|c| format!("{}", (c.1)(run, s)))
-            .collect();
-        csv.push_str(&row.join(","));
-        csv.push('\n');
-    }
-    csv
-}
-
-/// Escapes text for XML.
-fn xml_escape(text: &str) -> String {
-    text.replace('&', "&amp;")
-        .replace('<', "&lt;")
-        .replace('>', "&gt;")
-}
-
-/// The flight path as a KML LineString with absolute altitudes.
-fn kml(run: &FlightRun, name: &str, samples: &[Sample]) -> String {
-    let name = xml_escape(name);
-    let mut coords = String::new();
-    for s in samples {
-        let (lat, lon) = run.environment.geodetic(s.x, s.y);
-        let _ = writeln!(coords, "          {lon:.8},{lat:.8},{:.2}", s.z);
-    }
-    format!(
-        r#"<?xml version="1.0" encoding="UTF-8"?>
-<kml xmlns="http://www.opengis.net/kml/2.2">
-  <Document>
-    <name>{name}</name>
-    <Style id="path"><LineStyle><color>ff0000ff</color><width>3</width></LineStyle></Style>
-    <Placemark>
-      <name>{name} trajectory</name>
-      <styleUrl>#path</styleUrl>
-      <LineString>
-        <altitudeMode>absolute</altitudeMode>
-        <coordinates>
-{coords}        </coordinates>
-      </LineString>
-    </Placemark>
-  </Document>
-</kml>
-"#
-    )
 }
 
 fn plots(run: &FlightRun, samples: &[Sample], dir: &Path) -> Result<()> {

@@ -24,6 +24,16 @@ pub enum Action {
         /// New value.
         value: f64,
     },
+    /// Set control input `index` to `value` from the end of the current integration step
+    /// on: the step was integrated with the old value and stands (RocketPy's
+    /// `time_overshoot = true`, physics.md §16.4); the step's later instants are still
+    /// sampled, and the last such value set in the step wins.
+    SetControlAfterStep {
+        /// Control index.
+        index: usize,
+        /// New value.
+        value: f64,
+    },
     /// Separate stage `stage`: the flight ends here with [`Termination::Separation`], and each
     /// part goes on with [`super::simulate_from`].
     SeparateStage(usize),
@@ -77,7 +87,11 @@ impl Run<'_> {
         kind: PhaseKind,
         t: f64,
     ) -> (f64, State) {
-        let cut = self.cut_step(integ, phase, kind, t);
+        let cut = match action {
+            // The step stands: the next phase starts from its end point.
+            Action::SetControlAfterStep { .. } => (integ.t(), *integ.y()),
+            _ => self.cut_step(integ, phase, kind, t),
+        };
         if self.processes[p].is_done() {
             self.active.retain(|&q| q != p);
         }
@@ -105,6 +119,31 @@ impl Run<'_> {
                             clear: true,
                         },
                     );
+                }
+            }
+            Action::SetControlAfterStep {
+                index: control,
+                value,
+            } => {
+                if let Some(configuration) = phase.configuration.with_control(control, value) {
+                    for later in &mut self.phases[index + 1..] {
+                        if later.kind.is_some() && control < MAX_CONTROLS {
+                            later.configuration.controls[control] = value;
+                        }
+                    }
+                    // A phase at the step end, unless the next phase starts there anyway.
+                    if self.phases.get(index + 1).is_none_or(|next| next.t > t) {
+                        insert_phase(
+                            &mut self.phases,
+                            index + 1,
+                            Phase {
+                                t,
+                                kind: Some(kind),
+                                configuration,
+                                clear: false,
+                            },
+                        );
+                    }
                 }
             }
             Action::SeparateStage(stage) => {

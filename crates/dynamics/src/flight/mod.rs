@@ -79,7 +79,7 @@ pub use sampled::{DenseOutput, Probe, SampledProcess, StepBounds};
 use crate::DynamicsError;
 use crate::equations::{CanopyState, Cursors, Derivative, Equations};
 use crate::integrator::{Pair, RungeKutta};
-use crate::settings::FlightSettings;
+use crate::settings::{EquationsForm, FlightSettings};
 use crate::state::State;
 
 /// Which equations of motion a phase integrates.
@@ -193,6 +193,8 @@ pub struct Flight {
     pub elevation: f64,
     /// Seed of the parachute noise streams.
     pub noise_seed: u64,
+    /// The form of the 6-DOF equations flown (post-processing re-evaluates the same).
+    pub equations: EquationsForm,
     /// Largest acceleration magnitude `|v̇|` at the stored points, m/s², including the
     /// equations of the next phase at each phase start (a canopy inflates instantly, so the
     /// deceleration peaks there; RocketPy's LSODA stores its first point a fraction of a

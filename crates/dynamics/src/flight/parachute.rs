@@ -1,7 +1,7 @@
 //! The parachute triggers as sampled processes (physics.md §9.4): an apogee trigger, or a
 //! barometric height trigger reading the pressure with an AR(1) noise ([`NoiseStream`]).
 
-use karman_model::{AtmosphereModel, ParachuteSpec, TriggerKind};
+use karman_model::{AtmosphereModel, ParachuteSpec, TriggerCondition, TriggerKind};
 
 use super::Action;
 use super::sampled::{DenseOutput, Probe, SampledProcess, StepBounds};
@@ -93,12 +93,12 @@ impl<'a, A: AtmosphereModel> ParachuteTrigger<'a, A> {
         Self {
             atmosphere,
             index,
-            trigger: spec.trigger,
+            trigger: spec.trigger.clone(),
             rate: spec.sampling_rate,
-            draws: matches!(spec.trigger, TriggerKind::HeightAboveGround(_)) && !stream.is_silent(),
+            draws: !matches!(spec.trigger, TriggerKind::Apogee) && !stream.is_silent(),
             stream,
             threshold: match spec.trigger {
-                TriggerKind::Apogee => None,
+                TriggerKind::Apogee | TriggerKind::Custom(_) => None,
                 TriggerKind::HeightAboveGround(h) => trigger_height(atmosphere, elevation, h),
             },
             elevation,
@@ -111,6 +111,15 @@ impl<'a, A: AtmosphereModel> ParachuteTrigger<'a, A> {
     /// Whether a noisy height trigger `h` m above ground cannot fire at height `z` even with
     /// the noise at `bound`: the highest possible noisy pressure reads a barometric height at
     /// least the band above the trigger height.
+    /// A custom condition at the probe's instant: the noisy pressure `P(z) + noise`, its
+    /// barometric height above ground and the state (physics.md §17).
+    fn custom(&self, condition: &dyn TriggerCondition, probe: &mut Probe<'_>, noise: f64) -> bool {
+        let atm = self.atmosphere;
+        let pressure = atm.pressure(probe.z()) + noise;
+        let height = atm.barometric_height(pressure) - self.elevation;
+        condition.fires(probe.t(), pressure, height, &probe.state())
+    }
+
     fn out_of_reach(&self, z: f64, bound: f64, h: f64) -> bool {
         let atm = self.atmosphere;
         atm.barometric_height(atm.pressure(z) + bound) - self.elevation >= h + self.band
@@ -122,6 +131,10 @@ impl<A: AtmosphereModel> SampledProcess for ParachuteTrigger<'_, A> {
         self.rate
     }
 
+    fn whole_step(&self) -> bool {
+        matches!(self.trigger, TriggerKind::Custom(_))
+    }
+
     /// A silent (noise-free) parachute certainly cannot fire inside the step when `v_z > 0`
     /// throughout, or, for a height trigger, when the step stays above its threshold
     /// height by more than the band.
@@ -129,7 +142,7 @@ impl<A: AtmosphereModel> SampledProcess for ParachuteTrigger<'_, A> {
         if self.fired {
             return true;
         }
-        if !self.stream.is_silent() {
+        if !self.stream.is_silent() || matches!(self.trigger, TriggerKind::Custom(_)) {
             return false;
         }
         if bounds.vz[0] > 0.0 {
@@ -154,6 +167,10 @@ impl<A: AtmosphereModel> SampledProcess for ParachuteTrigger<'_, A> {
         dense: &mut dyn DenseOutput,
     ) -> i64 {
         let ([vz_low, vz_high], [z_low, z_high]) = (bounds.vz, bounds.z);
+        if matches!(self.trigger, TriggerKind::Custom(_)) {
+            // Sampled at every instant, ascent included (physics.md §17).
+            return next;
+        }
         let descending = vz_low <= 0.0 || vz_low.is_nan();
         if !descending {
             return last + 1;
@@ -214,21 +231,27 @@ impl<A: AtmosphereModel> SampledProcess for ParachuteTrigger<'_, A> {
         } else {
             0.0
         };
-        let fires = probe.vz() < 0.0
-            && match self.trigger {
-                TriggerKind::Apogee => true,
-                TriggerKind::HeightAboveGround(h) => {
-                    let z = probe.z();
-                    match self.threshold {
-                        // Noise-free: compare heights directly, away from the threshold.
-                        Some(zt) if noise == 0.0 && (z - zt).abs() > self.band => z < zt,
-                        _ => {
-                            let atm = self.atmosphere;
-                            atm.barometric_height(atm.pressure(z) + noise) - self.elevation < h
+        let fires = match &self.trigger {
+            TriggerKind::Custom(condition) => self.custom(condition.as_ref(), probe, noise),
+            _ => {
+                probe.vz() < 0.0
+                    && match self.trigger {
+                        TriggerKind::Apogee | TriggerKind::Custom(_) => true,
+                        TriggerKind::HeightAboveGround(h) => {
+                            let z = probe.z();
+                            match self.threshold {
+                                // Noise-free: compare heights directly, away from the threshold.
+                                Some(zt) if noise == 0.0 && (z - zt).abs() > self.band => z < zt,
+                                _ => {
+                                    let atm = self.atmosphere;
+                                    atm.barometric_height(atm.pressure(z) + noise) - self.elevation
+                                        < h
+                                }
+                            }
                         }
                     }
-                }
-            };
+            }
+        };
         if fires {
             self.fired = true;
             Some(Action::DeployDevice(self.index))
@@ -250,14 +273,20 @@ impl<A: AtmosphereModel> SampledProcess for ParachuteTrigger<'_, A> {
     #[cfg(test)]
     fn sample_directly(&mut self, probe: &mut Probe<'_>) -> Option<Action> {
         let noise = self.stream.next_value();
-        let fires = probe.vz() < 0.0
-            && match self.trigger {
-                TriggerKind::Apogee => true,
-                TriggerKind::HeightAboveGround(h) => {
-                    let atm = self.atmosphere;
-                    atm.barometric_height(atm.pressure(probe.z()) + noise) - self.elevation < h
-                }
-            };
+        let fires = match &self.trigger {
+            TriggerKind::Custom(condition) => self.custom(condition.as_ref(), probe, noise),
+            _ => {
+                probe.vz() < 0.0
+                    && match self.trigger {
+                        TriggerKind::Apogee | TriggerKind::Custom(_) => true,
+                        TriggerKind::HeightAboveGround(h) => {
+                            let atm = self.atmosphere;
+                            atm.barometric_height(atm.pressure(probe.z()) + noise) - self.elevation
+                                < h
+                        }
+                    }
+            }
+        };
         fires.then(|| {
             self.fired = true;
             Action::DeployDevice(self.index)

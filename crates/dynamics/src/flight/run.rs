@@ -143,13 +143,16 @@ pub(super) fn fly<'a, A: AtmosphereModel, V: VehicleModel>(
     sampling: Sampling,
 ) -> Result<Flight, DynamicsError> {
     settings.validate()?;
-    let eq = Equations::new(atmosphere, vehicle);
+    let eq = Equations::new(atmosphere, vehicle, settings.equations);
     let setup = vehicle.setup();
     let elevation = atmosphere.elevation();
     let (t0, u0, configuration, kind0, rail_travel) = match start {
         Start::Rail => {
             let (u0, travel) = rail_start(settings, &setup, elevation)?;
-            let configuration = Configuration::default();
+            let configuration = Configuration {
+                controls: setup.initial_controls,
+                ..Configuration::default()
+            };
             (0.0, u0, configuration, PhaseKind::Rail, travel)
         }
         Start::From {
@@ -304,15 +307,17 @@ pub(super) fn fly<'a, A: AtmosphereModel, V: VehicleModel>(
             });
             let outcome = match run.check_events(&mut integ, index, &phase, kind)? {
                 Some(event) => Some(event),
-                // A rocket on the rail has not flown: its vertical speed is ≥ 0 up to
-                // round-off (which could otherwise fire an apogee trigger), so sampling starts
-                // at rail exit.
-                None if kind == PhaseKind::Rail => None,
                 None => {
+                    // A rocket on the rail has not flown: its vertical speed is ≥ 0 up to
+                    // round-off (which could otherwise fire an apogee trigger), so only the
+                    // processes that ask for it (controllers) are sampled on the rail.
+                    let rail = kind == PhaseKind::Rail;
                     let acted = match run.sampling {
-                        Sampling::Bounded => run.sample_processes(&mut integ, &phase),
+                        Sampling::Bounded => run.sample_processes(&mut integ, &phase, rail),
                         #[cfg(test)]
-                        Sampling::BoundedStepwise => run.sample_processes(&mut integ, &phase),
+                        Sampling::BoundedStepwise => run.sample_processes(&mut integ, &phase, rail),
+                        #[cfg(test)]
+                        Sampling::Direct if rail => None,
                         #[cfg(test)]
                         Sampling::Direct => run.sample_every_instant(&mut integ, &phase),
                     };
@@ -352,6 +357,7 @@ pub(super) fn fly<'a, A: AtmosphereModel, V: VehicleModel>(
         burn_out,
         elevation,
         noise_seed: settings.noise_seed,
+        equations: settings.equations,
         max_acceleration,
         stats: run.stats,
     })

@@ -52,6 +52,8 @@ pub trait DenseOutput {
     fn component(&mut self, t: f64, i: usize) -> f64;
     /// The state at `t` inside the step.
     fn state(&mut self, t: f64) -> State;
+    /// The step's end: its time and the state stored there.
+    fn step_end(&self) -> (f64, State);
 }
 
 impl<F: FnMut(f64, &State) -> State> DenseOutput for RungeKutta<13, F> {
@@ -61,6 +63,9 @@ impl<F: FnMut(f64, &State) -> State> DenseOutput for RungeKutta<13, F> {
     }
     fn state(&mut self, t: f64) -> State {
         self.dense(t)
+    }
+    fn step_end(&self) -> (f64, State) {
+        (self.t(), *self.y())
     }
 }
 
@@ -105,6 +110,13 @@ impl<'s> Probe<'s> {
     pub fn state(&mut self) -> State {
         self.dense.state(self.t)
     }
+
+    /// The end of the integration step holding the instant: its time and state (RocketPy's
+    /// last stored solution row, `state_history[-1]`, physics.md §16.4).
+    #[must_use]
+    pub fn step_end(&self) -> (f64, State) {
+        self.dense.step_end()
+    }
 }
 
 /// A discrete process sampled at a fixed rate during the flight: a parachute trigger, a
@@ -119,6 +131,19 @@ impl<'s> Probe<'s> {
 pub trait SampledProcess {
     /// Sampling rate, Hz (a process with a rate that is not positive is never sampled).
     fn rate(&self) -> f64;
+    /// Whether the process is sampled on the launch rail too (a controller is: RocketPy
+    /// calls controllers in every phase). Default: false, sampling starts at rail exit.
+    fn on_rail(&self) -> bool {
+        false
+    }
+    /// Whether the process is sampled over the whole step that holds the apogee. RocketPy
+    /// starts that step's window at the apogee (physics.md §9.4's quirk, harmless for the
+    /// built-in triggers, which need `v_z < 0`); a condition that may hold on the ascent
+    /// (a custom trigger, a controller) is sampled from the step's start, so that its instants
+    /// do not depend on where the solver's steps fall. Default: false.
+    fn whole_step(&self) -> bool {
+        false
+    }
     /// Whether the process certainly cannot act anywhere in the step with these bounds: it
     /// then has no instants there (not even for the merge). Default: false.
     fn cannot_act(&self, _bounds: &StepBounds) -> bool {
@@ -218,6 +243,7 @@ impl Run<'_> {
         &mut self,
         integ: &mut RungeKutta<13, F>,
         phase: &Phase,
+        rail: bool,
     ) -> Option<(usize, Action, f64)> {
         if self.active.is_empty() {
             return None;
@@ -232,10 +258,15 @@ impl Run<'_> {
         let mut first = f64::INFINITY;
         for &p in &self.active {
             let process = &self.processes[p];
-            if process.cannot_act(&bounds) {
+            if (rail && !process.on_rail()) || process.cannot_act(&bounds) {
                 continue;
             }
             let interval = 1.0 / process.rate();
+            let (t_start, k_start) = if process.whole_step() {
+                (integ.t_old(), node_key(integ.t_old()))
+            } else {
+                (t_start, k_start)
+            };
             let mut range = Instants {
                 p,
                 interval,
@@ -296,6 +327,7 @@ impl Run<'_> {
         }
         let mut group_key = None;
         let mut t_node = 0.0;
+        let mut after_step = None;
         let mut probe = Probe::new(0.0, integ);
         let acted = loop {
             // The earliest instant left; ties go to the earlier process.
@@ -329,6 +361,9 @@ impl Run<'_> {
             }
             match self.processes[p].sample(&mut probe) {
                 Some(Action::Record { channel, value }) => self.record(p, channel, value, t_node),
+                Some(Action::SetControlAfterStep { index, value }) => {
+                    after_step = Some((p, index, value));
+                }
                 Some(action) => break Some((p, action, t_node)),
                 None => {}
             }
@@ -336,7 +371,12 @@ impl Run<'_> {
         for range in &self.instants {
             self.processes[range.p].end_step();
         }
-        acted
+        // A value set for after the step takes effect at its end, unless an action ended the
+        // step earlier (the later phases then start from that action's instant).
+        acted.or_else(|| {
+            after_step
+                .map(|(p, index, value)| (p, Action::SetControlAfterStep { index, value }, t_end))
+        })
     }
 }
 

@@ -173,7 +173,7 @@ fn max_acceleration_is_the_largest_at_the_stored_points() {
     let flight = fly_with(chutes(), 0, Sampling::Bounded);
     assert_eq!(flight.parachute_events.len(), 2);
     let (air, rocket) = (air(), rocket(chutes()));
-    let eq = Equations::new(&air, &rocket);
+    let eq = Equations::new(&air, &rocket, flight.equations);
     let mut cursors = Cursors::default();
     let mut at = |p: &super::SolutionPoint, t: f64, u: &State| {
         acceleration(&evaluate(&eq, &p.phase, &p.configuration, t, u, &mut cursors).u_dot)

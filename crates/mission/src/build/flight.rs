@@ -6,12 +6,18 @@
 //! rates, 1e-6 for the quaternion), unbounded step. The schema already applies them; an
 //! absent `atol` means the per-state default.
 
+use std::sync::Arc;
+
 use karman_airframe::Rocket;
 use karman_atmos::Environment;
-use karman_dynamics::{DEFAULT_ATOL, Flight, FlightSettings, Sample, Summary, Termination};
+use karman_dynamics::{
+    AtmosphereModel, DEFAULT_ATOL, Flight, FlightSettings, Sample, Summary, Termination,
+};
 use karman_propulsion::Motor;
+use karman_script::{ControllerRecord, ControllerScript, EnvironmentQuery};
 
 use super::preflight::{Models, prepare};
+use super::scripts::{self, ControllerEnvironment, ControllerProcess, compile_controller};
 use crate::{Mission, MissionError};
 
 /// How a flight ended against the end a mission asks for: `None` for a completed flight
@@ -58,6 +64,16 @@ pub fn flight_settings(mission: &Mission, seed: u64) -> FlightSettings {
     settings.atol = spec.atol.map_or(DEFAULT_ATOL, |a| a.per_state());
     settings.max_time_step = spec.max_time_step;
     settings.noise_seed = seed;
+    settings.equations = spec.equations;
+    if let Some(ab) = &mission.spec.rocket.air_brakes
+        && spec.time_overshoot
+        && ab.sampling_rate > 0.0
+    {
+        // A level written by the controller acts from the end of the solver step holding
+        // the call (physics.md §16.4); steps at most one sampling interval long keep that
+        // delay as short as RocketPy's LSODA steps make it.
+        settings.max_time_step = settings.max_time_step.min(1.0 / ab.sampling_rate);
+    }
     settings
 }
 
@@ -76,6 +92,9 @@ pub struct FlightRun {
     pub flight: Flight,
     /// The warnings of [`prepare`], each starting with the mission key it concerns.
     pub warnings: Vec<String>,
+    /// The air-brake controller's record (RocketPy's observed variables and the level after
+    /// each call), when the rocket has air brakes.
+    pub controller: Option<ControllerRecord>,
 }
 
 impl FlightRun {
@@ -106,8 +125,23 @@ pub fn simulate_with_seed(mission: &Mission, seed: u64) -> Result<FlightRun, Mis
         settings,
         warnings,
     } = prepare(mission, seed)?;
-    let flight = karman_dynamics::simulate(&environment, &rocket, &settings)
-        .map_err(|e| mission.model_error("flight", e))?;
+    let script = compile_controller(mission)?;
+    let environment = Arc::new(environment);
+    let (flight, controller) = fly(
+        mission,
+        &*environment,
+        &rocket,
+        &settings,
+        script.as_ref(),
+        || {
+            Arc::new(ControllerEnvironment::new(
+                Arc::clone(&environment),
+                1.0,
+                0.0,
+            ))
+        },
+    )?;
+    let environment = Arc::try_unwrap(environment).unwrap_or_else(|shared| (*shared).clone());
     Ok(FlightRun {
         environment,
         motor,
@@ -115,7 +149,45 @@ pub fn simulate_with_seed(mission: &Mission, seed: u64) -> Result<FlightRun, Mis
         settings,
         flight,
         warnings,
+        controller,
     })
+}
+
+/// Flies `rocket` in `atmosphere` with `settings`, and with the mission's air-brake
+/// controller when `script` is given (its environment queries from `queries`); returns the
+/// flight and the controller's record.
+///
+/// # Errors
+/// [`MissionError::Model`]: section `flight` when the flight cannot be integrated, section
+/// `rocket.air_brakes.controller` for a script error (located in the script), which ends
+/// the flight.
+pub fn fly<A: AtmosphereModel>(
+    mission: &Mission,
+    atmosphere: &A,
+    rocket: &Rocket,
+    settings: &FlightSettings,
+    script: Option<&ControllerScript>,
+    queries: impl FnOnce() -> Arc<dyn EnvironmentQuery>,
+) -> Result<(Flight, Option<ControllerRecord>), MissionError> {
+    let Some(script) = script else {
+        let flight = karman_dynamics::simulate(atmosphere, rocket, settings)
+            .map_err(|e| mission.model_error("flight", e))?;
+        return Ok((flight, None));
+    };
+    let mut controller = scripts::controller(mission, script, rocket, queries())?;
+    let mut error = None;
+    let process = ControllerProcess {
+        controller: &mut controller,
+        error: &mut error,
+        overshoot: mission.spec.flight.time_overshoot,
+    };
+    let flight =
+        karman_dynamics::simulate_with(atmosphere, rocket, settings, vec![Box::new(process)])
+            .map_err(|e| mission.model_error("flight", e))?;
+    if let Some(error) = error {
+        return Err(mission.model_error("rocket.air_brakes.controller", error));
+    }
+    Ok((flight, Some(controller.record())))
 }
 
 /// [`simulate_with_seed`] with seed 0.

@@ -5,3 +5,4 @@ pub mod flight;
 pub mod motor;
 pub mod preflight;
 pub mod rocket;
+pub mod scripts;

@@ -3,10 +3,16 @@
 //! [`motor_properties`] (the airframe crate may not depend on the propulsion crate, so the
 //! hand-over lives here, the first crate that sees both).
 
+use std::sync::Arc;
+
 use karman_airframe::{
-    self as airframe, Airfoil, AirframeError, CoordinateSystem, DragEstimate, MotorProperties,
-    NoseKind, Parachute, RailButtons, Rocket, RocketInputs, SurfaceInput, Trigger,
+    self as airframe, AirBrakes, AirBrakesSpec, Airfoil, AirframeError, CoordinateSystem,
+    DragEstimate, MotorProperties, NoseKind, Parachute, RailButtons, Rocket, RocketInputs,
+    SurfaceInput, Trigger,
 };
+use karman_script::Expression;
+
+use super::scripts::{AfterTime, ExpressionTrigger};
 use karman_math::{Extrapolation, Interpolation};
 use karman_propulsion::Motor;
 
@@ -24,6 +30,7 @@ pub fn motor_properties(motor: &Motor) -> MotorProperties {
         burn_out: motor.burn_out(),
         exhaust_velocity: motor.exhaust_velocity(),
         propellant_mass: motor.propellant_mass().clone(),
+        mass_flow: None,
         propellant_center_of_mass: motor.propellant_center_of_mass().clone(),
         propellant_i11: i11.clone(),
         propellant_i33: i33.clone(),
@@ -78,19 +85,15 @@ pub fn build_rocket(mission: &Mission, motor: &Motor) -> Result<Rocket, MissionE
             trigger: match &p.trigger {
                 schema::Trigger::Apogee => Trigger::Apogee,
                 schema::Trigger::HeightAboveGround(h) => Trigger::HeightAboveGround(*h),
-                schema::Trigger::Launch(_)
-                | schema::Trigger::Burnout(_)
-                | schema::Trigger::Expression(_) => {
-                    return Err(MissionError::Invalid {
-                        file: mission.path.clone(),
-                        problems: vec![crate::Problem {
-                            location: crate::Location::File { line: 1, column: 1 },
-                            key: format!("rocket.parachutes.{name}.trigger"),
-                            kind: crate::ProblemKind::Unsupported {
-                                what: "a timed or expression trigger in flight".into(),
-                            },
-                        }],
-                    });
+                schema::Trigger::Launch(delay) => Trigger::Custom(Arc::new(AfterTime(*delay))),
+                schema::Trigger::Burnout(delay) => {
+                    Trigger::Custom(Arc::new(AfterTime(motor.burn_out() + delay)))
+                }
+                schema::Trigger::Expression(text) => {
+                    let expression = Expression::parse(text).map_err(|e| {
+                        mission.model_error(&format!("rocket.parachutes.{name}.trigger"), e)
+                    })?;
+                    Trigger::Custom(Arc::new(ExpressionTrigger(expression)))
                 }
             },
             sampling_rate: Some(p.sampling_rate),
@@ -139,7 +142,7 @@ pub fn build_rocket(mission: &Mission, motor: &Motor) -> Result<Rocket, MissionE
         parachutes,
         rail_buttons,
     };
-    Rocket::new(inputs, motor_properties(motor)).map_err(|e| {
+    let rocket = Rocket::new(inputs, motor_properties(motor)).map_err(|e| {
         let section = match &e {
             AirframeError::NotFinite { component, .. }
             | AirframeError::NotPositive { component, .. }
@@ -158,7 +161,30 @@ pub fn build_rocket(mission: &Mission, motor: &Motor) -> Result<Rocket, MissionE
             }
         };
         model(section, e)
-    })
+    })?;
+    match &spec.air_brakes {
+        Some(ab) => {
+            let drag = ab
+                .drag_coefficient_curve
+                .to_drag(&mission.dir)
+                .map_err(|source| MissionError::Curve {
+                    file: mission.path.clone(),
+                    key: crate::paths::AIR_BRAKES_CURVE.into(),
+                    source,
+                })?;
+            let brakes = AirBrakes::new(&AirBrakesSpec {
+                name: ab.name.clone().unwrap_or_else(|| "AirBrakes".into()),
+                drag,
+                reference_area: ab.reference_area.unwrap_or(rocket.reference_area()),
+                clamp: ab.clamp,
+                override_rocket_drag: ab.override_rocket_drag,
+                initial_level: ab.deployment_level,
+            })
+            .map_err(|e| model("rocket.air_brakes".into(), e))?;
+            Ok(rocket.with_air_brakes(brakes))
+        }
+        None => Ok(rocket),
+    }
 }
 
 /// The drag estimated from the geometry when `power_off_drag` or `power_on_drag` is

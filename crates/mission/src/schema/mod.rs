@@ -592,6 +592,10 @@ pub struct FlightSpec {
     /// `time_overshoot`, physics.md §16.4); RocketPy default true.
     #[serde(default = "default_true")]
     pub time_overshoot: bool,
+    /// The form of the 6-DOF equations: `"standard"` (default; physically consistent lever
+    /// arms and mass flow) or `"rocketpy_1_13"` (RocketPy 1.13 exactly).
+    #[serde(default)]
+    pub equations: karman_dynamics::EquationsForm,
 }
 
 /// `[dispersion]`: Monte Carlo run settings and the inputs that vary.

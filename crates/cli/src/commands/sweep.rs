@@ -1,0 +1,199 @@
+//! `karman sweep MISSION --vary PATH=V1,V2,... [--series NAME]... [--out DIR]`: fly one
+//! mission with one input set to each of several values (RocketPy paper's dynamic-stability
+//! study: the fins moved along the body) and compare the flights.
+//!
+//! Prints a table of the main summary values per variant and writes into DIR `summary.csv`
+//! (the variant's value and every scalar summary key) and one SVG per chosen trajectory
+//! series with the variants overlaid (`altitude_agl.svg`, `attitude_angle.svg`, ...).
+
+use std::fmt::Write as _;
+use std::io::Write;
+use std::path::PathBuf;
+
+use anyhow::{Context, Result, bail};
+use clap::Args;
+use karman_mission::Override;
+use karman_mission::build::flight::simulate_with_seed;
+use karman_mission::montecarlo::OUTPUTS;
+use karman_mission::report::trajectory::{self, SERIES};
+
+use super::MissionArgs;
+use crate::plot::{Series, line_chart};
+
+/// Arguments of `karman sweep`.
+#[derive(Debug, Args)]
+pub struct SweepArgs {
+    #[command(flatten)]
+    pub mission: MissionArgs,
+    /// The input to vary and its values, TOML values separated by commas outside brackets
+    /// and quotes: `rocket.surfaces.fins.position=-0.5,-0.7,-0.9` or
+    /// `rocket.parachutes.main.noise=[0,0,0],[0,8.3,0.5]`.
+    #[arg(long, value_name = "PATH=V1,V2,...")]
+    pub vary: String,
+    /// A trajectory series to overlay (repeatable; default `altitude_agl`), by the names of
+    /// trajectory.csv without the unit (`attitude_angle`, `stability_margin`, `mach`, ...).
+    #[arg(long = "series", value_name = "NAME")]
+    pub series: Vec<String>,
+    /// Output directory for summary.csv and the SVG charts.
+    #[arg(long, value_name = "DIR", default_value = "sweep")]
+    pub out: PathBuf,
+    /// Seed of the parachute trigger noise of every variant.
+    #[arg(long, default_value_t = 0)]
+    pub seed: u64,
+}
+
+/// Splits `V1,V2,...` at the commas that are not inside brackets, braces or quotes.
+fn split_values(text: &str) -> Vec<String> {
+    let mut values = Vec::new();
+    let (mut depth, mut quote, mut current) = (0_i32, None, String::new());
+    for c in text.chars() {
+        match (quote, c) {
+            (Some(q), _) if c == q => quote = None,
+            (Some(_), _) => {}
+            (None, '"' | '\'') => quote = Some(c),
+            (None, '[' | '{') => depth += 1,
+            (None, ']' | '}') => depth -= 1,
+            (None, ',') if depth == 0 => {
+                values.push(std::mem::take(&mut current).trim().to_owned());
+                continue;
+            }
+            _ => {}
+        }
+        current.push(c);
+    }
+    values.push(current.trim().to_owned());
+    values
+}
+
+/// One variant's curve of a series: its legend label and points `(t, value)`.
+type Curve = (String, Vec<(f64, f64)>);
+
+/// The summary columns printed for each variant (all of them go to summary.csv).
+const SHOWN: [(&str, &str); 6] = [
+    ("apogee_agl_m", "apogee AGL (m)"),
+    ("apogee_time_s", "apogee time (s)"),
+    ("out_of_rail_velocity_mps", "rail exit (m/s)"),
+    ("initial_static_margin", "static margin 0"),
+    ("out_of_rail_stability_margin", "margin rail exit"),
+    ("max_mach", "max Mach"),
+];
+
+/// Flies every variant and writes the table and charts.
+pub fn run(args: &SweepArgs) -> Result<()> {
+    let Some((path, values)) = args.vary.split_once('=') else {
+        bail!("--vary `{}`: expected PATH=V1,V2,...", args.vary);
+    };
+    let path = path.trim();
+    let values = split_values(values);
+    if values.iter().any(String::is_empty) {
+        bail!("--vary `{}`: an empty value", args.vary);
+    }
+    let names = if args.series.is_empty() {
+        vec!["altitude_agl".to_owned()]
+    } else {
+        args.series.clone()
+    };
+    let series: Vec<_> = names
+        .iter()
+        .map(|name| {
+            trajectory::series_named(name).with_context(|| {
+                let known: Vec<&str> = SERIES.iter().map(|s| s.name).collect();
+                format!(
+                    "--series `{name}`: no such series; the series are {}",
+                    known.join(", ")
+                )
+            })
+        })
+        .collect::<Result<_>>()?;
+
+    let mut csv = format!("{path},{}\n", OUTPUTS.join(","));
+    let mut table = format!("{:<24}", path.rsplit('.').next().unwrap_or(path));
+    for (_, title) in SHOWN {
+        let _ = write!(table, "{title:>18}");
+    }
+    table.push('\n');
+    let mut curves: Vec<Vec<Curve>> = vec![Vec::new(); series.len()];
+    for value in &values {
+        let item = Override::new(path, value)?;
+        let mut overrides = args.mission.overrides.clone();
+        overrides.push(item);
+        let mission = karman_mission::load(&args.mission.mission, &overrides)?;
+        let run = simulate_with_seed(&mission, args.seed)
+            .with_context(|| format!("the variant {path}={value}"))?;
+        let summary = serde_json::to_value(run.summary())?;
+        let number = |key: &str| summary.get(key).and_then(serde_json::Value::as_f64);
+        let cells: Vec<String> = OUTPUTS
+            .iter()
+            .map(|key| number(key).map_or_else(String::new, |v| v.to_string()))
+            .collect();
+        let _ = writeln!(csv, "{},{}", csv_field(value), cells.join(","));
+        let _ = write!(table, "{value:<24}");
+        for (key, _) in SHOWN {
+            let cell = number(key).map_or_else(|| "—".to_owned(), |v| format!("{v:.3}"));
+            let _ = write!(table, "{cell:>18}");
+        }
+        table.push('\n');
+        let samples = run.samples();
+        for (chosen, curve) in series.iter().zip(&mut curves) {
+            let points = samples
+                .iter()
+                .map(|s| (s.t, chosen.value(&run, s)))
+                .collect();
+            curve.push((format!("{path}={value}"), points));
+        }
+    }
+
+    std::fs::create_dir_all(&args.out)
+        .with_context(|| format!("cannot create {}", args.out.display()))?;
+    std::fs::write(args.out.join("summary.csv"), csv)?;
+    for (chosen, curve) in series.iter().zip(&curves) {
+        let lines: Vec<Series<'_>> = curve
+            .iter()
+            .map(|(label, points)| Series {
+                label,
+                points: points.clone(),
+            })
+            .collect();
+        let unit = if chosen.unit.is_empty() {
+            String::new()
+        } else {
+            format!(" ({})", chosen.unit)
+        };
+        line_chart(
+            &args.out.join(format!("{}.svg", chosen.name)),
+            &format!("{} for each {path}", chosen.name),
+            "time (s)",
+            &format!("{}{unit}", chosen.name),
+            &lines,
+        )?;
+    }
+    let mut out = std::io::stdout().lock();
+    write!(out, "{table}")?;
+    writeln!(out, "results in {}", args.out.display())?;
+    Ok(())
+}
+
+/// A value as one CSV field (quoted when it holds a comma or a quote).
+fn csv_field(value: &str) -> String {
+    if value.contains([',', '"']) {
+        format!("\"{}\"", value.replace('"', "\"\""))
+    } else {
+        value.to_owned()
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::split_values;
+
+    #[test]
+    fn values_split_outside_brackets_and_quotes() {
+        assert_eq!(split_values("1, 2,3.5"), ["1", "2", "3.5"]);
+        assert_eq!(
+            split_values("[0,0,0],[0, 8.3, 0.5]"),
+            ["[0,0,0]", "[0, 8.3, 0.5]"]
+        );
+        assert_eq!(split_values("\"a,b\",'c'"), ["\"a,b\"", "'c'"]);
+        assert_eq!(split_values(""), [""]);
+    }
+}

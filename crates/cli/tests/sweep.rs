@@ -1,0 +1,78 @@
+//! `karman sweep`: every variant flown as `simulate --set` would fly it, the table, the CSV
+//! of summaries, one overlaid SVG per series, and located errors.
+
+use crate::common::{example, failure, karman, stderr};
+
+#[test]
+fn each_variant_flies_as_simulate_with_the_override() {
+    let out = tempfile::tempdir().expect("temporary directory");
+    let mission = example().display().to_string();
+    let dir = out.path().display().to_string();
+    let output = karman(&[
+        "sweep",
+        &mission,
+        "--vary",
+        "rocket.surfaces.fins.position=1.3,1.42",
+        "--series",
+        "altitude_agl",
+        "--series",
+        "attitude_angle",
+        "--out",
+        &dir,
+    ]);
+    assert_eq!(output.status.code(), Some(0), "{}", stderr(&output));
+    let table = String::from_utf8_lossy(&output.stdout);
+    assert!(table.contains("apogee AGL (m)"), "{table}");
+    assert_eq!(
+        table.lines().filter(|l| l.starts_with("1.")).count(),
+        2,
+        "{table}"
+    );
+
+    let csv = std::fs::read_to_string(out.path().join("summary.csv")).expect("summary.csv");
+    let rows: Vec<&str> = csv.lines().collect();
+    assert_eq!(rows.len(), 3, "{csv}");
+    let header: Vec<&str> = rows[0].split(',').collect();
+    assert_eq!(header[0], "rocket.surfaces.fins.position");
+    let apogee = header
+        .iter()
+        .position(|h| *h == "apogee_agl_m")
+        .expect("apogee column");
+    for (row, value) in rows[1..].iter().zip(["1.3", "1.42"]) {
+        let fields: Vec<&str> = row.split(',').collect();
+        assert_eq!(fields[0], value);
+        let set = format!("rocket.surfaces.fins.position={value}");
+        let single = karman(&["simulate", &mission, "--json", "--set", &set]);
+        assert_eq!(single.status.code(), Some(0), "{}", stderr(&single));
+        let summary: serde_json::Value = serde_json::from_slice(&single.stdout).expect("JSON");
+        let expected = summary["apogee_agl_m"].as_f64().expect("apogee");
+        let got: f64 = fields[apogee].parse().expect("a number");
+        assert!(got.to_bits() == expected.to_bits(), "{got} vs {expected}");
+    }
+    for name in ["altitude_agl.svg", "attitude_angle.svg"] {
+        let svg = std::fs::read_to_string(out.path().join(name)).expect(name);
+        assert!(
+            svg.contains("rocket.surfaces.fins.position=1.3"),
+            "{name} has no legend"
+        );
+        assert!(svg.contains("rocket.surfaces.fins.position=1.42"), "{name}");
+    }
+}
+
+#[test]
+fn bad_sweeps_are_clear_errors() {
+    let mission = example().display().to_string();
+    let text = failure(&["sweep", &mission, "--vary", "rocket.surfaces.fins.position"]);
+    assert!(text.contains("expected PATH=V1,V2,..."), "{text}");
+    let text = failure(&["sweep", &mission, "--vary", "flight.inclinatio=80,85"]);
+    assert!(text.contains("inclinatio"), "{text}");
+    let text = failure(&[
+        "sweep",
+        &mission,
+        "--vary",
+        "flight.inclination=80",
+        "--series",
+        "height",
+    ]);
+    assert!(text.contains("--series `height`: no such series"), "{text}");
+}

@@ -1,0 +1,221 @@
+//! The scripts of a mission bound to its flight: trigger expressions and time triggers as the
+//! engine's [`TriggerCondition`]s, and the air-brake controller as a sampled process of the
+//! engine whose deployment level is control input [`AIR_BRAKES_CONTROL`] of the
+//! configuration (physics.md §16.4, §17).
+
+use std::sync::Arc;
+
+use karman_airframe::{AIR_BRAKES_CONTROL, Rocket};
+use karman_atmos::Environment;
+use karman_dynamics::flight::{Action, Probe, SampledProcess};
+use karman_model::TriggerCondition;
+use karman_script::{
+    AirBrakesSetup, Controller, ControllerScript, ControllerSetup, EnvironmentQuery, Expression,
+    ScriptError, TriggerInputs,
+};
+
+use crate::{Mission, MissionError};
+
+/// A trigger expression as an engine trigger condition.
+#[derive(Debug)]
+pub struct ExpressionTrigger(pub Expression);
+
+impl TriggerCondition for ExpressionTrigger {
+    fn fires(&self, _t: f64, pressure: f64, height: f64, state: &[f64; 13]) -> bool {
+        self.0.evaluate(&TriggerInputs {
+            pressure,
+            height,
+            state: *state,
+        })
+    }
+}
+
+/// `"launch + X"` and `"burnout + X"`: fires at the first sampling instant at or after `t`
+/// (RocketPy 1.14: `t >= delay`, `t >= burn_out_time + delay`).
+#[derive(Debug)]
+pub struct AfterTime(pub f64);
+
+impl TriggerCondition for AfterTime {
+    fn fires(&self, t: f64, _pressure: f64, _height: f64, _state: &[f64; 13]) -> bool {
+        t >= self.0
+    }
+}
+
+/// The controller script of a mission's air brakes, compiled (once per mission).
+///
+/// # Errors
+/// [`MissionError::Model`] (section `rocket.air_brakes.controller`) when the script cannot be
+/// read or does not compile; `Ok(None)` without air brakes.
+pub fn compile_controller(mission: &Mission) -> Result<Option<ControllerScript>, MissionError> {
+    let Some(ab) = &mission.spec.rocket.air_brakes else {
+        return Ok(None);
+    };
+    let file = mission.resolve(&ab.controller);
+    let fail = |source: Box<dyn std::error::Error + Send + Sync>| {
+        mission.model_error("rocket.air_brakes.controller", source)
+    };
+    let bytes = karman_math::read_data_file(&file).map_err(|e| fail(Box::new(e)))?;
+    let text = String::from_utf8(bytes).map_err(|e| fail(Box::new(e)))?;
+    ControllerScript::compile(&file, &text)
+        .map(Some)
+        .map_err(|e| fail(Box::new(e)))
+}
+
+/// The environment a controller queries: the flight's, with its wind scaled and turned as
+/// the flight's (`factor`, and the rotation `sin`, `cos`; identity for a plain flight).
+pub struct ControllerEnvironment {
+    environment: Arc<Environment>,
+    factor: f64,
+    sin: f64,
+    cos: f64,
+}
+
+impl ControllerEnvironment {
+    /// The environment with the wind multiplied by `factor` and turned clockwise by
+    /// `offset_deg` (as `crate::montecarlo::WindAdjusted`).
+    #[must_use]
+    pub fn new(environment: Arc<Environment>, factor: f64, offset_deg: f64) -> Self {
+        let (sin, cos) = offset_deg.to_radians().sin_cos();
+        Self {
+            environment,
+            factor,
+            sin,
+            cos,
+        }
+    }
+
+    fn wind(&self, h: f64) -> [f64; 2] {
+        let [u, v] = self.environment.wind(h);
+        if self.factor.to_bits() == 1.0f64.to_bits() && self.sin.to_bits() == 0 {
+            return [u, v];
+        }
+        [
+            self.factor * (u * self.cos + v * self.sin),
+            self.factor * (-u * self.sin + v * self.cos),
+        ]
+    }
+}
+
+impl EnvironmentQuery for ControllerEnvironment {
+    fn elevation(&self) -> f64 {
+        self.environment.elevation()
+    }
+    fn wind_velocity_x(&self, height: f64) -> f64 {
+        self.wind(height)[0]
+    }
+    fn wind_velocity_y(&self, height: f64) -> f64 {
+        self.wind(height)[1]
+    }
+    fn speed_of_sound(&self, height: f64) -> f64 {
+        self.environment.speed_of_sound(height)
+    }
+    fn density(&self, height: f64) -> f64 {
+        self.environment.density(height)
+    }
+    fn pressure(&self, height: f64) -> f64 {
+        self.environment.pressure(height)
+    }
+    fn temperature(&self, height: f64) -> f64 {
+        self.environment.temperature(height)
+    }
+    fn dynamic_viscosity(&self, height: f64) -> f64 {
+        self.environment.dynamic_viscosity(height)
+    }
+    fn gravity(&self, height: f64) -> f64 {
+        self.environment.gravity(height)
+    }
+}
+
+/// A flight's controller for `rocket`'s air brakes, from the compiled `script`.
+///
+/// # Errors
+/// [`MissionError::Model`] (section `rocket.air_brakes`) when the rocket has no air brakes or
+/// the script's top-level statements fail.
+pub fn controller(
+    mission: &Mission,
+    script: &ControllerScript,
+    rocket: &Rocket,
+    environment: Arc<dyn EnvironmentQuery>,
+) -> Result<Controller, MissionError> {
+    let fail = |source: Box<dyn std::error::Error + Send + Sync>| {
+        mission.model_error("rocket.air_brakes", source)
+    };
+    let (Some(spec), Some(brakes)) = (&mission.spec.rocket.air_brakes, rocket.air_brakes()) else {
+        return Err(fail("the rocket has no air brakes".into()));
+    };
+    let curve = brakes.clone();
+    let setup = ControllerSetup {
+        sampling_rate: spec.sampling_rate,
+        air_brakes: AirBrakesSetup {
+            clamp: brakes.clamp(),
+            override_rocket_drag: brakes.override_rocket_drag(),
+            reference_area: brakes.reference_area(),
+            initial_level: brakes.initial_level(),
+            drag_coefficient: Arc::new(move |level, mach| curve.drag_coefficient(level, mach)),
+        },
+        burn_start: rocket.burn_start(),
+        burn_out: rocket.burn_out(),
+        environment,
+        initial_observed_variables: spec.initial_observed_variables.clone(),
+        constants: spec
+            .constants
+            .iter()
+            .map(|(name, value)| (name.clone(), *value))
+            .collect(),
+    };
+    Controller::new(script, setup).map_err(|e| fail(Box::new(e)))
+}
+
+/// The controller as a sampled process of the engine: called at `j / sampling_rate` in every
+/// phase (the rail too), in time order after the parachutes due at the same instant; a new
+/// level acts from the end of the solver step (`time_overshoot`) or from the instant itself.
+/// A script error ends the flight there ([`Action::Terminate`]) and is kept in `error`.
+pub struct ControllerProcess<'c> {
+    /// The flight's controller.
+    pub controller: &'c mut Controller,
+    /// The first script error, if any.
+    pub error: &'c mut Option<ScriptError>,
+    /// RocketPy's `time_overshoot`.
+    pub overshoot: bool,
+}
+
+impl SampledProcess for ControllerProcess<'_> {
+    fn rate(&self) -> f64 {
+        self.controller.sampling_rate()
+    }
+
+    fn on_rail(&self) -> bool {
+        true
+    }
+
+    fn whole_step(&self) -> bool {
+        true
+    }
+
+    fn sample(&mut self, probe: &mut Probe<'_>) -> Option<Action> {
+        if self.error.is_some() {
+            return None;
+        }
+        let state = probe.state();
+        let (t_end, end) = probe.step_end();
+        let mut row = [0.0; 14];
+        row[0] = t_end;
+        row[1..].copy_from_slice(&end);
+        let before = self.controller.level();
+        match self.controller.call(probe.t(), &state, &row) {
+            Ok(level) if level.to_bits() == before.to_bits() => None,
+            Ok(value) if self.overshoot => Some(Action::SetControlAfterStep {
+                index: AIR_BRAKES_CONTROL,
+                value,
+            }),
+            Ok(value) => Some(Action::SetControl {
+                index: AIR_BRAKES_CONTROL,
+                value,
+            }),
+            Err(error) => {
+                *self.error = Some(error);
+                Some(Action::Terminate)
+            }
+        }
+    }
+}

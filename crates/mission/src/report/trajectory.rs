@@ -1,0 +1,186 @@
+//! The trajectory of a flown mission as named series: every post-processed quantity at
+//! every stored point (`trajectory.csv`, the Python package's arrays) and the flight path as
+//! KML (latitude, longitude and absolute altitude for Google Earth).
+
+use std::fmt::Write as _;
+
+use karman_dynamics::Sample;
+
+use crate::build::flight::FlightRun;
+
+/// One series of the trajectory: a name, its unit (empty for a pure number) and how it is
+/// read from a flown point.
+#[derive(Debug, Clone, Copy)]
+pub struct Series {
+    /// Name (`altitude_agl`).
+    pub name: &'static str,
+    /// Unit suffix (`m`, `mps`, `deg`, ...; empty when dimensionless).
+    pub unit: &'static str,
+    value: fn(&FlightRun, &Sample) -> f64,
+}
+
+impl Series {
+    /// The column name of `trajectory.csv`: the name with its unit (`altitude_agl_m`).
+    #[must_use]
+    pub fn column(&self) -> String {
+        if self.unit.is_empty() {
+            self.name.to_owned()
+        } else {
+            format!("{}_{}", self.name, self.unit)
+        }
+    }
+
+    /// The value at one point of `run`.
+    #[must_use]
+    pub fn value(&self, run: &FlightRun, sample: &Sample) -> f64 {
+        (self.value)(run, sample)
+    }
+}
+
+const fn series(
+    name: &'static str,
+    unit: &'static str,
+    value: fn(&FlightRun, &Sample) -> f64,
+) -> Series {
+    Series { name, unit, value }
+}
+
+/// Every series, in the column order of `trajectory.csv`. Positions are those of the centre
+/// of dry mass in the launch frame (x east, y north, z up); body-frame quantities carry the
+/// indices 1, 2, 3 of RocketPy's body axes.
+pub const SERIES: &[Series] = &[
+    series("time", "s", |_, s| s.t),
+    series("x", "m", |_, s| s.x),
+    series("y", "m", |_, s| s.y),
+    series("z_asl", "m", |_, s| s.z),
+    series("altitude_agl", "m", |_, s| s.altitude_agl),
+    series("latitude", "deg", |r, s| r.environment.geodetic(s.x, s.y).0),
+    series("longitude", "deg", |r, s| {
+        r.environment.geodetic(s.x, s.y).1
+    }),
+    series("vx", "mps", |_, s| s.vx),
+    series("vy", "mps", |_, s| s.vy),
+    series("vz", "mps", |_, s| s.vz),
+    series("ax", "mps2", |_, s| s.ax),
+    series("ay", "mps2", |_, s| s.ay),
+    series("az", "mps2", |_, s| s.az),
+    series("e0", "", |_, s| s.e[0]),
+    series("e1", "", |_, s| s.e[1]),
+    series("e2", "", |_, s| s.e[2]),
+    series("e3", "", |_, s| s.e[3]),
+    series("omega1", "radps", |_, s| s.omega[0]),
+    series("omega2", "radps", |_, s| s.omega[1]),
+    series("omega3", "radps", |_, s| s.omega[2]),
+    series("alpha1", "radps2", |_, s| s.omega_dot[0]),
+    series("alpha2", "radps2", |_, s| s.omega_dot[1]),
+    series("alpha3", "radps2", |_, s| s.omega_dot[2]),
+    series("speed", "mps", |_, s| s.speed),
+    series("free_stream_speed", "mps", |_, s| s.free_stream_speed),
+    series("mach", "", |_, s| s.mach),
+    series("dynamic_pressure", "pa", |_, s| s.dynamic_pressure),
+    series("angle_of_attack", "deg", |_, s| s.angle_of_attack_deg),
+    series("path_angle", "deg", |_, s| s.path_angle_deg),
+    series("attitude_angle", "deg", |_, s| s.attitude_angle_deg),
+    series("precession", "deg", |_, s| s.euler_deg[0]),
+    series("nutation", "deg", |_, s| s.euler_deg[1]),
+    series("spin", "deg", |_, s| s.euler_deg[2]),
+    series("static_margin", "cal", |r, s| r.rocket.static_margin(s.t)),
+    series("stability_margin", "cal", |_, s| s.stability_margin),
+    series("aero_force_r1", "n", |_, s| s.force[0]),
+    series("aero_force_r2", "n", |_, s| s.force[1]),
+    series("aero_force_r3", "n", |_, s| s.force[2]),
+    series("aero_moment_m1", "nm", |_, s| s.moment[0]),
+    series("aero_moment_m2", "nm", |_, s| s.moment[1]),
+    series("aero_moment_m3", "nm", |_, s| s.moment[2]),
+    series("net_thrust", "n", |_, s| s.net_thrust),
+    series("mass", "kg", |_, s| s.mass),
+];
+
+/// The series called `name`.
+#[must_use]
+pub fn series_named(name: &str) -> Option<&'static Series> {
+    SERIES.iter().find(|s| s.name == name)
+}
+
+/// `trajectory.csv`: a header of [`Series::column`] names, then one row per point (numbers in
+/// Rust's shortest round-trip form).
+#[must_use]
+pub fn csv(run: &FlightRun, samples: &[Sample]) -> String {
+    let header: Vec<String> = SERIES.iter().map(Series::column).collect();
+    let mut csv = header.join(",");
+    csv.push('\n');
+    for sample in samples {
+        for (i, series) in SERIES.iter().enumerate() {
+            if i > 0 {
+                csv.push(',');
+            }
+            let _ = write!(csv, "{}", series.value(run, sample));
+        }
+        csv.push('\n');
+    }
+    csv
+}
+
+/// Escapes text for XML.
+fn xml_escape(text: &str) -> String {
+    text.replace('&', "&amp;")
+        .replace('<', "&lt;")
+        .replace('>', "&gt;")
+}
+
+/// The flight path named `name` as a KML LineString with absolute altitudes.
+#[must_use]
+pub fn kml(run: &FlightRun, name: &str, samples: &[Sample]) -> String {
+    let name = xml_escape(name);
+    let mut coords = String::new();
+    for s in samples {
+        let (lat, lon) = run.environment.geodetic(s.x, s.y);
+        let _ = writeln!(coords, "          {lon:.8},{lat:.8},{:.2}", s.z);
+    }
+    format!(
+        r#"<?xml version="1.0" encoding="UTF-8"?>
+<kml xmlns="http://www.opengis.net/kml/2.2">
+  <Document>
+    <name>{name}</name>
+    <Style id="path"><LineStyle><color>ff0000ff</color><width>3</width></LineStyle></Style>
+    <Placemark>
+      <name>{name} trajectory</name>
+      <styleUrl>#path</styleUrl>
+      <LineString>
+        <altitudeMode>absolute</altitudeMode>
+        <coordinates>
+{coords}        </coordinates>
+      </LineString>
+    </Placemark>
+  </Document>
+</kml>
+"#
+    )
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn names_are_unique_and_columns_carry_units() {
+        let mut names: Vec<&str> = SERIES.iter().map(|s| s.name).collect();
+        names.sort_unstable();
+        names.dedup();
+        assert_eq!(names.len(), SERIES.len());
+        assert_eq!(
+            series_named("altitude_agl").map(Series::column).as_deref(),
+            Some("altitude_agl_m")
+        );
+        assert_eq!(
+            series_named("mach").map(Series::column).as_deref(),
+            Some("mach")
+        );
+        assert!(series_named("nothing").is_none());
+    }
+
+    #[test]
+    fn escapes_xml() {
+        assert_eq!(xml_escape("a<b>&c"), "a&lt;b&gt;&amp;c");
+    }
+}

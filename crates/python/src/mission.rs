@@ -1,0 +1,357 @@
+//! `karman.load` and `karman.Mission`: a validated mission, its overrides, and what it flies.
+
+use std::path::{Path, PathBuf};
+use std::sync::atomic::{AtomicBool, AtomicU64, Ordering};
+use std::time::Duration;
+
+use karman_mission::build::environment::build_environment;
+use karman_mission::build::flight::simulate_with_seed;
+use karman_mission::build::motor::build_motor;
+use karman_mission::build::rocket::build_rocket;
+use karman_mission::dispersion::{ProgressMode, RunOptions, run_until};
+use karman_mission::montecarlo::{MonteCarlo, StudyOverrides};
+use karman_mission::report::environment::{default_heights, environment_report};
+use karman_mission::report::motor::MotorReport;
+use karman_mission::report::rocket::RocketReport;
+use karman_mission::{MissionError as RustMissionError, Override};
+use pyo3::exceptions::{PyRuntimeError, PyValueError};
+use pyo3::prelude::*;
+use pyo3::types::PyDict;
+
+use crate::convert::{from_json, from_toml, to_toml};
+use crate::flight::Flight;
+use crate::mission_error;
+use crate::study::Study;
+
+/// The file name missions built from text or data are given in messages when no `path` is
+/// passed (relative data paths then resolve against the working directory).
+const UNNAMED: &str = "<mission>";
+
+/// A mission: the TOML text it was read from, the overrides applied to it, and the validated
+/// result.
+#[pyclass(module = "karman")]
+#[derive(Clone)]
+pub struct Mission {
+    text: String,
+    overrides: Vec<Override>,
+    inner: karman_mission::Mission,
+}
+
+/// The overrides of a `{path: value}` dict, values given as Python data.
+fn overrides_of(overrides: Option<&Bound<'_, PyDict>>) -> PyResult<Vec<Override>> {
+    let mut out = Vec::new();
+    for (path, value) in overrides.into_iter().flat_map(|d| d.iter()) {
+        let path: String = path.extract()?;
+        out.push(override_of(&path, &value)?);
+    }
+    Ok(out)
+}
+
+/// One override: a dotted path and a Python value written as a TOML value.
+fn override_of(path: &str, value: &Bound<'_, PyAny>) -> PyResult<Override> {
+    let value = to_toml(value, path)?;
+    Override::new(path, &value.to_string()).map_err(|e| override_error(path, &e))
+}
+
+/// The exception of an override that is malformed before it reaches the mission.
+fn override_error(path: &str, error: &karman_mission::OverrideError) -> PyErr {
+    crate::MissionError::new_err(format!("--set `{path}`: {error}"))
+}
+
+impl Mission {
+    fn parse(text: String, path: &Path, overrides: Vec<Override>) -> PyResult<Self> {
+        let inner =
+            karman_mission::parse(&text, path, &overrides).map_err(|e| mission_error(&e))?;
+        Ok(Mission {
+            text,
+            overrides,
+            inner,
+        })
+    }
+
+    /// The validated mission.
+    pub fn inner(&self) -> &karman_mission::Mission {
+        &self.inner
+    }
+}
+
+/// Reads a mission file, applies `overrides` (`{"flight.inclination": 84}`: the dotted paths
+/// of `--set`, values as Python data) and validates it.
+#[pyfunction]
+#[pyo3(signature = (path, overrides = None))]
+pub fn load(path: PathBuf, overrides: Option<&Bound<'_, PyDict>>) -> PyResult<Mission> {
+    let overrides = overrides_of(overrides)?;
+    // Read through the mission crate first: its messages for unreadable or non-UTF-8 files.
+    karman_mission::load(&path, &overrides).map_err(|e| mission_error(&e))?;
+    let text = std::fs::read_to_string(&path).map_err(|source| {
+        mission_error(&RustMissionError::Read {
+            file: path.clone(),
+            source,
+        })
+    })?;
+    Mission::parse(text, &path, overrides)
+}
+
+#[pymethods]
+impl Mission {
+    /// A mission from TOML text; `path` names it in messages and its folder resolves relative
+    /// data paths (default: the working directory).
+    #[staticmethod]
+    #[pyo3(signature = (text, path = None))]
+    fn from_toml(text: String, path: Option<PathBuf>) -> PyResult<Self> {
+        let path = path.unwrap_or_else(|| PathBuf::from(UNNAMED));
+        Mission::parse(text, &path, Vec::new())
+    }
+
+    /// A mission from Python data shaped like the TOML file (`{"environment": {...},
+    /// "motor": {...}, ...}`); `path` as in `from_toml`.
+    #[staticmethod]
+    #[pyo3(signature = (data, path = None))]
+    fn from_dict(data: &Bound<'_, PyDict>, path: Option<PathBuf>) -> PyResult<Self> {
+        let toml::Value::Table(table) = to_toml(data.as_any(), "")? else {
+            return Err(PyValueError::new_err("a mission is a dict"));
+        };
+        let text = toml::to_string(&table)
+            .map_err(|e| PyValueError::new_err(format!("cannot write the mission as TOML: {e}")))?;
+        Mission::from_toml(text, path)
+    }
+
+    /// Sets one input by its dotted path (`mission.set("flight.inclination", 84)`, the paths
+    /// of `--set`) and validates the mission again; on error the mission is unchanged.
+    fn set(&mut self, path: &str, value: &Bound<'_, PyAny>) -> PyResult<()> {
+        let mut overrides = self.overrides.clone();
+        overrides.push(override_of(path, value)?);
+        *self = Mission::parse(self.text.clone(), &self.inner.path, overrides)?;
+        Ok(())
+    }
+
+    /// An independent copy (to vary one mission several ways).
+    fn copy(&self) -> Self {
+        self.clone()
+    }
+
+    fn __copy__(&self) -> Self {
+        self.clone()
+    }
+
+    fn __deepcopy__(&self, _memo: &Bound<'_, PyAny>) -> Self {
+        self.clone()
+    }
+
+    /// The mission, overrides applied, as TOML text (every default written out; relative
+    /// data paths stay relative to the mission's folder).
+    fn to_toml(&self) -> PyResult<String> {
+        toml::to_string(&self.inner.spec)
+            .map_err(|e| PyRuntimeError::new_err(format!("cannot write the mission as TOML: {e}")))
+    }
+
+    /// The mission, overrides applied, as Python data (the shape `from_dict` takes).
+    fn to_dict<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
+        let value = toml::Value::try_from(&self.inner.spec)
+            .map_err(|e| PyRuntimeError::new_err(format!("cannot convert the mission: {e}")))?;
+        from_toml(py, &value)
+    }
+
+    /// The mission's `name`, if it has one.
+    #[getter]
+    fn name(&self) -> Option<String> {
+        self.inner.spec.name.clone()
+    }
+
+    /// The mission file (or the name given to `from_toml`/`from_dict`).
+    #[getter]
+    fn path(&self) -> PathBuf {
+        self.inner.path.clone()
+    }
+
+    /// The overrides applied, as `PATH=VALUE` texts.
+    #[getter]
+    fn overrides(&self) -> Vec<String> {
+        self.overrides.iter().map(|o| o.text.clone()).collect()
+    }
+
+    /// The models the mission builds, as `karman inspect --json` shows them:
+    /// `{"environment": ..., "motor": ..., "rocket": ...}`, tables as numpy arrays.
+    /// `heights` (m above sea level) and `times` (s) choose the sample points.
+    #[pyo3(signature = (heights = None, times = None))]
+    fn inspect<'py>(
+        &self,
+        py: Python<'py>,
+        heights: Option<Vec<f64>>,
+        times: Option<Vec<f64>>,
+    ) -> PyResult<Bound<'py, PyAny>> {
+        let mission = &self.inner;
+        let value = py
+            .detach(|| -> Result<serde_json::Value, RustMissionError> {
+                let environment = build_environment(mission)?;
+                let motor = build_motor(mission)?;
+                let rocket = build_rocket(mission, &motor)?;
+                let heights = heights.unwrap_or_else(|| {
+                    default_heights(
+                        environment.elevation(),
+                        mission.spec.environment.max_expected_height,
+                    )
+                });
+                let motor_report = match &times {
+                    Some(times) => MotorReport::at_times(&motor, times),
+                    None => MotorReport::new(&motor),
+                };
+                Ok(serde_json::json!({
+                    "environment": environment_report(&environment, &heights),
+                    "motor": motor_report,
+                    "rocket": RocketReport::new(&rocket),
+                }))
+            })
+            .map_err(|e| mission_error(&e))?;
+        from_json(py, &value)
+    }
+
+    /// Flies the mission once (the GIL is released meanwhile); `seed` seeds the parachute
+    /// trigger noise. Raises `MissionError` when the models cannot be built or flown.
+    #[pyo3(signature = (seed = 0))]
+    fn simulate(&self, py: Python<'_>, seed: u64) -> PyResult<Flight> {
+        let mission = &self.inner;
+        let run = py
+            .detach(|| simulate_with_seed(mission, seed))
+            .map_err(|e| mission_error(&e))?;
+        let name = mission
+            .spec
+            .name
+            .clone()
+            .unwrap_or_else(|| "karman flight".to_owned());
+        Ok(Flight::new(run, name, seed))
+    }
+
+    /// A Monte Carlo study of the mission, in memory: `samples` and `seed` default to the
+    /// mission's `[dispersion]`, `vary` (`{path: distribution}` as in `[dispersion.vary]`)
+    /// replaces its inputs, `threads` defaults to one per core. `out` also writes the files of
+    /// `karman montecarlo --out` (resumable). The GIL is released; Ctrl-C stops the study
+    /// between samples (raising `KeyboardInterrupt`). `progress` shows a progress bar.
+    #[pyo3(signature = (samples = None, seed = None, threads = None, vary = None, out = None, progress = true))]
+    #[allow(clippy::too_many_arguments)]
+    fn montecarlo(
+        &self,
+        py: Python<'_>,
+        samples: Option<u64>,
+        seed: Option<u64>,
+        threads: Option<usize>,
+        vary: Option<&Bound<'_, PyDict>>,
+        out: Option<PathBuf>,
+        progress: bool,
+    ) -> PyResult<Study> {
+        let mission = match vary {
+            None => self.clone(),
+            Some(vary) => {
+                let table = to_toml(vary.as_any(), "dispersion.vary")?;
+                let item = if self.inner.spec.dispersion.is_some() {
+                    Override::new("dispersion.vary", &table.to_string())
+                } else {
+                    let samples = samples.ok_or_else(|| {
+                        PyValueError::new_err(
+                            "the mission has no [dispersion] table: give samples= with vary=",
+                        )
+                    })?;
+                    Override::new(
+                        "dispersion",
+                        &format!(
+                            "{{ samples = {samples}, seed = {}, vary = {table} }}",
+                            seed.unwrap_or(0)
+                        ),
+                    )
+                }
+                .map_err(|e| override_error("dispersion.vary", &e))?;
+                let mut overrides = self.overrides.clone();
+                overrides.push(item);
+                Mission::parse(self.text.clone(), &self.inner.path, overrides)?
+            }
+        };
+        let study = MonteCarlo::new(&mission.inner, StudyOverrides { samples, seed })
+            .map_err(|e| mission_error(&e))?;
+        let temporary = match out {
+            Some(_) => None,
+            None => Some(tempfile::tempdir().map_err(|e| {
+                PyRuntimeError::new_err(format!("cannot create a temporary folder: {e}"))
+            })?),
+        };
+        let dir = match (&out, &temporary) {
+            (Some(out), _) => out.clone(),
+            (None, Some(t)) => t.path().to_owned(),
+            (None, None) => unreachable!("a temporary folder exists when no out is given"),
+        };
+        let options = RunOptions {
+            threads,
+            shard: None,
+            progress: ProgressMode::Hidden,
+        };
+        let total = study.study().samples;
+        let reporter: Option<Py<PyAny>> = if progress {
+            Some(
+                py.import("karman._progress")?
+                    .getattr("Progress")?
+                    .call1((total,))?
+                    .unbind(),
+            )
+        } else {
+            None
+        };
+        let stop = AtomicBool::new(false);
+        let done = AtomicU64::new(0);
+        let (result, interrupted) = py.detach(|| {
+            std::thread::scope(|scope| {
+                let (finished, wait) = std::sync::mpsc::channel::<()>();
+                let (study, dir, options, stop, done) = (&study, &dir, &options, &stop, &done);
+                let worker = scope.spawn(move || {
+                    let result = run_until(study.study(), dir, options, stop, |index, values| {
+                        let outcome = study.fly(index, values);
+                        done.fetch_add(1, Ordering::Relaxed);
+                        outcome
+                    });
+                    let _ = finished.send(());
+                    result
+                });
+                let mut interrupted: Option<PyErr> = None;
+                while wait.recv_timeout(POLL).is_err() {
+                    Python::attach(|py| {
+                        if interrupted.is_none()
+                            && let Err(error) = py.check_signals()
+                        {
+                            stop.store(true, Ordering::Relaxed);
+                            interrupted = Some(error);
+                        }
+                        if let Some(reporter) = &reporter {
+                            let _ = reporter
+                                .bind(py)
+                                .call_method1("update", (done.load(Ordering::Relaxed),));
+                        }
+                    });
+                }
+                (worker.join(), interrupted)
+            })
+        });
+        if let Some(reporter) = &reporter {
+            reporter
+                .bind(py)
+                .call_method1("close", (done.load(Ordering::Relaxed),))?;
+        }
+        if let Some(error) = interrupted {
+            return Err(error);
+        }
+        let report = result
+            .map_err(|_| PyRuntimeError::new_err("the Monte Carlo runner panicked"))?
+            .map_err(|e| mission_error(&e))?;
+        Study::read(study.study(), &report, &dir, out.is_some())
+    }
+
+    fn __repr__(&self) -> String {
+        match &self.inner.spec.name {
+            Some(name) => format!(
+                "<karman.Mission {name:?} from {}>",
+                self.inner.path.display()
+            ),
+            None => format!("<karman.Mission from {}>", self.inner.path.display()),
+        }
+    }
+}
+
+/// How often a running study looks for Ctrl-C and updates its progress display.
+const POLL: Duration = Duration::from_millis(50);

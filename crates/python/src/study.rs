@@ -1,0 +1,235 @@
+//! `karman.Study`: a finished Monte Carlo study in memory — the sampled inputs and the
+//! summary outputs of every sample as numpy arrays, statistics and ellipses.
+
+use std::path::{Path, PathBuf};
+use std::time::Duration;
+
+use karman_mission::dispersion::{RunReport, Status, Study as StudyDefinition, Summary, parse_row};
+use numpy::PyArray1;
+use pyo3::exceptions::{PyOSError, PyRuntimeError};
+use pyo3::prelude::*;
+use pyo3::types::PyDict;
+
+use crate::convert::{from_json, plain};
+
+/// A finished Monte Carlo study.
+#[pyclass(module = "karman", frozen)]
+pub struct Study {
+    seed: u64,
+    index: Vec<u64>,
+    inputs: Vec<(String, Vec<f64>)>,
+    outputs: Vec<(String, Vec<f64>)>,
+    failures: Vec<(u64, String)>,
+    summary: Summary,
+    threads: usize,
+    elapsed: Duration,
+    flown: u64,
+    out: Option<PathBuf>,
+}
+
+impl Study {
+    /// Reads the rows of a finished run back from its `samples.csv` in `dir`; `keep` records
+    /// `dir` as the study's output folder.
+    pub fn read(
+        study: &StudyDefinition,
+        report: &RunReport,
+        dir: &Path,
+        keep: bool,
+    ) -> PyResult<Self> {
+        let path = dir.join(karman_mission::dispersion::files::SAMPLES_FILE);
+        let text = std::fs::read_to_string(&path)
+            .map_err(|e| PyOSError::new_err(format!("cannot read {}: {e}", path.display())))?;
+        let (n_in, n_out) = (study.inputs.len(), study.outputs.len());
+        let mut index = Vec::new();
+        let mut inputs: Vec<Vec<f64>> = vec![Vec::new(); n_in];
+        let mut outputs: Vec<Vec<f64>> = vec![Vec::new(); n_out];
+        let mut failures = Vec::new();
+        for (number, line) in text.lines().enumerate().skip(1) {
+            let row = parse_row(line, n_in, n_out).map_err(|reason| {
+                PyRuntimeError::new_err(format!(
+                    "{}, line {}: {reason}",
+                    path.display(),
+                    number + 1
+                ))
+            })?;
+            index.push(row.index);
+            for (column, value) in inputs.iter_mut().zip(&row.inputs) {
+                column.push(*value);
+            }
+            for (column, value) in outputs.iter_mut().zip(&row.outputs) {
+                column.push(value.unwrap_or(f64::NAN));
+            }
+            match row.status {
+                Status::Completed => {}
+                Status::Ended { kind, message } => {
+                    failures.push((row.index, format!("{kind}: {message}")));
+                }
+                Status::Failed(error) => failures.push((row.index, error)),
+            }
+        }
+        let summary = report
+            .summary
+            .clone()
+            .ok_or_else(|| PyRuntimeError::new_err("a whole study has a summary"))?;
+        Ok(Study {
+            seed: study.seed,
+            index,
+            inputs: study
+                .inputs
+                .iter()
+                .map(|i| i.column())
+                .zip(inputs)
+                .collect(),
+            outputs: study.outputs.iter().cloned().zip(outputs).collect(),
+            failures,
+            summary,
+            threads: report.threads,
+            elapsed: report.elapsed,
+            flown: report.flown,
+            out: keep.then(|| dir.to_owned()),
+        })
+    }
+
+    fn columns<'py>(
+        py: Python<'py>,
+        columns: &[(String, Vec<f64>)],
+    ) -> PyResult<Bound<'py, PyDict>> {
+        let dict = PyDict::new(py);
+        for (name, values) in columns {
+            dict.set_item(name, PyArray1::from_slice(py, values))?;
+        }
+        Ok(dict)
+    }
+}
+
+#[pymethods]
+impl Study {
+    /// The study's seed.
+    #[getter]
+    fn seed(&self) -> u64 {
+        self.seed
+    }
+
+    /// Number of samples.
+    #[getter]
+    fn samples(&self) -> usize {
+        self.index.len()
+    }
+
+    /// The sample indices, in row order (0, 1, 2, ...).
+    #[getter]
+    fn index<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray1<u64>> {
+        PyArray1::from_slice(py, &self.index)
+    }
+
+    /// The sampled inputs by column of `samples.csv`: the dotted path, with `:factor` or
+    /// `:offset` appended when the column holds a factor or an offset.
+    #[getter]
+    fn inputs<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyDict>> {
+        Study::columns(py, &self.inputs)
+    }
+
+    /// The outputs by summary key (`apogee_agl_m`, `impact_x_m`, ...; the keys of
+    /// `karman simulate --json`), NaN where a sample failed or the quantity did not occur.
+    #[getter]
+    fn outputs<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyDict>> {
+        Study::columns(py, &self.outputs)
+    }
+
+    /// The samples that failed or ended before the flight the study asked for (`max_time`,
+    /// stuck on the rail) as `(index, message)` pairs.
+    #[getter]
+    fn failures(&self) -> Vec<(u64, String)> {
+        self.failures.clone()
+    }
+
+    /// `summary.json` of `karman montecarlo` as Python data.
+    fn to_dict<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
+        plain(py, &self.summary)
+    }
+
+    /// Statistics of each input and output column: `{name: {count, mean, std, min, max,
+    /// median, p2_5, p97_5}}` (population standard deviation).
+    #[getter]
+    fn statistics<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyDict>> {
+        let dict = PyDict::new(py);
+        for column in self.summary.inputs.iter().chain(&self.summary.outputs) {
+            dict.set_item(&column.name, plain(py, &column.statistics)?)?;
+        }
+        Ok(dict)
+    }
+
+    /// The apogee and landing ellipses by name (`"apogee"`, `"landing"`): centre,
+    /// covariance, orientation and the 1/2/3-sigma contours in RocketPy's convention
+    /// (`k_sigma_rocketpy`) and probability-calibrated (`probability`).
+    #[getter]
+    fn ellipses<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyDict>> {
+        let dict = PyDict::new(py);
+        for ellipse in &self.summary.ellipses {
+            let value = serde_json::to_value(ellipse)
+                .map_err(|e| PyRuntimeError::new_err(e.to_string()))?;
+            dict.set_item(&ellipse.name, from_json(py, &value)?)?;
+        }
+        Ok(dict)
+    }
+
+    /// Worker threads used.
+    #[getter]
+    fn threads(&self) -> usize {
+        self.threads
+    }
+
+    /// Wall time of the flights, s.
+    #[getter]
+    fn elapsed(&self) -> f64 {
+        self.elapsed.as_secs_f64()
+    }
+
+    /// Samples flown per second of wall time (0 when every sample was resumed from `out`).
+    #[getter]
+    fn rate(&self) -> f64 {
+        self.flown as f64 / self.elapsed.as_secs_f64().max(1e-9)
+    }
+
+    /// The output folder given as `out=`, if any.
+    #[getter]
+    fn out(&self) -> Option<PathBuf> {
+        self.out.clone()
+    }
+
+    /// Inputs and outputs as one pandas DataFrame indexed by sample; needs pandas.
+    fn to_pandas<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
+        let pandas = py.import("pandas")?;
+        let columns = Study::columns(py, &self.inputs)?;
+        for (name, values) in &self.outputs {
+            columns.set_item(name, PyArray1::from_slice(py, values))?;
+        }
+        let kwargs = PyDict::new(py);
+        kwargs.set_item("index", self.index(py))?;
+        pandas.getattr("DataFrame")?.call((columns,), Some(&kwargs))
+    }
+
+    /// The landing (and apogee) points with their 1/2/3-sigma ellipses, drawn with
+    /// matplotlib as `landing.svg` of `karman montecarlo`; `path` saves the figure. Returns
+    /// the figure.
+    #[pyo3(signature = (path = None, show = false))]
+    fn plot_ellipses<'py>(
+        slf: &Bound<'py, Self>,
+        path: Option<String>,
+        show: bool,
+    ) -> PyResult<Bound<'py, PyAny>> {
+        slf.py()
+            .import("karman._plot")?
+            .getattr("plot_ellipses")?
+            .call1((slf, path, show))
+    }
+
+    fn __repr__(&self) -> String {
+        format!(
+            "<karman.Study: {} samples (seed {}), {} failed>",
+            self.index.len(),
+            self.seed,
+            self.failures.len()
+        )
+    }
+}

@@ -1,0 +1,88 @@
+"""Loading, overrides, TOML/dict round trips and located errors."""
+
+from __future__ import annotations
+
+import pytest
+
+import karman
+from conftest import EXAMPLE
+
+
+def test_load_with_overrides_matches_set(example):
+    tilted = karman.load(EXAMPLE, overrides={"flight.inclination": 84})
+    example.set("flight.inclination", 84)
+    assert tilted.overrides == ["flight.inclination=84"]
+    assert tilted.to_dict()["flight"]["inclination"] == 84
+    assert tilted.to_toml() == example.to_toml()
+    assert tilted.simulate().apogee_agl_m == example.simulate().apogee_agl_m
+
+
+def test_set_takes_python_values(example):
+    example.set("rocket.parachutes.main.noise", [0, 0, 0])
+    example.set("environment.atmosphere.model", "standard")
+    data = example.to_dict()
+    assert data["rocket"]["parachutes"]["main"]["noise"] == [0, 0, 0]
+
+
+def test_copy_is_independent(example):
+    other = example.copy()
+    other.set("rocket.mass", 20.0)
+    assert example.to_dict()["rocket"]["mass"] != 20.0
+    assert other.to_dict()["rocket"]["mass"] == 20.0
+
+
+def test_toml_and_dict_round_trips(example):
+    text = example.to_toml()
+    again = karman.Mission.from_toml(text, path=EXAMPLE)
+    assert again.to_toml() == text
+    from_data = karman.Mission.from_dict(example.to_dict(), path=EXAMPLE)
+    assert from_data.to_toml() == text
+    assert from_data.simulate().to_dict() == example.simulate().to_dict()
+
+
+def test_syntax_error_names_line_and_column(tmp_path):
+    path = tmp_path / "broken.toml"
+    path.write_text("name = \"x\"\n[flight\nrail_length = 5\n")
+    with pytest.raises(karman.MissionError, match=r"broken\.toml:2:\d+: TOML syntax error"):
+        karman.load(path)
+
+
+def test_unknown_set_path_is_a_located_error(example):
+    before = example.to_toml()
+    with pytest.raises(karman.MissionError) as error:
+        example.set("flight.inclinatio", 3)
+    message = str(error.value)
+    assert "example.toml" in message
+    assert "--set flight.inclinatio=3" in message
+    assert "unknown field `inclinatio`" in message
+    assert example.to_toml() == before, "a failed set leaves the mission unchanged"
+
+
+def test_invalid_value_names_file_line_and_key(tmp_path):
+    text = EXAMPLE.read_text().replace("rail_length = ", "rail_length = -", 1)
+    path = tmp_path / "negative.toml"
+    path.write_text(text)
+    line = next(i for i, l in enumerate(text.splitlines(), 1) if "rail_length = -" in l)
+    with pytest.raises(karman.MissionError, match=rf"negative\.toml:{line}:\d+: .*rail_length"):
+        karman.load(path)
+
+
+def test_missing_file_and_bad_types(tmp_path):
+    with pytest.raises(karman.MissionError, match="cannot read mission file"):
+        karman.load(tmp_path / "absent.toml")
+    with pytest.raises(TypeError, match="`flight.inclination`"):
+        karman.load(EXAMPLE, overrides={"flight.inclination": object()})
+    assert issubclass(karman.MissionError, ValueError)
+
+
+def test_from_toml_messages_name_the_given_path():
+    with pytest.raises(karman.MissionError, match=r"inline\.toml:1:1: missing field `environment`"):
+        karman.Mission.from_toml("[flight]\nrail_length = 5\n", path="inline.toml")
+
+
+def test_inspect_gives_arrays(example):
+    report = example.inspect(heights=[0.0, 500.0, 1000.0], times=[0.0, 1.0, 2.0])
+    assert set(report) == {"environment", "motor", "rocket"}
+    environment = report["environment"]
+    arrays = [v for v in environment.values() if hasattr(v, "shape")]
+    assert arrays and all(a.shape == (3,) for a in arrays)

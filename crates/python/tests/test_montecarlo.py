@@ -1,0 +1,127 @@
+"""Monte Carlo in memory: arrays, determinism across threads, the CLI's bytes, the GIL,
+Ctrl-C."""
+
+from __future__ import annotations
+
+import _thread
+import subprocess
+import threading
+import time
+
+import numpy as np
+import pytest
+
+import karman
+from conftest import EXAMPLE
+
+
+def test_inputs_and_outputs_are_arrays(example):
+    study = example.montecarlo(samples=24, seed=11, threads=2, progress=False)
+    assert study.samples == 24 and study.seed == 11
+    assert np.array_equal(study.index, np.arange(24))
+    assert set(study.outputs) == set(karman.SUMMARY_KEYS)
+    for values in [*study.inputs.values(), *study.outputs.values()]:
+        assert values.dtype == np.float64 and values.shape == (24,)
+    assert study.failures == []
+    stats = study.statistics["apogee_agl_m"]
+    assert stats["mean"] == pytest.approx(np.mean(study.outputs["apogee_agl_m"]))
+    landing = study.ellipses["landing"]
+    assert [c["sigma"] for c in landing["k_sigma_rocketpy"]] == [1, 2, 3]
+    assert landing["center_m"][0] == pytest.approx(np.mean(study.outputs["impact_x_m"]))
+
+
+def test_vary_replaces_the_mission_inputs(example):
+    study = example.montecarlo(
+        samples=16, seed=1, vary={"rocket.mass": {"std": 0.5}}, progress=False
+    )
+    assert list(study.inputs) == ["rocket.mass"]
+    mass = example.to_dict()["rocket"]["mass"]
+    assert abs(np.mean(study.inputs["rocket.mass"]) - mass) < 0.5
+    with pytest.raises(karman.MissionError, match="rocket.mas"):
+        example.montecarlo(samples=4, vary={"rocket.mas": {"std": 0.5}}, progress=False)
+
+
+def test_threads_do_not_change_the_arrays(example):
+    one = example.montecarlo(samples=20, seed=4, threads=1, progress=False)
+    two = example.montecarlo(samples=20, seed=4, threads=2, progress=False)
+    for name in one.inputs:
+        assert np.array_equal(one.inputs[name], two.inputs[name])
+    for name in one.outputs:
+        assert np.array_equal(one.outputs[name], two.outputs[name], equal_nan=True)
+    assert one.to_dict() == two.to_dict()
+
+
+def test_out_writes_the_cli_bytes(example, cli, tmp_path):
+    example.montecarlo(samples=12, seed=9, threads=2, out=tmp_path / "py", progress=False)
+    subprocess.run(
+        [cli, "montecarlo", str(EXAMPLE), "--samples", "12", "--seed", "9", "--threads", "1",
+         "--out", str(tmp_path / "cli"), "--quiet"],
+        check=True, capture_output=True,
+    )
+    names = sorted(p.name for p in (tmp_path / "cli").iterdir())
+    assert names == sorted(p.name for p in (tmp_path / "py").iterdir())
+    for name in names:
+        assert (tmp_path / "py" / name).read_bytes() == (tmp_path / "cli" / name).read_bytes(), name
+
+
+def test_a_python_thread_runs_during_a_study(example):
+    ticks = []
+    stop = threading.Event()
+
+    def count():
+        while not stop.is_set():
+            ticks.append(time.perf_counter())
+            time.sleep(0.001)
+
+    thread = threading.Thread(target=count)
+    thread.start()
+    time.sleep(0.05)
+    started = time.perf_counter()
+    example.montecarlo(samples=1500, seed=2, threads=1, progress=False)
+    finished = time.perf_counter()
+    stop.set()
+    thread.join()
+    during = [t for t in ticks if started < t < finished]
+    assert finished - started > 0.1, "the study is long enough to observe"
+    assert len(during) > 10, f"{len(during)} ticks of the Python thread during the study"
+
+
+def test_ctrl_c_stops_a_study_that_then_resumes(example, tmp_path):
+    out = tmp_path / "study"
+    timer = threading.Timer(0.3, _thread.interrupt_main)
+    timer.start()
+    started = time.perf_counter()
+    with pytest.raises(KeyboardInterrupt):
+        example.montecarlo(samples=100_000, seed=3, threads=2, out=out, progress=False)
+    assert time.perf_counter() - started < 30.0
+    timer.join()
+    rows = (out / "samples.csv").read_text().count("\n") - 1
+    assert 0 < rows < 100_000
+    assert not (out / "summary.json").exists()
+
+
+def test_progress_reports_to_the_python_helper(example, monkeypatch):
+    import karman._progress as progress
+
+    seen = []
+
+    class Recorder:
+        def __init__(self, total):
+            seen.append(("total", total))
+
+        def update(self, done):
+            seen.append(("update", done))
+
+        def close(self, done):
+            seen.append(("close", done))
+
+    monkeypatch.setattr(progress, "Progress", Recorder)
+    example.montecarlo(samples=8, seed=1, progress=True)
+    assert seen[0] == ("total", 8) and seen[-1] == ("close", 8)
+
+
+def test_plot_ellipses_when_matplotlib_is_installed(example, tmp_path):
+    pytest.importorskip("matplotlib")
+    study = example.montecarlo(samples=30, seed=5, progress=False)
+    study.plot_ellipses(path=str(tmp_path / "ellipses.png"))
+    assert (tmp_path / "ellipses.png").stat().st_size > 0

@@ -1,0 +1,103 @@
+"""The RocketPy adapter: validation flights built with RocketPy's API fly in karman within
+0.1 % of RocketPy's own Flight of the same objects (apogee, apogee time, rail-exit speed);
+inputs it cannot translate give an error naming the attribute."""
+
+from __future__ import annotations
+
+import math
+
+import pytest
+
+rocketpy = pytest.importorskip("rocketpy")
+
+from karman.rocketpy import UnsupportedError, from_rocketpy, mission_dict  # noqa: E402
+
+import rocketpy_flights  # noqa: E402
+
+TOLERANCE = 1e-3
+
+
+def flown(build, validation):
+    env, rocket, kwargs = getattr(rocketpy_flights, build)(validation)
+    reference = rocketpy.Flight(rocket=rocket, environment=env, **kwargs)
+    flight = from_rocketpy(env, rocket, **kwargs).simulate()
+    expected = {
+        "apogee_agl_m": reference.apogee - env.elevation,
+        "apogee_time_s": reference.apogee_time,
+        "out_of_rail_velocity_mps": reference.out_of_rail_velocity,
+    }
+    return flight, expected
+
+
+def relative_error(ours, expected):
+    return abs(ours / expected - 1.0)
+
+
+@pytest.mark.parametrize("build", ["calisto", "valetudo", "juno3"])
+def test_parity_with_rocketpy(build, validation):
+    flight, expected = flown(build, validation)
+    for key, value in expected.items():
+        ours = getattr(flight, key)
+        assert relative_error(ours, value) < TOLERANCE, f"{build} {key}: {ours} vs {value}"
+
+
+def test_generic_motor_parity(validation):
+    """Prometheus (GenericMotor, drag points that RocketPy interpolates with its spline):
+    apogee and apogee time within 0.1 %. Its rail-exit speed is 0.25 % below RocketPy's for
+    the validation mission itself too (karman's own parity bound there is 0.5 %, the
+    PARITY table of xtask/src/validate.rs), so it is held to that bound here."""
+    flight, expected = flown("prometheus", validation)
+    for key in ("apogee_agl_m", "apogee_time_s"):
+        assert relative_error(getattr(flight, key), expected[key]) < TOLERANCE, key
+    rail = relative_error(flight.out_of_rail_velocity_mps, expected["out_of_rail_velocity_mps"])
+    assert rail < 5e-3
+
+
+def test_calisto_translates_to_the_validation_mission(validation):
+    env, rocket, kwargs = rocketpy_flights.calisto(validation)
+    data = mission_dict(env, rocket, **kwargs)
+    assert data["environment"]["atmosphere"] == {"model": "standard"}
+    assert data["motor"]["kind"] == "solid" and data["motor"]["burn_time"] == [0.0, 3.9]
+    rocket_data = data["rocket"]
+    assert list(rocket_data["surfaces"]) == ["nose", "fins", "tail"]
+    assert list(rocket_data["parachutes"]) == ["main", "drogue"]
+    assert rocket_data["rail_buttons"]["upper_position"] == pytest.approx(0.0818)
+    assert rocket_data["surfaces"]["fins"]["airfoil"]["unit"] == "radians"
+    assert data["flight"] == {"rail_length": 5.2, "inclination": 85.0, "heading": 0.0}
+
+
+def test_unsupported_inputs_name_the_attribute(validation):
+    env, rocket, kwargs = rocketpy_flights.calisto(validation)
+    with pytest.raises(UnsupportedError) as error:
+        from_rocketpy(env, rocket, ode_solver="RK45", **kwargs)
+    assert error.value.attribute == "flight.ode_solver"
+    with pytest.raises(UnsupportedError, match="flight.rail_length"):
+        from_rocketpy(env, rocket, inclination=85)
+    with pytest.raises(UnsupportedError, match="flight.initial_speed"):
+        from_rocketpy(env, rocket, initial_speed=3, **kwargs)
+
+    rocket.add_parachute("custom", cd_s=1.0, trigger=lambda p, h, y: y[5] < 0)
+    with pytest.raises(UnsupportedError) as error:
+        from_rocketpy(env, rocket, **kwargs)
+    assert error.value.attribute == "rocket.parachutes.custom.trigger"
+
+
+def test_callable_curves_and_gravity_are_named(validation):
+    env, rocket, kwargs = rocketpy_flights.calisto(validation)
+    drag = rocketpy.Rocket(
+        radius=0.0635, mass=14.426, inertia=(6.321, 6.321, 0.034),
+        power_off_drag=lambda mach: 0.5, power_on_drag=0.5,
+        center_of_mass_without_motor=0,
+    )
+    drag.add_motor(rocket.motor, position=-1.255)
+    with pytest.raises(UnsupportedError) as error:
+        from_rocketpy(env, drag, **kwargs)
+    assert error.value.attribute == "rocket.power_off_drag"
+
+    heavy = rocketpy.Environment(gravity=lambda h: 9.81 - 3e-6 * h, elevation=1400)
+    with pytest.raises(UnsupportedError) as error:
+        from_rocketpy(heavy, rocket, **kwargs)
+    assert error.value.attribute == "environment.gravity"
+    constant = rocketpy.Environment(gravity=9.81, elevation=1400)
+    assert mission_dict(constant, rocket, **kwargs)["environment"]["gravity"] == 9.81
+    assert math.isfinite(from_rocketpy(constant, rocket, **kwargs).simulate().apogee_agl_m)
