@@ -771,6 +771,31 @@ mod tests {
     }
 
     #[test]
+    fn a_sample_too_weak_to_leave_the_rail_is_stuck_on_it() {
+        // 5 N·s in 0.05 s: at burn-out the rocket has slid about 2 cm of the 2 m rail at under
+        // 1 m/s; it ends there, not by creeping off the rail at that speed seconds later.
+        let mission = mission(
+            "\"motor.total_impulse\" = { choice = [5.0] }\n\
+             \"motor.burn_time\" = { choice = [0.05] }\n",
+        );
+        let mc = MonteCarlo::new(&mission, StudyOverrides::default()).expect("study");
+        let outcome = mc.fly(0, &[5.0, 0.05]).expect("flight");
+        match outcome.status() {
+            karman_dispersion::Status::Ended { kind, message } => {
+                assert_eq!(kind, "stuck_on_rail");
+                assert!(message.contains("too slow to coast"), "{message}");
+            }
+            other => panic!("expected stuck_on_rail, got {other:?}"),
+        }
+        let out_of_rail = OUTPUTS.iter().position(|o| *o == "out_of_rail_time_s");
+        assert_eq!(outcome.values()[out_of_rail.expect("output")], None);
+        // The nominal motor leaves the rail.
+        let [burn, impulse] = mc.nominal_reshape;
+        let nominal = mc.fly(0, &[impulse, burn]).expect("flight");
+        assert_eq!(nominal.status(), &karman_dispersion::Status::Completed);
+    }
+
+    #[test]
     fn overrides_and_missing_table() {
         let mission = mission("\"rocket.mass\" = { std = 0.1 }\n");
         let overrides = StudyOverrides {
