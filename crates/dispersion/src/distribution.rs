@@ -325,10 +325,22 @@ mod tests {
         );
         assert!(input(Target::Curve, Variation::Std(0.1)).check().is_err());
         let array = || Target::Array(vec![1.0, 2.0]);
-        assert!(input(array(), Variation::Factor(normal.clone())).check().is_ok());
-        assert!(input(array(), Variation::Offset(normal.clone())).check().is_ok());
+        assert!(
+            input(array(), Variation::Factor(normal.clone()))
+                .check()
+                .is_ok()
+        );
+        assert!(
+            input(array(), Variation::Offset(normal.clone()))
+                .check()
+                .is_ok()
+        );
         assert!(input(array(), Variation::Std(0.1)).check().is_err());
-        assert!(input(array(), Variation::Value(normal.clone())).check().is_err());
+        assert!(
+            input(array(), Variation::Value(normal.clone()))
+                .check()
+                .is_err()
+        );
         assert!(
             input(Target::Curve, Variation::Value(normal.clone()))
                 .check()

@@ -163,7 +163,10 @@ impl<'a> Document<'a> {
                 // values (`rocket.inertia.0`).
                 DeValue::Array(items) => {
                     let count = items.len();
-                    let index = item.path.get(depth + 1).and_then(|i| i.parse::<usize>().ok());
+                    let index = item
+                        .path
+                        .get(depth + 1)
+                        .and_then(|i| i.parse::<usize>().ok());
                     let entry = index.and_then(|i| items.get_mut(i));
                     if depth + 1 == tables.len() {
                         if let Some(entry) = entry

@@ -105,9 +105,7 @@ enum Apply {
     /// A stored number at this path, with its nominal value.
     Number { path: String, nominal: f64 },
     /// An array of numbers: the paths of its components, with their nominal values.
-    Array {
-        components: Vec<(String, f64)>,
-    },
+    Array { components: Vec<(String, f64)> },
     /// A curve at this path, with its nominal points.
     Curve { path: String, points: Vec<[f64; 2]> },
     /// The air brakes' drag table, with its nominal rows (the Cd column varies).
@@ -815,7 +813,10 @@ mod tests {
         // In file order: the factor scales every component, then component 0 is set.
         let (spec, _) = mc.sample_spec(&[2.0, 0.7, 0.001]).expect("applied");
         assert_eq!(spec.rocket.inertia.0, [0.7, 1.0, 0.004, 0.0, 0.0, 0.0]);
-        assert_eq!(spec.motor.dry_inertia.0, [0.011, 0.011, 0.002, 0.001, 0.001, 0.001]);
+        assert_eq!(
+            spec.motor.dry_inertia.0,
+            [0.011, 0.011, 0.002, 0.001, 0.001, 0.001]
+        );
         // A whole array takes only a factor or an offset (checked when the mission is read).
         let mut bad = mission.spec.clone();
         let entry = Distribution::Std(0.1);
@@ -823,13 +824,19 @@ mod tests {
         let error = paths::check_distribution(&input, &entry).expect_err("misfit");
         assert!(error.starts_with("an array only takes"), "{error}");
         bad.dispersion.as_mut().expect("table").vary = [("rocket.inertia".into(), entry)].into();
-        let bad = Mission { spec: bad, ..mission.clone() };
+        let bad = Mission {
+            spec: bad,
+            ..mission.clone()
+        };
         assert!(MonteCarlo::new(&bad, StudyOverrides::default()).is_err());
         // Neutral draws fly the nominal mission.
         let outcome = mc.fly(1, &[1.0, 0.5, 0.0]).expect("flight");
         let nominal = simulate_with_seed(&mission, flight_seed(3, 1)).expect("nominal");
         let bits = |v: &[Option<f64>]| v.iter().map(|x| x.map(f64::to_bits)).collect::<Vec<_>>();
-        assert_eq!(bits(outcome.values()), bits(&output_values(&nominal.summary())));
+        assert_eq!(
+            bits(outcome.values()),
+            bits(&output_values(&nominal.summary()))
+        );
     }
 
     #[test]

@@ -84,7 +84,12 @@ fn split_path(text: &str) -> Result<(Vec<&str>, &str), OverrideError> {
 
 /// One segment of a path: a bare key (trimmed) or a quoted one (its TOML string's value).
 fn key(segment: &str, text: &str) -> Result<String, OverrideError> {
-    let path = || text.split_once('=').map_or(text, |(p, _)| p).trim().to_owned();
+    let path = || {
+        text.split_once('=')
+            .map_or(text, |(p, _)| p)
+            .trim()
+            .to_owned()
+    };
     let segment = segment.trim();
     if segment.is_empty() {
         return Err(OverrideError::EmptySegment { path: path() });

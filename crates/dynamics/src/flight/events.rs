@@ -150,7 +150,11 @@ impl Run<'_> {
             // at burn-out (at the step's end when the step began after it).
             if kind == PhaseKind::Rail && t1 >= self.burn_out {
                 let inside = t0 < self.burn_out && self.burn_out < t1;
-                let u = if inside { integ.dense(self.burn_out) } else { y1 };
+                let u = if inside {
+                    integ.dense(self.burn_out)
+                } else {
+                    y1
+                };
                 let d = dr(&u);
                 let travelled = (d[0] * d[0] + d[1] * d[1] + d[2] * d[2]).sqrt();
                 let speed = (u[3] * u[3] + u[4] * u[4] + u[5] * u[5]).sqrt();
