@@ -812,10 +812,14 @@ mod tests {
         );
         // In file order: the factor scales every component, then component 0 is set.
         let (spec, _) = mc.sample_spec(&[2.0, 0.7, 0.001]).expect("applied");
-        assert_eq!(spec.rocket.inertia.0, [0.7, 1.0, 0.004, 0.0, 0.0, 0.0]);
+        let bits = |v: [f64; 6]| v.map(f64::to_bits);
         assert_eq!(
-            spec.motor.dry_inertia.0,
-            [0.011, 0.011, 0.002, 0.001, 0.001, 0.001]
+            bits(spec.rocket.inertia.0),
+            bits([0.7, 1.0, 0.004, 0.0, 0.0, 0.0])
+        );
+        assert_eq!(
+            bits(spec.motor.dry_inertia.0),
+            bits([0.011, 0.011, 0.002, 0.001, 0.001, 0.001])
         );
         // A whole array takes only a factor or an offset (checked when the mission is read).
         let mut bad = mission.spec.clone();

@@ -100,8 +100,12 @@ fn overrides_reach_array_entries_and_dispersion_entries() {
     let mission = karman_mission::parse(&text, &fixture("minimal.toml"), &overrides)
         .unwrap_or_else(|e| panic!("{e}"));
     let spec = &mission.spec;
-    assert_eq!(spec.rocket.inertia.0, [0.6, 0.5, 0.002, 0.0, 0.0, 0.0]);
-    assert_eq!(spec.motor.dry_inertia.0[2], 0.002);
+    let bits = |v: [f64; 6]| v.map(f64::to_bits);
+    assert_eq!(
+        bits(spec.rocket.inertia.0),
+        bits([0.6, 0.5, 0.002, 0.0, 0.0, 0.0])
+    );
+    assert_eq!(spec.motor.dry_inertia.0[2].to_bits(), 0.002f64.to_bits());
     let vary = &spec.dispersion.as_ref().expect("dispersion").vary;
     assert_eq!(vary["rocket.mass"], Distribution::Std(0.5));
     assert_eq!(
