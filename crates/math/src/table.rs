@@ -1177,18 +1177,24 @@ mod tests {
             Interpolation::Akima,
             Interpolation::Polynomial,
         ] {
-            let t = Table1::new(xs.clone(), ys.clone(), interpolation, Extrapolation::Zero)
-                .unwrap();
+            let t =
+                Table1::new(xs.clone(), ys.clone(), interpolation, Extrapolation::Zero).unwrap();
             let s = t.shifted(7.25).unwrap();
             for k in 0..=40 {
                 let x = -0.5 + 0.1 * f64::from(k);
-                assert!(close(s.eval(x + 7.25), t.eval(x), 1e-12), "{interpolation:?} {x}");
+                assert!(
+                    close(s.eval(x + 7.25), t.eval(x), 1e-12),
+                    "{interpolation:?} {x}"
+                );
                 assert!(close(s.derivative(x + 7.25), t.derivative(x), 1e-9));
             }
         }
-        let stepwise =
-            Table1::linear_stepwise(vec![0.0, 1.0, 1.0, 2.0], vec![0.0, 1.0, 4.0, 4.0], Extrapolation::Constant)
-                .unwrap();
+        let stepwise = Table1::linear_stepwise(
+            vec![0.0, 1.0, 1.0, 2.0],
+            vec![0.0, 1.0, 4.0, 4.0],
+            Extrapolation::Constant,
+        )
+        .unwrap();
         let s = stepwise.shifted(2.0).unwrap();
         assert!(close(s.eval(3.0), 1.0, 1e-15) && close(s.eval(3.5), 4.0, 1e-15));
         assert!(stepwise.shifted(f64::NAN).is_err());

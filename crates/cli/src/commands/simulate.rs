@@ -118,7 +118,11 @@ fn run_staged(args: &SimulateArgs, mission: &karman_mission::Mission) -> Result<
     super::print_warnings(mission, &run.warnings);
     let mut out = std::io::stdout().lock();
     if args.json {
-        writeln!(out, "{}", serde_json::to_string_pretty(&staged_json(&run)?)?)?;
+        writeln!(
+            out,
+            "{}",
+            serde_json::to_string_pretty(&staged_json(&run)?)?
+        )?;
     } else {
         writeln!(out, "{}", staged_text(&run))?;
     }

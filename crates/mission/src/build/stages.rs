@@ -279,7 +279,8 @@ fn build_stack(
     }
     let (_, above) = build_stack(mission, count - 1, 0.0)?;
     let stack = stack_mission(mission, count, Lump::unburnt(&above));
-    let motor = build_motor_with(&stack, &thrust_source(&stack)?).map_err(|e| in_stage(e, count - 1))?;
+    let motor =
+        build_motor_with(&stack, &thrust_source(&stack)?).map_err(|e| in_stage(e, count - 1))?;
     let rocket =
         build_rocket_ignited_at(&stack, &motor, ignition).map_err(|e| in_stage(e, count - 1))?;
     Ok((stack, rocket))
@@ -505,12 +506,9 @@ pub fn simulate_staged(mission: &Mission, seed: u64) -> Result<StagedRun, Missio
             }));
         }
         let flight = match start {
-            Start::Rail => karman_dynamics::simulate_with(
-                &environment,
-                &rocket,
-                &own_settings,
-                processes,
-            ),
+            Start::Rail => {
+                karman_dynamics::simulate_with(&environment, &rocket, &own_settings, processes)
+            }
             Start::Separation { t, state, cdm } => karman_dynamics::simulate_from(
                 &environment,
                 &rocket,
@@ -558,8 +556,8 @@ pub fn simulate_staged(mission: &Mission, seed: u64) -> Result<StagedRun, Missio
             let alone = stage_mission(mission, index);
             let motor = build_motor_with(&alone, &thrust_source(&alone)?)
                 .map_err(|e| in_stage(e, index))?;
-            let spent =
-                build_rocket_ignited_at(&alone, &motor, ignition).map_err(|e| in_stage(e, index))?;
+            let spent = build_rocket_ignited_at(&alone, &motor, ignition)
+                .map_err(|e| in_stage(e, index))?;
             warnings.extend(
                 spent
                     .warnings()

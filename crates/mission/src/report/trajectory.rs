@@ -74,7 +74,9 @@ pub const SERIES: &[Series] = &[
     series("y", "m", |_, s| s.y),
     series("z_asl", "m", |_, s| s.z),
     series("altitude_agl", "m", |_, s| s.altitude_agl),
-    series("latitude", "deg", |r, s| r.environment().geodetic(s.x, s.y).0),
+    series("latitude", "deg", |r, s| {
+        r.environment().geodetic(s.x, s.y).0
+    }),
     series("longitude", "deg", |r, s| {
         r.environment().geodetic(s.x, s.y).1
     }),

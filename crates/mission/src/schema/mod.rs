@@ -94,10 +94,22 @@ impl MissionSpec {
             if let Some(motor) = &stage.motor {
                 curve(&key("motor.thrust"), Some(&motor.thrust));
             }
-            curve(&key("rocket.power_off_drag"), Some(&stage.rocket.power_off_drag));
-            curve(&key("rocket.power_on_drag"), Some(&stage.rocket.power_on_drag));
-            curve(&key("stack_power_off_drag"), Some(&stage.stack_power_off_drag));
-            curve(&key("stack_power_on_drag"), Some(&stage.stack_power_on_drag));
+            curve(
+                &key("rocket.power_off_drag"),
+                Some(&stage.rocket.power_off_drag),
+            );
+            curve(
+                &key("rocket.power_on_drag"),
+                Some(&stage.rocket.power_on_drag),
+            );
+            curve(
+                &key("stack_power_off_drag"),
+                Some(&stage.stack_power_off_drag),
+            );
+            curve(
+                &key("stack_power_on_drag"),
+                Some(&stage.stack_power_on_drag),
+            );
             for (name, surface) in &stage.rocket.surfaces {
                 let lift = surface.airfoil().map(|a| &a.lift);
                 curve(&key(&format!("rocket.surfaces.{name}.airfoil")), lift);
