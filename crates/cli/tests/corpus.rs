@@ -4,7 +4,7 @@
 //! it), reject it with the same message, and name the file and line (or the mission key) of
 //! the problem; the flyable cases print their warnings, and `--json` carries them.
 
-use crate::common::{failure, karman, scratch, stderr};
+use crate::common::{karman, scratch, stderr};
 use std::path::PathBuf;
 use std::time::{Duration, Instant};
 
@@ -383,7 +383,7 @@ fn pressure_rising_with_height_is_warned_about() {
 /// not how fast the refusal is).
 const HANG_GUARD: Duration = Duration::from_secs(120);
 
-/// Runs the binary like [`failure`], but kills it and fails the test if it has not ended
+/// Runs the binary like `common::failure`, but kills it and fails the test if it has not ended
 /// after [`HANG_GUARD`].
 fn failure_unblocked(args: &[&str]) -> String {
     let mut child = std::process::Command::new(env!("CARGO_BIN_EXE_karman"))

@@ -127,7 +127,7 @@ impl ThrustCurve {
             }
             ThrustSource::Data(data) => {
                 if interpolation != Interpolation::Linear
-                    && let Some(w) = data.times.windows(2).find(|w| w[0] == w[1])
+                    && let Some(w) = data.times.windows(2).find(|w| w[0] >= w[1])
                 {
                     return Err(PropulsionError::RepeatedTime {
                         source_name: data.source_name.clone(),
@@ -158,9 +158,13 @@ impl ThrustCurve {
         let mut times = vec![start];
         let mut thrusts = vec![table.eval(start)];
         // A step at the start (a repeated time there): its last value starts the curve.
-        let at_start = table.xs().iter().filter(|&&t| t == start).count();
+        let at_start = table
+            .xs()
+            .iter()
+            .filter(|t| t.total_cmp(&start).is_eq())
+            .count();
         if at_start > 1
-            && let Some(last) = table.xs().iter().rposition(|&t| t == start)
+            && let Some(last) = table.xs().iter().rposition(|t| t.total_cmp(&start).is_eq())
         {
             times.push(start);
             thrusts.push(table.ys()[last]);
@@ -316,7 +320,7 @@ fn thrust_table(
     thrusts: Vec<f64>,
     interpolation: Interpolation,
 ) -> Result<Table1, karman_math::MathError> {
-    if interpolation == Interpolation::Linear && times.windows(2).any(|w| w[0] == w[1]) {
+    if interpolation == Interpolation::Linear && times.windows(2).any(|w| w[0] >= w[1]) {
         Table1::linear_stepwise(times, thrusts, Extrapolation::Zero)
     } else {
         Table1::new(times, thrusts, interpolation, Extrapolation::Zero)
