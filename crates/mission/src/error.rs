@@ -117,6 +117,12 @@ pub enum ProblemKind {
         /// The script's file, line, column and message.
         source: Box<karman_script::ScriptError>,
     },
+    /// A `[[stages]]` entry does not fit the stack it belongs to.
+    #[error("{reason}")]
+    Stage {
+        /// Why the stage does not fit.
+        reason: String,
+    },
     /// A `[dispersion.vary]` entry does not fit its target.
     #[error("{reason}")]
     Distribution {
@@ -240,6 +246,16 @@ pub enum OverrideError {
     EmptySegment {
         /// The path.
         path: String,
+    },
+    /// A quoted segment of the path is not a TOML string, or is not closed.
+    #[error(
+        "the path `{path}` has a malformed quoted key `{segment}` (a TOML string: \"rocket.mass\")"
+    )]
+    QuotedKey {
+        /// The path.
+        path: String,
+        /// The segment.
+        segment: String,
     },
     /// The value is not a TOML value.
     #[error("the value `{value}` is not a TOML value ({message}); quote strings: PATH='\"text\"'")]

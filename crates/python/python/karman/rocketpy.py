@@ -504,8 +504,9 @@ def _flight(kwargs: dict[str, Any]) -> dict[str, Any]:
             raise UnsupportedError(f"flight.{key}", "not a Flight argument karman knows")
     if math.isinf(out.get("max_time_step", 0.0)):
         out.pop("max_time_step")
-    # RocketPy's Flight integrates its own form of the equations of motion (its lever arms and
-    # mass flow, docs/mission-format.md `[flight] equations`), which karman flies by name.
+    # RocketPy's `equations_of_motion="standard"` is the form karman calls "rocketpy_1_13"
+    # (the mass flow -T/v_e whatever the motor, physics.md §15.3): the translated objects fly
+    # as RocketPy flies them.
     out["equations"] = "rocketpy_1_13"
     return out
 
