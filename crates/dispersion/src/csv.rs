@@ -261,9 +261,10 @@ pub struct Row {
 }
 
 impl Row {
-    /// The row [`row`] writes for these values, as [`parse`] reads it back: the message on
-    /// one line, and `outputs` missing values for a failed sample (which has none). A study
-    /// kept in memory holds these, so that it is the very study its `samples.csv` would be.
+    /// The row of `samples.csv` written for these values, as [`parse`] reads it back: the
+    /// message on one line, and `outputs` missing values for a failed sample (which has
+    /// none). A study kept in memory holds these, so that it is the very study its
+    /// `samples.csv` would be.
     pub fn of(
         index: u64,
         inputs: Vec<f64>,

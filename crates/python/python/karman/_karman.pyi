@@ -60,7 +60,8 @@ class Mission:
         as numpy arrays; ``heights`` (m ASL) and ``times`` (s) choose the sample points."""
     def simulate(self, seed: int = 0) -> Flight:
         """Flies the mission once (GIL released); ``seed`` seeds the parachute trigger
-        noise."""
+        noise. The first call builds and checks the models; later calls fly them again until
+        the mission changes (``set``)."""
     def montecarlo(
         self,
         samples: int | None = None,
@@ -70,9 +71,10 @@ class Mission:
         out: PathLike | None = None,
         progress: bool = True,
     ) -> Study:
-        """A Monte Carlo study in memory (``samples``/``seed`` default to ``[dispersion]``;
-        ``vary`` replaces ``[dispersion.vary]``; ``out`` also writes the CLI's files). The GIL
-        is released; Ctrl-C raises ``KeyboardInterrupt`` between samples."""
+        """A Monte Carlo study in memory, no folder written (``samples``/``seed`` default to
+        ``[dispersion]``; ``vary`` replaces ``[dispersion.vary]``; ``out`` writes the CLI's
+        files there). The GIL is released; Ctrl-C raises ``KeyboardInterrupt`` between
+        samples; ``progress`` shows tqdm's bar when tqdm is installed, else a text line."""
 
 class Flight:
     """A flown mission. Summary keys (``apogee_agl_m``, ``out_of_rail_velocity_mps``, ...)
