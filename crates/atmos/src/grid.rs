@@ -429,14 +429,19 @@ impl WeatherGrid {
     /// The first built-in mapping whose variables the file has.
     #[must_use]
     pub fn detect_dictionary(&self) -> Option<GridDictionary> {
-        GridDictionary::builtins()
-            .into_iter()
-            .map(|d| d.adapted_to(&self.file))
-            .find(|d| d.missing_in(&self.file).is_empty())
+        let builtins = GridDictionary::builtins();
+        let fits = |d: &GridDictionary| d.missing_in(&self.file).is_empty();
+        builtins.iter().find(|d| fits(d)).cloned().or_else(|| {
+            builtins
+                .iter()
+                .map(|d| d.adapted_to(&self.file))
+                .find(|d| fits(d))
+        })
     }
 
-    /// The mapping used for `requested` (RocketPy's fallback rule), with the coordinates a
-    /// THREDDS subset renamed.
+    /// The mapping used for `requested` (RocketPy's fallback rule: the requested one, else
+    /// the first built-in one that fits; then the same with the coordinates a THREDDS subset
+    /// renamed).
     ///
     /// # Errors
     /// [`AtmosError::MissingVariables`] when no mapping fits.
@@ -444,12 +449,24 @@ impl WeatherGrid {
         &self,
         requested: Option<&GridDictionary>,
     ) -> Result<GridDictionary, AtmosError> {
-        if let Some(d) = requested.map(|d| d.adapted_to(&self.file)) {
-            if d.missing_in(&self.file).is_empty() {
-                return Ok(d);
-            }
-        }
-        if let Some(d) = self.detect_dictionary() {
+        let fits = |d: &GridDictionary| d.missing_in(&self.file).is_empty();
+        let builtins = GridDictionary::builtins();
+        let found = requested
+            .filter(|d| fits(d))
+            .cloned()
+            .or_else(|| builtins.iter().find(|d| fits(d)).cloned())
+            .or_else(|| {
+                requested
+                    .map(|d| d.adapted_to(&self.file))
+                    .filter(|d| fits(d))
+            })
+            .or_else(|| {
+                builtins
+                    .iter()
+                    .map(|d| d.adapted_to(&self.file))
+                    .find(|d| fits(d))
+            });
+        if let Some(d) = found {
             return Ok(d);
         }
         let reference = match requested {
