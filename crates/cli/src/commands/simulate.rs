@@ -26,6 +26,8 @@ use crate::plot::{Series, line_chart};
 pub struct SimulateArgs {
     #[command(flatten)]
     pub mission: MissionArgs,
+    #[command(flatten)]
+    pub fetch: super::FetchFlag,
     /// Print the summary as one JSON object (the mission contract's keys).
     #[arg(long)]
     pub json: bool,
@@ -39,6 +41,7 @@ pub struct SimulateArgs {
 
 /// Flies the mission and prints or writes the results.
 pub fn run(args: &SimulateArgs) -> Result<()> {
+    args.fetch.run(&args.mission)?;
     let mission = args.mission.load()?;
     let run = simulate_with_seed(&mission, args.seed)?;
     let summary = run.summary();
