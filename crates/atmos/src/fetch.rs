@@ -368,11 +368,7 @@ impl Fetcher {
 }
 
 /// Reads the answer as a mission will: the profile at the site and time, and the members.
-fn check(
-    request: &Request,
-    bytes: &[u8],
-    name: &str,
-) -> Result<(LevelProfile, usize), AtmosError> {
+fn check(request: &Request, bytes: &[u8], name: &str) -> Result<(LevelProfile, usize), AtmosError> {
     match request.service {
         Service::Wyoming => {
             let text = String::from_utf8_lossy(bytes);

@@ -283,7 +283,11 @@ impl GridDictionary {
             .ok_or_else(|| AtmosError::UnknownName {
                 what: "weather dictionary".into(),
                 name: name.into(),
-                known: BUILTINS.iter().map(|s| s.name).collect::<Vec<_>>().join(", "),
+                known: BUILTINS
+                    .iter()
+                    .map(|s| s.name)
+                    .collect::<Vec<_>>()
+                    .join(", "),
             })
     }
 

@@ -221,7 +221,8 @@ impl OpenMeteo {
             let (sin, cos) = d.to_radians().sin_cos();
             let speed = s * self.wind_scale;
             out.pressure_pa.push(f64::from(level) * 100.0);
-            out.height_m.push(geopotential_to_geometric(z, earth_radius));
+            out.height_m
+                .push(geopotential_to_geometric(z, earth_radius));
             out.temperature_k
                 .push(t * self.temperature.0 + self.temperature.1);
             out.wind_u_mps.push(-speed * sin);
@@ -308,7 +309,10 @@ mod tests {
         let later = om.profile(t0 + 2000.0, None, 6.371e6).expect("second hour");
         assert!((later.temperature_k[0] - 283.15).abs() < 1e-9);
         let tie = om.profile(t0 + 1800.0, None, 6.371e6).expect("tie");
-        assert!((tie.temperature_k[0] - 273.15).abs() < 1e-9, "a tie takes the earlier");
+        assert!(
+            (tie.temperature_k[0] - 273.15).abs() < 1e-9,
+            "a tie takes the earlier"
+        );
     }
 
     #[test]
@@ -327,7 +331,10 @@ mod tests {
         ));
         for (text, needle) in [
             ("{", "EOF"),
-            ("{\"error\": true, \"reason\": \"Latitude must be in range\"}", "Latitude"),
+            (
+                "{\"error\": true, \"reason\": \"Latitude must be in range\"}",
+                "Latitude",
+            ),
             ("{\"hourly\": {\"time\": []}}", "empty"),
             ("{\"hourly\": {\"time\": [\"noon\"]}}", "not a time"),
             ("{\"hourly\": {\"time\": [3, 2]}}", "does not increase"),

@@ -119,7 +119,11 @@ mod tests {
         };
         assert_eq!(p.height_fold(), None);
         p.height_m.reverse();
-        assert_eq!(p.height_fold(), None, "a column from the top down is monotonic");
+        assert_eq!(
+            p.height_fold(),
+            None,
+            "a column from the top down is monotonic"
+        );
         p.height_m = vec![100.0, 3100.0, 3000.0];
         assert_eq!(
             p.height_fold(),

@@ -11,4 +11,3 @@ pub fn shared_dir() -> Option<PathBuf> {
     let dir = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../../../shared");
     dir.join("data/weather").is_dir().then_some(dir)
 }
-

@@ -275,7 +275,10 @@ fn gfs_through_ncss() {
     );
     // The saved subset reads offline with the GFS mapping (its `time1` coordinate adopted).
     let grid = karman_atmos::WeatherGrid::from_bytes(d.bytes, "gfs.nc").expect("opens");
-    assert_eq!(grid.detect_dictionary().map(|g| g.time), Some("time1".into()));
+    assert_eq!(
+        grid.detect_dictionary().map(|g| g.time),
+        Some("time1".into())
+    );
 }
 
 /// The body each service sends for a good request.
@@ -314,13 +317,19 @@ fn failure(service: Service, mode: Mode, body: Vec<u8>) -> String {
 fn failures_name_the_service_and_the_request() {
     for (service, _) in Service::ALL.map(|(n, s)| (s, n)) {
         let text = failure(service, Mode::Status(404), b"no such page".to_vec());
-        assert!(text.contains("HTTP 404") && text.contains("no such page"), "{text}");
+        assert!(
+            text.contains("HTTP 404") && text.contains("no such page"),
+            "{text}"
+        );
         let text = failure(
             service,
             Mode::Status(500),
             b"{\"error\": true, \"reason\": \"overloaded\"}".to_vec(),
         );
-        assert!(text.contains("HTTP 500") && text.contains("overloaded"), "{text}");
+        assert!(
+            text.contains("HTTP 500") && text.contains("overloaded"),
+            "{text}"
+        );
         let text = failure(service, Mode::Silent, Vec::new());
         assert!(text.contains("timeout"), "{text}");
         let text = failure(service, Mode::Truncated, good_body(service));
@@ -329,7 +338,11 @@ fn failures_name_the_service_and_the_request() {
         cut.truncate(cut.len() / 2);
         let text = failure(service, Mode::Status(200), cut);
         assert!(text.contains("format"), "{text}");
-        let text = failure(service, Mode::Status(200), b"<html>maintenance</html>".to_vec());
+        let text = failure(
+            service,
+            Mode::Status(200),
+            b"<html>maintenance</html>".to_vec(),
+        );
         assert!(text.contains("format"), "{text}");
     }
 }

@@ -128,7 +128,11 @@ pub fn load(path: &Path, overrides: &[Override]) -> Result<Mission, MissionError
 }
 
 /// [`load`]; with `fetching`, an atmosphere file that a `source` names need not exist yet.
-pub(crate) fn load_with(path: &Path, overrides: &[Override], fetching: bool) -> Result<Mission, MissionError> {
+pub(crate) fn load_with(
+    path: &Path,
+    overrides: &[Override],
+    fetching: bool,
+) -> Result<Mission, MissionError> {
     let bytes = karman_math::read_data_file(path).map_err(|source| MissionError::Read {
         file: path.to_owned(),
         source,

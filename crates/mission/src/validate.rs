@@ -7,8 +7,9 @@ use crate::document::Document;
 use crate::error::{Problem, ProblemKind};
 use crate::paths;
 use crate::schema::{
-    AtmosphereModel, AtmosphereSpec, SoundingFormat, WeatherSource, Curve, DensitySpec, Discretize, MissionSpec, MotorKind, RocketSpec,
-    SurfaceSpec, Sweep, TankGeometryKind, TankKindName, TankSpec, Trigger,
+    AtmosphereModel, AtmosphereSpec, Curve, DensitySpec, Discretize, MissionSpec, MotorKind,
+    RocketSpec, SoundingFormat, SurfaceSpec, Sweep, TankGeometryKind, TankKindName, TankSpec,
+    Trigger, WeatherSource,
 };
 use karman_airframe::AirBrakesDrag;
 use karman_math::{Extrapolation, Interpolation};
@@ -245,7 +246,10 @@ fn environment(c: &mut Checker<'_, '_>, spec: &MissionSpec) {
             &what,
         );
     }
-    if !matches!(model, AtmosphereModel::Ensemble | AtmosphereModel::OpenMeteo) {
+    if !matches!(
+        model,
+        AtmosphereModel::Ensemble | AtmosphereModel::OpenMeteo
+    ) {
         c.unused("environment.atmosphere.member", atm.member.as_ref(), &what);
     }
     source(c, atm, &what);

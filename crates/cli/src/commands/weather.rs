@@ -189,7 +189,9 @@ pub fn fetcher() -> Result<karman_mission::atmos::fetch::Fetcher> {
             .ok()
             .filter(|s| s.is_finite() && *s > 0.0 && *s <= 3600.0)
             .ok_or_else(|| {
-                anyhow::anyhow!("KARMAN_WEATHER_TIMEOUT = `{text}` is not a number of seconds in (0, 3600]")
+                anyhow::anyhow!(
+                    "KARMAN_WEATHER_TIMEOUT = `{text}` is not a number of seconds in (0, 3600]"
+                )
             })?,
         Err(_) => 60.0,
     };

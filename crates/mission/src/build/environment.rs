@@ -212,8 +212,7 @@ fn build_atmosphere(
                 message: e.to_string(),
             })?;
             let forecast = OpenMeteo::parse(&bytes, &name)?;
-            let levels =
-                forecast.profile(unix_time, spec.member.map(|m| m as usize), radius)?;
+            let levels = forecast.profile(unix_time, spec.member.map(|m| m as usize), radius)?;
             warn_fold(&levels, warnings);
             Ok(Atmosphere::Profiles(levels.profiles(&name)))
         }
