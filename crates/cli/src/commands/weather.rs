@@ -375,11 +375,14 @@ fn show(args: &ShowArgs) -> Result<()> {
     Ok(())
 }
 
+/// A chart: file stem, title, axis label, `(value, height)` points.
+type Chart = (&'static str, &'static str, &'static str, Vec<(f64, f64)>);
+
 /// Temperature, pressure, wind speed and direction against height.
 fn plot(rows: &[Level], dir: &Path) -> Result<()> {
     std::fs::create_dir_all(dir).with_context(|| format!("cannot create {}", dir.display()))?;
     let series = |f: &dyn Fn(&Level) -> f64| rows.iter().map(|r| (f(r), r.height_m)).collect();
-    let charts: [(&str, &str, &str, Vec<(f64, f64)>); 4] = [
+    let charts: [Chart; 4] = [
         (
             "temperature",
             "Temperature",
