@@ -749,3 +749,93 @@ impl Track for BodyTrack<'_> {
         self.run.static_margin(self.body, t)
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_moved_state_is_another_point_of_the_same_rigid_body() {
+        // A tilted, spinning, translating body.
+        let (half, axis) = (0.4_f64, [0.3_f64, -0.5, 0.81]);
+        let n = axis.iter().map(|a| a * a).sum::<f64>().sqrt();
+        let (s, c) = half.sin_cos();
+        let state: State = [
+            10.0,
+            -4.0,
+            1500.0,
+            3.0,
+            -7.0,
+            120.0,
+            c,
+            s * axis[0] / n,
+            s * axis[1] / n,
+            s * axis[2] / n,
+            0.7,
+            -1.3,
+            25.0,
+        ];
+        let moved_state = moved(&state, 1.2, 0.45, -1.0);
+        let k = rotation([state[6], state[7], state[8], state[9]]);
+        let dr: Vec<f64> = (0..3).map(|i| moved_state[i] - state[i]).collect();
+        let dv: Vec<f64> = (0..3).map(|i| moved_state[3 + i] - state[3 + i]).collect();
+        // 0.75 m toward the nose (nose_to_tail coordinates decrease toward it), on the axis.
+        for i in 0..3 {
+            assert!((dr[i] - 0.75 * k[i][2]).abs() < 1e-12);
+        }
+        // v_b − v_a = ω × (r_b − r_a), with ω in inertial axes.
+        let w: Vec<f64> = (0..3)
+            .map(|i| k[i][0] * state[10] + k[i][1] * state[11] + k[i][2] * state[12])
+            .collect();
+        let cross = [
+            w[1] * dr[2] - w[2] * dr[1],
+            w[2] * dr[0] - w[0] * dr[2],
+            w[0] * dr[1] - w[1] * dr[0],
+        ];
+        for i in 0..3 {
+            assert!((dv[i] - cross[i]).abs() < 1e-12, "{dv:?} {cross:?}");
+        }
+        // Attitude and rates are the body's; moving back returns the state.
+        assert_eq!(moved_state[6..], state[6..]);
+        let back = moved(&moved_state, 0.45, 1.2, -1.0);
+        for i in 0..13 {
+            assert!((back[i] - state[i]).abs() < 1e-9 * (1.0 + state[i].abs()));
+        }
+        let still = moved(&state, 0.8, 0.8, 1.0);
+        assert!(
+            still
+                .iter()
+                .zip(&state)
+                .all(|(a, b)| a.to_bits() == b.to_bits())
+        );
+    }
+
+    #[test]
+    fn lumps_follow_the_parallel_axis_theorem() {
+        let point = |mass, center| Lump {
+            mass,
+            center,
+            inertia: [0.0; 6],
+        };
+        let two = point(1.0, -1.0).with(point(3.0, 1.0));
+        assert!((two.mass - 4.0).abs() < 1e-15 && (two.center - 0.5).abs() < 1e-15);
+        // 1·1.5² + 3·0.5² about the common centre, nothing about the axis.
+        assert!((two.inertia[0] - 3.0).abs() < 1e-15 && (two.inertia[1] - 3.0).abs() < 1e-15);
+        assert!(two.inertia[2].abs() < 1e-15);
+        // A massless part changes nothing, bit for bit.
+        let body = Lump {
+            mass: 3.55,
+            center: 0.973,
+            inertia: [0.8, 0.8, 0.003, 0.0, 0.0, 0.0],
+        };
+        let same = body.with(point(0.0, 2.0));
+        assert_eq!(same.mass.to_bits(), body.mass.to_bits());
+        assert_eq!(same.center.to_bits(), body.center.to_bits());
+        assert!(
+            same.inertia
+                .iter()
+                .zip(&body.inertia)
+                .all(|(a, b)| a.to_bits() == b.to_bits())
+        );
+    }
+}
