@@ -10,7 +10,8 @@
 //! - `phases` — the phases and the [`Configuration`] each phase flies (equations, deployed
 //!   devices, control inputs); an action that changes the configuration inserts a phase.
 //! - `policy` — the integrator policy: DOPRI5 on the rail, through the burn and under
-//!   parachutes, DOP853 for the unpowered 6-DOF flight from burn-out (restarted there) unless
+//!   parachutes, DOP853 for the unpowered free flight (6 DOF or the 3-DOF point mass) from
+//!   burn-out (restarted there) unless
 //!   its steps keep being rejected, a sign of kinks in the right-hand side such as linearly
 //!   interpolated atmosphere profiles, where DOPRI5 takes over; under a parachute, once
 //!   DOPRI5's steps are held back by stability (three steps in a row with `h|λ| ≥ 3`), the
