@@ -72,6 +72,9 @@ pub(super) struct Run<'a> {
     pub free_flight: PhaseKind,
     /// Rail travel to the upper button, m.
     pub rail_travel: f64,
+    /// Gravity along the rail at the pad, `g sin i`, m/s² (the coast that decides whether a
+    /// rocket still on the rail at burn-out leaves it).
+    pub rail_gravity: f64,
     pub elevation: f64,
     pub burn_out: f64,
     pub terminate_on_apogee: bool,
@@ -235,6 +238,7 @@ pub(super) fn fly<'a, A: AtmosphereModel, V: VehicleModel>(
         off_rail: kind0 != PhaseKind::Rail,
         free_flight: PhaseKind::free_flight(settings),
         rail_travel,
+        rail_gravity: atmosphere.gravity(elevation) * settings.inclination_deg.to_radians().sin(),
         elevation,
         burn_out: setup.burn_out,
         terminate_on_apogee: settings.terminate_on_apogee,
