@@ -11,6 +11,7 @@ use crate::schema::{
     SurfaceSpec, Sweep, TankGeometryKind, TankKindName, TankSpec, Trigger,
 };
 use karman_airframe::AirBrakesDrag;
+use karman_dynamics::SimulationMode;
 use karman_math::{Extrapolation, Interpolation};
 use std::path::Path;
 
@@ -1045,6 +1046,23 @@ fn flight(c: &mut Checker<'_, '_>, spec: &MissionSpec) {
         f.max_time_step >= MIN_MAX_TIME_STEP,
         "must be at least 1e-4 s",
     );
+    match f.simulation_mode {
+        SimulationMode::ThreeDof => {
+            if let Some(w) = f.weathercock_coeff {
+                c.range(
+                    "flight.weathercock_coeff",
+                    w,
+                    w >= 0.0,
+                    "must be a non-negative rate, 1/s",
+                );
+            }
+        }
+        SimulationMode::SixDof => c.unused(
+            "flight.weathercock_coeff",
+            f.weathercock_coeff.as_ref(),
+            "the \"6 DOF\" simulation mode",
+        ),
+    }
 }
 
 fn dispersion(c: &mut Checker<'_, '_>, spec: &MissionSpec) {

@@ -659,6 +659,14 @@ pub struct FlightSpec {
     /// arms and mass flow) or `"rocketpy_1_13"` (RocketPy 1.13 exactly).
     #[serde(default)]
     pub equations: karman_dynamics::EquationsForm,
+    /// The equations of the free flight: `"6 DOF"` (default) or `"3 DOF"`, RocketPy 1.12+'s
+    /// point mass (physics.md §8.5).
+    #[serde(default)]
+    pub simulation_mode: karman_dynamics::SimulationMode,
+    /// The 3-DOF weathercock coefficient, 1/s (RocketPy's `PointMassRocket.weathercock_coeff`);
+    /// absent: 0, the attitude held at the rail's. Only with `simulation_mode = "3 DOF"`.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub weathercock_coeff: Option<f64>,
 }
 
 /// `[dispersion]`: Monte Carlo run settings and the inputs that vary.
