@@ -144,7 +144,11 @@ fn a_control_set_for_after_the_step_survives_a_deployment_later_in_that_step() {
         .position(|p| p.configuration.controls[0].to_bits() == level.to_bits())
         .expect("the value is flown");
     assert!(alone.points[first - 1].t >= set_at, "from a step end");
-    assert!(alone.points[first..].iter().all(|p| p.configuration.controls[0] == level));
+    assert!(
+        alone.points[first..]
+            .iter()
+            .all(|p| p.configuration.controls[0] == level)
+    );
     // With the deployment one instant later in the same step, the step ends there and the
     // value acts from that instant, in the lag phase and under the parachute.
     let deployed = fly(true);

@@ -86,7 +86,13 @@ fn bench_controlled(group: &mut BenchmarkGroup<'_, WallTime>) {
             &rocket,
             &settings,
             script.as_ref(),
-            || Arc::new(ControllerEnvironment::new(Arc::clone(&environment), 1.0, 0.0)),
+            || {
+                Arc::new(ControllerEnvironment::new(
+                    Arc::clone(&environment),
+                    1.0,
+                    0.0,
+                ))
+            },
         )
         .expect("flies")
     };

@@ -459,7 +459,10 @@ fn validate_airbrakes_apogee() {
     let s = run.summary();
     let (x, y) = (-5.116480540228628, 613.1858079097015);
     let miss = (s.impact_x_m.expect("impact") - x).hypot(s.impact_y_m.expect("impact") - y);
-    println!("airbrakes calisto_apogee impact: {:.4} % of range", 100.0 * miss / x.hypot(y));
+    println!(
+        "airbrakes calisto_apogee impact: {:.4} % of range",
+        100.0 * miss / x.hypot(y)
+    );
     assert!(miss / x.hypot(y) < karman_validation::IMPACT_FRACTION);
     // The level the controller left at its calls, against RocketPy's at the same instants
     // (the predictions differ by under a metre, the levels by under 0.003 over the climb).
@@ -479,7 +482,11 @@ fn validate_airbrakes_apogee() {
             .iter()
             .find(|r| (r.time - t).abs() < 1e-9)
             .unwrap_or_else(|| panic!("no call at {t} s"));
-        assert!((call.level - level).abs() < 5e-3, "{t} s: {} against {level}", call.level);
+        assert!(
+            (call.level - level).abs() < 5e-3,
+            "{t} s: {} against {level}",
+            call.level
+        );
     }
     // Shut from the apogee on.
     let apogee = s.apogee_time_s.expect("apogee");
