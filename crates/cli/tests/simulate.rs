@@ -202,3 +202,51 @@ fn bad_missions_fail_without_panicking() {
     let bad_set = failure(&["simulate", &example_arg(), "--set", "rocket.nope=1"]);
     assert!(bad_set.contains("rocket.nope"), "{bad_set}");
 }
+
+fn two_stage_arg() -> String {
+    example()
+        .with_file_name("two_stage.toml")
+        .display()
+        .to_string()
+}
+
+#[test]
+fn a_two_stage_flight_reports_both_bodies_and_one_timeline() {
+    let output = karman(&["simulate", &two_stage_arg()]);
+    assert!(output.status.success(), "{}", stderr(&output));
+    let text = String::from_utf8(output.stdout).expect("utf-8");
+    insta::assert_snapshot!("two_stage_report", text);
+}
+
+#[test]
+fn a_two_stage_flight_writes_each_body_and_its_json() {
+    let output = karman(&["simulate", &two_stage_arg(), "--json"]);
+    assert!(output.status.success(), "{}", stderr(&output));
+    let json: serde_json::Value = serde_json::from_slice(&output.stdout).expect("json");
+    let bodies = json["bodies"].as_array().expect("bodies");
+    assert_eq!(bodies.len(), 2);
+    for (body, name) in bodies.iter().zip(["sustainer", "booster"]) {
+        assert_eq!(body["name"], name);
+        assert_eq!(body["summary"]["termination"], "impact");
+        for key in &SUMMARY_KEYS[..SUMMARY_KEYS.len() - 1] {
+            assert!(body["summary"].get(key).is_some(), "{name}: {key}");
+        }
+    }
+    assert_eq!(json["separations"][0]["stage"], "booster");
+    assert!(json["timeline"].as_array().is_some_and(|t| t.len() > 5));
+
+    let dir = Path::new(env!("CARGO_TARGET_TMPDIR")).join("karman-cli/two_stage_out");
+    let _ = std::fs::remove_dir_all(&dir);
+    let output = karman(&["simulate", &two_stage_arg(), "--out", dir.to_str().unwrap()]);
+    assert!(output.status.success(), "{}", stderr(&output));
+    for file in ["summary.json", "altitude.svg", "ground_track.svg"] {
+        assert!(dir.join(file).is_file(), "{file}");
+    }
+    for body in ["sustainer", "booster"] {
+        let csv = std::fs::read_to_string(dir.join(body).join("trajectory.csv")).expect("csv");
+        assert!(csv.starts_with("time_s,x_m,"), "{body}");
+        assert!(csv.lines().count() > 100, "{body}");
+        let kml = std::fs::read_to_string(dir.join(body).join("flight.kml")).expect("kml");
+        assert!(kml.contains(body), "{body}");
+    }
+}

@@ -117,6 +117,12 @@ pub enum ProblemKind {
         /// The script's file, line, column and message.
         source: Box<karman_script::ScriptError>,
     },
+    /// A `[[stages]]` entry does not fit the stack it belongs to.
+    #[error("{reason}")]
+    Stage {
+        /// Why the stage does not fit.
+        reason: String,
+    },
     /// A `[dispersion.vary]` entry does not fit its target.
     #[error("{reason}")]
     Distribution {

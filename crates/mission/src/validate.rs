@@ -46,11 +46,18 @@ struct Checker<'a, 'd> {
     doc: &'a Document<'d>,
     dir: &'a Path,
     problems: Vec<Problem>,
+    /// While a `[[stages]]` entry is checked with the `[rocket]` and `[motor]` checks: its
+    /// dotted path (`stages.0`), put before the keys they report.
+    stage: Option<String>,
 }
 
 impl Checker<'_, '_> {
     fn report(&mut self, key: &str, kind: ProblemKind) {
-        self.problems.push(self.doc.problem(key, kind));
+        let problem = match &self.stage {
+            Some(stage) => self.doc.problem(&format!("{stage}.{key}"), kind),
+            None => self.doc.problem(key, kind),
+        };
+        self.problems.push(problem);
     }
 
     /// `value` must satisfy `ok`, described by `expected`.
@@ -145,6 +152,7 @@ pub(crate) fn validate(spec: &MissionSpec, doc: &Document<'_>, dir: &Path) -> Ve
         doc,
         dir,
         problems: Vec::new(),
+        stage: None,
     };
     environment(&mut c, spec);
     motor(&mut c, spec);
@@ -152,7 +160,132 @@ pub(crate) fn validate(spec: &MissionSpec, doc: &Document<'_>, dir: &Path) -> Ve
     air_brakes(&mut c, spec);
     flight(&mut c, spec);
     dispersion(&mut c, spec);
+    stages(&mut c, spec);
     c.problems
+}
+
+/// The `[[stages]]` entries: each stage's airframe and motor with the checks of `[rocket]`
+/// and `[motor]` (a stage may weigh nothing), its separation trigger, and what a stack must
+/// share (one coordinate system, distinct surface and parachute names).
+fn stages(c: &mut Checker<'_, '_>, spec: &MissionSpec) {
+    if spec.stages.is_empty() {
+        return;
+    }
+    if spec.rocket.air_brakes.is_some() {
+        c.report(
+            "rocket.air_brakes",
+            ProblemKind::Unsupported {
+                what: "air brakes on a multi-stage rocket".to_owned(),
+            },
+        );
+    }
+    if spec.dispersion.is_some() {
+        c.report(
+            "dispersion",
+            ProblemKind::Unsupported {
+                what: "a Monte Carlo study of a multi-stage rocket".to_owned(),
+            },
+        );
+    }
+    let mut surfaces: Vec<&str> = spec.rocket.surfaces.keys().map(String::as_str).collect();
+    let mut parachutes: Vec<&str> = spec.rocket.parachutes.keys().map(String::as_str).collect();
+    for (index, stage) in spec.stages.iter().enumerate() {
+        let at = |k: &str| format!("stages.{index}.{k}");
+        let mut alone = spec.clone();
+        alone.rocket = stage.rocket.clone();
+        alone.stages.clear();
+        c.stage = Some(format!("stages.{index}"));
+        if let Some(motor_spec) = &stage.motor {
+            alone.motor = motor_spec.clone();
+            motor(c, &alone);
+        }
+        rocket(c, &alone);
+        c.stage = None;
+        if stage.rocket.air_brakes.is_some() {
+            c.report(
+                &at("rocket.air_brakes"),
+                ProblemKind::NotApplicable {
+                    model: "a lower stage".to_owned(),
+                },
+            );
+        }
+        if stage.rocket.coordinate_system != spec.rocket.coordinate_system {
+            c.report(
+                &at("rocket.coordinate_system"),
+                ProblemKind::Stage {
+                    reason: "every stage is placed in the coordinates of [rocket]: the \
+                             coordinate systems must be the same"
+                        .to_owned(),
+                },
+            );
+        }
+        for name in stage.rocket.surfaces.keys() {
+            if surfaces.contains(&name.as_str()) {
+                c.report(
+                    &at(&format!("rocket.surfaces.{name}")),
+                    ProblemKind::Stage {
+                        reason: format!("a surface `{name}` is already on the stack above"),
+                    },
+                );
+            }
+            surfaces.push(name);
+        }
+        for name in stage.rocket.parachutes.keys() {
+            if parachutes.contains(&name.as_str()) {
+                c.report(
+                    &at(&format!("rocket.parachutes.{name}")),
+                    ProblemKind::Stage {
+                        reason: format!("a parachute `{name}` is already on the stack above"),
+                    },
+                );
+            }
+            parachutes.push(name);
+        }
+        match &stage.separation {
+            Trigger::HeightAboveGround(h) => c.non_negative(&at("separation"), *h),
+            Trigger::Launch(delay) | Trigger::Burnout(delay) => {
+                c.non_negative(&at("separation"), *delay);
+            }
+            Trigger::Expression(text) => {
+                if let Err(source) = karman_script::Expression::parse(text) {
+                    c.report(
+                        &at("separation.expression"),
+                        ProblemKind::Expression { source },
+                    );
+                }
+            }
+            Trigger::Apogee => {}
+        }
+        if stage.motor.is_none() && !matches!(stage.separation, Trigger::Launch(d) if d <= 0.0) {
+            c.report(
+                &at("separation"),
+                ProblemKind::Stage {
+                    reason: "a stage without a motor cannot lift the stack: it separates at \
+                             launch (`separation = \"launch + 0\"`) or needs `[stages.motor]`"
+                        .to_owned(),
+                },
+            );
+        }
+        c.range(
+            &at("sampling_rate"),
+            stage.sampling_rate,
+            stage.sampling_rate > 0.0 && stage.sampling_rate <= MAX_SAMPLING_RATE,
+            "must be in (0, 10000] Hz",
+        );
+        c.non_negative(&at("ignition_delay"), stage.ignition_delay);
+        let (interpolation, extrapolation) = (
+            stage.rocket.interpolation.into(),
+            stage.rocket.extrapolation.into(),
+        );
+        for (key, curve) in [
+            ("stack_power_off_drag", &stage.stack_power_off_drag),
+            ("stack_power_on_drag", &stage.stack_power_on_drag),
+        ] {
+            if !curve.is_estimate() {
+                c.curve_as(&at(key), curve, interpolation, extrapolation);
+            }
+        }
+    }
 }
 
 fn environment(c: &mut Checker<'_, '_>, spec: &MissionSpec) {
@@ -675,7 +808,12 @@ fn tank_key_name(name: &str) -> &'static str {
 fn rocket(c: &mut Checker<'_, '_>, spec: &MissionSpec) {
     let r = &spec.rocket;
     c.positive("rocket.radius", r.radius);
-    c.positive("rocket.mass", r.mass);
+    if c.stage.is_some() {
+        // A lower stage may be massless (a stack that equals the stage above).
+        c.non_negative("rocket.mass", r.mass);
+    } else {
+        c.positive("rocket.mass", r.mass);
+    }
     let (interpolation, extrapolation) = (r.interpolation.into(), r.extrapolation.into());
     for (key, curve) in [
         ("rocket.power_off_drag", &r.power_off_drag),

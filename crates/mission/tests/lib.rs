@@ -13,6 +13,7 @@ mod ork;
 mod overrides;
 mod paths;
 mod scripts;
+mod stages;
 mod tanks;
 mod validate_environment;
 mod validate_flight;

@@ -19,20 +19,53 @@ fn validate_flight() {
         return;
     };
     assert!(!missions.is_empty(), "no validation mission found");
+    let failures = compare_with_references(&missions);
+    assert!(
+        failures.is_empty(),
+        "flight validation failures:\n{}",
+        failures.join("\n")
+    );
+}
+
+/// The further flights of `fixtures/parity` (hybrid and liquid motors that are not among the
+/// validation flights), against the RocketPy 1.13 references its `make_references.py` wrote,
+/// with the same tolerances.
+#[test]
+fn validate_further_flights() {
+    let folder = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../../fixtures/parity");
+    let mut missions: Vec<_> = std::fs::read_dir(&folder)
+        .expect("fixtures/parity is in the repository")
+        .filter_map(|e| Some(e.ok()?.path().join("mission.toml")))
+        .filter(|p| p.is_file())
+        .collect();
+    missions.sort();
+    assert!(missions.len() >= 2, "fixtures/parity: {missions:?}");
+    let failures = compare_with_references(&missions);
+    assert!(
+        failures.is_empty(),
+        "further flight failures:\n{}",
+        failures.join("\n")
+    );
+}
+
+/// Flies each mission as RocketPy 1.13 would (parachute noise zeroed, its equations) and
+/// compares the summary with the `reference.json` beside it; returns the misses.
+fn compare_with_references(missions: &[std::path::PathBuf]) -> Vec<String> {
     let mut failures = Vec::new();
     for path in missions {
-        let name = flight_name(&path);
-        let nominal = karman_mission::load(&path, &[]).expect("mission loads");
+        let path = path.as_path();
+        let name = flight_name(path);
+        let nominal = karman_mission::load(path, &[]).expect("mission loads");
         let mut quiet = nominal.parachute_noise_off().expect("noise overrides");
         // The references are RocketPy 1.13's: its form of the equations.
         quiet.push(
             karman_mission::Override::new("flight.equations", "\"rocketpy_1_13\"")
                 .expect("override parses"),
         );
-        let mission = karman_mission::load(&path, &quiet).expect("mission loads with overrides");
+        let mission = karman_mission::load(path, &quiet).expect("mission loads with overrides");
         let run = simulate(&mission).expect("mission flies");
         let summary = flight_summary(&run);
-        let reference = load_reference(&path);
+        let reference = load_reference(path);
         let reference = &reference["summary"];
         let comparison = SummaryComparison::new(&summary, |k| reference.get(k)?.as_f64());
         println!(
@@ -113,11 +146,7 @@ fn validate_flight() {
         }
         println!("{line}");
     }
-    assert!(
-        failures.is_empty(),
-        "flight validation failures:\n{}",
-        failures.join("\n")
-    );
+    failures
 }
 
 /// The right-hand sides at the derivative test vectors of physics.md §13, measured in

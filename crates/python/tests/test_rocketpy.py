@@ -63,7 +63,12 @@ def test_calisto_translates_to_the_validation_mission(validation):
     assert list(rocket_data["parachutes"]) == ["main", "drogue"]
     assert rocket_data["rail_buttons"]["upper_position"] == pytest.approx(0.0818)
     assert rocket_data["surfaces"]["fins"]["airfoil"]["unit"] == "radians"
-    assert data["flight"] == {"rail_length": 5.2, "inclination": 85.0, "heading": 0.0}
+    assert data["flight"] == {
+        "rail_length": 5.2,
+        "inclination": 85.0,
+        "heading": 0.0,
+        "equations": "rocketpy_1_13",
+    }
 
 
 def test_unsupported_inputs_name_the_attribute(validation):

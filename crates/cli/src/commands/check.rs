@@ -5,6 +5,7 @@
 use super::MissionArgs;
 use clap::Args;
 use karman_mission::build::preflight::prepare;
+use karman_mission::build::stages::prepare_staged;
 use std::io::Write;
 
 /// Arguments of `karman check`.
@@ -18,8 +19,12 @@ pub struct CheckArgs {
 /// otherwise the error (every problem, each with `file:line:column`) goes back to `main`.
 pub fn run(args: &CheckArgs) -> anyhow::Result<()> {
     let mission = args.mission.load()?;
-    let models = prepare(&mission, 0)?;
-    super::print_warnings(&mission, &models.warnings);
+    let warnings = if mission.spec.stages.is_empty() {
+        prepare(&mission, 0)?.warnings
+    } else {
+        prepare_staged(&mission, 0)?
+    };
+    super::print_warnings(&mission, &warnings);
     // A closed stdout is an error to report, not a panic (as `println!` would).
     writeln!(std::io::stdout().lock(), "ok")?;
     Ok(())

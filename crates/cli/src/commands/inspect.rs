@@ -53,6 +53,15 @@ pub struct InspectArgs {
 /// Builds the models and prints or writes what was asked.
 pub fn run(args: &InspectArgs) -> Result<()> {
     let mission = args.mission.load()?;
+    if !mission.spec.stages.is_empty() {
+        super::print_warnings(
+            &mission,
+            &[
+                "`stages`: a multi-stage rocket; shown is its top stage ([rocket], [motor]) alone"
+                    .to_owned(),
+            ],
+        );
+    }
     let environment = build_environment(&mission)?;
     let motor = build_motor(&mission)?;
     let rocket = build_rocket(&mission, &motor)?;

@@ -7,6 +7,13 @@
 //! post-processed series, units in the header), `controller.json` (with air brakes: the level
 //! after each controller call and the observed variables), `flight.kml` (the path in
 //! latitude/longitude/altitude for Google Earth) and SVG plots.
+//!
+//! A multi-stage mission (`[[stages]]`) prints one summary per body (the top stage first,
+//! then the lower stages in the order they separated) and the stack's events in one
+//! timeline; `--json` gives `bodies` (each `name` and `summary`), `separations`, `timeline`
+//! and `warnings`; `--out DIR` writes `summary.json` (that object), one folder per body with
+//! its `trajectory.csv` and `flight.kml`, and the altitude and ground-track plots of every
+//! body together.
 
 use std::io::Write;
 use std::path::Path;
@@ -14,6 +21,7 @@ use std::path::Path;
 use anyhow::{Context, Result, bail};
 use clap::Args;
 use karman_mission::build::flight::{FlightRun, early_ending, simulate_with_seed};
+use karman_mission::build::stages::{StagedRun, simulate_staged};
 use karman_mission::dispersion::files::write_atomic;
 use karman_mission::dynamics::Sample;
 use karman_mission::report::trajectory;
@@ -40,6 +48,9 @@ pub struct SimulateArgs {
 /// Flies the mission and prints or writes the results.
 pub fn run(args: &SimulateArgs) -> Result<()> {
     let mission = args.mission.load()?;
+    if !mission.spec.stages.is_empty() {
+        return run_staged(args, &mission);
+    }
     let run = simulate_with_seed(&mission, args.seed)?;
     let summary = run.summary();
     super::print_warnings(&mission, &run.warnings);
@@ -77,6 +88,120 @@ pub fn run(args: &SimulateArgs) -> Result<()> {
         None => Ok(()),
         Some((_, message)) => bail!(message),
     }
+}
+
+/// The JSON object of a multi-stage flight (`--json`, `summary.json`).
+fn staged_json(run: &StagedRun) -> Result<serde_json::Value> {
+    let mut bodies = Vec::new();
+    for (i, body) in run.bodies.iter().enumerate() {
+        let summary = run.summary(i);
+        let mut json = serde_json::to_value(&summary)?;
+        json["termination"] = serde_json::to_value(summary.termination)?;
+        bodies.push(serde_json::json!({ "name": body.name, "summary": json }));
+    }
+    let timeline: Vec<serde_json::Value> = run
+        .timeline()
+        .into_iter()
+        .map(|(t, name)| serde_json::json!({ "name": name, "time_s": t }))
+        .collect();
+    Ok(serde_json::json!({
+        "bodies": bodies,
+        "separations": run.separations,
+        "timeline": timeline,
+        "warnings": run.warnings,
+    }))
+}
+
+/// `karman simulate` of a multi-stage mission (module documentation).
+fn run_staged(args: &SimulateArgs, mission: &karman_mission::Mission) -> Result<()> {
+    let run = simulate_staged(mission, args.seed)?;
+    super::print_warnings(mission, &run.warnings);
+    let mut out = std::io::stdout().lock();
+    if args.json {
+        writeln!(
+            out,
+            "{}",
+            serde_json::to_string_pretty(&staged_json(&run)?)?
+        )?;
+    } else {
+        writeln!(out, "{}", staged_text(&run))?;
+    }
+    if let Some(dir) = &args.out {
+        let name = mission.spec.name.as_deref().unwrap_or("karman flight");
+        write_staged(&run, name, args.seed, dir)?;
+    }
+    for (i, body) in run.bodies.iter().enumerate() {
+        if let Some((_, message)) = early_ending(run.summary(i).termination, &run.settings) {
+            bail!("{}: {message}", body.name);
+        }
+    }
+    Ok(())
+}
+
+/// The readable report of a multi-stage flight: each body's summary, then the timeline.
+#[must_use]
+pub fn staged_text(run: &StagedRun) -> String {
+    use std::fmt::Write as _;
+    let mut text = String::new();
+    for (i, body) in run.bodies.iter().enumerate() {
+        let _ = writeln!(text, "Body {}: {}", i + 1, body.name);
+        let _ = writeln!(text, "{}", run.summary(i));
+    }
+    let _ = writeln!(text, "Timeline");
+    for (t, event) in run.timeline() {
+        let _ = writeln!(text, "  {t:>10.4} s  {event}");
+    }
+    text
+}
+
+/// `--out` of a multi-stage flight (module documentation).
+fn write_staged(run: &StagedRun, name: &str, seed: u64, dir: &Path) -> Result<()> {
+    std::fs::create_dir_all(dir).with_context(|| format!("cannot create {}", dir.display()))?;
+    let mut json = staged_json(run)?;
+    json["seed"] = seed.into();
+    write_atomic(
+        &dir.join("summary.json"),
+        serde_json::to_string_pretty(&json)?.as_bytes(),
+    )?;
+    let mut altitude = Vec::new();
+    let mut track = Vec::new();
+    for (i, body) in run.bodies.iter().enumerate() {
+        let folder = dir.join(body.name.replace(['/', '\\'], "_"));
+        std::fs::create_dir_all(&folder)
+            .with_context(|| format!("cannot create {}", folder.display()))?;
+        let samples = run.samples(i);
+        let view = run.track(i);
+        write_atomic(
+            &folder.join("trajectory.csv"),
+            trajectory::csv(&view, &samples).as_bytes(),
+        )?;
+        write_atomic(
+            &folder.join("flight.kml"),
+            trajectory::kml(&view, &format!("{name}: {}", body.name), &samples).as_bytes(),
+        )?;
+        altitude.push(Series {
+            label: body.name.as_str(),
+            points: samples.iter().map(|s| (s.t, s.altitude_agl)).collect(),
+        });
+        track.push(Series {
+            label: body.name.as_str(),
+            points: samples.iter().map(|s| (s.x, s.y)).collect(),
+        });
+    }
+    line_chart(
+        &dir.join("altitude.svg"),
+        "Altitude",
+        "time (s)",
+        "altitude AGL (m)",
+        &altitude,
+    )?;
+    line_chart(
+        &dir.join("ground_track.svg"),
+        "Ground track",
+        "east of the pad (m)",
+        "north of the pad (m)",
+        &track,
+    )
 }
 
 /// Writes the files of `--out`, each atomically ([`write_atomic`]): a file is the whole new

@@ -6,3 +6,4 @@ pub mod motor;
 pub mod preflight;
 pub mod rocket;
 pub mod scripts;
+pub mod stages;

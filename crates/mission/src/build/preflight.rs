@@ -90,6 +90,15 @@ pub struct Models {
 /// The builders' [`MissionError`]s and [`MissionError::Model`] located at the key that
 /// makes the flight impossible.
 pub fn prepare(mission: &Mission, seed: u64) -> Result<Models, MissionError> {
+    if !mission.spec.stages.is_empty() {
+        return Err(fail(
+            mission,
+            "stages",
+            "a multi-stage rocket is one vehicle per stack: `karman check` and `karman simulate` \
+             take it (`build::stages`), the other commands do not yet"
+                .to_owned(),
+        ));
+    }
     let environment = build_environment(mission)?;
     let thrust = thrust_source(mission)?;
     let motor = build_motor_with(mission, &thrust)?;

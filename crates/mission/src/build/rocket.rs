@@ -44,6 +44,31 @@ pub fn motor_properties(motor: &Motor) -> MotorProperties {
     }
 }
 
+/// `motor` ignited `ignition` s after the flight's time origin: every table of time moved by
+/// that much (the motor of an upper stage, lit at or after its separation).
+///
+/// # Errors
+/// [`karman_math::MathError`] when the shift rounds two of a table's times together.
+pub fn delayed(
+    motor: MotorProperties,
+    ignition: f64,
+) -> Result<MotorProperties, karman_math::MathError> {
+    Ok(MotorProperties {
+        thrust: motor.thrust.shifted(ignition)?,
+        burn_start: motor.burn_start + ignition,
+        burn_out: motor.burn_out + ignition,
+        propellant_mass: motor.propellant_mass.shifted(ignition)?,
+        mass_flow: match &motor.mass_flow {
+            Some(table) => Some(table.shifted(ignition)?),
+            None => None,
+        },
+        propellant_center_of_mass: motor.propellant_center_of_mass.shifted(ignition)?,
+        propellant_i11: motor.propellant_i11.shifted(ignition)?,
+        propellant_i33: motor.propellant_i33.shifted(ignition)?,
+        ..motor
+    })
+}
+
 /// Builds the rocket of `mission` with `motor` at `rocket.motor_position`.
 ///
 /// # Errors
@@ -51,6 +76,20 @@ pub fn motor_properties(motor: &Motor) -> MotorProperties {
 /// and (section `rocket`, `rocket.surfaces.<name>`,
 /// `rocket.parachutes.<name>` or `rocket.rail_buttons`) for impossible airframe inputs.
 pub fn build_rocket(mission: &Mission, motor: &Motor) -> Result<Rocket, MissionError> {
+    build_rocket_ignited_at(mission, motor, 0.0)
+}
+
+/// [`build_rocket`] with the motor ignited at `ignition` s ([`delayed`]; a `"burnout + X"`
+/// trigger counts from its delayed burn-out): an upper stage of a multi-stage rocket.
+///
+/// # Errors
+/// As [`build_rocket`], and [`MissionError::Model`] (section `motor`) when the delay cannot be
+/// represented in the motor's tables.
+pub fn build_rocket_ignited_at(
+    mission: &Mission,
+    motor: &Motor,
+    ignition: f64,
+) -> Result<Rocket, MissionError> {
     let spec = &mission.spec.rocket;
     // A curve as a table of the given kind: airfoils are linear with held ends, the drag
     // curves follow the rocket's `interpolation` / `extrapolation`.
@@ -87,7 +126,7 @@ pub fn build_rocket(mission: &Mission, motor: &Motor) -> Result<Rocket, MissionE
                 schema::Trigger::HeightAboveGround(h) => Trigger::HeightAboveGround(*h),
                 schema::Trigger::Launch(delay) => Trigger::Custom(Arc::new(AfterTime(*delay))),
                 schema::Trigger::Burnout(delay) => {
-                    Trigger::Custom(Arc::new(AfterTime(motor.burn_out() + delay)))
+                    Trigger::Custom(Arc::new(AfterTime(motor.burn_out() + ignition + delay)))
                 }
                 schema::Trigger::Expression(text) => {
                     let expression = Expression::parse(text).map_err(|e| {
@@ -142,7 +181,12 @@ pub fn build_rocket(mission: &Mission, motor: &Motor) -> Result<Rocket, MissionE
         parachutes,
         rail_buttons,
     };
-    let rocket = Rocket::new(inputs, motor_properties(motor)).map_err(|e| {
+    let properties = if ignition == 0.0 {
+        motor_properties(motor)
+    } else {
+        delayed(motor_properties(motor), ignition).map_err(|e| mission.model_error("motor", e))?
+    };
+    let rocket = Rocket::new(inputs, properties).map_err(|e| {
         let section = match &e {
             AirframeError::NotFinite { component, .. }
             | AirframeError::NotPositive { component, .. }

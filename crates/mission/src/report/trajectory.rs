@@ -4,9 +4,29 @@
 
 use std::fmt::Write as _;
 
+use karman_atmos::Environment;
 use karman_dynamics::Sample;
 
 use crate::build::flight::FlightRun;
+
+/// What the series read of a flown body besides its samples: a single-stage flight
+/// ([`FlightRun`]) or one body of a multi-stage flight
+/// ([`crate::build::stages::BodyTrack`]).
+pub trait Track {
+    /// The launch environment (latitude and longitude of the points).
+    fn environment(&self) -> &Environment;
+    /// The static margin at `t` of the model flown then, calibers.
+    fn static_margin(&self, t: f64) -> f64;
+}
+
+impl Track for FlightRun {
+    fn environment(&self) -> &Environment {
+        &self.environment
+    }
+    fn static_margin(&self, t: f64) -> f64 {
+        self.rocket.static_margin(t)
+    }
+}
 
 /// One series of the trajectory: a name, its unit (empty for a pure number) and how it is
 /// read from a flown point.
@@ -16,7 +36,7 @@ pub struct Series {
     pub name: &'static str,
     /// Unit suffix (`m`, `mps`, `deg`, ...; empty when dimensionless).
     pub unit: &'static str,
-    value: fn(&FlightRun, &Sample) -> f64,
+    value: fn(&dyn Track, &Sample) -> f64,
 }
 
 impl Series {
@@ -32,7 +52,7 @@ impl Series {
 
     /// The value at one point of `run`.
     #[must_use]
-    pub fn value(&self, run: &FlightRun, sample: &Sample) -> f64 {
+    pub fn value(&self, run: &dyn Track, sample: &Sample) -> f64 {
         (self.value)(run, sample)
     }
 }
@@ -40,7 +60,7 @@ impl Series {
 const fn series(
     name: &'static str,
     unit: &'static str,
-    value: fn(&FlightRun, &Sample) -> f64,
+    value: fn(&dyn Track, &Sample) -> f64,
 ) -> Series {
     Series { name, unit, value }
 }
@@ -54,9 +74,11 @@ pub const SERIES: &[Series] = &[
     series("y", "m", |_, s| s.y),
     series("z_asl", "m", |_, s| s.z),
     series("altitude_agl", "m", |_, s| s.altitude_agl),
-    series("latitude", "deg", |r, s| r.environment.geodetic(s.x, s.y).0),
+    series("latitude", "deg", |r, s| {
+        r.environment().geodetic(s.x, s.y).0
+    }),
     series("longitude", "deg", |r, s| {
-        r.environment.geodetic(s.x, s.y).1
+        r.environment().geodetic(s.x, s.y).1
     }),
     series("vx", "mps", |_, s| s.vx),
     series("vy", "mps", |_, s| s.vy),
@@ -84,7 +106,7 @@ pub const SERIES: &[Series] = &[
     series("precession", "deg", |_, s| s.euler_deg[0]),
     series("nutation", "deg", |_, s| s.euler_deg[1]),
     series("spin", "deg", |_, s| s.euler_deg[2]),
-    series("static_margin", "cal", |r, s| r.rocket.static_margin(s.t)),
+    series("static_margin", "cal", |r, s| r.static_margin(s.t)),
     series("stability_margin", "cal", |_, s| s.stability_margin),
     series("aero_force_r1", "n", |_, s| s.force[0]),
     series("aero_force_r2", "n", |_, s| s.force[1]),
@@ -105,7 +127,7 @@ pub fn series_named(name: &str) -> Option<&'static Series> {
 /// `trajectory.csv`: a header of [`Series::column`] names, then one row per point (numbers in
 /// Rust's shortest round-trip form).
 #[must_use]
-pub fn csv(run: &FlightRun, samples: &[Sample]) -> String {
+pub fn csv(run: &dyn Track, samples: &[Sample]) -> String {
     let header: Vec<String> = SERIES.iter().map(Series::column).collect();
     let mut csv = header.join(",");
     csv.push('\n');
@@ -130,11 +152,11 @@ fn xml_escape(text: &str) -> String {
 
 /// The flight path named `name` as a KML LineString with absolute altitudes.
 #[must_use]
-pub fn kml(run: &FlightRun, name: &str, samples: &[Sample]) -> String {
+pub fn kml(run: &dyn Track, name: &str, samples: &[Sample]) -> String {
     let name = xml_escape(name);
     let mut coords = String::new();
     for s in samples {
-        let (lat, lon) = run.environment.geodetic(s.x, s.y);
+        let (lat, lon) = run.environment().geodetic(s.x, s.y);
         let _ = writeln!(coords, "          {lon:.8},{lat:.8},{:.2}", s.z);
     }
     format!(

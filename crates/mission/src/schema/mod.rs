@@ -51,6 +51,11 @@ pub struct MissionSpec {
     pub rocket: RocketSpec,
     /// `[flight]`: launch and integration settings.
     pub flight: FlightSpec,
+    /// `[[stages]]`: the stages below `[rocket]` (which is the top stage, with `[motor]`),
+    /// from the one right under it down to the bottom stage, which burns first; empty: a
+    /// single-stage rocket.
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub stages: Vec<StageSpec>,
     /// `[dispersion]`: Monte Carlo settings, optional.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub dispersion: Option<DispersionSpec>,
@@ -84,6 +89,32 @@ impl MissionSpec {
             let lift = surface.airfoil().map(|a| &a.lift);
             curve(&format!("rocket.surfaces.{name}.airfoil"), lift);
         }
+        for (index, stage) in self.stages.iter().enumerate() {
+            let key = |k: &str| format!("stages.{index}.{k}");
+            if let Some(motor) = &stage.motor {
+                curve(&key("motor.thrust"), Some(&motor.thrust));
+            }
+            curve(
+                &key("rocket.power_off_drag"),
+                Some(&stage.rocket.power_off_drag),
+            );
+            curve(
+                &key("rocket.power_on_drag"),
+                Some(&stage.rocket.power_on_drag),
+            );
+            curve(
+                &key("stack_power_off_drag"),
+                Some(&stage.stack_power_off_drag),
+            );
+            curve(
+                &key("stack_power_on_drag"),
+                Some(&stage.stack_power_on_drag),
+            );
+            for (name, surface) in &stage.rocket.surfaces {
+                let lift = surface.airfoil().map(|a| &a.lift);
+                curve(&key(&format!("rocket.surfaces.{name}.airfoil")), lift);
+            }
+        }
         if let Some(file) = &atm.file {
             files.insert(0, ("environment.atmosphere.file".to_owned(), file.clone()));
         }
@@ -96,6 +127,38 @@ impl MissionSpec {
         }
         files
     }
+}
+
+/// One `[[stages]]` entry: a lower stage of a multi-stage rocket (mission-format.md,
+/// "Stages"), with its own airframe and motor, the trigger of its separation from the stack
+/// above it, and the drag of the stack while it is the bottom stage.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct StageSpec {
+    /// Shown in reports (default `stage <index + 1>`).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub name: Option<String>,
+    /// When the stage drops off the stack above it: a parachute trigger (`"burnout + X"`
+    /// is the burn-out of this stage's motor).
+    pub separation: Trigger,
+    /// Sampling rate of the separation trigger, Hz.
+    #[serde(default = "default_sampling_rate")]
+    pub sampling_rate: f64,
+    /// Delay from this stage's separation to the ignition of the motor of the stack above,
+    /// s (0: ignition at separation).
+    #[serde(default)]
+    pub ignition_delay: f64,
+    /// Power-off drag coefficient of the whole stack while this stage is its bottom, of
+    /// Mach, on the largest radius of the stack; or `"estimate"`.
+    pub stack_power_off_drag: Curve,
+    /// Power-on drag coefficient of that stack.
+    pub stack_power_on_drag: Curve,
+    /// The stage's motor; absent: a stage without one, which must separate at launch.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub motor: Option<MotorSpec>,
+    /// The stage's airframe alone, in the coordinates of `[rocket]` (its drag curves are the
+    /// spent stage's, after separation).
+    pub rocket: RocketSpec,
 }
 
 /// `[environment]` (RocketPy `Environment`).

@@ -503,6 +503,10 @@ def _flight(kwargs: dict[str, Any]) -> dict[str, Any]:
             raise UnsupportedError(f"flight.{key}", "not a Flight argument karman knows")
     if math.isinf(out.get("max_time_step", 0.0)):
         out.pop("max_time_step")
+    # RocketPy's `equations_of_motion="standard"` is the form karman calls "rocketpy_1_13"
+    # (the mass flow -T/v_e whatever the motor, physics.md §15.3): the translated objects fly
+    # as RocketPy flies them.
+    out["equations"] = "rocketpy_1_13"
     return out
 
 

@@ -1,0 +1,841 @@
+//! Multi-stage rockets (mission-format.md, "Stages"): the flight as a tree of bodies.
+//!
+//! `[rocket]` with `[motor]` is the top stage; `[[stages]]` lists the stages below it, the
+//! last one at the bottom. The stack with `k` lower stages flies as one rigid vehicle: the
+//! motor of its bottom stage (the only one that can burn: every stage above ignites after the
+//! separation below it) and, as the airframe "without motor", the bottom stage's airframe
+//! lumped with the whole stack above it at rest, its motors unburnt (masses summed, centres of
+//! mass weighted, inertias moved to the common centre of mass with the parallel-axis theorem,
+//! physics.md §5.3), the surfaces of every member, the stack's own drag curves and the largest
+//! radius of the stack as reference (OpenRocket's reference diameter).
+//!
+//! When the bottom stage's separation trigger fires (a sampled process of the engine, as a
+//! parachute trigger without noise), the stack's flight ends ([`Action::SeparateStage`]) and
+//! two bodies fly on from the separation state with [`karman_dynamics::simulate_from`]: the
+//! stack above, whose motor ignites `ignition_delay` s later (its time tables moved there,
+//! [`super::rocket::delayed`]), and the spent stage with its own airframe, motor, drag and
+//! parachutes, to its own impact. Each starts at its own centre of dry mass: the state's
+//! position is moved along the rocket axis from the stack's, its velocity by `ω × r` of that
+//! offset (a rigid body). A separation at launch (`"launch + 0"`) happens on the pad: the
+//! stack above launches from the rail, and the stage stays there (it is not flown).
+
+use std::sync::Arc;
+
+use karman_airframe::Rocket;
+use karman_atmos::Environment;
+use karman_dynamics::flight::{Action, Probe, SampledProcess};
+use karman_dynamics::state::{State, rotation};
+use karman_dynamics::{
+    AtmosphereModel, Configuration, EventRecord, Flight, FlightSettings, Sample, Summary,
+    Termination,
+};
+use karman_model::TriggerCondition;
+use karman_script::Expression;
+
+use super::environment::build_environment;
+use super::flight::flight_settings;
+use super::motor::{build_motor_with, thrust_source};
+use super::preflight::{MAX_KNOT_STOPS, Models, prepare};
+use super::rocket::build_rocket_ignited_at;
+use super::scripts::{AfterTime, ExpressionTrigger};
+use crate::report::trajectory::Track;
+use crate::schema::{DragEstimateSpec, Inertia, RocketSpec, StageSpec, Trigger};
+use crate::{KeyLocations, Mission, MissionError};
+
+/// One integrated flight of a vehicle of the tree: a stack until a separation, or a body to
+/// its end.
+#[derive(Debug, Clone)]
+pub struct Segment {
+    /// The bodies that fly together in it, top first (`"sustainer + booster"`).
+    pub vehicle: String,
+    /// The stage whose motor the vehicle flies (its bottom stage).
+    pub motor_stage: String,
+    /// The vehicle's model, as flown.
+    pub rocket: Rocket,
+    /// The flight.
+    pub flight: Flight,
+}
+
+/// One body of a staged flight and the segments of its path, from the pad to its end.
+#[derive(Debug, Clone)]
+pub struct Body {
+    /// The stage's name (the top stage is `sustainer`).
+    pub name: String,
+    /// Indices into [`StagedRun::segments`], in time order.
+    pub segments: Vec<usize>,
+}
+
+/// A stage separation of the flight.
+#[derive(Debug, Clone, PartialEq, serde::Serialize)]
+pub struct SeparationRecord {
+    /// The stage that dropped off.
+    pub stage: String,
+    /// Time, s.
+    pub time_s: f64,
+}
+
+/// A flown multi-stage mission.
+#[derive(Debug, Clone)]
+pub struct StagedRun {
+    /// The launch environment.
+    pub environment: Environment,
+    /// The flight settings of the launch stack.
+    pub settings: FlightSettings,
+    /// Every integrated flight, in the order flown.
+    pub segments: Vec<Segment>,
+    /// The bodies: the top stage first, then the lower stages in the order they separated.
+    pub bodies: Vec<Body>,
+    /// The separations, in time order.
+    pub separations: Vec<SeparationRecord>,
+    /// The warnings of the launch checks and of every model, each naming its key.
+    pub warnings: Vec<String>,
+}
+
+/// The name of lower stage `index` in reports.
+fn stage_name(stage: &StageSpec, index: usize) -> String {
+    stage
+        .name
+        .clone()
+        .unwrap_or_else(|| format!("stage {}", index + 2))
+}
+
+/// The name of the top stage in reports.
+pub const TOP_STAGE: &str = "sustainer";
+
+/// `mission` with lower stage `index` as its `[rocket]` and `[motor]` (the top stage's motor
+/// when the stage has none), its keys located at the stage's.
+fn stage_mission(mission: &Mission, index: usize) -> Mission {
+    let stage = &mission.spec.stages[index];
+    let mut spec = mission.spec.clone();
+    spec.rocket = stage.rocket.clone();
+    if let Some(motor) = &stage.motor {
+        spec.motor = motor.clone();
+    }
+    spec.stages.clear();
+    let prefix = format!("stages.{index}.");
+    let mut keys = (*mission.keys.0).clone();
+    for (key, location) in mission.keys.0.iter() {
+        if let Some(inner) = key.strip_prefix(&prefix)
+            && (inner.starts_with("rocket") || inner.starts_with("motor"))
+        {
+            keys.insert(inner.to_owned(), location.clone());
+        }
+    }
+    Mission {
+        path: mission.path.clone(),
+        dir: mission.dir.clone(),
+        spec,
+        keys: KeyLocations(Arc::new(keys)),
+    }
+}
+
+/// An error found while building stage `index` from its own mission, named by the stage's key.
+fn in_stage(error: MissionError, index: usize) -> MissionError {
+    match error {
+        MissionError::Model {
+            file,
+            location,
+            section,
+            source,
+        } if section.starts_with("rocket") || section.starts_with("motor") => MissionError::Model {
+            file,
+            location,
+            section: format!("stages.{index}.{section}"),
+            source,
+        },
+        other => other,
+    }
+}
+
+/// The top stage alone as a mission (without `[[stages]]`).
+fn top_mission(mission: &Mission) -> Mission {
+    let mut top = mission.clone();
+    top.spec.stages.clear();
+    top
+}
+
+/// Mass, centre of mass (rocket coordinates) and inertia about it of a rigid part.
+#[derive(Debug, Clone, Copy)]
+struct Lump {
+    mass: f64,
+    center: f64,
+    inertia: [f64; 6],
+}
+
+impl Lump {
+    /// A vehicle at rest before its motor ignites: its dry mass and unburnt propellant.
+    fn unburnt(rocket: &Rocket) -> Lump {
+        let t = rocket.burn_start();
+        let mass = rocket.total_mass(t);
+        let center = rocket.center_of_mass(t);
+        let d = center - rocket.center_of_dry_mass();
+        let mut inertia = rocket.inertia(t);
+        // The inertia is about the centre of dry mass; moved to the centre of mass.
+        inertia[0] -= mass * d * d;
+        inertia[1] -= mass * d * d;
+        Lump {
+            mass,
+            center,
+            inertia,
+        }
+    }
+
+    /// Two parts as one (parallel-axis theorem along the rocket axis).
+    fn with(self, other: Lump) -> Lump {
+        let mass = self.mass + other.mass;
+        let center = (self.mass * self.center + other.mass * other.center) / mass;
+        let (da, db) = (self.center - center, other.center - center);
+        let axial = self.mass * da * da + other.mass * db * db;
+        let mut inertia = [0.0; 6];
+        for (i, value) in inertia.iter_mut().enumerate() {
+            *value = self.inertia[i] + other.inertia[i];
+        }
+        inertia[0] += axial;
+        inertia[1] += axial;
+        Lump {
+            mass,
+            center,
+            inertia,
+        }
+    }
+}
+
+/// The airframe of the stack whose bottom is lower stage `bottom`, with `above` (the stack
+/// over it, at rest) lumped into its mass.
+fn stack_rocket_spec(mission: &Mission, bottom: usize, above: Lump) -> RocketSpec {
+    let spec = &mission.spec;
+    let stage = &spec.stages[bottom];
+    let own = &stage.rocket;
+    let members: Vec<&RocketSpec> = std::iter::once(&spec.rocket)
+        .chain(spec.stages[..=bottom].iter().map(|s| &s.rocket))
+        .collect();
+    let lump = above.with(Lump {
+        mass: own.mass,
+        center: own.center_of_mass_without_motor,
+        inertia: own.inertia.0,
+    });
+    let mut surfaces = indexmap::IndexMap::new();
+    for member in &members {
+        surfaces.extend(member.surfaces.clone());
+    }
+    // The drag estimate of the stack: every member's fins, lugs and overrides; the bottom
+    // stage's body length, finish and button sizes, else the top stage's.
+    let mut estimate: Option<DragEstimateSpec> = None;
+    for member in members.iter().rev() {
+        let Some(d) = &member.drag_estimate else {
+            continue;
+        };
+        match &mut estimate {
+            None => estimate = Some(d.clone()),
+            Some(e) => {
+                e.fins.extend(d.fins.clone());
+                e.launch_lugs.extend(d.launch_lugs.clone());
+                e.overrides.extend(d.overrides.clone());
+                if e.rail_buttons.is_none() {
+                    e.rail_buttons.clone_from(&d.rail_buttons);
+                }
+            }
+        }
+    }
+    RocketSpec {
+        radius: members.iter().map(|m| m.radius).fold(0.0, f64::max),
+        mass: lump.mass,
+        inertia: Inertia(lump.inertia),
+        center_of_mass_without_motor: lump.center,
+        coordinate_system: spec.rocket.coordinate_system,
+        power_off_drag: stage.stack_power_off_drag.clone(),
+        power_on_drag: stage.stack_power_on_drag.clone(),
+        drag_estimate: estimate,
+        interpolation: own.interpolation,
+        extrapolation: own.extrapolation,
+        motor_position: own.motor_position,
+        rail_buttons: members.iter().rev().find_map(|m| m.rail_buttons.clone()),
+        surfaces,
+        parachutes: indexmap::IndexMap::new(),
+        air_brakes: None,
+    }
+}
+
+/// The mission of the stack with `count` lower stages (`count ≥ 1`): its bottom stage's motor
+/// and the stack's airframe ([`stack_rocket_spec`]).
+fn stack_mission(mission: &Mission, count: usize, above: Lump) -> Mission {
+    let bottom = count - 1;
+    let mut stack = stage_mission(mission, bottom);
+    stack.spec.rocket = stack_rocket_spec(mission, bottom, above);
+    stack
+}
+
+/// The vehicle of the stack with `count` lower stages, its motor ignited at `ignition`.
+fn build_stack(
+    mission: &Mission,
+    count: usize,
+    ignition: f64,
+) -> Result<(Mission, Rocket), MissionError> {
+    if count == 0 {
+        let top = top_mission(mission);
+        let motor = build_motor_with(&top, &thrust_source(&top)?)?;
+        let rocket = build_rocket_ignited_at(&top, &motor, ignition)?;
+        return Ok((top, rocket));
+    }
+    let (_, above) = build_stack(mission, count - 1, 0.0)?;
+    let stack = stack_mission(mission, count, Lump::unburnt(&above));
+    let motor =
+        build_motor_with(&stack, &thrust_source(&stack)?).map_err(|e| in_stage(e, count - 1))?;
+    let rocket =
+        build_rocket_ignited_at(&stack, &motor, ignition).map_err(|e| in_stage(e, count - 1))?;
+    Ok((stack, rocket))
+}
+
+/// What fires a separation.
+enum Condition {
+    Apogee,
+    Height(f64),
+    Custom(Arc<dyn TriggerCondition>),
+}
+
+/// The separation trigger of a stage as a sampled process of the stack's flight: the
+/// parachute triggers' conditions on the noise-free pressure.
+struct SeparationTrigger<'a, A> {
+    atmosphere: &'a A,
+    elevation: f64,
+    rate: f64,
+    condition: Condition,
+    stage: usize,
+    fired: bool,
+}
+
+impl<A: AtmosphereModel> SampledProcess for SeparationTrigger<'_, A> {
+    fn rate(&self) -> f64 {
+        self.rate
+    }
+    fn whole_step(&self) -> bool {
+        matches!(self.condition, Condition::Custom(_))
+    }
+    fn sample(&mut self, probe: &mut Probe<'_>) -> Option<Action> {
+        let atm = self.atmosphere;
+        let fires = match &self.condition {
+            Condition::Apogee => probe.vz() < 0.0,
+            Condition::Height(h) => {
+                probe.vz() < 0.0
+                    && atm.barometric_height(atm.pressure(probe.z())) - self.elevation < *h
+            }
+            Condition::Custom(condition) => {
+                let pressure = atm.pressure(probe.z());
+                let height = atm.barometric_height(pressure) - self.elevation;
+                condition.fires(probe.t(), pressure, height, &probe.state())
+            }
+        };
+        self.fired |= fires;
+        fires.then_some(Action::SeparateStage(self.stage))
+    }
+    fn is_done(&self) -> bool {
+        self.fired
+    }
+}
+
+/// The separation condition of lower stage `index`, whose motor burns out at `burn_out`.
+fn condition(mission: &Mission, index: usize, burn_out: f64) -> Result<Condition, MissionError> {
+    Ok(match &mission.spec.stages[index].separation {
+        Trigger::Apogee => Condition::Apogee,
+        Trigger::HeightAboveGround(h) => Condition::Height(*h),
+        Trigger::Launch(delay) => Condition::Custom(Arc::new(AfterTime(*delay))),
+        Trigger::Burnout(delay) => Condition::Custom(Arc::new(AfterTime(burn_out + delay))),
+        Trigger::Expression(text) => {
+            let expression = Expression::parse(text).map_err(|e| {
+                mission.model_error(&format!("stages.{index}.separation.expression"), e)
+            })?;
+            Condition::Custom(Arc::new(ExpressionTrigger(expression)))
+        }
+    })
+}
+
+/// `state` of a rigid body moved from its point at rocket coordinate `from` to the one at
+/// `to` (`csys` the rocket's coordinate sign): position along the rocket axis, velocity by
+/// `ω × r`.
+fn moved(state: &State, from: f64, to: f64, csys: f64) -> State {
+    let along = csys * (to - from);
+    if along == 0.0 {
+        return *state;
+    }
+    let k = rotation([state[6], state[7], state[8], state[9]]);
+    // The offset (0, 0, along) in body axes and ω × offset there.
+    let (w1, w2) = (state[10], state[11]);
+    let spin = [w2 * along, -w1 * along, 0.0];
+    let mut out = *state;
+    for i in 0..3 {
+        out[i] += k[i][2] * along;
+        out[3 + i] += k[i][0] * spin[0] + k[i][1] * spin[1];
+    }
+    out
+}
+
+/// The settings of one vehicle: the mission's, without knot stops for a dense thrust curve.
+fn vehicle_settings(mission: &Mission, rocket: &Rocket, seed: u64) -> FlightSettings {
+    let mut settings = flight_settings(mission, seed);
+    if rocket.motor().thrust.xs().len() > MAX_KNOT_STOPS {
+        settings.stop_at_thrust_knots = false;
+    }
+    settings
+}
+
+/// Builds every vehicle of a multi-stage mission and checks the launch stack's launch, as
+/// [`simulate_staged`] does before it integrates (motors ignited at their separation, here
+/// taken at `t = 0`, build the same models up to that shift); returns the warnings.
+///
+/// # Errors
+/// As [`simulate_staged`], without the flight's.
+pub fn prepare_staged(mission: &Mission, seed: u64) -> Result<Vec<String>, MissionError> {
+    let stages = &mission.spec.stages;
+    let mut warnings = Vec::new();
+    let pad = stages
+        .iter()
+        .rev()
+        .take_while(|s| matches!(s.separation, Trigger::Launch(d) if d <= 0.0))
+        .count();
+    for count in (0..=stages.len() - pad).rev() {
+        let (vehicle, rocket) = build_stack(mission, count, 0.0)?;
+        if count == stages.len() - pad {
+            let models = prepare(&vehicle, seed).map_err(|e| match count {
+                0 => e,
+                n => in_stage(e, n - 1),
+            })?;
+            warnings.extend(models.warnings);
+        } else {
+            warnings.extend(rocket.warnings().iter().map(|w| match count {
+                0 => format!("`rocket`: {w}"),
+                n => format!("`stages.{}`: {w}", n - 1),
+            }));
+        }
+        if count > 0 {
+            condition(mission, count - 1, rocket.burn_out())?;
+            let stage = &stages[count - 1];
+            if stage.rocket.mass > 0.0 && stage.motor.is_some() {
+                let alone = stage_mission(mission, count - 1);
+                let motor = build_motor_with(&alone, &thrust_source(&alone)?)
+                    .map_err(|e| in_stage(e, count - 1))?;
+                let spent = build_rocket_ignited_at(&alone, &motor, 0.0)
+                    .map_err(|e| in_stage(e, count - 1))?;
+                warnings.extend(
+                    spent
+                        .warnings()
+                        .iter()
+                        .map(|w| format!("`stages.{}.rocket`: {w}", count - 1)),
+                );
+            }
+        }
+    }
+    Ok(warnings)
+}
+
+/// Where the current stack starts.
+enum Start {
+    Rail,
+    Separation { t: f64, state: State, cdm: f64 },
+}
+
+/// Builds and flies a multi-stage mission (module documentation), with parachute trigger
+/// noise seeded by `seed`.
+///
+/// # Errors
+/// The builders' [`MissionError`]s (lower stages' keys under `stages.<index>`), the launch
+/// checks of the launch stack, and [`MissionError::Model`] (section `flight`) when a flight
+/// cannot be integrated.
+pub fn simulate_staged(mission: &Mission, seed: u64) -> Result<StagedRun, MissionError> {
+    let stages = &mission.spec.stages;
+    let environment = build_environment(mission)?;
+    let elevation = environment.elevation();
+    let mut count = stages.len();
+    let mut ignition = 0.0;
+    let mut warnings = Vec::new();
+    let mut separations = Vec::new();
+    // Separations on the pad: the stack above launches, the stage stays.
+    while count > 0 && matches!(stages[count - 1].separation, Trigger::Launch(d) if d <= 0.0) {
+        separations.push(SeparationRecord {
+            stage: stage_name(&stages[count - 1], count - 1),
+            time_s: 0.0,
+        });
+        ignition = stages[count - 1].ignition_delay;
+        count -= 1;
+    }
+    // The launch vehicle with every launch check.
+    let launch = if count == 0 {
+        top_mission(mission)
+    } else {
+        let (_, above) = build_stack(mission, count - 1, 0.0)?;
+        stack_mission(mission, count, Lump::unburnt(&above))
+    };
+    let settings = if ignition == 0.0 {
+        let Models {
+            settings,
+            warnings: launch_warnings,
+            ..
+        } = prepare(&launch, seed).map_err(|e| match count {
+            0 => e,
+            n => in_stage(e, n - 1),
+        })?;
+        warnings.extend(launch_warnings);
+        settings
+    } else {
+        flight_settings(mission, seed)
+    };
+
+    let launch_checked = ignition == 0.0;
+    let mut segments: Vec<Segment> = Vec::new();
+    let mut bodies = Vec::new();
+    let mut shared: Vec<usize> = Vec::new();
+    let mut start = Start::Rail;
+    let flight_error = |e| mission.model_error("flight", e);
+    loop {
+        let (vehicle_mission, rocket) = build_stack(mission, count, ignition)?;
+        if !(segments.is_empty() && launch_checked) {
+            warnings.extend(rocket.warnings().iter().map(|w| match count {
+                0 => format!("`rocket`: {w}"),
+                n => format!("`stages.{}`: {w}", n - 1),
+            }));
+        }
+        let own_settings = vehicle_settings(&vehicle_mission, &rocket, seed);
+        let mut processes: Vec<Box<dyn SampledProcess + '_>> = Vec::new();
+        if count > 0 {
+            processes.push(Box::new(SeparationTrigger {
+                atmosphere: &environment,
+                elevation,
+                rate: stages[count - 1].sampling_rate,
+                condition: condition(mission, count - 1, rocket.burn_out())?,
+                stage: count - 1,
+                fired: false,
+            }));
+        }
+        let flight = match start {
+            Start::Rail => {
+                karman_dynamics::simulate_with(&environment, &rocket, &own_settings, processes)
+            }
+            Start::Separation { t, state, cdm } => karman_dynamics::simulate_from(
+                &environment,
+                &rocket,
+                &own_settings,
+                t,
+                moved(&state, cdm, rocket.center_of_dry_mass(), rocket.csys()),
+                Configuration::default(),
+                processes,
+            ),
+        }
+        .map_err(flight_error)?;
+        let names: Vec<String> = std::iter::once(TOP_STAGE.to_owned())
+            .chain((0..count).map(|i| stage_name(&stages[i], i)))
+            .collect();
+        let separated = flight.termination == Termination::Separation;
+        let end = flight.points.last().map(|p| (p.t, p.state));
+        let stack_cdm = rocket.center_of_dry_mass();
+        let csys = rocket.csys();
+        segments.push(Segment {
+            vehicle: names.join(" + "),
+            motor_stage: names[names.len() - 1].clone(),
+            rocket,
+            flight,
+        });
+        shared.push(segments.len() - 1);
+        let (true, Some((t, state))) = (separated, end) else {
+            // The stack flew to its end together: every member ends here.
+            for name in names.iter().rev() {
+                bodies.push(Body {
+                    name: name.clone(),
+                    segments: shared.clone(),
+                });
+            }
+            break;
+        };
+        let index = count - 1;
+        let stage = &stages[index];
+        let name = stage_name(stage, index);
+        separations.push(SeparationRecord {
+            stage: name.clone(),
+            time_s: t,
+        });
+        // The spent stage flies on alone (a massless one has nothing to fly).
+        if stage.rocket.mass > 0.0 && stage.motor.is_some() {
+            let alone = stage_mission(mission, index);
+            let motor = build_motor_with(&alone, &thrust_source(&alone)?)
+                .map_err(|e| in_stage(e, index))?;
+            let spent = build_rocket_ignited_at(&alone, &motor, ignition)
+                .map_err(|e| in_stage(e, index))?;
+            warnings.extend(
+                spent
+                    .warnings()
+                    .iter()
+                    .map(|w| format!("`stages.{index}.rocket`: {w}")),
+            );
+            let spent_settings = vehicle_settings(&alone, &spent, seed);
+            let flight = karman_dynamics::simulate_from(
+                &environment,
+                &spent,
+                &spent_settings,
+                t,
+                moved(&state, stack_cdm, spent.center_of_dry_mass(), csys),
+                Configuration::default(),
+                Vec::new(),
+            )
+            .map_err(flight_error)?;
+            segments.push(Segment {
+                vehicle: name.clone(),
+                motor_stage: name.clone(),
+                rocket: spent,
+                flight,
+            });
+            let mut own = shared.clone();
+            own.push(segments.len() - 1);
+            bodies.push(Body {
+                name,
+                segments: own,
+            });
+        }
+        ignition = t + stage.ignition_delay;
+        start = Start::Separation {
+            t,
+            state,
+            cdm: stack_cdm,
+        };
+        count -= 1;
+    }
+    // The top stage first, then the lower stages in the order they separated.
+    bodies.sort_by_key(|b| b.name != TOP_STAGE);
+    Ok(StagedRun {
+        environment,
+        settings,
+        segments,
+        bodies,
+        separations,
+        warnings,
+    })
+}
+
+impl Segment {
+    /// The segment's summary, its events restricted to its own time span (a flight resumed
+    /// at a separation does not repeat the burn-out before it) and its burn-out named by the
+    /// stage whose motor burnt out.
+    fn summary(&self, environment: &Environment) -> Summary {
+        let mut summary = self.flight.summary(environment, &self.rocket);
+        let start = self.flight.points.first().map_or(0.0, |p| p.t);
+        summary.events.retain(|e| e.time_s >= start);
+        for event in &mut summary.events {
+            if event.name == "burnout" {
+                event.name = format!("burnout:{}", self.motor_stage);
+            }
+        }
+        summary
+    }
+}
+
+impl StagedRun {
+    /// The summary of body `body`: the launch's rail exit and margins, the first apogee of
+    /// its path, the extremes over every segment, the end of its last segment, and its
+    /// events with the separations it took part in.
+    #[must_use]
+    pub fn summary(&self, body: usize) -> Summary {
+        let segments = &self.bodies[body].segments;
+        let parts: Vec<Summary> = segments
+            .iter()
+            .map(|&s| self.segments[s].summary(&self.environment))
+            .collect();
+        let mut joined = parts[0].clone();
+        let apogee = parts.iter().find(|p| p.apogee_time_s.is_some());
+        if let Some(a) = apogee {
+            joined.apogee_agl_m = a.apogee_agl_m;
+            joined.apogee_asl_m = a.apogee_asl_m;
+            joined.apogee_time_s = a.apogee_time_s;
+            joined.apogee_x_m = a.apogee_x_m;
+            joined.apogee_y_m = a.apogee_y_m;
+        }
+        let last = &parts[parts.len() - 1];
+        joined.impact_time_s = last.impact_time_s;
+        joined.impact_x_m = last.impact_x_m;
+        joined.impact_y_m = last.impact_y_m;
+        joined.impact_velocity_mps = last.impact_velocity_mps;
+        joined.termination = last.termination;
+        joined.events.clear();
+        for part in &parts {
+            joined.max_speed_mps = joined.max_speed_mps.max(part.max_speed_mps);
+            joined.max_mach = joined.max_mach.max(part.max_mach);
+            joined.max_dynamic_pressure_pa = joined
+                .max_dynamic_pressure_pa
+                .max(part.max_dynamic_pressure_pa);
+            joined.max_acceleration_mps2 =
+                joined.max_acceleration_mps2.max(part.max_acceleration_mps2);
+            joined.events.extend(part.events.iter().cloned());
+        }
+        // The separations are in time order: a body took part in those up to its own (the
+        // stages below it went first), or in all of them.
+        let name = &self.bodies[body].name;
+        let own = self.separations.iter().position(|s| &s.stage == name);
+        for (i, separation) in self.separations.iter().enumerate() {
+            if own.is_none_or(|m| i <= m) {
+                joined.events.push(EventRecord {
+                    name: format!("separation:{}", separation.stage),
+                    time_s: separation.time_s,
+                });
+            }
+        }
+        joined.events.sort_by(|a, b| a.time_s.total_cmp(&b.time_s));
+        joined
+    }
+
+    /// Post-processed quantities along body `body`'s path, each segment with its own model
+    /// (the point a segment starts from, the previous segment's last, once).
+    #[must_use]
+    pub fn samples(&self, body: usize) -> Vec<Sample> {
+        let mut samples: Vec<Sample> = Vec::new();
+        for &s in &self.bodies[body].segments {
+            let segment = &self.segments[s];
+            let mut part = segment.flight.samples(&self.environment, &segment.rocket);
+            if !samples.is_empty() && !part.is_empty() {
+                part.remove(0);
+            }
+            samples.extend(part);
+        }
+        samples
+    }
+
+    /// The flight's events in one timeline: every segment's, named by its vehicle, and the
+    /// separations.
+    #[must_use]
+    pub fn timeline(&self) -> Vec<(f64, String)> {
+        let mut events = Vec::new();
+        for segment in &self.segments {
+            for event in segment.summary(&self.environment).events {
+                events.push((event.time_s, format!("{}: {}", segment.vehicle, event.name)));
+            }
+        }
+        for separation in &self.separations {
+            events.push((
+                separation.time_s,
+                format!("separation of {}", separation.stage),
+            ));
+        }
+        events.sort_by(|a, b| a.0.total_cmp(&b.0));
+        events
+    }
+
+    /// Body `body` as the trajectory series read it.
+    #[must_use]
+    pub fn track(&self, body: usize) -> BodyTrack<'_> {
+        BodyTrack { run: self, body }
+    }
+
+    /// The static margin of body `body` at `t`, of the model flown then, calibers.
+    #[must_use]
+    pub fn static_margin(&self, body: usize, t: f64) -> f64 {
+        let segments = &self.bodies[body].segments;
+        let at = segments
+            .iter()
+            .find(|&&s| t <= self.segments[s].flight.t_final)
+            .or(segments.last())
+            .copied()
+            .unwrap_or(0);
+        self.segments[at].rocket.static_margin(t)
+    }
+}
+
+/// One body of a [`StagedRun`] for the trajectory report (`trajectory.csv`, KML).
+#[derive(Debug, Clone, Copy)]
+pub struct BodyTrack<'a> {
+    run: &'a StagedRun,
+    body: usize,
+}
+
+impl Track for BodyTrack<'_> {
+    fn environment(&self) -> &Environment {
+        &self.run.environment
+    }
+    fn static_margin(&self, t: f64) -> f64 {
+        self.run.static_margin(self.body, t)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_moved_state_is_another_point_of_the_same_rigid_body() {
+        // A tilted, spinning, translating body.
+        let (half, axis) = (0.4_f64, [0.3_f64, -0.5, 0.81]);
+        let n = axis.iter().map(|a| a * a).sum::<f64>().sqrt();
+        let (s, c) = half.sin_cos();
+        let state: State = [
+            10.0,
+            -4.0,
+            1500.0,
+            3.0,
+            -7.0,
+            120.0,
+            c,
+            s * axis[0] / n,
+            s * axis[1] / n,
+            s * axis[2] / n,
+            0.7,
+            -1.3,
+            25.0,
+        ];
+        let moved_state = moved(&state, 1.2, 0.45, -1.0);
+        let k = rotation([state[6], state[7], state[8], state[9]]);
+        let dr: Vec<f64> = (0..3).map(|i| moved_state[i] - state[i]).collect();
+        let dv: Vec<f64> = (0..3).map(|i| moved_state[3 + i] - state[3 + i]).collect();
+        // 0.75 m toward the nose (nose_to_tail coordinates decrease toward it), on the axis.
+        for i in 0..3 {
+            assert!((dr[i] - 0.75 * k[i][2]).abs() < 1e-12);
+        }
+        // v_b − v_a = ω × (r_b − r_a), with ω in inertial axes.
+        let w: Vec<f64> = (0..3)
+            .map(|i| k[i][0] * state[10] + k[i][1] * state[11] + k[i][2] * state[12])
+            .collect();
+        let cross = [
+            w[1] * dr[2] - w[2] * dr[1],
+            w[2] * dr[0] - w[0] * dr[2],
+            w[0] * dr[1] - w[1] * dr[0],
+        ];
+        for i in 0..3 {
+            assert!((dv[i] - cross[i]).abs() < 1e-12, "{dv:?} {cross:?}");
+        }
+        // Attitude and rates are the body's; moving back returns the state.
+        assert_eq!(moved_state[6..], state[6..]);
+        let back = moved(&moved_state, 0.45, 1.2, -1.0);
+        for i in 0..13 {
+            assert!((back[i] - state[i]).abs() < 1e-9 * (1.0 + state[i].abs()));
+        }
+        let still = moved(&state, 0.8, 0.8, 1.0);
+        assert!(
+            still
+                .iter()
+                .zip(&state)
+                .all(|(a, b)| a.to_bits() == b.to_bits())
+        );
+    }
+
+    #[test]
+    fn lumps_follow_the_parallel_axis_theorem() {
+        let point = |mass, center| Lump {
+            mass,
+            center,
+            inertia: [0.0; 6],
+        };
+        let two = point(1.0, -1.0).with(point(3.0, 1.0));
+        assert!((two.mass - 4.0).abs() < 1e-15 && (two.center - 0.5).abs() < 1e-15);
+        // 1·1.5² + 3·0.5² about the common centre, nothing about the axis.
+        assert!((two.inertia[0] - 3.0).abs() < 1e-15 && (two.inertia[1] - 3.0).abs() < 1e-15);
+        assert!(two.inertia[2].abs() < 1e-15);
+        // A massless part changes nothing, bit for bit.
+        let body = Lump {
+            mass: 3.55,
+            center: 0.973,
+            inertia: [0.8, 0.8, 0.003, 0.0, 0.0, 0.0],
+        };
+        let same = body.with(point(0.0, 2.0));
+        assert_eq!(same.mass.to_bits(), body.mass.to_bits());
+        assert_eq!(same.center.to_bits(), body.center.to_bits());
+        assert!(
+            same.inertia
+                .iter()
+                .zip(&body.inertia)
+                .all(|(a, b)| a.to_bits() == b.to_bits())
+        );
+    }
+}
