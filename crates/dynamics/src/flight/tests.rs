@@ -7,7 +7,7 @@ use super::actions::Acted;
 use super::phases::Phase;
 use super::run::{Run, Sampling, Start, fly};
 use super::sampled::{Probe, node_key};
-use super::{Action, Flight, IntegrationStats, acceleration, evaluate};
+use super::{Flight, IntegrationStats, acceleration, evaluate};
 use crate::equations::{Cursors, Equations};
 use crate::integrator::RungeKutta;
 use crate::settings::FlightSettings;
