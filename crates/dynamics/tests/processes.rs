@@ -147,7 +147,7 @@ fn a_control_set_for_after_the_step_survives_a_deployment_later_in_that_step() {
     assert!(
         alone.points[first..]
             .iter()
-            .all(|p| p.configuration.controls[0] == level)
+            .all(|p| p.configuration.controls[0].to_bits() == level.to_bits())
     );
     // With the deployment one instant later in the same step, the step ends there and the
     // value acts from that instant, in the lag phase and under the parachute.
