@@ -4,7 +4,7 @@
 //! it), reject it with the same message, and name the file and line (or the mission key) of
 //! the problem; the flyable cases print their warnings, and `--json` carries them.
 
-use crate::common::{failure, karman, scratch, stderr};
+use crate::common::{karman, scratch, stderr};
 use std::path::PathBuf;
 use std::time::{Duration, Instant};
 
@@ -378,8 +378,38 @@ fn pressure_rising_with_height_is_warned_about() {
     );
 }
 
+/// How long a run may take before it counts as blocked: a hang guard, far above any run of
+/// the corpus mission on a loaded machine (the test proves that nothing waits for a writer,
+/// not how fast the refusal is).
+const HANG_GUARD: Duration = Duration::from_secs(120);
+
+/// Runs the binary like `common::failure`, but kills it and fails the test if it has not ended
+/// after [`HANG_GUARD`].
+fn failure_unblocked(args: &[&str]) -> String {
+    let mut child = std::process::Command::new(env!("CARGO_BIN_EXE_karman"))
+        .args(args)
+        .stdout(std::process::Stdio::piped())
+        .stderr(std::process::Stdio::piped())
+        .spawn()
+        .expect("the karman binary runs");
+    let start = Instant::now();
+    while child.try_wait().expect("child status").is_none() {
+        if start.elapsed() > HANG_GUARD {
+            let _ = child.kill();
+            let _ = child.wait();
+            panic!("`karman {}` blocked for {HANG_GUARD:?}", args.join(" "));
+        }
+        std::thread::sleep(Duration::from_millis(20));
+    }
+    let output = child.wait_with_output().expect("child output");
+    let text = stderr(&output);
+    assert!(!text.contains("panicked at"), "panic: {text}");
+    assert_eq!(output.status.code(), Some(1), "stderr: {text}");
+    text
+}
+
 #[test]
-fn a_fifo_as_data_file_is_an_error_within_a_second() {
+fn a_fifo_as_data_file_is_an_error_never_a_wait() {
     let dir = scratch("fifo/placeholder", b"")
         .parent()
         .expect("folder")
@@ -393,13 +423,17 @@ fn a_fifo_as_data_file_is_an_error_within_a_second() {
     }
     let set = format!("motor.thrust=\"{}\"", fifo.display());
     for command in ["check", "simulate"] {
-        let start = Instant::now();
-        let text = failure(&[command, &corpus_mission(), "--set", &set]);
-        assert!(
-            start.elapsed() < Duration::from_secs(1),
-            "{command} took {:?}",
-            start.elapsed()
-        );
+        let text = failure_unblocked(&[command, &corpus_mission(), "--set", &set]);
         assert!(text.contains("not a regular file"), "{text}");
     }
+}
+
+#[test]
+fn a_rocket_that_coasts_off_the_rail_after_burn_out_is_warned_about() {
+    let (warnings, check) =
+        warnings_of(&corpus_mission(), &["motor.reshape_thrust_curve=[0.1, 60]"]);
+    let expected = "`motor.thrust`: the motor burns out (0.100 s) before rail exit; the rocket \
+                    coasts the last 1.649 m of the rail at 13.869 m/s";
+    assert!(warnings.iter().any(|w| w == expected), "{warnings:?}");
+    assert!(check.contains(&format!("warning: {expected}")), "{check}");
 }

@@ -16,8 +16,9 @@ fn fresh(name: &str) -> PathBuf {
     dir
 }
 
-fn montecarlo(out: &Path, extra: &[&str]) -> std::process::Output {
-    let mission = example().display().to_string();
+/// `karman montecarlo MISSION --samples 12 --quiet --out OUT EXTRA...`.
+fn montecarlo_of(mission: &Path, out: &Path, extra: &[&str]) -> std::process::Output {
+    let mission = mission.display().to_string();
     let out = out.display().to_string();
     let mut args = vec![
         "montecarlo",
@@ -30,6 +31,11 @@ fn montecarlo(out: &Path, extra: &[&str]) -> std::process::Output {
     ];
     args.extend_from_slice(extra);
     karman(&args)
+}
+
+/// [`montecarlo_of`] the example mission.
+fn montecarlo(out: &Path, extra: &[&str]) -> std::process::Output {
+    montecarlo_of(&example(), out, extra)
 }
 
 fn assert_same_files(a: &Path, b: &Path) {
@@ -118,6 +124,70 @@ fn a_different_study_or_missing_shard_fails_cleanly() {
     assert!(!stderr(&output).contains("panicked"));
 }
 
+#[test]
+fn arrays_varied_by_component_and_whole_give_the_same_bytes_on_any_thread_count() {
+    // The inertia scaled as a whole and one component drawn on its own, both set with --set.
+    let set = [
+        "--set",
+        "dispersion.vary.\"rocket.inertia\"={ factor = { normal = [1.0, 0.05] } }",
+        "--set",
+        "dispersion.vary.\"rocket.inertia.2\"={ std = 0.0002 }",
+        "--set",
+        "dispersion.vary.\"rocket.mass\".std=0.2",
+    ];
+    let mut files = Vec::new();
+    for threads in ["1", "2", "3"] {
+        let out = fresh(&format!("arrays-{threads}"));
+        let mut extra = vec!["--threads", threads];
+        extra.extend_from_slice(&set);
+        let output = montecarlo(&out, &extra);
+        assert_eq!(output.status.code(), Some(0), "{}", stderr(&output));
+        files.push(std::fs::read(out.join("samples.csv")).expect("samples.csv"));
+    }
+    assert!(files.iter().all(|f| *f == files[0]), "samples.csv differs");
+    let csv = String::from_utf8(files.swap_remove(0)).expect("UTF-8");
+    let header: Vec<&str> = csv.lines().next().expect("header").split(',').collect();
+    let column = |name: &str| {
+        header
+            .iter()
+            .position(|c| *c == name)
+            .unwrap_or_else(|| panic!("{name} not in {header:?}"))
+    };
+    let (factor, i33, mass) = (
+        column("rocket.inertia:factor"),
+        column("rocket.inertia.2"),
+        column("rocket.mass"),
+    );
+    let values = |index: usize| -> Vec<f64> {
+        csv.lines()
+            .skip(1)
+            .map(|row| {
+                row.split(',')
+                    .nth(index)
+                    .expect("cell")
+                    .parse()
+                    .expect("number")
+            })
+            .collect()
+    };
+    let spread = |v: &[f64]| {
+        let mean = v.iter().sum::<f64>() / v.len() as f64;
+        (v.iter().map(|x| (x - mean).powi(2)).sum::<f64>() / v.len() as f64).sqrt()
+    };
+    // Every draw differs, around the nominal values (factor 1, I33 0.0021 kg·m², the mass's
+    // standard deviation now 0.2 kg instead of the file's 0.05).
+    let (f, i, m) = (values(factor), values(i33), values(mass));
+    assert!(
+        f.iter().all(|x| (x - 1.0).abs() < 0.25) && spread(&f) > 0.01,
+        "{f:?}"
+    );
+    assert!(
+        i.iter().all(|x| (x - 0.0021).abs() < 0.001) && spread(&i) > 0.0,
+        "{i:?}"
+    );
+    assert!(spread(&m) > 0.08, "{m:?}");
+}
+
 /// A copy of the example mission and its data files in a fresh folder `name`, to edit.
 fn example_copy(name: &str) -> PathBuf {
     let dir = fresh(name);
@@ -135,27 +205,11 @@ fn example_copy(name: &str) -> PathBuf {
     dir
 }
 
-fn run_copy(mission_dir: &Path, out: &Path, extra: &[&str]) -> std::process::Output {
-    let mission = mission_dir.join("example.toml").display().to_string();
-    let out = out.display().to_string();
-    let mut args = vec![
-        "montecarlo",
-        &mission,
-        "--samples",
-        "12",
-        "--quiet",
-        "--out",
-        &out,
-    ];
-    args.extend_from_slice(extra);
-    karman(&args)
-}
-
 #[test]
 fn a_drag_file_edited_before_the_resume_is_named_and_refused() {
     let mission = example_copy("edited-drag-mission");
     let out = fresh("edited-drag-out");
-    let output = run_copy(&mission, &out, &[]);
+    let output = montecarlo_of(&mission.join("example.toml"), &out, &[]);
     assert_eq!(output.status.code(), Some(0), "{}", stderr(&output));
     let study: serde_json::Value =
         serde_json::from_slice(&std::fs::read(out.join("study.json")).expect("study.json"))
@@ -182,7 +236,7 @@ fn a_drag_file_edited_before_the_resume_is_named_and_refused() {
     let text = std::fs::read_to_string(&drag).expect("drag curve");
     std::fs::write(&drag, text.replacen("0.52", "0.53", 1)).expect("edited drag curve");
     let before = std::fs::read(out.join("samples.csv")).expect("samples.csv");
-    let output = run_copy(&mission, &out, &[]);
+    let output = montecarlo_of(&mission.join("example.toml"), &out, &[]);
     let text = stderr(&output);
     assert_eq!(output.status.code(), Some(1), "{text}");
     assert!(
@@ -220,9 +274,17 @@ fn shards_flown_on_different_weather_files_are_not_merged() {
     wind(&a, "3");
     wind(&b, "4");
     let (shard1, shard2) = (fresh("weather-shard1"), fresh("weather-shard2"));
-    let output = run_copy(&a, &shard1, &[&weather[..], &["--shard", "1/2"]].concat());
+    let output = montecarlo_of(
+        &a.join("example.toml"),
+        &shard1,
+        &[&weather[..], &["--shard", "1/2"]].concat(),
+    );
     assert_eq!(output.status.code(), Some(0), "{}", stderr(&output));
-    let output = run_copy(&b, &shard2, &[&weather[..], &["--shard", "2/2"]].concat());
+    let output = montecarlo_of(
+        &b.join("example.toml"),
+        &shard2,
+        &[&weather[..], &["--shard", "2/2"]].concat(),
+    );
     assert_eq!(output.status.code(), Some(0), "{}", stderr(&output));
     let merged = fresh("weather-merged");
     let text = failure(&[
@@ -238,8 +300,8 @@ fn shards_flown_on_different_weather_files_are_not_merged() {
     assert!(!merged.join("samples.csv").exists(), "nothing merged");
     // The same weather in both shards merges.
     wind(&b, "3");
-    let output = run_copy(
-        &b,
+    let output = montecarlo_of(
+        &b.join("example.toml"),
         &fresh("weather-shard2"),
         &[&weather[..], &["--shard", "2/2"]].concat(),
     );

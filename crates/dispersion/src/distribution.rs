@@ -157,6 +157,9 @@ pub enum Target {
     Integer(i64),
     /// A curve (a table of points or a file): only `factor` and `offset` fit.
     Curve,
+    /// An array of numbers (an inertia tensor) with these nominal components: only `factor`
+    /// and `offset` fit, and scale or shift every component.
+    Array(Vec<f64>),
 }
 
 /// One uncertain input of a study.
@@ -224,6 +227,11 @@ impl VariedInput {
         match (&self.target, &self.variation) {
             (Target::Curve, Variation::Factor(_) | Variation::Offset(_)) => Ok(()),
             (Target::Curve, _) => misfit("a curve only takes `factor = ...` or `offset = ...`"),
+            (Target::Array(_), Variation::Factor(_) | Variation::Offset(_)) => Ok(()),
+            (Target::Array(_), _) => misfit(
+                "an array only takes `factor = ...` or `offset = ...` (on every component); \
+                 vary one component by its index, `PATH.0`",
+            ),
             (Target::Integer(_), Variation::Value(Distribution::Choice(values))) => {
                 if values.iter().all(|v| v.fract().abs() <= 0.0) {
                     Ok(())
@@ -246,7 +254,7 @@ impl VariedInput {
                 let nominal = match self.target {
                     Target::Number(value) => value,
                     Target::Integer(value) => value as f64,
-                    Target::Curve => f64::NAN,
+                    Target::Curve | Target::Array(_) => f64::NAN,
                 };
                 Distribution::Normal {
                     mean: nominal,
@@ -316,6 +324,23 @@ mod tests {
                 .is_ok()
         );
         assert!(input(Target::Curve, Variation::Std(0.1)).check().is_err());
+        let array = || Target::Array(vec![1.0, 2.0]);
+        assert!(
+            input(array(), Variation::Factor(normal.clone()))
+                .check()
+                .is_ok()
+        );
+        assert!(
+            input(array(), Variation::Offset(normal.clone()))
+                .check()
+                .is_ok()
+        );
+        assert!(input(array(), Variation::Std(0.1)).check().is_err());
+        assert!(
+            input(array(), Variation::Value(normal.clone()))
+                .check()
+                .is_err()
+        );
         assert!(
             input(Target::Curve, Variation::Value(normal.clone()))
                 .check()

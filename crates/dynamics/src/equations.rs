@@ -106,6 +106,19 @@ struct MassState {
     inverse_cm_inertia: Mat3,
 }
 
+/// Whether a rocket on the rail without thrust, `travelled` metres along it at `speed`, still
+/// reaches rail exit (`travel` metres) against gravity alone: its coast `v²/(2 g sin i)` covers
+/// the rest (`gravity_along_rail` is `g sin i`; drag would only shorten the coast). The rail
+/// equation (physics.md §8.1) clips the acceleration at zero, so after burn-out RocketPy's
+/// rocket keeps its speed and creeps off the rail however long that takes; one that this
+/// coast cannot carry off would stop and slide back: it is stuck on the rail. The engine
+/// (at burn-out, [`crate::Termination::StuckOnRail`]) and the mission's launch check apply
+/// this one rule.
+#[must_use]
+pub fn coasts_off_rail(travelled: f64, speed: f64, travel: f64, gravity_along_rail: f64) -> bool {
+    travelled + speed * speed / (2.0 * gravity_along_rail) >= travel
+}
+
 /// `I_CM⁻¹` with `I_CM = I − m(|r|² 𝟙 − r rᵀ)`, `r = (0, 0, c)` (physics.md §8.2); NaN when
 /// singular, so the integrator reports the failure.
 #[inline]

@@ -158,29 +158,35 @@ impl<'a> Document<'a> {
             })?;
             match entry.get_mut() {
                 DeValue::Table(inner) => table = inner,
-                // An array of tables is entered by a 0-based index (`motor.tanks.0.position`).
+                // An array is entered by a 0-based index: an array of tables followed by a
+                // key (`motor.tanks.0.position`), the last segment for an entry of an array of
+                // values (`rocket.inertia.0`).
                 DeValue::Array(items) => {
                     let count = items.len();
-                    let entry = tables
+                    let index = item
+                        .path
                         .get(depth + 1)
-                        .and_then(|i| i.parse::<usize>().ok())
-                        .and_then(|i| items.get_mut(i))
-                        .map(Spanned::get_mut);
-                    match entry {
-                        Some(DeValue::Table(inner)) => {
-                            table = inner;
-                            depth += 1;
+                        .and_then(|i| i.parse::<usize>().ok());
+                    let entry = index.and_then(|i| items.get_mut(i));
+                    if depth + 1 == tables.len() {
+                        if let Some(entry) = entry
+                            && !entry.get_ref().is_table()
+                        {
+                            *entry = respan(value.into_inner(), &span);
+                            return Ok(());
                         }
-                        _ => {
-                            return Err(fail(ProblemKind::UnknownPath {
-                                path: item.path.join("."),
-                                reason: format!(
-                                    "`{here}` holds {count} entries, addressed by their index \
-                                     0..{count} followed by a key"
-                                ),
-                            }));
-                        }
+                    } else if let Some(DeValue::Table(inner)) = entry.map(Spanned::get_mut) {
+                        table = inner;
+                        depth += 2;
+                        continue;
                     }
+                    return Err(fail(ProblemKind::UnknownPath {
+                        path: item.path.join("."),
+                        reason: format!(
+                            "`{here}` holds {count} entries, addressed by their index 0..{count} \
+                             (followed by a key in an array of tables)"
+                        ),
+                    }));
                 }
                 _ => {
                     return Err(fail(ProblemKind::UnknownPath {

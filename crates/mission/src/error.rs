@@ -247,6 +247,16 @@ pub enum OverrideError {
         /// The path.
         path: String,
     },
+    /// A quoted segment of the path is not a TOML string, or is not closed.
+    #[error(
+        "the path `{path}` has a malformed quoted key `{segment}` (a TOML string: \"rocket.mass\")"
+    )]
+    QuotedKey {
+        /// The path.
+        path: String,
+        /// The segment.
+        segment: String,
+    },
     /// The value is not a TOML value.
     #[error("the value `{value}` is not a TOML value ({message}); quote strings: PATH='\"text\"'")]
     Value {

@@ -5,6 +5,8 @@
 //! - A stored number (`rocket.mass`, `rocket.parachutes.Main.cd_s`, a constant curve) is set
 //!   through [`crate::paths::set_number`]: the drawn value, or the nominal value times the
 //!   drawn factor / plus the drawn offset.
+//! - A component of an array (`rocket.inertia.0`) is a stored number; the whole array
+//!   (`rocket.inertia`) takes `factor` / `offset` on every component.
 //! - A curve (`rocket.power_off_drag` from a file or points) takes `factor` / `offset` on
 //!   every ordinate; a file curve is read once and replaced by its scaled points.
 //! - `motor.total_impulse` / `motor.burn_time` reshape the thrust curve
@@ -102,6 +104,8 @@ fn output_values(s: &Summary) -> Vec<Option<f64>> {
 enum Apply {
     /// A stored number at this path, with its nominal value.
     Number { path: String, nominal: f64 },
+    /// An array of numbers: the paths of its components, with their nominal values.
+    Array { components: Vec<(String, f64)> },
     /// A curve at this path, with its nominal points.
     Curve { path: String, points: Vec<[f64; 2]> },
     /// The air brakes' drag table, with its nominal rows (the Cd column varies).
@@ -256,6 +260,14 @@ impl MonteCarlo {
                     };
                     (target, apply)
                 }
+                Input::Array(values) => {
+                    let components = values
+                        .iter()
+                        .enumerate()
+                        .map(|(i, v)| (format!("{path}.{i}"), *v))
+                        .collect();
+                    (Target::Array(values), Apply::Array { components })
+                }
                 Input::Curve(curve) => {
                     let points = curve
                         .points(&mission.dir)
@@ -344,6 +356,12 @@ impl MonteCarlo {
                 Apply::Number { path, nominal } => {
                     paths::set_number(&mut spec, path, combine(*nominal))
                         .map_err(|e| e.to_string())?;
+                }
+                Apply::Array { components } => {
+                    for (path, nominal) in components {
+                        paths::set_number(&mut spec, path, combine(*nominal))
+                            .map_err(|e| e.to_string())?;
+                    }
                 }
                 Apply::Curve { path, points } => {
                     let scaled = points.iter().map(|[x, y]| [*x, combine(*y)]).collect();
@@ -768,6 +786,86 @@ mod tests {
         assert!((reshaped[1] - 1.1 * impulse).abs() < 1e-9);
         let outcome = mc.fly(0, &[1.1, 2.5]).expect("flight");
         assert!(outcome.values()[0].is_some());
+    }
+
+    #[test]
+    fn arrays_vary_by_component_and_as_a_whole() {
+        // The fixture's inertia is [0.5, 0.5, 0.002] (six components, products zero).
+        let mission = mission(
+            "\"rocket.inertia\" = { factor = { normal = [1, 0.1] } }\n\
+             \"rocket.inertia.0\" = { std = 0.05 }\n\
+             \"motor.dry_inertia\" = { offset = { uniform = [0, 0.001] } }\n",
+        );
+        let mc = MonteCarlo::new(&mission, StudyOverrides::default()).expect("study");
+        let columns: Vec<String> = mc.study().inputs.iter().map(VariedInput::column).collect();
+        assert_eq!(
+            columns,
+            [
+                "rocket.inertia:factor",
+                "rocket.inertia.0",
+                "motor.dry_inertia:offset"
+            ]
+        );
+        assert_eq!(
+            mc.study().inputs[0].target,
+            Target::Array(vec![0.5, 0.5, 0.002, 0.0, 0.0, 0.0])
+        );
+        // In file order: the factor scales every component, then component 0 is set.
+        let (spec, _) = mc.sample_spec(&[2.0, 0.7, 0.001]).expect("applied");
+        let bits = |v: [f64; 6]| v.map(f64::to_bits);
+        assert_eq!(
+            bits(spec.rocket.inertia.0),
+            bits([0.7, 1.0, 0.004, 0.0, 0.0, 0.0])
+        );
+        assert_eq!(
+            bits(spec.motor.dry_inertia.0),
+            bits([0.011, 0.011, 0.002, 0.001, 0.001, 0.001])
+        );
+        // A whole array takes only a factor or an offset (checked when the mission is read).
+        let mut bad = mission.spec.clone();
+        let entry = Distribution::Std(0.1);
+        let input = paths::resolve(&bad, "rocket.inertia").expect("an array");
+        let error = paths::check_distribution(&input, &entry).expect_err("misfit");
+        assert!(error.starts_with("an array only takes"), "{error}");
+        bad.dispersion.as_mut().expect("table").vary = [("rocket.inertia".into(), entry)].into();
+        let bad = Mission {
+            spec: bad,
+            ..mission.clone()
+        };
+        assert!(MonteCarlo::new(&bad, StudyOverrides::default()).is_err());
+        // Neutral draws fly the nominal mission.
+        let outcome = mc.fly(1, &[1.0, 0.5, 0.0]).expect("flight");
+        let nominal = simulate_with_seed(&mission, flight_seed(3, 1)).expect("nominal");
+        let bits = |v: &[Option<f64>]| v.iter().map(|x| x.map(f64::to_bits)).collect::<Vec<_>>();
+        assert_eq!(
+            bits(outcome.values()),
+            bits(&output_values(&nominal.summary()))
+        );
+    }
+
+    #[test]
+    fn a_sample_too_weak_to_leave_the_rail_is_stuck_on_it() {
+        // 5 N·s in 0.05 s: at burn-out the rocket has slid about 2 cm of the 2 m rail at under
+        // 1 m/s; it ends there, not by creeping off the rail at that speed seconds later.
+        let mission = mission(
+            "\"motor.total_impulse\" = { choice = [5.0] }\n\
+             \"motor.burn_time\" = { choice = [0.05] }\n",
+        );
+        let mc = MonteCarlo::new(&mission, StudyOverrides::default()).expect("study");
+        let outcome = mc.fly(0, &[5.0, 0.05]).expect("flight");
+        match outcome.status() {
+            karman_dispersion::Status::Ended { kind, message } => {
+                assert_eq!(kind, "stuck_on_rail");
+                assert!(message.contains("too slow to coast"), "{message}");
+            }
+            other => panic!("expected stuck_on_rail, got {other:?}"),
+        }
+        let out_of_rail = OUTPUTS.iter().position(|o| *o == "out_of_rail_time_s");
+        assert_eq!(outcome.values()[out_of_rail.expect("output")], None);
+        // The nominal motor leaves the rail.
+        let [burn, impulse] = mc.nominal_reshape;
+        let nominal = mc.fly(0, &[impulse, burn]).expect("flight");
+        assert_eq!(nominal.status(), &karman_dispersion::Status::Completed);
     }
 
     #[test]

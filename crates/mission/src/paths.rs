@@ -5,7 +5,10 @@
 //!
 //! Paths name the keys of the file (so `flight.inclination`, not the field
 //! `inclination_deg`); keys the file omits but the schema defaults (e.g. a parachute's `lag`)
-//! are inputs too. Besides stored keys, four derived knobs exist ([`DerivedKnob`]).
+//! are inputs too. A numeric segment indexes an array: of tables (`motor.tanks.0.position`)
+//! or of numbers (`rocket.inertia.0`, one component; `rocket.inertia`, the whole array, takes
+//! `factor` / `offset` on every component). Besides stored keys, four derived knobs exist
+//! ([`DerivedKnob`]).
 
 use crate::schema::{
     AirBrakesCurve, Atol, Curve, DensitySpec, Discretize, Distribution, MissionSpec, RocketSpec,
@@ -67,6 +70,9 @@ pub enum Input<'a> {
     /// The air brakes' `[level, Mach, Cd]` table (a file or inline rows): only `factor` /
     /// `offset` fit, and act on the Cd column.
     Table(&'a AirBrakesCurve),
+    /// An array of numbers (`rocket.inertia`), its nominal components: only `factor` /
+    /// `offset` fit, and act on every component; one component is a number (`rocket.inertia.0`).
+    Array(Vec<f64>),
     /// A derived knob.
     Knob(DerivedKnob),
 }
@@ -191,42 +197,58 @@ fn type_name(value: &toml::Value) -> &'static str {
     }
 }
 
-/// The value at `path` of `table`, or the error naming where the walk failed.
+/// The value at `path` of `table`, or the error naming where the walk failed. A numeric
+/// segment indexes an array: of tables (`motor.tanks.0.position`) or of numbers
+/// (`rocket.inertia.0`); arrays of arrays (inline curve points) are not entered.
 fn walk<'t>(table: &'t mut toml::Table, path: &str) -> Result<&'t mut toml::Value, PathError> {
     let unknown = |available: Vec<String>| PathError::Unknown {
         path: path.to_owned(),
         available,
     };
-    let segments: Vec<&str> = path.split('.').collect();
-    let Some((last, tables)) = segments.split_last() else {
-        return Err(unknown(Vec::new()));
-    };
-    if segments.first() == Some(&"dispersion") {
+    let mut segments = path.split('.');
+    let first = segments.next().unwrap_or_default();
+    if first == "dispersion" {
         return Err(unknown(Vec::new()));
     }
-    let mut here = table;
-    let mut segments = tables.iter();
-    while let Some(segment) = segments.next() {
-        let available: Vec<String> = here.keys().cloned().collect();
-        match here.get_mut(*segment) {
-            Some(toml::Value::Table(inner)) => here = inner,
-            // An array of tables (`motor.tanks`) is entered by a 0-based index.
-            Some(toml::Value::Array(items)) => {
+    let available: Vec<String> = table.keys().cloned().collect();
+    let mut here = table.get_mut(first).ok_or_else(|| unknown(available))?;
+    for segment in segments {
+        here = match here {
+            toml::Value::Table(inner) => {
+                let available: Vec<String> = inner.keys().cloned().collect();
+                inner.get_mut(segment).ok_or_else(|| unknown(available))?
+            }
+            toml::Value::Array(items) => {
                 let count = items.len();
-                let entry = segments
-                    .next()
-                    .and_then(|i| i.parse::<usize>().ok())
-                    .and_then(|i| items.get_mut(i));
-                match entry {
-                    Some(toml::Value::Table(inner)) => here = inner,
+                match segment.parse::<usize>().ok().and_then(|i| items.get_mut(i)) {
+                    Some(
+                        item @ (toml::Value::Table(_)
+                        | toml::Value::Float(_)
+                        | toml::Value::Integer(_)),
+                    ) => item,
                     _ => return Err(unknown((0..count).map(|i| i.to_string()).collect())),
                 }
             }
-            _ => return Err(unknown(available)),
-        }
+            _ => return Err(unknown(Vec::new())),
+        };
     }
-    let available: Vec<String> = here.keys().cloned().collect();
-    here.get_mut(*last).ok_or_else(|| unknown(available))
+    Ok(here)
+}
+
+/// The components of an array of numbers (`None` for anything else, an empty array too).
+fn numbers(value: &toml::Value) -> Option<Vec<f64>> {
+    let toml::Value::Array(items) = value else {
+        return None;
+    };
+    let values: Option<Vec<f64>> = items
+        .iter()
+        .map(|item| match item {
+            toml::Value::Float(v) => Some(*v),
+            toml::Value::Integer(v) => Some(*v as f64),
+            _ => None,
+        })
+        .collect();
+    values.filter(|v| !v.is_empty())
 }
 
 /// What `path` names in `spec`.
@@ -268,15 +290,18 @@ pub fn resolve<'a>(spec: &'a MissionSpec, path: &str) -> Result<Input<'a>, PathE
             value: *value as f64,
             integer: true,
         }),
-        other => Err(PathError::NotNumeric {
-            path: path.to_owned(),
-            found: type_name(other),
-        }),
+        other => numbers(other)
+            .map(Input::Array)
+            .ok_or_else(|| PathError::NotNumeric {
+                path: path.to_owned(),
+                found: type_name(other),
+            }),
     }
 }
 
 /// Every numeric input of `spec` by dotted path with its nominal value, in file order
-/// (defaulted keys included; array elements, e.g. `rocket.inertia`, are not scalar inputs).
+/// (defaulted keys included; the components of an array of numbers by their index,
+/// `rocket.inertia.0`).
 pub fn numeric_inputs(spec: &MissionSpec) -> Vec<(String, f64)> {
     fn collect(table: &toml::Table, prefix: &str, out: &mut Vec<(String, f64)>) {
         for (key, value) in table {
@@ -291,8 +316,12 @@ pub fn numeric_inputs(spec: &MissionSpec) -> Vec<(String, f64)> {
                 toml::Value::Table(inner) if path != "dispersion" => collect(inner, &path, out),
                 toml::Value::Array(items) => {
                     for (index, item) in items.iter().enumerate() {
-                        if let toml::Value::Table(inner) = item {
-                            collect(inner, &format!("{path}.{index}"), out);
+                        let path = format!("{path}.{index}");
+                        match item {
+                            toml::Value::Table(inner) => collect(inner, &path, out),
+                            toml::Value::Float(v) => out.push((path, *v)),
+                            toml::Value::Integer(v) => out.push((path, *v as f64)),
+                            _ => {}
                         }
                     }
                 }
@@ -318,6 +347,11 @@ enum Slot<'a> {
 /// every fixture and validation mission.
 fn slot<'a>(spec: &'a mut MissionSpec, path: &str) -> Option<Slot<'a>> {
     use Slot::{Float, Integer};
+    if let Some((array, index)) = path.rsplit_once('.')
+        && let Ok(index) = index.parse::<usize>()
+    {
+        return component(spec, array, index).map(Float);
+    }
     let (section, rest) = path.split_once('.')?;
     match section {
         "environment" => {
@@ -389,6 +423,47 @@ fn slot<'a>(spec: &'a mut MissionSpec, path: &str) -> Option<Slot<'a>> {
                 _ => return None,
             }))
         }
+        _ => None,
+    }
+}
+
+/// Component `index` of the array of numbers at `array` (its file form: an inertia always has
+/// six components, a burn time two).
+fn component<'a>(spec: &'a mut MissionSpec, array: &str, index: usize) -> Option<&'a mut f64> {
+    let pair = |[start, end]: [&'a mut f64; 2]| match index {
+        0 => Some(start),
+        1 => Some(end),
+        _ => None,
+    };
+    if let Some((tank, "flux_time")) = tank_path(array) {
+        let t = &mut spec.motor.tanks.get_mut(tank)?.flux_time;
+        return pair([&mut t.start, &mut t.end]);
+    }
+    if let Some(name) = array
+        .strip_prefix("rocket.parachutes.")
+        .and_then(|rest| rest.strip_suffix(".noise"))
+    {
+        return spec.rocket.parachutes.get_mut(name)?.noise.get_mut(index);
+    }
+    match array {
+        "rocket.inertia" => spec.rocket.inertia.0.get_mut(index),
+        "motor.dry_inertia" => spec.motor.dry_inertia.0.get_mut(index),
+        "motor.burn_time" => {
+            let b = spec.motor.burn_time.as_mut()?;
+            pair([&mut b.start, &mut b.end])
+        }
+        "motor.reshape_thrust_curve" => spec.motor.reshape_thrust_curve.as_mut()?.get_mut(index),
+        "flight.atol" => match spec.flight.atol.as_mut()? {
+            Atol::PerState(values) => values.get_mut(index),
+            Atol::Scalar(_) => None,
+        },
+        "rocket.air_brakes.initial_observed_variables" => spec
+            .rocket
+            .air_brakes
+            .as_mut()?
+            .initial_observed_variables
+            .as_mut()?
+            .get_mut(index),
         _ => None,
     }
 }
@@ -566,6 +641,7 @@ pub fn set_number(spec: &mut MissionSpec, path: &str, value: f64) -> Result<(), 
             // Not a stored number: say what the path names instead.
             let found = match resolve(spec, path)? {
                 Input::Curve(_) | Input::Table(_) => "a curve",
+                Input::Array(_) => "an array",
                 Input::Knob(_) => "a derived knob",
                 Input::Number { .. } => "a number without a typed slot",
             };
@@ -597,6 +673,9 @@ pub fn check_distribution(input: &Input<'_>, distribution: &Distribution) -> Res
         (Input::Curve(_) | Input::Table(_), _) => {
             Err("a curve only takes `factor = ...` or `offset = ...`".to_owned())
         }
+        (Input::Array(_), _) => Err("an array only takes `factor = ...` or `offset = ...` (on \
+             every component); vary one component by its index, `PATH.0`"
+            .to_owned()),
         (Input::Number { integer: true, .. }, Distribution::Choice(values)) => {
             if values.iter().any(|v| v.fract().abs() > 0.0) {
                 return Err("an integer input takes integral choices".to_owned());

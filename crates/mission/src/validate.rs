@@ -256,12 +256,18 @@ fn stages(c: &mut Checker<'_, '_>, spec: &MissionSpec) {
             }
             Trigger::Apogee => {}
         }
-        if stage.motor.is_none() && !matches!(stage.separation, Trigger::Launch(d) if d <= 0.0) {
+        // A stage without a motor cannot lift what is above it: it and every stage below it
+        // leave on the pad.
+        let on_pad =
+            |s: &crate::schema::StageSpec| matches!(s.separation, Trigger::Launch(d) if d <= 0.0);
+        let motorless_above = spec.stages[..index].iter().any(|s| s.motor.is_none());
+        if (stage.motor.is_none() || motorless_above) && !on_pad(stage) {
             c.report(
                 &at("separation"),
                 ProblemKind::Stage {
-                    reason: "a stage without a motor cannot lift the stack: it separates at \
-                             launch (`separation = \"launch + 0\"`) or needs `[stages.motor]`"
+                    reason: "a stage without a motor cannot lift the stack: it and the stages \
+                             below it separate at launch (`separation = \"launch + 0\"`), or it \
+                             needs `[stages.motor]`"
                         .to_owned(),
                 },
             );

@@ -79,3 +79,60 @@ fn override_that_names_nothing_is_an_error() {
         }
     }
 }
+
+#[test]
+fn overrides_reach_array_entries_and_dispersion_entries() {
+    use karman_mission::schema::Distribution;
+    let mut text = std::fs::read_to_string(fixture("minimal.toml")).expect("fixture");
+    text.push_str(
+        "\n[dispersion]\nsamples = 10\nseed = 1\n\n[dispersion.vary]\n\
+         \"rocket.mass\" = { std = 0.1 }\n\
+         \"rocket.power_off_drag\" = { factor = { normal = [1, 0.05] } }\n",
+    );
+    let overrides = set(&[
+        "rocket.inertia.0=0.6",
+        "motor.dry_inertia.2=0.002",
+        "dispersion.vary.\"rocket.mass\".std=0.5",
+        "dispersion.vary.\"rocket.power_off_drag\".factor.normal=[1, 0.1]",
+        "dispersion.vary.'rocket.inertia'={ factor = { std = 0.02 } }",
+        "dispersion.vary.\"rocket.inertia.2\"={ std = 0.0001 }",
+    ]);
+    let mission = karman_mission::parse(&text, &fixture("minimal.toml"), &overrides)
+        .unwrap_or_else(|e| panic!("{e}"));
+    let spec = &mission.spec;
+    let bits = |v: [f64; 6]| v.map(f64::to_bits);
+    assert_eq!(
+        bits(spec.rocket.inertia.0),
+        bits([0.6, 0.5, 0.002, 0.0, 0.0, 0.0])
+    );
+    assert_eq!(spec.motor.dry_inertia.0[2].to_bits(), 0.002f64.to_bits());
+    let vary = &spec.dispersion.as_ref().expect("dispersion").vary;
+    assert_eq!(vary["rocket.mass"], Distribution::Std(0.5));
+    assert_eq!(
+        vary["rocket.power_off_drag"],
+        Distribution::Factor(Box::new(Distribution::Normal([1.0, 0.1])))
+    );
+    assert_eq!(
+        vary["rocket.inertia"],
+        Distribution::Factor(Box::new(Distribution::Std(0.02)))
+    );
+    assert_eq!(vary["rocket.inertia.2"], Distribution::Std(0.0001));
+    // Beyond the array as the file writes it, or an entry that is not there: named errors.
+    for (bad, reason) in [
+        ("rocket.inertia.3=1", "`rocket.inertia` holds 3 entries"),
+        (
+            "dispersion.vary.\"rocket.radius\".std=1",
+            "the mission has no `dispersion.vary.rocket.radius`",
+        ),
+    ] {
+        match karman_mission::parse(&text, &fixture("minimal.toml"), &set(&[bad])) {
+            Err(MissionError::Invalid { problems, .. }) => {
+                let text = problems[0]
+                    .display(std::path::Path::new("m.toml"))
+                    .to_string();
+                assert!(text.contains(reason), "{text}");
+            }
+            other => panic!("{bad}: expected an invalid mission, got {other:?}"),
+        }
+    }
+}

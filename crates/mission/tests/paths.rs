@@ -18,6 +18,9 @@ fn numeric_inputs_include_defaults_in_file_order() {
         "rocket.surfaces.fins.span",
         "rocket.parachutes.main.lag",
         "rocket.parachutes.main.sampling_rate",
+        "rocket.inertia.0",
+        "rocket.inertia.5",
+        "rocket.parachutes.main.noise.1",
         "flight.inclination",
     ] {
         assert!(
@@ -59,6 +62,27 @@ fn resolve_numbers_curves_and_knobs() {
         paths::resolve(spec, "environment.wind_factor"),
         Ok(Input::Knob(DerivedKnob::WindFactor))
     );
+    // An array of numbers: as a whole, and by component (a 3-number inertia has six).
+    assert_eq!(
+        paths::resolve(spec, "rocket.inertia"),
+        Ok(Input::Array(vec![0.5, 0.5, 0.002, 0.0, 0.0, 0.0]))
+    );
+    assert_eq!(
+        paths::resolve(spec, "rocket.inertia.2"),
+        Ok(Input::Number {
+            value: 0.002,
+            integer: false
+        })
+    );
+    assert!(matches!(
+        paths::resolve(spec, "rocket.inertia.6"),
+        Err(PathError::Unknown { .. })
+    ));
+    // Inline curve points are a curve, not numbers by index.
+    assert!(matches!(
+        paths::resolve(spec, "motor.thrust.1.1"),
+        Err(PathError::Unknown { .. })
+    ));
     assert!(matches!(
         paths::resolve(spec, "rocket.surfaces.nose.kind"),
         Err(PathError::NotNumeric { .. })
@@ -116,6 +140,9 @@ fn distributions_must_fit_their_target() {
     assert!(paths::check_distribution(&curve, &Distribution::Std(0.1)).is_err());
     assert!(paths::check_distribution(&curve, &factor(Distribution::Normal([1.0, 0.05]))).is_ok());
     assert!(paths::check_distribution(&number, &factor(factor(Distribution::Std(0.1)))).is_err());
+    let array = Input::Array(vec![0.5, 0.5, 0.002]);
+    assert!(paths::check_distribution(&array, &Distribution::Std(0.1)).is_err());
+    assert!(paths::check_distribution(&array, &factor(Distribution::Normal([1.0, 0.05]))).is_ok());
 }
 
 #[test]
@@ -199,41 +226,34 @@ fn validate_set_number_round_trips_every_mission() {
     }
 }
 
-/// Sets `path` the slow, obviously right way: through the TOML form of the mission.
+/// Sets `path` the slow, obviously right way: through the TOML form of the mission. A numeric
+/// segment indexes an array (of tables, or of numbers as the last segment).
 fn set_through_toml(
     spec: &karman_mission::schema::MissionSpec,
     path: &str,
     value: f64,
 ) -> karman_mission::schema::MissionSpec {
-    let mut table = toml::Table::try_from(spec).expect("serializable");
-    let (tables, last) = path.rsplit_once('.').expect("dotted");
-    let mut here = &mut table;
-    let mut segments = tables.split('.');
-    while let Some(segment) = segments.next() {
-        let value = here
-            .get_mut(segment)
-            .unwrap_or_else(|| panic!("{path}: no key {segment}"));
-        // An array of tables is entered by the next segment, its index.
-        let value = match value {
+    let mut root = toml::Value::Table(toml::Table::try_from(spec).expect("serializable"));
+    let mut here = &mut root;
+    for segment in path.split('.') {
+        here = match here {
+            toml::Value::Table(table) => table
+                .get_mut(segment)
+                .unwrap_or_else(|| panic!("{path}: no key {segment}")),
             toml::Value::Array(items) => {
-                let index: usize = segments
-                    .next()
-                    .and_then(|i| i.parse().ok())
-                    .unwrap_or_else(|| panic!("{path}: no index after {segment}"));
+                let index: usize = segment
+                    .parse()
+                    .unwrap_or_else(|_| panic!("{path}: {segment} is not an index"));
                 &mut items[index]
             }
-            other => other,
+            _ => panic!("{path}: {segment} inside a value"),
         };
-        here = value
-            .as_table_mut()
-            .unwrap_or_else(|| panic!("{path}: no table {segment}"));
     }
-    let slot = here.get_mut(last).expect("key");
-    *slot = match slot {
+    *here = match here {
         toml::Value::Integer(_) => toml::Value::Integer(value as i64),
         _ => toml::Value::Float(value),
     };
-    toml::Value::Table(table).try_into().expect("deserializes")
+    root.try_into().expect("deserializes")
 }
 
 /// Every optional numeric key of the format present at least once, with surfaces of every
@@ -251,6 +271,8 @@ wind_v = -1
 [motor]
 reference_pressure = 90000
 propellant_initial_mass = 1.0
+burn_time = [0.05, 2.2]
+reshape_thrust_curve = [2.0, 500]
 [rocket.rail_buttons]
 upper_position = 0.1
 lower_position = -0.5
@@ -345,6 +367,12 @@ fn typed_slots_match_the_file_form() {
         "parachutes.trigger",
         "flight.atol",
         "flight.max_time_step",
+        "rocket.inertia.0",
+        "rocket.inertia.5",
+        "motor.dry_inertia.3",
+        "motor.burn_time.0",
+        "motor.reshape_thrust_curve.1",
+        "rocket.parachutes.main.noise.2",
     ] {
         assert!(seen.contains(key), "{key} not exercised: {seen:?}");
     }

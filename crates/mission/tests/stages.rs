@@ -245,6 +245,17 @@ motor_position = 2.5
         text.contains("stages.0.separation") && text.contains("without a motor"),
         "{text}"
     );
+    // ... and so must every stage below it.
+    let text = staged_problem(&format!(
+        "{head}separation = \"launch + 0\"\n{}{head}separation = \"burnout + 1\"\n{}{}",
+        rocket("coordinate_system = \"nose_to_tail\""),
+        rocket("coordinate_system = \"nose_to_tail\""),
+        stage_motor("dry_mass = 1")
+    ));
+    assert!(
+        text.contains("stages.1.separation") && text.contains("without a motor"),
+        "{text}"
+    );
     // One coordinate system for the stack.
     let text = staged_problem(&format!(
         "{head}separation = \"launch + 0\"\n{}",

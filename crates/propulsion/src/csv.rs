@@ -2,7 +2,7 @@
 //!
 //! Read with karman-math's CSV reader ([`karman_math::csv`]): comma- or whitespace-separated
 //! fields, blank lines and `#` lines skipped, an optional header line, as RocketPy's
-//! `Function` CSV source allows. Times must strictly increase. Negative thrust is accepted:
+//! `Function` CSV source allows. Times must not decrease (a repeated time is a step). Negative thrust is accepted:
 //! measured static-fire curves dip below zero at the end (the Juno III curve does) and
 //! RocketPy keeps those values.
 

@@ -1,7 +1,7 @@
 //! Thrust data as read from a file or given inline, before any burn-time processing.
 //!
-//! [`ThrustData`] is a validated list of `(time, thrust)` points (times strictly increasing,
-//! all values finite) with the motor description the file carried, if any. The readers live
+//! [`ThrustData`] is a validated list of `(time, thrust)` points (times non-decreasing, a
+//! repeated time being a step, all values finite) with the motor description the file carried, if any. The readers live
 //! in [`crate::eng`] (RASP), [`crate::rse`] (RockSim XML) and [`crate::csv`] (two columns)
 //! and build it with this module's point checks; `ThrustData::load` (module `file`) picks a
 //! reader from the file extension.
@@ -48,7 +48,8 @@ pub enum ThrustFormat {
     Inline,
 }
 
-/// Validated thrust samples: times strictly increasing, every value finite.
+/// Validated thrust samples: times non-decreasing (a repeated time is a step), every value
+/// finite.
 #[derive(Debug, Clone, PartialEq)]
 pub struct ThrustData {
     /// Where the data came from (file path or label), for messages.
@@ -68,12 +69,12 @@ pub struct ThrustData {
 
 impl ThrustData {
     /// Thrust points given inline, as the mission format allows: sorted by time with a
-    /// stable sort, then checked (finite values, no repeated time, at least two points).
+    /// stable sort, then checked (finite values, at least two points; a repeated time is a
+    /// step, kept in the order given).
     /// Negative thrust is accepted, as in RocketPy (measured curves dip below zero).
     ///
     /// # Errors
     /// [`PropulsionError::Malformed`] for a non-finite value,
-    /// [`PropulsionError::TimeNotIncreasing`] for a repeated time,
     /// [`PropulsionError::TooFewPoints`] for fewer than two points. Point numbers are the
     /// 1-based positions in `points` as given.
     pub fn from_points(
@@ -102,7 +103,8 @@ impl ThrustData {
     }
 }
 
-/// Accumulates points in file order, checking that time strictly increases.
+/// Accumulates points in file order, checking that time never decreases (a repeated time is a
+/// step, which only a linear curve takes: [`crate::ThrustCurve::new`] checks that).
 pub(crate) struct PointsBuilder {
     source_name: String,
     format: ThrustFormat,
@@ -128,7 +130,7 @@ impl PointsBuilder {
         thrust: f64,
     ) -> Result<(), PropulsionError> {
         if let Some(&previous) = self.times.last() {
-            if time <= previous {
+            if time < previous {
                 return Err(PropulsionError::TimeNotIncreasing {
                     source_name: self.source_name.clone(),
                     line,
@@ -212,11 +214,10 @@ mod tests {
         let d = ThrustData::from_points("t", &[[1.0, 10.0], [0.0, 0.0], [2.0, -1.0]]).unwrap();
         assert_eq!(d.times, vec![0.0, 1.0, 2.0]);
         assert_eq!(d.thrusts, vec![0.0, 10.0, -1.0]);
-        let e = ThrustData::from_points("t", &[[1.0, 10.0], [1.0, 0.0]]).unwrap_err();
-        assert!(
-            matches!(e, PropulsionError::TimeNotIncreasing { line: 2, .. }),
-            "{e}"
-        );
+        // A repeated time is a step, in the order given.
+        let d = ThrustData::from_points("t", &[[1.0, 10.0], [0.0, 0.0], [1.0, 5.0]]).unwrap();
+        assert_eq!(d.times, vec![0.0, 1.0, 1.0]);
+        assert_eq!(d.thrusts, vec![0.0, 10.0, 5.0]);
         let e = ThrustData::from_points("t", &[[1.0, f64::NAN], [2.0, 0.0]]).unwrap_err();
         assert!(
             matches!(e, PropulsionError::Malformed { line: 1, .. }),

@@ -3,7 +3,7 @@
 //!
 //! Layout: `;` starts a comment (to the end of the line); the first non-comment line is the
 //! header `name diameter_mm length_mm delays propellant_kg total_kg manufacturer`; every later
-//! non-blank line is one `time thrust` point (s, N). The format requires strictly increasing
+//! non-blank line is one `time thrust` point (s, N). The format asks for strictly increasing
 //! times, non-negative thrust and no `(0, 0)` point.
 //!
 //! Files as teams ship them: a UTF-8 byte-order mark, CRLF line ends and tabs are accepted;
@@ -141,6 +141,9 @@ mod tests {
             "{e}"
         );
         assert!(e.to_string().starts_with("a.eng:3:"), "{e}");
+        // A repeated time is a step (kept); a time going back is an error.
+        let d = parse("M 75 757 0 3 5 CTI\n0.2 100\n0.2 50\n0.4 0\n", "a.eng").unwrap();
+        assert_eq!(d.times, vec![0.0, 0.2, 0.2, 0.4]);
         let e = parse("M 75 757 0 3 5 CTI\n0.2 100\n0.1 100\n", "a.eng").unwrap_err();
         assert!(
             matches!(e, PropulsionError::TimeNotIncreasing { line: 3, .. }),

@@ -34,8 +34,8 @@ pub enum PropulsionError {
         /// What is wrong with it.
         reason: &'static str,
     },
-    /// Thrust-curve times must strictly increase.
-    #[error("{source_name}:{line}: time {time} s does not increase (previous time {previous} s)")]
+    /// Thrust-curve times must not decrease (a repeated time is a step).
+    #[error("{source_name}:{line}: time {time} s goes back in time (previous time {previous} s)")]
     TimeNotIncreasing {
         /// The file or data label.
         source_name: String,
@@ -65,6 +65,17 @@ pub enum PropulsionError {
         found: usize,
         /// Points needed.
         needed: usize,
+    },
+    /// A repeated time (a step) in a thrust curve whose interpolation is not linear.
+    #[error(
+        "{source_name}: the time {time} s repeats (a step), which only a linear thrust curve \
+         takes; use interpolation = \"linear\" or remove the repeated point"
+    )]
+    RepeatedTime {
+        /// The file or data label.
+        source_name: String,
+        /// The repeated time, s.
+        time: f64,
     },
     /// A RockSim `.rse` file is not well-formed enough to read.
     #[error("{source_name}:{line}: malformed RockSim XML: {reason}")]

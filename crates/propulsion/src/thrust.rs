@@ -14,8 +14,13 @@
 //!    data range.
 //! 4. Clip: the interval is limited to the data range (recorded in
 //!    [`ThrustCurve::burn_time_clipped`], RocketPy warns), the points strictly inside are kept
-//!    and the end points `(t_b0, T(t_b0))`, `(t_b1, T(t_b1))` inserted; the table is rebuilt
-//!    with the same interpolation.
+//!    and the end points `(t_b0, T(t_b0))`, `(t_b1, T(t_b1))` inserted (a step at `t_b0`
+//!    keeps its last value after the first); the table is rebuilt with the same
+//!    interpolation.
+//!
+//! A repeated time in the data is a step: a linear curve takes the first value at that time
+//! and the last one right of it, as RocketPy's linear interpolation of the same points does;
+//! the other interpolations refuse it ([`PropulsionError::RepeatedTime`]).
 //! 5. Total impulse `∫ T dt` over the burn (exact for the interpolant: the trapezoid rule for
 //!    linear interpolation), average thrust `I / (t_b1 − t_b0)`, maximum thrust over the
 //!    clipped nodes.
@@ -120,13 +125,18 @@ impl ThrustCurve {
                 )
                 .map_err(PropulsionError::table("thrust curve"))?
             }
-            ThrustSource::Data(data) => Table1::new(
-                data.times.clone(),
-                data.thrusts.clone(),
-                interpolation,
-                Extrapolation::Zero,
-            )
-            .map_err(PropulsionError::table("thrust curve"))?,
+            ThrustSource::Data(data) => {
+                if interpolation != Interpolation::Linear
+                    && let Some(w) = data.times.windows(2).find(|w| w[0] >= w[1])
+                {
+                    return Err(PropulsionError::RepeatedTime {
+                        source_name: data.source_name.clone(),
+                        time: w[0],
+                    });
+                }
+                thrust_table(data.times.clone(), data.thrusts.clone(), interpolation)
+                    .map_err(PropulsionError::table("thrust curve"))?
+            }
         };
         let mut burn = requested.unwrap_or_else(|| table.domain());
         if let Some((new_burn, new_impulse)) = options.reshape {
@@ -147,6 +157,18 @@ impl ThrustCurve {
         }
         let mut times = vec![start];
         let mut thrusts = vec![table.eval(start)];
+        // A step at the start (a repeated time there): its last value starts the curve.
+        let at_start = table
+            .xs()
+            .iter()
+            .filter(|t| t.total_cmp(&start).is_eq())
+            .count();
+        if at_start > 1
+            && let Some(last) = table.xs().iter().rposition(|t| t.total_cmp(&start).is_eq())
+        {
+            times.push(start);
+            thrusts.push(table.ys()[last]);
+        }
         for (&t, &f) in table.xs().iter().zip(table.ys()) {
             if t > start && t < end {
                 times.push(t);
@@ -155,7 +177,7 @@ impl ThrustCurve {
         }
         times.push(end);
         thrusts.push(table.eval(end));
-        let table = Table1::new(times, thrusts, interpolation, Extrapolation::Zero)
+        let table = thrust_table(times, thrusts, interpolation)
             .map_err(PropulsionError::table("clipped thrust curve"))?;
         let total_impulse = table.integral(start, end);
         let (mut max_thrust, mut max_thrust_time) = (f64::NEG_INFINITY, start);
@@ -275,13 +297,8 @@ fn reshape(
     let scaled: Vec<f64> = table.xs().iter().map(|t| factor * t).collect();
     let first = scaled[0];
     let times: Vec<f64> = scaled.iter().map(|t| t - first + new_burn.0).collect();
-    let mapped = Table1::new(
-        times.clone(),
-        table.ys().to_vec(),
-        table.interpolation(),
-        Extrapolation::Zero,
-    )
-    .map_err(PropulsionError::table("reshaped thrust curve"))?;
+    let mapped = thrust_table(times.clone(), table.ys().to_vec(), table.interpolation())
+        .map_err(PropulsionError::table("reshaped thrust curve"))?;
     let old_impulse = mapped.integral(new_burn.0, new_burn.1);
     if !(old_impulse.is_finite() && old_impulse > 0.0) {
         return Err(PropulsionError::NoImpulse {
@@ -290,8 +307,24 @@ fn reshape(
     }
     let ratio = new_impulse / old_impulse;
     let thrusts = table.ys().iter().map(|f| ratio * f).collect();
-    Table1::new(times, thrusts, table.interpolation(), Extrapolation::Zero)
+    thrust_table(times, thrusts, table.interpolation())
         .map_err(PropulsionError::table("reshaped thrust curve"))
+}
+
+/// The thrust table on `times` with zero extrapolation. A repeated time (a step) is kept by a
+/// linear table, as the mission format's linear curves keep it: at the time the first value,
+/// right of it the last ([`Table1::linear_stepwise`], RocketPy's linear interpolation of the
+/// same points); other interpolations need strictly increasing times.
+fn thrust_table(
+    times: Vec<f64>,
+    thrusts: Vec<f64>,
+    interpolation: Interpolation,
+) -> Result<Table1, karman_math::MathError> {
+    if interpolation == Interpolation::Linear && times.windows(2).any(|w| w[0] >= w[1]) {
+        Table1::linear_stepwise(times, thrusts, Extrapolation::Zero)
+    } else {
+        Table1::new(times, thrusts, interpolation, Extrapolation::Zero)
+    }
 }
 
 fn check_finite(name: &'static str, value: f64) -> Result<(), PropulsionError> {
@@ -320,6 +353,50 @@ mod tests {
             header: None,
             warnings: Vec::new(),
         }))
+    }
+
+    #[test]
+    fn a_repeated_time_is_a_step_of_a_linear_curve() {
+        // An ignition step at 0 and a step down at 1 s: 0 → 100 N at once, 100 N to 1 s,
+        // 50 N from 1 s to 2 s (RocketPy 1.13: the first value at the time, the last right of
+        // it; the integral 100 + 50·1 − the two ramps of zero width).
+        let src = data(&[0.0, 0.0, 1.0, 1.0, 2.0], &[0.0, 100.0, 100.0, 50.0, 50.0]);
+        let c = ThrustCurve::new(&src, &ThrustOptions::default()).unwrap();
+        let at = |t: f64| c.thrust(t).to_bits();
+        assert_eq!(
+            [at(0.0), at(0.5), at(1.0), at(1.5)],
+            [0.0f64, 100.0, 100.0, 50.0].map(f64::to_bits)
+        );
+        assert!((c.total_impulse() - 150.0).abs() < 1e-12);
+        // Clipped to [0, 1.5] and reshaped, the steps stay.
+        let opts = ThrustOptions {
+            burn_time: Some(BurnTime::End(1.5)),
+            ..Default::default()
+        };
+        let c = ThrustCurve::new(&src, &opts).unwrap();
+        assert!((c.total_impulse() - 125.0).abs() < 1e-12);
+        let opts = ThrustOptions {
+            reshape: Some((BurnTime::End(4.0), 300.0)),
+            ..Default::default()
+        };
+        let c = ThrustCurve::new(&src, &opts).unwrap();
+        assert!((c.total_impulse() - 300.0).abs() < 1e-9);
+        assert_eq!(c.thrust(1.0).to_bits(), c.thrust(1.9).to_bits());
+        // Other interpolations refuse the step, naming the time.
+        for interpolation in [Interpolation::Spline, Interpolation::Akima] {
+            let opts = ThrustOptions {
+                interpolation,
+                ..Default::default()
+            };
+            let e = ThrustCurve::new(&src, &opts).unwrap_err();
+            assert_eq!(
+                e,
+                PropulsionError::RepeatedTime {
+                    source_name: "test".into(),
+                    time: 0.0
+                }
+            );
+        }
     }
 
     #[test]

@@ -7,6 +7,7 @@ use super::phases::{Phase, end_at, insert_phase};
 use super::run::Run;
 use super::{PhaseKind, SolutionPoint, Termination};
 use crate::DynamicsError;
+use crate::equations::coasts_off_rail;
 use crate::integrator::RungeKutta;
 use crate::state::State;
 
@@ -143,13 +144,29 @@ impl Run<'_> {
                 );
                 return Ok(Some((t_exit, y_exit)));
             }
-            // A rocket at rest on the rail after burn-out never leaves it.
-            if kind == PhaseKind::Rail
-                && t1 > self.burn_out
-                && y1[3..6].iter().all(|v| v.abs() == 0.0)
-            {
-                self.end_flight(index, t1, Termination::StuckOnRail);
-                return Ok(Some((t1, y1)));
+            // Still on the rail at burn-out: the rocket leaves only if its speed there carries
+            // it the rest of the way against gravity (the launch check's rule); otherwise the
+            // clipped rail acceleration would let it creep off long after. The flight then ends
+            // at burn-out (at the step's end when the step began after it).
+            if kind == PhaseKind::Rail && t1 >= self.burn_out {
+                let inside = t0 < self.burn_out && self.burn_out < t1;
+                let u = if inside {
+                    integ.dense(self.burn_out)
+                } else {
+                    y1
+                };
+                let d = dr(&u);
+                let travelled = (d[0] * d[0] + d[1] * d[1] + d[2] * d[2]).sqrt();
+                let speed = (u[3] * u[3] + u[4] * u[4] + u[5] * u[5]).sqrt();
+                if !coasts_off_rail(travelled, speed, travel, self.rail_gravity) {
+                    let (t, u) = if inside {
+                        self.cut_step(integ, phase, kind, self.burn_out)
+                    } else {
+                        (t1, y1)
+                    };
+                    self.end_flight(index, t, Termination::StuckOnRail);
+                    return Ok(Some((t, u)));
+                }
             }
         }
         // (b) Apogee: `v_z` turns negative.

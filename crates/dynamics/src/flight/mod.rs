@@ -51,9 +51,11 @@
 //!   change nothing: every parachute has its own stream).
 //!
 //! Deviations from RocketPy (none changes a validation flight):
-//! - a rocket still at rest on the rail after burn-out can never leave it (the rail
-//!   acceleration is clipped at zero), so the flight ends there with
-//!   [`Termination::StuckOnRail`] instead of integrating a motionless state to `max_time`;
+//! - a rocket still on the rail at burn-out whose speed cannot carry it the rest of the rail
+//!   against gravity ([`crate::equations::coasts_off_rail`]) ends there with
+//!   [`Termination::StuckOnRail`]: RocketPy's rail acceleration, clipped at zero, would keep
+//!   its speed and let it creep off the rail long after (or integrate a rocket at rest to
+//!   `max_time`);
 //! - sampling and the impact check start at rail exit: on the rail `v_z ≥ 0` and
 //!   `z ≥ elevation` hold up to round-off, which must not fire an apogee trigger or an impact;
 //! - the impact check also runs on the step that detects apogee (see `events`).
@@ -117,7 +119,7 @@ pub enum Termination {
     Apogee,
     /// Reached `max_time` in the air.
     MaxTime,
-    /// Still at rest on the rail after burn-out: the motor cannot lift the rocket.
+    /// Still on the rail at burn-out, too slow to coast off it against gravity.
     StuckOnRail,
     /// A sampled process returned [`Action::Terminate`].
     Terminated,

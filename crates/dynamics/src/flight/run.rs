@@ -70,6 +70,9 @@ pub(super) struct Run<'a> {
     pub off_rail: bool,
     /// Rail travel to the upper button, m.
     pub rail_travel: f64,
+    /// Gravity along the rail at the pad, `g sin i`, m/s² (the coast that decides whether a
+    /// rocket still on the rail at burn-out leaves it).
+    pub rail_gravity: f64,
     pub elevation: f64,
     pub burn_out: f64,
     pub terminate_on_apogee: bool,
@@ -224,6 +227,7 @@ pub(super) fn fly<'a, A: AtmosphereModel, V: VehicleModel>(
         instants: Vec::new(),
         off_rail: kind0 != PhaseKind::Rail,
         rail_travel,
+        rail_gravity: atmosphere.gravity(elevation) * settings.inclination_deg.to_radians().sin(),
         elevation,
         burn_out: setup.burn_out,
         terminate_on_apogee: settings.terminate_on_apogee,

@@ -44,8 +44,8 @@ pub fn early_ending(
         )),
         Termination::StuckOnRail => Some((
             "stuck_on_rail",
-            "the rocket never left the rail: thrust minus drag never exceeded its weight along \
-             the rail"
+            "the rocket never left the rail: at burn-out it was still on it, too slow to coast \
+             the rest of the rail against gravity"
                 .to_owned(),
         )),
     }

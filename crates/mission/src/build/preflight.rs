@@ -12,12 +12,14 @@
 //! - the rail must be longer than the nozzle-to-upper-button distance (physics.md §8.1,
 //!   RocketPy's effective rail length): `flight.rail_length`;
 //! - winds above [`ABSURD_WIND`] (no wind on Earth comes near): the wind's key;
-//! - the rocket must leave the rail before burn-out. The rail slide is integrated along the
-//!   rail with the engine's rail equation (physics.md §8.1: thrust, power-on drag in the
-//!   wind, weight along the rail, acceleration clipped at zero) with a fixed step; a rocket
-//!   still on the rail at burn-out can only creep on at constant speed (RocketPy's clipped
-//!   rail acceleration), which is no flight: "stuck on the rail", blamed on `motor.thrust`
-//!   (or on the wind when the thrust alone would lift it).
+//! - the rocket must leave the rail. The rail slide is integrated along the rail with the
+//!   engine's rail equation (physics.md §8.1: thrust, power-on drag in the wind, weight along
+//!   the rail, acceleration clipped at zero) with a fixed step up to burn-out. A rocket still
+//!   on the rail then leaves it only if its speed carries it the rest of the way against
+//!   gravity (a warning; [`coasts_off_rail`], the rule the engine ends such a flight by);
+//!   otherwise RocketPy's clipped rail acceleration would let it creep
+//!   on at constant speed and leave the rail long after, which is no flight: "stuck on the
+//!   rail", blamed on `motor.thrust` (or on the wind when the thrust alone would lift it).
 //!
 //! Warnings (flyable, but a range-safety officer would ask): the rocket's own
 //! ([`karman_airframe::Rocket::warnings`]), the thrust file's, no fins, a negative static
@@ -27,6 +29,7 @@
 use karman_airframe::Rocket;
 use karman_atmos::Environment;
 use karman_dynamics::FlightSettings;
+use karman_dynamics::equations::coasts_off_rail;
 use karman_propulsion::{Motor, ThrustSource};
 
 use super::environment::build_environment;
@@ -325,6 +328,17 @@ fn check_rail(
             break;
         }
         (s, v) = (s2, v2);
+    }
+    // Still on the rail at burn-out: it leaves only if its speed carries it the rest of the
+    // way against gravity alone, the engine's rule.
+    let gravity_along_rail = env.gravity(env.elevation()) * sin_i;
+    if exit.is_none() && s > 0.0 && coasts_off_rail(s, v, travel, gravity_along_rail) {
+        warnings.push(format!(
+            "`motor.thrust`: the motor burns out ({burn_out:.3} s) before rail exit; the rocket \
+             coasts the last {:.3} m of the rail at {v:.3} m/s",
+            travel - s
+        ));
+        return Ok(());
     }
     let Some(t_exit) = exit else {
         let message = if best_excess <= 0.0 {
