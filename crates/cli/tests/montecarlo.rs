@@ -370,3 +370,33 @@ fn samples_that_reach_max_time_are_marked_counted_and_fail_the_study() {
         "{stdout}"
     );
 }
+
+#[test]
+fn a_3dof_study_is_the_same_on_one_and_two_threads() {
+    let three_dof = [
+        "--set",
+        "flight.simulation_mode=\"3 DOF\"",
+        "--set",
+        "flight.weathercock_coeff=0.3",
+    ];
+    let (one, two, six) = (fresh("3dof-one"), fresh("3dof-two"), fresh("3dof-six"));
+    for (dir, threads) in [(&one, "1"), (&two, "2")] {
+        let mut args = three_dof.to_vec();
+        args.extend(["--threads", threads]);
+        let output = montecarlo(dir, &args);
+        assert_eq!(output.status.code(), Some(0), "{}", stderr(&output));
+    }
+    assert_same_files(&one, &two);
+    // The same samples in 6 DOF fly other trajectories.
+    let output = montecarlo(&six, &["--threads", "2"]);
+    assert_eq!(output.status.code(), Some(0), "{}", stderr(&output));
+    let samples = |dir: &Path| std::fs::read(dir.join("samples.csv")).expect("samples.csv");
+    assert!(
+        samples(&one) != samples(&six),
+        "the 3-DOF study flew in 6 DOF"
+    );
+    let summary: serde_json::Value =
+        serde_json::from_slice(&std::fs::read(one.join("summary.json")).expect("summary.json"))
+            .expect("JSON");
+    assert_eq!(summary["completed"], 12, "{summary}");
+}

@@ -1,7 +1,8 @@
-//! Right-hand sides of the three flight phases (physics.md §8): the 1-DOF rail slide (§8.1),
+//! Right-hand sides of the flight phases (physics.md §8): the 1-DOF rail slide (§8.1),
 //! RocketPy's variable-mass 6-DOF "standard" equations (§8.2–§8.3, after Ceotto et al. 2021,
-//! J. Aerosp. Eng. 34(6), and the RocketPy docs "Equations of Motion v1") and the 3-DOF
-//! parachute descent with added mass (§8.4).
+//! J. Aerosp. Eng. 34(6), and the RocketPy docs "Equations of Motion v1"), the 3-DOF
+//! parachute descent with added mass (§8.4) and, in `point_mass`, RocketPy's 3-DOF
+//! point-mass free flight (§8.5, `simulation_mode = "3 DOF"`).
 //!
 //! Each is a pure function of `(t, u)`, the flight's [`Configuration`] and the immutable
 //! [`Equations`] context, and returns the state derivative together with the loads that
@@ -19,6 +20,8 @@ use karman_model::{
 };
 
 use crate::settings::EquationsForm;
+
+mod point_mass;
 
 /// State derivative and the loads behind it (body axes, about the CDM).
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -278,14 +281,17 @@ impl<'a, A: AtmosphereModel, V: VehicleModel> Equations<'a, A, V> {
     }
 
     /// Aerodynamic force and moment in body axes about the CDM, plus the net thrust
-    /// (physics.md §7.1, §7.2, §7.6, §8.3 steps 1–5).
+    /// (physics.md §7.1, §7.2, §7.6, §8.3 steps 1–5); `power_on_drag` picks the drag curve
+    /// (the 6-DOF equations: while the motor burns; the 3-DOF ones: before burn-out).
     #[inline]
+    #[allow(clippy::too_many_arguments)]
     fn loads(
         &self,
         t: f64,
         u: &State,
         k: &Mat3,
         air: &Air,
+        power_on_drag: bool,
         configuration: &Configuration,
         cursors: &mut Cursors,
     ) -> (Vec3, Vec3, f64) {
@@ -307,7 +313,7 @@ impl<'a, A: AtmosphereModel, V: VehicleModel> Equations<'a, A, V> {
             0.0
         };
         let flow = BodyFlow {
-            power_on: powered,
+            power_on: power_on_drag,
             speed,
             mach,
             density: rho,
@@ -366,7 +372,7 @@ impl<'a, A: AtmosphereModel, V: VehicleModel> Equations<'a, A, V> {
     ) -> (Vec3, Vec3, f64) {
         let k = rotation(quaternion(u));
         let air = self.atmosphere.air_near(u[2], &mut cursors.height);
-        self.loads(t, u, &k, &air, configuration, cursors)
+        self.loads(t, u, &k, &air, self.powered(t), configuration, cursors)
     }
 
     /// 6-DOF variable-mass flight (physics.md §8.2, RocketPy's `u_dot_generalized`), with the
@@ -456,7 +462,8 @@ impl<'a, A: AtmosphereModel, V: VehicleModel> Equations<'a, A, V> {
         let r_cm_ddot = [0.0, 0.0, s * c_ddot];
 
         let air = atm.air_near(z, &mut cursors.height);
-        let (force, moment, net_thrust) = self.loads(t, u, &k, &air, configuration, cursors);
+        let (force, moment, net_thrust) =
+            self.loads(t, u, &k, &air, self.powered(t), configuration, cursors);
         let weight = mat_t_vec(&k, [0.0, 0.0, -mass * air.gravity]);
 
         let t00 = scale(mass, r_cm);

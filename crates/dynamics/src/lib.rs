@@ -6,7 +6,8 @@
 //!
 //! - [`integrator`]: the Dormand–Prince pairs DOPRI5 and DOP853 with dense output, fixed-size
 //!   state, no allocation.
-//! - [`equations`]: rail, 6-DOF variable-mass and parachute right-hand sides.
+//! - [`equations`]: rail, 6-DOF variable-mass, 3-DOF point-mass and parachute right-hand
+//!   sides.
 //! - The models it flies are the interfaces of karman-model ([`AtmosphereModel`],
 //!   [`VehicleModel`], [`SurfaceModel`]), re-exported here; karman-atmos, karman-airframe and
 //!   test mocks implement them.
@@ -43,4 +44,4 @@ pub use karman_model::{
     VehicleModel, VehicleSetup,
 };
 pub use output::{EventRecord, Sample, Summary};
-pub use settings::{DEFAULT_ATOL, EquationsForm, FlightSettings};
+pub use settings::{DEFAULT_ATOL, EquationsForm, FlightSettings, SimulationMode};

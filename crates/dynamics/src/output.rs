@@ -131,11 +131,13 @@ pub struct Sample {
     pub mass: f64,
 }
 
-/// Derived quantities of one point.
+/// Derived quantities of one point; rail points report the loads of the free-flight
+/// equations `free` at their state (RocketPy's `udot_rail1(post_processing=True)`).
 fn sample<A: AtmosphereModel, V: VehicleModel>(
     eq: &Equations<'_, A, V>,
     elevation: f64,
     point: &SolutionPoint,
+    free: &PhaseKind,
     cursors: &mut Cursors,
 ) -> Sample {
     let atm = eq.atmosphere();
@@ -143,8 +145,12 @@ fn sample<A: AtmosphereModel, V: VehicleModel>(
     let (kind, configuration) = (&point.phase, &point.configuration);
     let (t, u) = (point.t, &point.state);
     let d = evaluate(eq, kind, configuration, t, u, cursors);
-    let (force, moment, net_thrust) = match kind {
-        PhaseKind::Rail => eq.rail_loads(t, u, configuration, cursors),
+    let (force, moment, net_thrust) = match (kind, free) {
+        (PhaseKind::Rail, PhaseKind::PointMass { .. }) => {
+            let f = evaluate(eq, free, configuration, t, u, cursors);
+            (f.force, f.moment, f.net_thrust)
+        }
+        (PhaseKind::Rail, _) => eq.rail_loads(t, u, configuration, cursors),
         _ => (d.force, d.moment, d.net_thrust),
     };
     let z = u[2];
@@ -220,9 +226,16 @@ impl Flight {
     ) -> Vec<Sample> {
         let eq = Equations::new(atmosphere, vehicle, self.equations);
         let mut cursors = Cursors::default();
+        // The free flight's equations: those of the first point flown with them.
+        let free = self
+            .points
+            .iter()
+            .map(|p| p.phase)
+            .find(|k| matches!(k, PhaseKind::SixDof | PhaseKind::PointMass { .. }))
+            .unwrap_or(PhaseKind::SixDof);
         self.points
             .iter()
-            .map(|p| sample(&eq, self.elevation, p, &mut cursors))
+            .map(|p| sample(&eq, self.elevation, p, &free, &mut cursors))
             .collect()
     }
 

@@ -24,6 +24,22 @@ pub enum EquationsForm {
     RocketPy113,
 }
 
+/// Which equations fly the free flight from rail exit to the first canopy (`[flight]
+/// simulation_mode`, RocketPy 1.12+'s `Flight(simulation_mode=...)`, physics.md §8.5). The
+/// rail slide (§8.1) and the parachute descents (§8.4) are the same in both modes.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, serde::Serialize, serde::Deserialize)]
+pub enum SimulationMode {
+    /// The 6-DOF variable-mass equations (default, §8.2).
+    #[default]
+    #[serde(rename = "6 DOF")]
+    SixDof,
+    /// RocketPy's 3-DOF point mass (`u_dot_generalized_3dof`): translation only, the attitude
+    /// held or relaxed toward the relative wind by the weathercock law
+    /// ([`FlightSettings::weathercock_coefficient`]).
+    #[serde(rename = "3 DOF")]
+    ThreeDof,
+}
+
 /// Launch and integration settings of one flight.
 #[derive(Debug, Clone, PartialEq)]
 pub struct FlightSettings {
@@ -67,6 +83,12 @@ pub struct FlightSettings {
     pub trigger_band: f64,
     /// The form of the 6-DOF equations (default [`EquationsForm::Standard`]).
     pub equations: EquationsForm,
+    /// The equations of the free flight (default [`SimulationMode::SixDof`]).
+    pub simulation_mode: SimulationMode,
+    /// The 3-DOF weathercock rate, 1/s (RocketPy's `PointMassRocket.weathercock_coeff`,
+    /// default 0: the attitude stays the rail's): the rocket axis turns toward the relative
+    /// wind at `coefficient · sin(angle)` rad/s. Unused in 6 DOF.
+    pub weathercock_coefficient: f64,
 }
 
 impl FlightSettings {
@@ -89,6 +111,8 @@ impl FlightSettings {
             stop_at_thrust_knots: true,
             trigger_band: 1.0,
             equations: EquationsForm::Standard,
+            simulation_mode: SimulationMode::SixDof,
+            weathercock_coefficient: 0.0,
         }
     }
 
@@ -160,6 +184,13 @@ impl FlightSettings {
             b,
             b.is_finite() && b > 0.0,
             "must be a positive length",
+        )?;
+        let w = self.weathercock_coefficient;
+        check(
+            "weathercock_coeff",
+            w,
+            w.is_finite() && w >= 0.0,
+            "must be a non-negative rate",
         )?;
         Ok(())
     }

@@ -1,7 +1,9 @@
 //! The Calisto validation mission (`fixtures/validation/calisto`, or
 //! `$KARMAN_VALIDATION_DATA/calisto`) flown to the ground, once with the parachute noise zeroed
 //! (`calisto_flight/to_ground`) and once with the mission's trigger noise kept and a fixed
-//! noise seed (`calisto_flight/noisy`, the flight a Monte Carlo run repeats); and the liquid
+//! noise seed (`calisto_flight/noisy`, the flight a Monte Carlo run repeats); the noise-free
+//! flight in RocketPy's 3-DOF point-mass mode (`calisto_flight/to_ground_3dof`,
+//! `simulation_mode = "3 DOF"`, timed against `to_ground`); and the liquid
 //! (`hedy_flight/to_ground`) and hybrid (`halcyon_flight/to_ground`) validation flights, noise
 //! zeroed, whose ns per evaluation set against Calisto's measure what the tank-derived mass
 //! tables cost (issue 24: at most 1.5 times a solid flight); and Calisto with air brakes driven
@@ -10,9 +12,9 @@
 //! apogee, flown to the ground), set against `calisto_flight/to_ground` for what a controller
 //! costs (issue 22: at most twice the flight without it). The models are built once (the
 //! script compiled once), the timing covers the flight only: `karman_dynamics::simulate`, and
-//! for the controlled flight the controller made from the compiled script and flown with it. The throughput is declared in right-hand-side
-//! evaluations, so that `cargo xtask bench` prints the ns per evaluation beside the median;
-//! the step counts are printed once.
+//! for the controlled flight the controller made from the compiled script and flown with it.
+//! The throughput is declared in right-hand-side evaluations, so that `cargo xtask bench`
+//! prints the ns per evaluation beside the median; the step counts are printed once.
 
 use std::path::Path;
 
@@ -123,6 +125,9 @@ fn flight(c: &mut Criterion) {
     let mut group = c.benchmark_group("calisto_flight");
     bench_one(&mut group, "to_ground", &path, &quiet, 0);
     bench_one(&mut group, "noisy", &path, &[], NOISE_SEED);
+    let mut point_mass = quiet.clone();
+    point_mass.push(Override::new("flight.simulation_mode", "\"3 DOF\"").expect("override"));
+    bench_one(&mut group, "to_ground_3dof", &path, &point_mass, 0);
     bench_controlled(&mut group);
     group.finish();
     for flight in ["hedy", "halcyon"] {

@@ -416,6 +416,7 @@ fn slot<'a>(spec: &'a mut MissionSpec, path: &str) -> Option<Slot<'a>> {
                 "max_time" => &mut f.max_time,
                 "rtol" => &mut f.rtol,
                 "max_time_step" => &mut f.max_time_step,
+                "weathercock_coeff" => f.weathercock_coeff.as_mut()?,
                 "atol" => match f.atol.as_mut()? {
                     Atol::Scalar(value) => value,
                     Atol::PerState(_) => return None,

@@ -3,7 +3,8 @@
 //! the real models (karman-atmos' `Environment`, karman-airframe's `Rocket` through their
 //! karman-model implementations); then, under `allocation_counter::measure` (which counts the
 //! current thread's allocations), the right-hand side of the phase of every stored point is
-//! re-evaluated at that point, and the integrator is stepped (dense output included) through the
+//! re-evaluated at that point (the 6-DOF points through the 3-DOF point-mass equations too),
+//! and the integrator is stepped (dense output included) through the
 //! 6-DOF phase and the parachute descent (everything but the storing of solution points,
 //! which `simulate` does into a `Vec`).
 
@@ -73,7 +74,14 @@ fn equations_and_steps_do_not_allocate() {
                     }
                     PhaseKind::SixDof => {
                         phases[1] += 1;
+                        // The 3-DOF point-mass equations at the same state, weathercocking.
+                        let d = eq.point_mass(p.t, &p.state, 1.0, configuration, cursors);
+                        sum += d.u_dot.iter().sum::<f64>();
                         eq.six_dof(p.t, &p.state, configuration, cursors)
+                    }
+                    PhaseKind::PointMass { weathercock } => {
+                        phases[1] += 1;
+                        eq.point_mass(p.t, &p.state, weathercock, configuration, cursors)
                     }
                     PhaseKind::Parachute(canopy) => {
                         phases[2] += 1;

@@ -282,3 +282,63 @@ fn hybrid_and_liquid_motors_need_tanks() {
     assert!(keys.contains(&"motor.grain_density".to_owned()), "{keys:?}");
     assert!(keys.contains(&"motor.throat_radius".to_owned()), "{keys:?}");
 }
+
+#[test]
+fn simulation_mode_and_weathercock_are_checked() {
+    // An unknown mode, located at its value.
+    let text = edited(&[(
+        "heading = 10\n",
+        "heading = 10\nsimulation_mode = \"3dof\"\n",
+    )]);
+    let found = problems(&text, &[]);
+    assert_eq!(found.len(), 1);
+    assert_eq!(found[0].key, "flight.simulation_mode");
+    assert_eq!(
+        found[0].location,
+        Location::File {
+            line: 61,
+            column: 19
+        }
+    );
+    let unknown = error_text(&text, &[]);
+    // A weathercock coefficient is a 3-DOF setting.
+    let text = edited(&[("heading = 10\n", "heading = 10\nweathercock_coeff = 0.5\n")]);
+    let found = problems(&text, &[]);
+    assert_eq!(found.len(), 1);
+    assert_eq!(found[0].key, "flight.weathercock_coeff");
+    assert!(matches!(found[0].kind, ProblemKind::NotApplicable { .. }));
+    assert_eq!(
+        found[0].location,
+        Location::File {
+            line: 61,
+            column: 21
+        }
+    );
+    let six_dof = error_text(&text, &[]);
+    // A negative rate.
+    let three = "heading = 10\nsimulation_mode = \"3 DOF\"\n";
+    let text = edited(&[("heading = 10\n", three)]);
+    let found = problems(
+        &text,
+        &["flight.weathercock_coeff=-0.5".parse().expect("override")],
+    );
+    assert_eq!(found.len(), 1);
+    assert!(matches!(found[0].kind, ProblemKind::OutOfRange { .. }));
+    let negative = error_text(&text, &["flight.weathercock_coeff=-0.5"]);
+    insta::assert_snapshot!(
+        "simulation_mode",
+        format!("{unknown}\n{six_dof}\n{negative}")
+    );
+    // Both keys in a 3-DOF mission load.
+    let text = edited(&[(
+        "heading = 10\n",
+        "heading = 10\nsimulation_mode = \"3 DOF\"\nweathercock_coeff = 0.5\n",
+    )]);
+    let mission = parse(&text, &fixture("broken.toml"), &[]).unwrap_or_else(|e| panic!("{e}"));
+    let flight = &mission.spec.flight;
+    assert_eq!(
+        flight.simulation_mode,
+        karman_mission::dynamics::SimulationMode::ThreeDof
+    );
+    assert_eq!(flight.weathercock_coeff, Some(0.5));
+}

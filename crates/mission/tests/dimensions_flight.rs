@@ -362,6 +362,13 @@ where
     match phase {
         PhaseKind::Rail => eq.rail(t, &x, configuration, cursors),
         PhaseKind::SixDof => eq.six_dof(t, &x, configuration, cursors),
+        PhaseKind::PointMass { weathercock } => eq.point_mass(
+            t,
+            &x,
+            u.scale(*weathercock, Dimension::FREQUENCY),
+            configuration,
+            cursors,
+        ),
         PhaseKind::Parachute(c) => eq.parachute(
             t,
             &x,
@@ -396,76 +403,87 @@ fn equations_of_motion_scale_with_their_units() {
         let c = PhysicalConstants::SI.in_units(&u);
         let (env_s, vehicle_s) = (environment(&u, &c), rocket(&u, &c));
         let eq_s = Equations::new(&env_s, &vehicle_s, EquationsForm::Standard);
-        let mut counts = [0usize; 3];
+        let mut counts = [0usize; 4];
         let (mut worst_lift, mut worst_other) = (0.0f64, 0.0f64);
         for pair in flight.points.windows(2) {
             let (p, next) = (&pair[0], &pair[1]);
             let t = p.t + 0.37 * (next.t - p.t);
-            let (a, b) = (
-                evaluate(&eq, &Units::SI, &p.phase, t, &p.state),
-                evaluate(&eq_s, &u, &p.phase, t, &p.state),
-            );
-            let k = match p.phase {
-                PhaseKind::Rail => 0,
-                PhaseKind::SixDof => 1,
-                PhaseKind::Parachute(_) => 2,
+            // The 6-DOF states are also flown through the 3-DOF point-mass equations, with
+            // weathercocking (a rate, 1/s).
+            let point_mass = PhaseKind::PointMass { weathercock: 0.5 };
+            let kinds: &[PhaseKind] = match p.phase {
+                PhaseKind::SixDof => &[PhaseKind::SixDof, point_mass],
+                _ => std::slice::from_ref(&p.phase),
             };
-            counts[k] += 1;
-            let (tolerance, worst) = match p.phase {
-                PhaseKind::SixDof => (TOL, &mut worst_lift),
-                _ => (TOL, &mut worst_other),
-            };
-            let name = |q: &str| format!("{:?} t = {t:.4} s: {q}", p.phase);
-            // Components that vanish (a rate of a frozen attitude) come out as rounding noise
-            // of the size of their group.
-            let size =
-                |r: std::ops::Range<usize>| a.u_dot[r].iter().fold(0.0f64, |m, v| m.max(v.abs()));
-            let groups = [
-                (0..3, size(0..3)),
-                (3..6, size(3..6)),
-                (6..10, size(6..10)),
-                (10..13, size(10..13)),
-            ];
-            for (range, magnitude) in groups {
-                for i in range {
+            for &phase in kinds {
+                let (a, b) = (
+                    evaluate(&eq, &Units::SI, &phase, t, &p.state),
+                    evaluate(&eq_s, &u, &phase, t, &p.state),
+                );
+                let k = match phase {
+                    PhaseKind::Rail => 0,
+                    PhaseKind::SixDof => 1,
+                    PhaseKind::Parachute(_) => 2,
+                    PhaseKind::PointMass { .. } => 3,
+                };
+                counts[k] += 1;
+                let (tolerance, worst) = match phase {
+                    PhaseKind::SixDof => (TOL, &mut worst_lift),
+                    _ => (TOL, &mut worst_other),
+                };
+                let name = |q: &str| format!("{:?} t = {t:.4} s: {q}", phase);
+                // Components that vanish (a rate of a frozen attitude) come out as rounding noise
+                // of the size of their group.
+                let size = |r: std::ops::Range<usize>| {
+                    a.u_dot[r].iter().fold(0.0f64, |m, v| m.max(v.abs()))
+                };
+                let groups = [
+                    (0..3, size(0..3)),
+                    (3..6, size(3..6)),
+                    (6..10, size(6..10)),
+                    (10..13, size(10..13)),
+                ];
+                for (range, magnitude) in groups {
+                    for i in range {
+                        *worst = worst.max(check.record(
+                            &name(&format!("u̇[{i}]")),
+                            a.u_dot[i],
+                            b.u_dot[i],
+                            STATE[i] / T,
+                            magnitude,
+                            tolerance,
+                        ));
+                    }
+                }
+                let fmax = a.force.iter().fold(0.0f64, |m, v| m.max(v.abs()));
+                let mmax = a.moment.iter().fold(0.0f64, |m, v| m.max(v.abs()));
+                for i in 0..3 {
+                    let (force, torque) = (Dimension::FORCE, Dimension::FORCE * L);
                     *worst = worst.max(check.record(
-                        &name(&format!("u̇[{i}]")),
-                        a.u_dot[i],
-                        b.u_dot[i],
-                        STATE[i] / T,
-                        magnitude,
+                        &name("force"),
+                        a.force[i],
+                        b.force[i],
+                        force,
+                        fmax,
+                        tolerance,
+                    ));
+                    *worst = worst.max(check.record(
+                        &name("moment"),
+                        a.moment[i],
+                        b.moment[i],
+                        torque,
+                        mmax,
                         tolerance,
                     ));
                 }
+                check.compare_near(
+                    &name("net thrust"),
+                    a.net_thrust,
+                    b.net_thrust,
+                    Dimension::FORCE,
+                    1.0,
+                );
             }
-            let fmax = a.force.iter().fold(0.0f64, |m, v| m.max(v.abs()));
-            let mmax = a.moment.iter().fold(0.0f64, |m, v| m.max(v.abs()));
-            for i in 0..3 {
-                let (force, torque) = (Dimension::FORCE, Dimension::FORCE * L);
-                *worst = worst.max(check.record(
-                    &name("force"),
-                    a.force[i],
-                    b.force[i],
-                    force,
-                    fmax,
-                    tolerance,
-                ));
-                *worst = worst.max(check.record(
-                    &name("moment"),
-                    a.moment[i],
-                    b.moment[i],
-                    torque,
-                    mmax,
-                    tolerance,
-                ));
-            }
-            check.compare_near(
-                &name("net thrust"),
-                a.net_thrust,
-                b.net_thrust,
-                Dimension::FORCE,
-                1.0,
-            );
         }
         assert!(
             counts.iter().all(|&n| n > 0),
@@ -474,7 +492,7 @@ fn equations_of_motion_scale_with_their_units() {
         let worst = check.finish().unwrap_or_else(|e| panic!("{e}"));
         println!(
             "dynamics (equations): seed {seed}: {counts:?} states, largest relative deviation \
-             {worst:e} ({}); derivatives and loads: rail and parachute {worst_other:e}, \
+             {worst:e} ({}); derivatives and loads: rail, parachute and 3-DOF {worst_other:e}, \
              6-DOF {worst_lift:e}",
             check.worst().1
         );

@@ -19,3 +19,4 @@ mod validate_environment;
 mod validate_flight;
 mod validate_motor;
 mod validate_rocket;
+mod validate_three_dof;

@@ -137,7 +137,7 @@ impl Run<'_> {
                     index + 1,
                     Phase {
                         t: t_exit,
-                        kind: Some(PhaseKind::SixDof),
+                        kind: Some(self.free_flight),
                         configuration: phase.configuration,
                         clear: true,
                     },

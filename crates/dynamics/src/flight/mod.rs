@@ -10,7 +10,8 @@
 //! - `phases` — the phases and the [`Configuration`] each phase flies (equations, deployed
 //!   devices, control inputs); an action that changes the configuration inserts a phase.
 //! - `policy` — the integrator policy: DOPRI5 on the rail, through the burn and under
-//!   parachutes, DOP853 for the unpowered 6-DOF flight from burn-out (restarted there) unless
+//!   parachutes, DOP853 for the unpowered free flight (6 DOF or the 3-DOF point mass) from
+//!   burn-out (restarted there) unless
 //!   its steps keep being rejected, a sign of kinks in the right-hand side such as linearly
 //!   interpolated atmosphere profiles, where DOPRI5 takes over; under a parachute, once
 //!   DOPRI5's steps are held back by stability (three steps in a row with `h|λ| ≥ 3`), the
@@ -81,7 +82,7 @@ pub use sampled::{DenseOutput, Probe, SampledProcess, StepBounds};
 use crate::DynamicsError;
 use crate::equations::{CanopyState, Cursors, Derivative, Equations};
 use crate::integrator::{Pair, RungeKutta};
-use crate::settings::{EquationsForm, FlightSettings};
+use crate::settings::{EquationsForm, FlightSettings, SimulationMode};
 use crate::state::State;
 
 /// Which equations of motion a phase integrates.
@@ -91,8 +92,27 @@ pub enum PhaseKind {
     Rail,
     /// 6-DOF variable-mass flight (§8.2).
     SixDof,
+    /// 3-DOF point-mass flight (§8.5, [`SimulationMode::ThreeDof`]) with this weathercock
+    /// coefficient, 1/s.
+    PointMass {
+        /// [`FlightSettings::weathercock_coefficient`].
+        weathercock: f64,
+    },
     /// 3-DOF descent under the given canopy (§8.4).
     Parachute(CanopyState),
+}
+
+impl PhaseKind {
+    /// The free flight (from rail exit until a canopy opens) the settings ask for.
+    #[must_use]
+    pub fn free_flight(settings: &FlightSettings) -> Self {
+        match settings.simulation_mode {
+            SimulationMode::SixDof => Self::SixDof,
+            SimulationMode::ThreeDof => Self::PointMass {
+                weathercock: settings.weathercock_coefficient,
+            },
+        }
+    }
 }
 
 /// One stored solution point.
@@ -226,6 +246,9 @@ pub(crate) fn evaluate<A: AtmosphereModel, V: VehicleModel>(
     match kind {
         PhaseKind::Rail => eq.rail(t, u, configuration, cursors),
         PhaseKind::SixDof => eq.six_dof(t, u, configuration, cursors),
+        PhaseKind::PointMass { weathercock } => {
+            eq.point_mass(t, u, *weathercock, configuration, cursors)
+        }
         PhaseKind::Parachute(canopy) => eq.parachute(t, u, canopy, cursors),
     }
 }
@@ -274,7 +297,8 @@ pub fn simulate_with<'a, A: AtmosphereModel, V: VehicleModel>(
 
 /// A flight that starts at time `t0` from a given free-flight `state` (off the rail) in a
 /// given configuration, as RocketPy's `initial_solution`: a stage after separation, or a
-/// flight resumed from one of its own points. Its phase is the 6-DOF flight, or the descent
+/// flight resumed from one of its own points. Its phase is the free flight of the settings'
+/// [`SimulationMode`], or the descent
 /// under the newest parachute deployed in `configuration`; parachutes already deployed there
 /// are not sampled again. Rail exit is taken as passed at `t0`; apogee and impact are
 /// detected as in [`simulate`].

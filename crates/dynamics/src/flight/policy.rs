@@ -18,10 +18,12 @@ const STIFF_BOUND: f64 = 3.0;
 
 /// The pair choice within one phase: DOPRI5 on the rail, through the burn and under
 /// parachutes until its steps are bound by stability, then RKC; DOP853 for the unpowered
-/// 6-DOF flight, handed back to DOPRI5 when its steps keep being rejected.
+/// free flight (6 DOF or point mass), handed back to DOPRI5 when its steps keep being
+/// rejected.
 #[derive(Debug, Clone, Copy)]
 pub(super) struct Policy {
-    /// A 6-DOF phase that started before burn-out and has not passed it yet.
+    /// A free-flight phase (6 DOF or point mass) that started before burn-out and has not
+    /// passed it yet.
     burning: bool,
     /// A parachute descent (the RKC hand-over applies).
     descent: bool,
@@ -34,10 +36,12 @@ pub(super) struct Policy {
 impl Policy {
     /// The policy of a phase of `kind` starting at `t`, and the pair it starts with.
     pub fn new(kind: PhaseKind, t: f64, burn_out: f64) -> (Self, Pair) {
-        let burning = kind == PhaseKind::SixDof && t < burn_out;
-        let pair = match kind {
-            PhaseKind::SixDof if !burning => Pair::Dop853,
-            _ => Pair::Dopri5,
+        let free = matches!(kind, PhaseKind::SixDof | PhaseKind::PointMass { .. });
+        let burning = free && t < burn_out;
+        let pair = if free && !burning {
+            Pair::Dop853
+        } else {
+            Pair::Dopri5
         };
         let policy = Self {
             burning,

@@ -68,6 +68,8 @@ pub(super) struct Run<'a> {
     pub instants: Vec<Instants>,
     /// The rocket has left the rail (sampling and the apogee and impact checks start).
     pub off_rail: bool,
+    /// The equations of the free flight after rail exit ([`PhaseKind::free_flight`]).
+    pub free_flight: PhaseKind,
     /// Rail travel to the upper button, m.
     pub rail_travel: f64,
     /// Gravity along the rail at the pad, `g sin i`, m/s² (the coast that decides whether a
@@ -119,14 +121,18 @@ fn rail_start(
 }
 
 /// The phase a flight resumed in `configuration` starts with: the descent under the deployed
-/// parachute of highest index, or the 6-DOF flight.
-fn resumed_kind(parachutes: &[ParachuteSpec], configuration: &Configuration) -> PhaseKind {
+/// parachute of highest index, or the free flight `free`.
+fn resumed_kind(
+    parachutes: &[ParachuteSpec],
+    configuration: &Configuration,
+    free: PhaseKind,
+) -> PhaseKind {
     parachutes
         .iter()
         .enumerate()
         .rev()
         .find(|(i, _)| configuration.is_deployed(*i))
-        .map_or(PhaseKind::SixDof, |(_, spec)| {
+        .map_or(free, |(_, spec)| {
             PhaseKind::Parachute(CanopyState {
                 cd_s: spec.cd_s,
                 radius: spec.radius,
@@ -171,7 +177,11 @@ pub(super) fn fly<'a, A: AtmosphereModel, V: VehicleModel>(
                     reason: "must be a finite time before max_time",
                 });
             }
-            let kind = resumed_kind(&setup.parachutes, &configuration);
+            let kind = resumed_kind(
+                &setup.parachutes,
+                &configuration,
+                PhaseKind::free_flight(settings),
+            );
             (t0, state, configuration, kind, f64::NAN)
         }
     };
@@ -226,6 +236,7 @@ pub(super) fn fly<'a, A: AtmosphereModel, V: VehicleModel>(
         active,
         instants: Vec::new(),
         off_rail: kind0 != PhaseKind::Rail,
+        free_flight: PhaseKind::free_flight(settings),
         rail_travel,
         rail_gravity: atmosphere.gravity(elevation) * settings.inclination_deg.to_radians().sin(),
         elevation,

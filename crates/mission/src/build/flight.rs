@@ -65,6 +65,8 @@ pub fn flight_settings(mission: &Mission, seed: u64) -> FlightSettings {
     settings.max_time_step = spec.max_time_step;
     settings.noise_seed = seed;
     settings.equations = spec.equations;
+    settings.simulation_mode = spec.simulation_mode;
+    settings.weathercock_coefficient = spec.weathercock_coeff.unwrap_or(0.0);
     if let Some(ab) = &mission.spec.rocket.air_brakes
         && spec.time_overshoot
         && ab.sampling_rate > 0.0

@@ -24,7 +24,7 @@ pub use drag::{DragEstimateSpec, FinDragSpec, LaunchLugSpec, RailButtonSizeSpec}
 pub use names::{
     AngleUnit, AtmosphereModel, Datum, ExtrapolationKind, FinCrossSection, InterpolationKind,
     MotorCoordinateSystem, MotorKind, NoseKind, RocketCoordinateSystem, SoundingFormat,
-    SurfaceFinish, SurfaceType, TankGeometryKind, TankKindName,
+    SurfaceFinish, SurfaceType, TankGeometryKind, TankKindName, WeatherSource,
 };
 pub use surfaces::{
     AirfoilSpec, EllipticalFinsSpec, FreeFormFinsSpec, NoseSpec, SurfaceSpec, Sweep, TailSpec,
@@ -224,9 +224,16 @@ pub struct AtmosphereSpec {
     /// ...); absent: detected from the file's variable names.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub dictionary: Option<String>,
-    /// Ensemble member index (`ensemble` only).
+    /// Ensemble member index (`ensemble`, `open_meteo`).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub member: Option<u32>,
+    /// The service `karman simulate/montecarlo --fetch` downloads `file` from (the launch
+    /// site and date of `[environment]`); absent: the file is only read.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub source: Option<WeatherSource>,
+    /// Sounding station, WMO number or ICAO id (`source = "wyoming"`).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub station: Option<String>,
     /// Pressure of height ASL, Pa (`custom`); absent: standard atmosphere.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub pressure: Option<Curve>,
@@ -249,6 +256,8 @@ impl Default for AtmosphereSpec {
             format: None,
             dictionary: None,
             member: None,
+            source: None,
+            station: None,
             pressure: None,
             temperature: None,
             wind_u: None,
@@ -659,6 +668,14 @@ pub struct FlightSpec {
     /// arms and mass flow) or `"rocketpy_1_13"` (RocketPy 1.13 exactly).
     #[serde(default)]
     pub equations: karman_dynamics::EquationsForm,
+    /// The equations of the free flight: `"6 DOF"` (default) or `"3 DOF"`, RocketPy 1.12+'s
+    /// point mass (physics.md §8.5).
+    #[serde(default)]
+    pub simulation_mode: karman_dynamics::SimulationMode,
+    /// The 3-DOF weathercock coefficient, 1/s (RocketPy's `PointMassRocket.weathercock_coeff`);
+    /// absent: 0, the attitude held at the rail's. Only with `simulation_mode = "3 DOF"`.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub weathercock_coeff: Option<f64>,
 }
 
 /// `[dispersion]`: Monte Carlo run settings and the inputs that vary.
