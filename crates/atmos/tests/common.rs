@@ -1,7 +1,7 @@
 //! Test helpers: where the project's shared weather data is; the netCDF classic writer of
 //! small synthetic weather grids is `karman_validation::netcdf` (shared with the CLI tests).
 
-pub use karman_validation::netcdf::{Var, classic_nc};
+pub use karman_validation::netcdf::{Var, classic_nc, classic_nc_numeric};
 
 use std::path::PathBuf;
 

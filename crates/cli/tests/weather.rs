@@ -532,3 +532,36 @@ fn a_saved_open_meteo_file_is_the_custom_profile_of_its_numbers() {
     let (x, y) = (fly(&forecast), fly(&custom));
     assert!((x - y).abs() <= 1e-9 * x, "apogee {x} vs {y}");
 }
+
+#[test]
+fn weather_heights_that_fold_back_are_a_warning() {
+    let good = String::from_utf8(open_meteo(1)).expect("text");
+    // 700 hPa placed below 850 hPa.
+    let folded = good.replace("[3100, 3100, 3100]", "[1400, 1400, 1400]");
+    assert_ne!(good, folded);
+    let dir = scratch_dir("folded");
+    let file = dir.join("folded.json");
+    std::fs::write(&file, folded).expect("file");
+    let m = mission(
+        "folded-mission",
+        &format!("model = \"open_meteo\"\nfile = \"{}\"", text(&file)),
+    );
+    for args in [vec!["check"], vec!["simulate", "--json"]] {
+        let command = args[0];
+        let mut args = args.clone();
+        args.insert(1, text(&m));
+        let output = karman(&args);
+        let message = format!(
+            "{}{}",
+            String::from_utf8_lossy(&output.stdout),
+            stderr(&output)
+        );
+        assert!(
+            message.contains(
+                "`environment.atmosphere.file`: the heights are not monotonic through the \
+                 levels: 850.0 hPa at 1500 m, then 700.0 hPa at 1400 m"
+            ),
+            "{command}: {message}"
+        );
+    }
+}

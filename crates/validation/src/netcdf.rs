@@ -28,6 +28,16 @@ fn put_name(out: &mut Vec<u8>, name: &str) {
 
 /// Serialises dimensions and double variables as a CDF-1 file (no record dimension).
 pub fn classic_nc(dims: &[(&str, usize)], vars: &[Var<'_>]) -> Vec<u8> {
+    classic_nc_numeric(dims, vars, &[])
+}
+
+/// [`classic_nc`] with numeric (double) attributes as well: `(variable, attribute, values)`,
+/// written after the variable's text attributes.
+pub fn classic_nc_numeric(
+    dims: &[(&str, usize)],
+    vars: &[Var<'_>],
+    numbers: &[(&str, &str, &[f64])],
+) -> Vec<u8> {
     const NC_DIMENSION: usize = 0x0A;
     const NC_VARIABLE: usize = 0x0B;
     const NC_ATTRIBUTE: usize = 0x0C;
@@ -52,16 +62,28 @@ pub fn classic_nc(dims: &[(&str, usize)], vars: &[Var<'_>]) -> Vec<u8> {
             for d in &v.dims {
                 put_u32(&mut h, *d);
             }
-            if v.attrs.is_empty() {
+            let own: Vec<&(&str, &str, &[f64])> = numbers
+                .iter()
+                .filter(|(var, _, _)| *var == v.name)
+                .collect();
+            if v.attrs.is_empty() && own.is_empty() {
                 put_u32(&mut h, 0);
                 put_u32(&mut h, 0);
             } else {
                 put_u32(&mut h, NC_ATTRIBUTE);
-                put_u32(&mut h, v.attrs.len());
+                put_u32(&mut h, v.attrs.len() + own.len());
                 for (name, value) in &v.attrs {
                     put_name(&mut h, name);
                     put_u32(&mut h, NC_CHAR);
                     put_name(&mut h, value);
+                }
+                for (_, name, values) in own {
+                    put_name(&mut h, name);
+                    put_u32(&mut h, NC_DOUBLE);
+                    put_u32(&mut h, values.len());
+                    for x in *values {
+                        h.extend_from_slice(&x.to_be_bytes());
+                    }
                 }
             }
             put_u32(&mut h, NC_DOUBLE);
