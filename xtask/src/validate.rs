@@ -39,6 +39,11 @@ const MEASURED_BANDS: &[(&str, f64, &str)] = &[
         "ERA5 weather, constant Cd 0.43; RocketPy +0.3 %",
     ),
     (
+        "camoes",
+        0.02,
+        "air brakes replaying the team's actuation open-loop, ERA5 weather; RocketPy −0.40 %",
+    ),
+    (
         "halcyon",
         0.09,
         "hybrid; ERA5 weather, OpenRocket drag curves, COTS altimeter; RocketPy −7.4 %",

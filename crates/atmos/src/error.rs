@@ -68,11 +68,23 @@ pub enum AtmosError {
         message: String,
     },
     /// A download failed or returned something unusable (feature `fetch`).
-    #[error("{url}: download failed: {message}")]
+    #[error("{service}: request {request} failed: {message}")]
     Download {
-        /// The address.
-        url: String,
-        /// What went wrong.
+        /// The service ("Open-Meteo", "GFS (THREDDS NCSS)", "University of Wyoming").
+        service: String,
+        /// The request: the address with its query.
+        request: String,
+        /// What went wrong (timeout, HTTP status, a body cut short or in another format).
+        message: String,
+    },
+    /// A data file (or a downloaded body) is not in the format it should be.
+    #[error("{source_name}: not {expected}: {message}")]
+    Format {
+        /// File or address of the data.
+        source_name: String,
+        /// The format expected.
+        expected: String,
+        /// What is wrong.
         message: String,
     },
     /// A netCDF file could not be opened or read.
@@ -119,17 +131,22 @@ pub enum AtmosError {
         last: String,
     },
     /// The launch site is outside the grid of a weather file.
-    #[error("{file}: launch {axis} {value}° is outside the grid, which spans {first}° to {last}°")]
+    #[error(
+        "{file}: launch {axis} {value}{unit} is outside the grid, which spans {first}{unit} \
+         to {last}{unit}"
+    )]
     SiteOutsideGrid {
         /// The file.
         file: String,
-        /// "latitude" or "longitude".
+        /// "latitude" or "longitude" ("projected x" or "projected y" on a projected grid).
         axis: String,
-        /// The requested coordinate (deg).
+        /// The unit of the coordinate ("°", or the projected grid's " m" / " km").
+        unit: String,
+        /// The requested coordinate.
         value: f64,
-        /// First grid coordinate (deg).
+        /// First grid coordinate.
         first: f64,
-        /// Last grid coordinate (deg).
+        /// Last grid coordinate.
         last: f64,
     },
     /// The requested ensemble member does not exist.

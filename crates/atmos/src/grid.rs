@@ -13,13 +13,19 @@
 //!   date before the first or after the last step is an error naming both;
 //! - space: bilinear interpolation between the grid points around the site
 //!   (`bilinear_interpolation`), longitudes normalised to the grid's convention (±180 or
-//!   0–360); a site outside the grid is an error naming the grid's span;
+//!   0–360); a site outside the grid is an error naming the grid's span. Projected grids
+//!   (NAM, RAP, HRRR: `x`/`y` coordinates with a `LambertConformal_Projection` variable) take
+//!   the site projected into `(x, y)` (`geodesic_to_lambert_conformal`, see
+//!   `WeatherGrid::lambert_conformal`), then the same bracketing and bilinear interpolation;
+//! - THREDDS subsets (NCSS) name the time and level coordinates after the variables'
+//!   dimensions (`time1`, `isobaric2`): a mapping whose coordinate is absent takes the
+//!   temperature's dimension in that place (karman's addition, so a downloaded subset reads
+//!   with the GFS mapping);
 //! - geopotential Φ → geopotential height Φ/g0 → geometric height `R H/(R − H)` with `R` the
 //!   datum radius at the launch latitude (RocketPy `earth_radius`).
 //!
 //! Deviation: levels are converted to Pa from their `units` attribute (Pa stays Pa; hPa, mbar,
-//! millibars and anything else ×100); RocketPy always multiplies by 100. Projected (Lambert
-//! conformal) grids are not supported.
+//! millibars and anything else ×100); RocketPy always multiplies by 100.
 
 use crate::AtmosError;
 use crate::isa::geopotential_to_geometric;
@@ -44,6 +50,10 @@ pub struct GridDictionary {
     pub level: String,
     /// Ensemble-member coordinate.
     pub ensemble: Option<String>,
+    /// Grid-mapping variable of a projected grid (`LambertConformal_Projection`: `latitude`
+    /// and `longitude` then name the projected `y` and `x` coordinates; `LatLon_Projection`:
+    /// a plain latitude/longitude grid that must carry it).
+    pub projection: Option<String>,
     /// Temperature (K).
     pub temperature: String,
     /// Surface geopotential height (m), sets the file's surface elevation.
@@ -60,256 +70,189 @@ pub struct GridDictionary {
     pub v_wind: String,
 }
 
-/// Compact description of a built-in mapping:
-/// (name, time, lat, lon, level, ensemble, T, surface gph, surface geopotential, gph, Φ, u, v).
-type Spec = (
-    &'static str,
-    &'static str,
-    &'static str,
-    &'static str,
-    &'static str,
-    Option<&'static str>,
-    &'static str,
-    Option<&'static str>,
-    Option<&'static str>,
-    Option<&'static str>,
-    Option<&'static str>,
-    &'static str,
-    &'static str,
-);
+/// A built-in mapping (RocketPy's `WeatherModelMapping` dictionaries).
+struct Spec {
+    name: &'static str,
+    time: &'static str,
+    latitude: &'static str,
+    longitude: &'static str,
+    level: &'static str,
+    ensemble: Option<&'static str>,
+    projection: Option<&'static str>,
+    temperature: &'static str,
+    surface_gph: Option<&'static str>,
+    surface_phi: Option<&'static str>,
+    gph: Option<&'static str>,
+    phi: Option<&'static str>,
+    u: &'static str,
+    v: &'static str,
+}
 
-/// RocketPy 1.13 `WeatherModelMapping.all_dictionaries`, in its order, without the projected
-/// NAM/RAP grids.
-const BUILTINS: [Spec; 14] = [
-    (
-        "GFS",
-        "time",
-        "lat",
-        "lon",
-        "isobaric",
-        None,
-        "Temperature_isobaric",
-        Some("Geopotential_height_surface"),
-        None,
-        Some("Geopotential_height_isobaric"),
-        None,
-        "u-component_of_wind_isobaric",
-        "v-component_of_wind_isobaric",
-    ),
-    (
-        "GFS_LEGACY",
-        "time",
-        "lat",
-        "lon",
-        "lev",
-        None,
-        "tmpprs",
-        Some("hgtsfc"),
-        None,
-        Some("hgtprs"),
-        None,
-        "ugrdprs",
-        "vgrdprs",
-    ),
-    (
-        "NAM_LEGACY",
-        "time",
-        "lat",
-        "lon",
-        "lev",
-        None,
-        "tmpprs",
-        Some("hgtsfc"),
-        None,
-        Some("hgtprs"),
-        None,
-        "ugrdprs",
-        "vgrdprs",
-    ),
-    (
-        "ECMWF_v0",
-        "time",
-        "latitude",
-        "longitude",
-        "level",
-        Some("number"),
-        "t",
-        None,
-        None,
-        None,
-        Some("z"),
-        "u",
-        "v",
-    ),
-    (
-        "ECMWF",
-        "valid_time",
-        "latitude",
-        "longitude",
-        "pressure_level",
-        Some("number"),
-        "t",
-        None,
-        None,
-        None,
-        Some("z"),
-        "u",
-        "v",
-    ),
-    (
-        "NOAA",
-        "time",
-        "lat",
-        "lon",
-        "isobaric",
-        None,
-        "Temperature_isobaric",
-        Some("Geopotential_height_surface"),
-        None,
-        Some("Geopotential_height_isobaric"),
-        None,
-        "u-component_of_wind_isobaric",
-        "v-component_of_wind_isobaric",
-    ),
-    (
-        "NOAA_LEGACY",
-        "time",
-        "lat",
-        "lon",
-        "lev",
-        None,
-        "tmpprs",
-        Some("hgtsfc"),
-        None,
-        Some("hgtprs"),
-        None,
-        "ugrdprs",
-        "vgrdprs",
-    ),
-    (
-        "RAP_LEGACY",
-        "time",
-        "lat",
-        "lon",
-        "lev",
-        None,
-        "tmpprs",
-        Some("hgtsfc"),
-        None,
-        Some("hgtprs"),
-        None,
-        "ugrdprs",
-        "vgrdprs",
-    ),
-    (
-        "CMC",
-        "time",
-        "lat",
-        "lon",
-        "lev",
-        Some("ens"),
-        "tmpprs",
-        None,
-        None,
-        Some("hgtprs"),
-        None,
-        "ugrdprs",
-        "vgrdprs",
-    ),
-    (
-        "GEFS",
-        "time",
-        "lat",
-        "lon",
-        "lev",
-        Some("ens"),
-        "tmpprs",
-        None,
-        None,
-        Some("hgtprs"),
-        None,
-        "ugrdprs",
-        "vgrdprs",
-    ),
-    (
-        "HIRESW",
-        "time",
-        "lat",
-        "lon",
-        "lev",
-        None,
-        "tmpprs",
-        Some("hgtsfc"),
-        None,
-        Some("hgtprs"),
-        None,
-        "ugrdprs",
-        "vgrdprs",
-    ),
-    (
-        "MERRA2",
-        "time",
-        "lat",
-        "lon",
-        "lev",
-        None,
-        "T",
-        None,
-        Some("PHIS"),
-        Some("H"),
-        None,
-        "U",
-        "V",
-    ),
-    (
-        "ERA5",
-        "valid_time",
-        "latitude",
-        "longitude",
-        "pressure_level",
-        Some("number"),
-        "t",
-        None,
-        None,
-        None,
-        Some("z"),
-        "u",
-        "v",
-    ),
-    (
-        "ERA5_LEGACY",
-        "time",
-        "latitude",
-        "longitude",
-        "level",
-        Some("number"),
-        "t",
-        None,
-        None,
-        None,
-        Some("z"),
-        "u",
-        "v",
-    ),
+/// THREDDS-style names on a latitude/longitude grid (GFS).
+const THREDDS: Spec = Spec {
+    name: "GFS",
+    time: "time",
+    latitude: "lat",
+    longitude: "lon",
+    level: "isobaric",
+    ensemble: None,
+    projection: None,
+    temperature: "Temperature_isobaric",
+    surface_gph: Some("Geopotential_height_surface"),
+    surface_phi: None,
+    gph: Some("Geopotential_height_isobaric"),
+    phi: None,
+    u: "u-component_of_wind_isobaric",
+    v: "v-component_of_wind_isobaric",
+};
+
+/// THREDDS-style names on a Lambert conformal grid (NAM, RAP, HRRR): `x`/`y` in metres or
+/// kilometres.
+const LAMBERT: Spec = Spec {
+    name: "NAM",
+    latitude: "y",
+    longitude: "x",
+    projection: Some("LambertConformal_Projection"),
+    surface_gph: None,
+    ..THREDDS
+};
+
+/// NOMADS-style (`*_LEGACY`) names.
+const NOMADS: Spec = Spec {
+    name: "GFS_LEGACY",
+    level: "lev",
+    temperature: "tmpprs",
+    surface_gph: Some("hgtsfc"),
+    gph: Some("hgtprs"),
+    u: "ugrdprs",
+    v: "vgrdprs",
+    ..THREDDS
+};
+
+/// ECMWF names before the 2024 CDS update.
+const ECMWF_V0: Spec = Spec {
+    name: "ECMWF_v0",
+    time: "time",
+    latitude: "latitude",
+    longitude: "longitude",
+    level: "level",
+    ensemble: Some("number"),
+    projection: None,
+    temperature: "t",
+    surface_gph: None,
+    surface_phi: None,
+    gph: None,
+    phi: Some("z"),
+    u: "u",
+    v: "v",
+};
+
+/// Current ECMWF (CDS) names.
+const ECMWF: Spec = Spec {
+    name: "ECMWF",
+    time: "valid_time",
+    level: "pressure_level",
+    ..ECMWF_V0
+};
+
+/// RocketPy 1.13 `WeatherModelMapping.all_dictionaries`, in its order (the fallback order),
+/// then karman's aliases `ERA5` (= ECMWF) and `ERA5_LEGACY` (= ECMWF_v0).
+const BUILTINS: [Spec; 19] = [
+    THREDDS,
+    NOMADS,
+    Spec {
+        name: "AIGFS",
+        projection: Some("LatLon_Projection"),
+        surface_gph: None,
+        ..THREDDS
+    },
+    LAMBERT,
+    Spec {
+        name: "NAM_LEGACY",
+        ..NOMADS
+    },
+    ECMWF_V0,
+    ECMWF,
+    Spec {
+        name: "NOAA",
+        ..THREDDS
+    },
+    Spec {
+        name: "NOAA_LEGACY",
+        ..NOMADS
+    },
+    Spec {
+        name: "RAP",
+        ..LAMBERT
+    },
+    Spec {
+        name: "RAP_LEGACY",
+        ..NOMADS
+    },
+    Spec {
+        name: "HRRR",
+        ..LAMBERT
+    },
+    Spec {
+        name: "CMC",
+        ensemble: Some("ens"),
+        surface_gph: None,
+        ..NOMADS
+    },
+    Spec {
+        name: "GEFS",
+        ensemble: Some("ens"),
+        surface_gph: None,
+        ..NOMADS
+    },
+    Spec {
+        name: "GEFS_LEGACY",
+        ensemble: Some("ens"),
+        surface_gph: None,
+        ..NOMADS
+    },
+    Spec {
+        name: "HIRESW",
+        ..NOMADS
+    },
+    Spec {
+        name: "MERRA2",
+        temperature: "T",
+        surface_gph: None,
+        surface_phi: Some("PHIS"),
+        gph: Some("H"),
+        u: "U",
+        v: "V",
+        ..NOMADS
+    },
+    Spec {
+        name: "ERA5",
+        ..ECMWF
+    },
+    Spec {
+        name: "ERA5_LEGACY",
+        ..ECMWF_V0
+    },
 ];
 
 impl GridDictionary {
     fn from_spec(s: &Spec) -> GridDictionary {
         let o = |v: Option<&str>| v.map(str::to_string);
         GridDictionary {
-            name: s.0.into(),
-            time: s.1.into(),
-            latitude: s.2.into(),
-            longitude: s.3.into(),
-            level: s.4.into(),
-            ensemble: o(s.5),
-            temperature: s.6.into(),
-            surface_geopotential_height: o(s.7),
-            surface_geopotential: o(s.8),
-            geopotential_height: o(s.9),
-            geopotential: o(s.10),
-            u_wind: s.11.into(),
-            v_wind: s.12.into(),
+            name: s.name.into(),
+            time: s.time.into(),
+            latitude: s.latitude.into(),
+            longitude: s.longitude.into(),
+            level: s.level.into(),
+            ensemble: o(s.ensemble),
+            projection: o(s.projection),
+            temperature: s.temperature.into(),
+            surface_geopotential_height: o(s.surface_gph),
+            surface_geopotential: o(s.surface_phi),
+            geopotential_height: o(s.gph),
+            geopotential: o(s.phi),
+            u_wind: s.u.into(),
+            v_wind: s.v.into(),
         }
     }
 
@@ -319,30 +262,55 @@ impl GridDictionary {
         BUILTINS.iter().map(Self::from_spec).collect()
     }
 
-    /// A built-in mapping by name, case-insensitively (`"ECMWF"`, `"ECMWF_v0"`, `"GFS"`,
-    /// `"NOAA"`, `"GEFS"`, `"CMC"`, `"MERRA2"`, `"ERA5"`, ... and their `_LEGACY` forms).
+    /// A built-in mapping by name, case-insensitively (`"GFS"`, `"AIGFS"`, `"NAM"`, `"RAP"`,
+    /// `"HRRR"`, `"ECMWF"`, `"ECMWF_v0"`, `"NOAA"`, `"GEFS"`, `"CMC"`, `"HIRESW"`, `"MERRA2"`,
+    /// `"ERA5"`, ... and their `_LEGACY` forms).
     ///
     /// # Errors
     /// [`AtmosError::UnknownName`] listing the known names.
     pub fn builtin(name: &str) -> Result<GridDictionary, AtmosError> {
-        let key = name.trim().to_ascii_uppercase();
-        let alias = match key.as_str() {
-            "GEFS_LEGACY" => "GEFS",
+        let key = name.trim();
+        let alias = match key.to_ascii_uppercase().as_str() {
             "CMC_LEGACY" => "CMC",
             "HIRESW_LEGACY" => "HIRESW",
             "MERRA2_LEGACY" => "MERRA2",
-            "ECMWF_V0" => "ECMWF_v0",
-            k => k,
+            _ => key,
         };
         BUILTINS
             .iter()
-            .find(|s| s.0 == alias)
+            .find(|s| s.name.eq_ignore_ascii_case(alias))
             .map(Self::from_spec)
             .ok_or_else(|| AtmosError::UnknownName {
                 what: "weather dictionary".into(),
                 name: name.into(),
-                known: BUILTINS.iter().map(|s| s.0).collect::<Vec<_>>().join(", "),
+                known: BUILTINS
+                    .iter()
+                    .map(|s| s.name)
+                    .collect::<Vec<_>>()
+                    .join(", "),
             })
+    }
+
+    /// This mapping with the time and level coordinates a THREDDS subset renamed: NCSS names
+    /// them after the variables' own dimensions (`time1`, `isobaric2`, ...), so when the
+    /// mapping's coordinate is not in the file, the temperature's dimension in that place
+    /// (the first for time, the second for levels) is used if the file has it as a variable.
+    fn adapted_to(&self, file: &NcFile) -> GridDictionary {
+        let mut out = self.clone();
+        let Ok(var) = file.variable(&self.temperature) else {
+            return out;
+        };
+        let dims: Vec<&str> = var.dimensions().iter().map(|d| d.name.as_str()).collect();
+        let has = |n: &str| file.variable(n).is_ok();
+        if dims.len() >= 4 {
+            if !has(&out.time) && has(dims[0]) {
+                out.time = dims[0].to_owned();
+            }
+            if !has(&out.level) && has(dims[1]) {
+                out.level = dims[1].to_owned();
+            }
+        }
+        out
     }
 
     /// Variables of this mapping missing from the file (empty when it fits).
@@ -361,6 +329,9 @@ impl GridDictionary {
         .filter(|n| !has(n))
         .cloned()
         .collect();
+        if let Some(p) = self.projection.as_deref().filter(|p| !has(p)) {
+            missing.push(p.to_owned());
+        }
         let gph = self.geopotential_height.as_deref().is_some_and(has);
         let phi = self.geopotential.as_deref().is_some_and(has);
         if !gph && !phi {
@@ -462,12 +433,19 @@ impl WeatherGrid {
     /// The first built-in mapping whose variables the file has.
     #[must_use]
     pub fn detect_dictionary(&self) -> Option<GridDictionary> {
-        GridDictionary::builtins()
-            .into_iter()
-            .find(|d| d.missing_in(&self.file).is_empty())
+        let builtins = GridDictionary::builtins();
+        let fits = |d: &GridDictionary| d.missing_in(&self.file).is_empty();
+        builtins.iter().find(|d| fits(d)).cloned().or_else(|| {
+            builtins
+                .iter()
+                .map(|d| d.adapted_to(&self.file))
+                .find(|d| fits(d))
+        })
     }
 
-    /// The mapping used for `requested` (RocketPy's fallback rule).
+    /// The mapping used for `requested` (RocketPy's fallback rule: the requested one, else
+    /// the first built-in one that fits; then the same with the coordinates a THREDDS subset
+    /// renamed).
     ///
     /// # Errors
     /// [`AtmosError::MissingVariables`] when no mapping fits.
@@ -475,17 +453,29 @@ impl WeatherGrid {
         &self,
         requested: Option<&GridDictionary>,
     ) -> Result<GridDictionary, AtmosError> {
-        if let Some(d) = requested {
-            if d.missing_in(&self.file).is_empty() {
-                return Ok(d.clone());
-            }
-        }
-        if let Some(d) = self.detect_dictionary() {
+        let fits = |d: &GridDictionary| d.missing_in(&self.file).is_empty();
+        let builtins = GridDictionary::builtins();
+        let found = requested
+            .filter(|d| fits(d))
+            .cloned()
+            .or_else(|| builtins.iter().find(|d| fits(d)).cloned())
+            .or_else(|| {
+                requested
+                    .map(|d| d.adapted_to(&self.file))
+                    .filter(|d| fits(d))
+            })
+            .or_else(|| {
+                builtins
+                    .iter()
+                    .map(|d| d.adapted_to(&self.file))
+                    .find(|d| fits(d))
+            });
+        if let Some(d) = found {
             return Ok(d);
         }
         let reference = match requested {
             Some(d) => d.clone(),
-            None => GridDictionary::from_spec(&BUILTINS[4]),
+            None => GridDictionary::from_spec(&ECMWF),
         };
         Err(AtmosError::MissingVariables {
             file: self.name.clone(),
@@ -555,11 +545,29 @@ impl WeatherGrid {
 
         // Space.
         let (lats, _) = self.coordinate(&dict.latitude)?;
-        let (lons, _) = self.coordinate(&dict.longitude)?;
-        let lon = normalize_longitude(request.longitude_deg, lons[0], lons[lons.len() - 1]);
-        let lat = request.latitude_deg;
-        let j = self.bracket(lon, &lons, "longitude", request.longitude_deg)?;
-        let i = self.bracket(lat, &lats, "latitude", lat)?;
+        let (lons, xvar) = self.coordinate(&dict.longitude)?;
+        let (target_lon, target_lat, axes) = match dict.projection.as_deref() {
+            Some(LAMBERT_CONFORMAL) => {
+                let kilometres = attribute_text(xvar, "units")
+                    .is_some_and(|u| u.trim().to_ascii_lowercase().starts_with("km"));
+                let (x, y) = self.lambert_conformal(
+                    LAMBERT_CONFORMAL,
+                    request.latitude_deg,
+                    request.longitude_deg,
+                    kilometres,
+                )?;
+                (x, y, ["projected x", "projected y"])
+            }
+            _ => (
+                request.longitude_deg,
+                request.latitude_deg,
+                ["longitude", "latitude"],
+            ),
+        };
+        let lon = normalize_longitude(target_lon, lons[0], lons[lons.len() - 1]);
+        let lat = target_lat;
+        let j = self.bracket(lon, &lons, axes[0], target_lon)?;
+        let i = self.bracket(lat, &lats, axes[1], lat)?;
         let (x1, x2, y1, y2) = (lats[i - 1], lats[i], lons[j - 1], lons[j]);
         let bilinear = |z: [f64; 4]| {
             // z = [z11 (lat i−1, lon j−1), z12 (i−1, j), z21 (i, j−1), z22 (i, j)].
@@ -648,6 +656,57 @@ impl WeatherGrid {
         Ok(out)
     }
 
+    /// The site in a Lambert conformal grid's `(x, y)` (m, or km when `kilometres`), from the
+    /// grid-mapping variable's `latitude_of_projection_origin`,
+    /// `longitude_of_central_meridian`, `standard_parallel` (one or two) and `earth_radius`
+    /// (default 6 371 229 m): the spherical Lambert conformal conic (Snyder 1987, eq. 15-1 to
+    /// 15-3), as RocketPy 1.13's `geodesic_to_lambert_conformal` (longitudes taken modulo
+    /// 360° on both sides, as there).
+    fn lambert_conformal(
+        &self,
+        name: &str,
+        latitude_deg: f64,
+        longitude_deg: f64,
+        kilometres: bool,
+    ) -> Result<(f64, f64), AtmosError> {
+        let var = self.file.variable(name).map_err(|e| self.nc_err(&e))?;
+        let number = |attr: &str| -> Result<Vec<f64>, AtmosError> {
+            var.attribute(attr)
+                .and_then(|a| a.value.as_f64_vec())
+                .filter(|v| !v.is_empty() && v.iter().all(|x| x.is_finite()))
+                .ok_or_else(|| self.bad(name, &format!("no numeric `{attr}` attribute")))
+        };
+        let lat0 = number("latitude_of_projection_origin")?[0].to_radians();
+        let lon0 = number("longitude_of_central_meridian")?[0].to_radians();
+        let parallels = number("standard_parallel")?;
+        let radius = match var.attribute("earth_radius") {
+            Some(_) => number("earth_radius")?[0],
+            None => 6_371_229.0,
+        };
+        let t = |phi: f64| (std::f64::consts::FRAC_PI_4 + phi / 2.0).tan();
+        let phi1 = parallels[0].to_radians();
+        let n = match parallels.get(1) {
+            Some(p2) => {
+                let phi2 = p2.to_radians();
+                (phi1.cos() / phi2.cos()).ln() / (t(phi2) / t(phi1)).ln()
+            }
+            None => phi1.sin(),
+        };
+        let f = phi1.cos() * t(phi1).powf(n) / n;
+        let rho = radius * f / t(latitude_deg.to_radians()).powf(n);
+        let rho0 = radius * f / t(lat0).powf(n);
+        let theta = n * (longitude_deg.rem_euclid(360.0).to_radians() - lon0);
+        let (x, y) = (rho * theta.sin(), rho0 - rho * theta.cos());
+        if !(x.is_finite() && y.is_finite()) {
+            return Err(self.bad(
+                name,
+                "its parameters do not project the launch site to a finite point",
+            ));
+        }
+        let scale = if kilometres { 1e-3 } else { 1.0 };
+        Ok((x * scale, y * scale))
+    }
+
     /// RocketPy `find_time_index`: nearest step, a tie to the earlier; outside → error.
     fn time_index(&self, times: &[f64], t: f64) -> Result<usize, AtmosError> {
         let n = times.len();
@@ -695,6 +754,11 @@ impl WeatherGrid {
             return Err(AtmosError::SiteOutsideGrid {
                 file: self.name.clone(),
                 axis: axis.into(),
+                unit: if axis.starts_with("projected") {
+                    String::new()
+                } else {
+                    "°".into()
+                },
                 value: requested,
                 first: coords[0],
                 last: coords[n - 1],
@@ -821,6 +885,9 @@ impl WeatherGrid {
         Ok(out)
     }
 }
+
+/// The grid-mapping variable of Lambert conformal THREDDS grids (NAM, RAP, HRRR).
+const LAMBERT_CONFORMAL: &str = "LambertConformal_Projection";
 
 /// Index choices shared by every field.
 struct Roles<'a> {

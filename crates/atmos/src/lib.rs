@@ -10,7 +10,8 @@
 //! - [`isa`]: the standard atmosphere as RocketPy discretises it.
 //! - [`curve`]: user profiles and the two-column table parser.
 //! - [`sounding`]: Wyoming TEXT:LIST and NOAA RUC soundings.
-//! - [`grid`]: netCDF weather grids (ERA5, GFS-style, ensembles).
+//! - [`grid`]: netCDF weather grids (ERA5, GFS-style, ensembles, projected NAM/RAP/HRRR).
+//! - [`open_meteo`]: Open-Meteo pressure-level forecasts saved as JSON.
 //! - [`earth`]: datums, Somigliana gravity, Earth rotation.
 //! - [`time`]: calendar and CF time units.
 //! - `fetch` (cargo feature `fetch`): live download of soundings and forecasts.
@@ -25,6 +26,7 @@ pub mod fetch;
 pub mod grid;
 pub mod isa;
 mod model;
+pub mod open_meteo;
 mod profile;
 pub mod sounding;
 pub mod time;
@@ -36,5 +38,6 @@ pub use environment::{
 };
 pub use error::AtmosError;
 pub use grid::{GridDictionary, GridRequest, WeatherGrid};
+pub use open_meteo::OpenMeteo;
 pub use profile::{LevelProfile, Profiles};
 pub use sounding::{Sounding, SoundingFormat, SoundingLevel};

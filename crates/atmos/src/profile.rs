@@ -63,6 +63,24 @@ pub struct LevelProfile {
 }
 
 impl LevelProfile {
+    /// The first place where the heights do not rise strictly from level to level (in the
+    /// file's level order, either direction): `(pressure Pa, height m)` of the two levels,
+    /// or `None` when the column is monotonic. A column that folds back on itself is sorted
+    /// by height when the profiles are built, which mixes its levels.
+    #[must_use]
+    pub fn height_fold(&self) -> Option<([f64; 2], [f64; 2])> {
+        let h = &self.height_m;
+        let rising = h.len() < 2 || h[h.len() - 1] >= h[0];
+        h.windows(2)
+            .position(|w| if rising { w[1] <= w[0] } else { w[1] >= w[0] })
+            .map(|k| {
+                (
+                    [self.pressure_pa[k], h[k]],
+                    [self.pressure_pa[k + 1], h[k + 1]],
+                )
+            })
+    }
+
     /// The profiles RocketPy 1.13 builds from these levels (`process_forecast_reanalysis`):
     /// pressure, temperature and winds linear in height with constant extrapolation, and
     /// barometric height linear in pressure with natural extrapolation.
@@ -85,5 +103,31 @@ impl LevelProfile {
                     .collect(),
             ),
         }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::LevelProfile;
+
+    #[test]
+    fn folded_heights_are_found() {
+        let mut p = LevelProfile {
+            pressure_pa: vec![100_000.0, 85_000.0, 70_000.0],
+            height_m: vec![100.0, 1500.0, 3000.0],
+            ..LevelProfile::default()
+        };
+        assert_eq!(p.height_fold(), None);
+        p.height_m.reverse();
+        assert_eq!(
+            p.height_fold(),
+            None,
+            "a column from the top down is monotonic"
+        );
+        p.height_m = vec![100.0, 3100.0, 3000.0];
+        assert_eq!(
+            p.height_fold(),
+            Some(([85_000.0, 3100.0], [70_000.0, 3000.0]))
+        );
     }
 }

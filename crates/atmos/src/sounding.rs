@@ -15,7 +15,7 @@ use crate::AtmosError;
 use crate::curve::Curve;
 use crate::error::snippet;
 use crate::isa::geopotential_to_geometric;
-use crate::profile::Profiles;
+use crate::profile::{LevelProfile, Profiles};
 
 /// Which service a sounding came from.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -230,6 +230,36 @@ impl Sounding {
             station_elevation_m,
             source_name: source_name.into(),
         })
+    }
+
+    /// The levels that have pressure, temperature and wind, as one column with geometric
+    /// heights (Wyoming's geopotential heights converted with `earth_radius`), for display.
+    #[must_use]
+    pub fn level_profile(&self, earth_radius: f64) -> LevelProfile {
+        let mut out = LevelProfile {
+            surface_elevation_m: self.station_elevation_m,
+            ..LevelProfile::default()
+        };
+        for l in &self.levels {
+            let (Some(p), Some(t), Some(d), Some(s)) = (
+                l.pressure_pa,
+                l.temperature_k,
+                l.wind_direction_deg,
+                l.wind_speed_mps,
+            ) else {
+                continue;
+            };
+            let (sin, cos) = d.to_radians().sin_cos();
+            out.pressure_pa.push(p);
+            out.height_m.push(match self.format {
+                SoundingFormat::Wyoming => geopotential_to_geometric(l.height_m, earth_radius),
+                SoundingFormat::NoaaRuc => l.height_m,
+            });
+            out.temperature_k.push(t);
+            out.wind_u_mps.push(-s * sin);
+            out.wind_v_mps.push(-s * cos);
+        }
+        out
     }
 
     /// The profiles RocketPy builds from this sounding; `earth_radius` (m, the datum radius

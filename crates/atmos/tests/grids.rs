@@ -1,7 +1,7 @@
 //! Weather grids: synthetic netCDF files authored here (time choice, bilinear interpolation,
 //! longitude conventions, members, every error) and the validation ERA5 files (corruption).
 
-use crate::common::{Var, classic_nc};
+use crate::common::{Var, classic_nc, classic_nc_numeric};
 use karman_atmos::time::unix_seconds;
 use karman_atmos::{AtmosError, GridDictionary, GridRequest, WeatherGrid};
 
@@ -297,4 +297,200 @@ fn real_era5_files_dates_and_sites() {
     ));
     let missing = WeatherGrid::open(&validation.dir.join("no/such/file.nc")).expect_err("missing");
     assert!(missing.to_string().contains("file.nc"));
+}
+
+/// A HRRR-style grid on Lambert conformal `x`/`y` (km) around Edwards AFB, y descending:
+/// 2 time steps (0 h, 6 h after 2024-06-01), 4 levels (Pa), 4×4 points, fields that are not
+/// bilinear in the indices.
+fn lambert_grid() -> Vec<u8> {
+    const XS: [f64; 4] = [-1836.0, -1833.0, -1830.0, -1827.0];
+    const YS: [f64; 4] = [-144.0, -147.0, -150.0, -153.0];
+    const GPH: [f64; 4] = [100.0, 1500.0, 3000.0, 5600.0];
+    let dims = [("time", 2), ("isobaric", 4), ("y", 4), ("x", 4)];
+    let field = |f: &dyn Fn(f64, f64, f64, f64) -> f64| -> Vec<f64> {
+        let mut out = Vec::new();
+        for step in 0..2 {
+            for k in 0..4 {
+                for iy in 0..4 {
+                    for ix in 0..4 {
+                        out.push(f(step as f64, k as f64, iy as f64, ix as f64));
+                    }
+                }
+            }
+        }
+        out
+    };
+    let vars = vec![
+        Var {
+            name: "time",
+            dims: vec![0],
+            attrs: vec![("units", "hours since 2024-06-01 00:00:00")],
+            data: vec![0.0, 6.0],
+        },
+        Var {
+            name: "isobaric",
+            dims: vec![1],
+            attrs: vec![("units", "Pa")],
+            data: vec![100_000.0, 85_000.0, 70_000.0, 50_000.0],
+        },
+        Var {
+            name: "y",
+            dims: vec![2],
+            attrs: vec![("units", "km")],
+            data: YS.to_vec(),
+        },
+        Var {
+            name: "x",
+            dims: vec![3],
+            attrs: vec![("units", "km")],
+            data: XS.to_vec(),
+        },
+        Var {
+            name: "LambertConformal_Projection",
+            dims: vec![],
+            attrs: vec![("grid_mapping_name", "lambert_conformal_conic")],
+            data: vec![0.0],
+        },
+        Var {
+            name: "Temperature_isobaric",
+            dims: vec![0, 1, 2, 3],
+            attrs: vec![],
+            data: field(&|s, k, iy, ix| 300.0 - 6.5 * k + 0.3 * ix - 0.2 * iy + 0.05 * ix * iy + s),
+        },
+        Var {
+            name: "Geopotential_height_isobaric",
+            dims: vec![0, 1, 2, 3],
+            attrs: vec![],
+            data: field(&|s, k, iy, ix| {
+                GPH[k as usize] + 2.0 * ix + 3.0 * iy + 0.5 * ix * iy + 4.0 * s
+            }),
+        },
+        Var {
+            name: "u-component_of_wind_isobaric",
+            dims: vec![0, 1, 2, 3],
+            attrs: vec![],
+            data: field(&|s, k, iy, ix| 2.0 + k + 0.7 * ix - 0.4 * iy * ix + s),
+        },
+        Var {
+            name: "v-component_of_wind_isobaric",
+            dims: vec![0, 1, 2, 3],
+            attrs: vec![],
+            data: field(&|s, k, iy, ix| -1.0 + 0.5 * k + 0.3 * iy + 0.1 * ix * ix - s),
+        },
+    ];
+    let projection = "LambertConformal_Projection";
+    classic_nc_numeric(
+        &dims,
+        &vars,
+        &[
+            (projection, "latitude_of_projection_origin", &[38.5]),
+            (projection, "longitude_of_central_meridian", &[262.5]),
+            (projection, "standard_parallel", &[38.5]),
+            (projection, "earth_radius", &[6_371_229.0]),
+        ],
+    )
+}
+
+/// RocketPy 1.13 on the file of [`lambert_grid`] (written to `lambert_hrrr.nc` in the test
+/// binary's scratch folder): `Environment(date=(2024, 6, 1, 4), latitude=35.35,
+/// longitude=-117.81, elevation=0)`, `set_atmospheric_model(type="Forecast", file=...,
+/// dictionary="HRRR")`; pressure (Pa), temperature (K), wind x and y (m/s) at these heights
+/// (m ASL).
+const ROCKETPY_LAMBERT: [(f64, [f64; 4]); 5] = [
+    (
+        50.0,
+        [
+            100000.0,
+            301.49022879664244,
+            3.413143022002549,
+            -1.2067018750764835,
+        ],
+    ),
+    (
+        700.0,
+        [
+            93713.20712541629,
+            298.7659518843228,
+            3.832262546974796,
+            -0.99714211259036,
+        ],
+    ),
+    (
+        2000.0,
+        [
+            80137.85898926477,
+            292.8833010253238,
+            4.737285756051564,
+            -0.5446305080519759,
+        ],
+    ),
+    (
+        4000.0,
+        [
+            62429.541828392576,
+            286.02982989087,
+            5.791665930582921,
+            -0.017440420786297983,
+        ],
+    ),
+    (
+        5500.0,
+        [
+            50906.69820155934,
+            282.2849057121492,
+            6.367808111924583,
+            0.2706306698845331,
+        ],
+    ),
+];
+
+#[test]
+fn lambert_conformal_grids_match_rocketpy() {
+    use karman_atmos::{Atmosphere, Datum, Environment, EnvironmentConfig};
+    use karman_math::PhysicalConstants;
+    let bytes = lambert_grid();
+    let dir = std::path::Path::new(env!("CARGO_TARGET_TMPDIR"));
+    std::fs::write(dir.join("lambert_hrrr.nc"), &bytes).expect("scratch file");
+    let g = grid(bytes);
+    assert_eq!(
+        g.detect_dictionary().map(|d| d.name),
+        Some("NAM".into()),
+        "the first Lambert conformal mapping (NAM, RAP and HRRR share their names)"
+    );
+    let c = PhysicalConstants::SI;
+    let (lat, lon) = (35.35, -117.81);
+    let radius = Datum::Sirgas2000.radius(lat, &c);
+    let mut r = request(0.0, lat, lon);
+    r.unix_time = unix_seconds(2024, 6, 1, 4, 0, 0.0).expect("a valid date");
+    r.earth_radius = radius;
+    r.dictionary = Some(GridDictionary::builtin("HRRR").expect("builtin"));
+    let levels = g.profile(&r).expect("profile");
+    let env = Environment::new(
+        &EnvironmentConfig {
+            latitude_deg: lat,
+            longitude_deg: lon,
+            atmosphere: Atmosphere::Profiles(levels.profiles("lambert_hrrr.nc")),
+            ..EnvironmentConfig::default()
+        },
+        &c,
+    )
+    .expect("environment");
+    for (h, [p, t, u, v]) in ROCKETPY_LAMBERT {
+        let got = [
+            env.pressure(h),
+            env.temperature(h),
+            env.wind(h)[0],
+            env.wind(h)[1],
+        ];
+        for (x, y) in got.iter().zip([p, t, u, v]) {
+            assert!(
+                (x - y).abs() <= 1e-9 * y.abs().max(1.0),
+                "{h} m: {got:?} vs RocketPy"
+            );
+        }
+    }
+    // A site outside the projected grid names the projected coordinate.
+    r.latitude_deg = 36.0;
+    let e = g.profile(&r).expect_err("north of the grid");
+    assert!(e.to_string().contains("launch projected"), "{e}");
 }

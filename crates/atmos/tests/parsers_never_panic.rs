@@ -1,7 +1,7 @@
-//! Arbitrary input never panics the text parsers (sounding formats, two-column tables) nor
-//! the netCDF reader wrapper.
+//! Arbitrary input never panics the text parsers (sounding formats, two-column tables, the
+//! Open-Meteo JSON) nor the netCDF reader wrapper.
 
-use karman_atmos::{Sounding, WeatherGrid, parse_table};
+use karman_atmos::{OpenMeteo, Sounding, WeatherGrid, parse_table};
 use proptest::prelude::*;
 
 /// Text made of the characters these formats use, plus anything.
@@ -41,6 +41,31 @@ proptest! {
         data.extend(bytes);
         if let Ok(g) = WeatherGrid::from_bytes(data, "fuzz.nc") {
             let _ = g.detect_dictionary();
+        }
+    }
+
+    #[test]
+    fn open_meteo_reader_never_panics(
+        text in "[ 0-9.,\\-e\\[\\]{}:\"a-z_]{0,300}",
+        values in proptest::collection::vec(prop_oneof![
+            Just("null".to_string()),
+            any::<f64>().prop_map(|v| format!("{v:?}")),
+            Just("\"2024-06-01T12:00\"".to_string()),
+        ], 0..6),
+    ) {
+        let _ = OpenMeteo::parse(text.as_bytes(), "fuzz.json");
+        let list = values.join(", ");
+        let body = format!(
+            "{{\"utc_offset_seconds\": 0, \"hourly\": {{\"time\": [{list}], \
+             \"temperature_1000hPa\": [{list}], \"geopotential_height_1000hPa\": [{list}], \
+             \"wind_speed_1000hPa\": [{list}], \"wind_direction_1000hPa\": [{list}], \
+             \"temperature_850hPa_member03\": [{list}]}}}}"
+        );
+        if let Ok(f) = OpenMeteo::parse(body.as_bytes(), "fuzz.json") {
+            let (first, last) = f.time_span();
+            for member in 0..f.members() {
+                let _ = f.profile(0.5 * (first + last), Some(member), 6.371e6);
+            }
         }
     }
 }

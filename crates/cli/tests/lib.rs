@@ -7,3 +7,4 @@ mod inspect;
 mod montecarlo;
 mod simulate;
 mod sweep;
+mod weather;

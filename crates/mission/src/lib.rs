@@ -34,6 +34,8 @@ pub mod paths;
 pub mod report;
 pub mod schema;
 mod validate;
+#[cfg(feature = "fetch")]
+pub mod weather;
 
 pub use error::{CurveError, Location, MissionError, OverrideError, Problem, ProblemKind};
 pub use overrides::Override;
@@ -122,6 +124,15 @@ impl Mission {
 
 /// Reads, overrides, deserializes and validates the mission file at `path`.
 pub fn load(path: &Path, overrides: &[Override]) -> Result<Mission, MissionError> {
+    load_with(path, overrides, false)
+}
+
+/// [`load`]; with `fetching`, an atmosphere file that a `source` names need not exist yet.
+pub(crate) fn load_with(
+    path: &Path,
+    overrides: &[Override],
+    fetching: bool,
+) -> Result<Mission, MissionError> {
     let bytes = karman_math::read_data_file(path).map_err(|source| MissionError::Read {
         file: path.to_owned(),
         source,
@@ -139,12 +150,21 @@ pub fn load(path: &Path, overrides: &[Override]) -> Result<Mission, MissionError
             });
         }
     };
-    parse(text, path, overrides)
+    parse_with(text, path, overrides, fetching)
 }
 
 /// Parses, overrides, deserializes and validates mission `text`; `path` names the file in
 /// messages and its directory resolves relative data paths.
 pub fn parse(text: &str, path: &Path, overrides: &[Override]) -> Result<Mission, MissionError> {
+    parse_with(text, path, overrides, false)
+}
+
+fn parse_with(
+    text: &str,
+    path: &Path,
+    overrides: &[Override],
+    fetching: bool,
+) -> Result<Mission, MissionError> {
     let mut doc = Document::parse(text).map_err(|e| MissionError::Syntax {
         file: path.to_owned(),
         line: e.line,
@@ -168,7 +188,7 @@ pub fn parse(text: &str, path: &Path, overrides: &[Override]) -> Result<Mission,
     problems.extend(doc.non_finite(validate::ALLOW_INFINITE));
     let spec = match doc.deserialize() {
         Ok(spec) => {
-            problems.extend(validate::validate(&spec, &doc, &dir));
+            problems.extend(validate::validate(&spec, &doc, &dir, fetching));
             Some(spec)
         }
         Err(schema) => {

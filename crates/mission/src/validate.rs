@@ -7,8 +7,9 @@ use crate::document::Document;
 use crate::error::{Problem, ProblemKind};
 use crate::paths;
 use crate::schema::{
-    AtmosphereModel, Curve, DensitySpec, Discretize, MissionSpec, MotorKind, RocketSpec,
-    SurfaceSpec, Sweep, TankGeometryKind, TankKindName, TankSpec, Trigger,
+    AtmosphereModel, AtmosphereSpec, Curve, DensitySpec, Discretize, MissionSpec, MotorKind,
+    RocketSpec, SoundingFormat, SurfaceSpec, Sweep, TankGeometryKind, TankKindName, TankSpec,
+    Trigger, WeatherSource,
 };
 use karman_airframe::AirBrakesDrag;
 use karman_dynamics::SimulationMode;
@@ -46,6 +47,9 @@ const GRID_EXTENSIONS: &[&str] = &["nc", "nc4", "netcdf"];
 struct Checker<'a, 'd> {
     doc: &'a Document<'d>,
     dir: &'a Path,
+    /// `--fetch` is about to download the atmosphere file a `source` names: it need not
+    /// exist yet.
+    fetching: bool,
     problems: Vec<Problem>,
     /// While a `[[stages]]` entry is checked with the `[rocket]` and `[motor]` checks: its
     /// dotted path (`stages.0`), put before the keys they report.
@@ -148,10 +152,16 @@ impl Checker<'_, '_> {
 }
 
 /// Checks everything that can be checked without building models.
-pub(crate) fn validate(spec: &MissionSpec, doc: &Document<'_>, dir: &Path) -> Vec<Problem> {
+pub(crate) fn validate(
+    spec: &MissionSpec,
+    doc: &Document<'_>,
+    dir: &Path,
+    fetching: bool,
+) -> Vec<Problem> {
     let mut c = Checker {
         doc,
         dir,
+        fetching,
         problems: Vec::new(),
         stage: None,
     };
@@ -348,8 +358,14 @@ fn environment(c: &mut Checker<'_, '_>, spec: &MissionSpec) {
             &what,
         );
         if let Some(file) = &atm.file {
-            let extensions = if grid { GRID_EXTENSIONS } else { &[] };
-            c.file("environment.atmosphere.file", file, extensions);
+            let extensions = match model {
+                _ if grid => GRID_EXTENSIONS,
+                AtmosphereModel::OpenMeteo => &["json"],
+                _ => &[],
+            };
+            if !(c.fetching && atm.source.is_some()) {
+                c.file("environment.atmosphere.file", file, extensions);
+            }
         }
         c.required("environment.date", "date", env.date.as_ref(), &what);
     }
@@ -370,9 +386,13 @@ fn environment(c: &mut Checker<'_, '_>, spec: &MissionSpec) {
             &what,
         );
     }
-    if model != AtmosphereModel::Ensemble {
+    if !matches!(
+        model,
+        AtmosphereModel::Ensemble | AtmosphereModel::OpenMeteo
+    ) {
         c.unused("environment.atmosphere.member", atm.member.as_ref(), &what);
     }
+    source(c, atm, &what);
     let curves = [
         ("pressure", &atm.pressure),
         ("temperature", &atm.temperature),
@@ -385,6 +405,48 @@ fn environment(c: &mut Checker<'_, '_>, spec: &MissionSpec) {
             Some(curve) if custom => c.curve(&key, curve),
             _ => c.unused(&key, curve.as_ref(), &what),
         }
+    }
+}
+
+/// `source` must be a service that sends what `model` reads; `station` goes with Wyoming.
+fn source(c: &mut Checker<'_, '_>, atm: &AtmosphereSpec, what: &str) {
+    let wyoming = atm.source == Some(WeatherSource::Wyoming);
+    if wyoming {
+        c.required(
+            "environment.atmosphere.station",
+            "station",
+            atm.station.as_ref(),
+            what,
+        );
+    } else {
+        c.unused(
+            "environment.atmosphere.station",
+            atm.station.as_ref(),
+            "a source other than \"wyoming\"",
+        );
+    }
+    let Some(source) = atm.source else {
+        return;
+    };
+    let fits = match source {
+        WeatherSource::OpenMeteo => atm.model == AtmosphereModel::OpenMeteo,
+        WeatherSource::Gfs => atm.model == AtmosphereModel::Forecast,
+        WeatherSource::Wyoming => {
+            atm.model == AtmosphereModel::Sounding && atm.format != Some(SoundingFormat::NoaaRuc)
+        }
+    };
+    if !fits {
+        let needs = match source {
+            WeatherSource::OpenMeteo => "model = \"open_meteo\"",
+            WeatherSource::Gfs => "model = \"forecast\"",
+            WeatherSource::Wyoming => "model = \"sounding\" with format = \"wyoming\"",
+        };
+        c.report(
+            "environment.atmosphere.source",
+            ProblemKind::Schema {
+                message: format!("source \"{source}\" sends files read with {needs}"),
+            },
+        );
     }
 }
 

@@ -57,8 +57,8 @@ fn validation_thrust_files_load() {
             loaded += 1;
         }
     }
-    // 6 .eng files and 4 CSV curves (andromeda, juno3, valetudo, hedy).
-    assert_eq!(loaded, 10);
+    // 6 .eng files and 5 CSV curves (andromeda, juno3, valetudo, hedy, camoes).
+    assert_eq!(loaded, 11);
 }
 
 #[test]

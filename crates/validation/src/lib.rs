@@ -16,6 +16,7 @@
 //! - [`PENDING`]: the flights that need a model not built yet, skipped by name with a message.
 //! - [`SUMMARY_PARITY`], [`IMPACT_FRACTION`], [`PARACHUTE_TRIGGER_FRACTION`]: the tolerances
 //!   of the flight summary against `reference.json`, one table for the tests and xtask.
+//! - [`netcdf`]: a netCDF classic writer for the tests that author small weather grids.
 //!
 //! ```
 //! let Some(folder) = karman_validation::folder() else { return };
@@ -23,6 +24,8 @@
 //!     assert!(flight.mission().is_file() && flight.reference().is_file());
 //! }
 //! ```
+
+pub mod netcdf;
 
 use std::fmt;
 use std::path::{Path, PathBuf};
@@ -56,10 +59,7 @@ pub struct Pending {
 
 /// The flights skipped until their feature lands. The issue that builds a feature removes its
 /// flight from this list, and from then on every test and `cargo xtask validate` fly it.
-pub const PENDING: &[Pending] = &[Pending {
-    flight: "camoes",
-    needs: "air brakes with a Rhai controller and an expression trigger (issue 22)",
-}];
+pub const PENDING: &[Pending] = &[];
 
 /// The pending entry of `flight`, if it is skipped.
 pub fn pending(flight: &str) -> Option<&'static Pending> {

@@ -7,6 +7,7 @@ mod merge;
 mod montecarlo;
 mod simulate;
 mod sweep;
+mod weather;
 
 use clap::{Args, Subcommand};
 use karman_mission::Override;
@@ -34,6 +35,9 @@ pub enum Command {
     /// Fly the mission with one input set to each of several values: a table of summaries
     /// and one SVG per chosen series with the variants overlaid.
     Sweep(sweep::SweepArgs),
+    /// Launch-day weather: download a forecast or sounding once (`fetch`), print and plot
+    /// the profile a weather file gives (`show`).
+    Weather(weather::WeatherArgs),
 }
 
 /// The mission file and its `--set` overrides, shared by every command that reads a mission.
@@ -52,6 +56,39 @@ impl MissionArgs {
     /// Loads and validates the mission with its overrides.
     pub fn load(&self) -> Result<karman_mission::Mission, karman_mission::MissionError> {
         karman_mission::load(&self.mission, &self.overrides)
+    }
+}
+
+/// `--fetch`: download the weather file the mission's `source` names before loading it.
+#[derive(Debug, Args)]
+pub struct FetchFlag {
+    /// Download the weather file the mission's `[environment.atmosphere] source` names into
+    /// its `file` first (with FILE.provenance.json beside it), then fly on it.
+    #[cfg(feature = "fetch")]
+    #[arg(long)]
+    pub fetch: bool,
+}
+
+impl FetchFlag {
+    /// Downloads the mission's weather file when `--fetch` was given, reporting on stderr.
+    pub fn run(&self, mission: &MissionArgs) -> anyhow::Result<()> {
+        #[cfg(feature = "fetch")]
+        if self.fetch {
+            let fetched = karman_mission::weather::fetch_source(
+                &mission.mission,
+                &mission.overrides,
+                &weather::fetcher()?,
+            )?;
+            eprintln!(
+                "{}: downloaded {} bytes from {}",
+                fetched.path.display(),
+                fetched.download.bytes.len(),
+                fetched.download.request
+            );
+        }
+        #[cfg(not(feature = "fetch"))]
+        let _ = mission;
+        Ok(())
     }
 }
 
@@ -74,5 +111,6 @@ pub fn run(command: Command) -> anyhow::Result<()> {
         Command::Montecarlo(args) => montecarlo::run(&args),
         Command::Merge(args) => merge::run(&args),
         Command::Sweep(args) => sweep::run(&args),
+        Command::Weather(args) => weather::run(&args),
     }
 }

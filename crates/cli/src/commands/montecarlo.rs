@@ -23,6 +23,8 @@ use std::path::PathBuf;
 pub struct MonteCarloArgs {
     #[command(flatten)]
     pub mission: MissionArgs,
+    #[command(flatten)]
+    pub fetch: super::FetchFlag,
     /// Number of samples (default: the mission's `[dispersion] samples`).
     #[arg(long, value_name = "N")]
     pub samples: Option<u64>,
@@ -46,6 +48,7 @@ pub struct MonteCarloArgs {
 
 /// Runs (or resumes) the study and prints what it did.
 pub fn run(args: &MonteCarloArgs) -> Result<()> {
+    args.fetch.run(&args.mission)?;
     let mission = args.mission.load()?;
     let overrides = StudyOverrides {
         samples: args.samples,

@@ -34,6 +34,8 @@ use crate::plot::{Series, line_chart};
 pub struct SimulateArgs {
     #[command(flatten)]
     pub mission: MissionArgs,
+    #[command(flatten)]
+    pub fetch: super::FetchFlag,
     /// Print the summary as one JSON object (the mission contract's keys).
     #[arg(long)]
     pub json: bool,
@@ -47,6 +49,7 @@ pub struct SimulateArgs {
 
 /// Flies the mission and prints or writes the results.
 pub fn run(args: &SimulateArgs) -> Result<()> {
+    args.fetch.run(&args.mission)?;
     let mission = args.mission.load()?;
     if !mission.spec.stages.is_empty() {
         return run_staged(args, &mission);

@@ -1,6 +1,7 @@
 //! `[environment]` → [`karman_atmos::Environment`]: the site, the datum, gravity and the
 //! atmosphere model (standard, custom, sounding, reanalysis, forecast, ensemble) as RocketPy
-//! 1.13's `Environment` + `set_atmospheric_model` would build them.
+//! 1.13's `Environment` + `set_atmospheric_model` would build them, and Open-Meteo forecasts
+//! saved as JSON (karman's addition: the levels taken as a weather grid's are).
 //!
 //! Choices documented here:
 //! - The mission's `elevation` is the launch elevation for every model. RocketPy replaces it
@@ -19,7 +20,7 @@ use crate::schema::{AtmosphereModel, Curve, Datum, SoundingFormat};
 use crate::{Mission, MissionError};
 use karman_atmos::{
     AtmosError, Atmosphere, EarthModel, Environment, EnvironmentConfig, Gravity, GridDictionary,
-    GridRequest, Profiles, Sounding, WeatherGrid,
+    GridRequest, LevelProfile, OpenMeteo, Profiles, Sounding, WeatherGrid,
 };
 use karman_math::PhysicalConstants;
 
@@ -30,17 +31,25 @@ use karman_math::PhysicalConstants;
 /// [`AtmosError`]: an unreadable data file, a date or site outside a weather file, a malformed
 /// sounding or profile, ...
 pub fn build_environment(mission: &Mission) -> Result<Environment, MissionError> {
+    build_environment_checked(mission).map(|(environment, _)| environment)
+}
+
+/// [`build_environment`] with the warnings about the weather data: a weather grid, sounding
+/// or forecast whose heights do not rise monotonically through its levels (the profiles are
+/// sorted by height, which mixes the levels).
+///
+/// # Errors
+/// As [`build_environment`].
+pub fn build_environment_checked(
+    mission: &Mission,
+) -> Result<(Environment, Vec<String>), MissionError> {
     let constants = PhysicalConstants::SI;
     let env = &mission.spec.environment;
     let model_err = |section: &str, e: AtmosError| mission.model_error(section, e);
-    let datum = match env.datum {
-        None | Some(Datum::Sirgas2000) => karman_atmos::Datum::Sirgas2000,
-        Some(Datum::Wgs84) => karman_atmos::Datum::Wgs84,
-        Some(Datum::Sad69) => karman_atmos::Datum::Sad69,
-        Some(Datum::Nad83) => karman_atmos::Datum::Nad83,
-    };
+    let datum = datum(mission);
     let gravity = env.gravity.map_or(Gravity::Somigliana, Gravity::Constant);
-    let atmosphere = build_atmosphere(mission, datum, &constants)
+    let mut warnings = Vec::new();
+    let atmosphere = build_atmosphere(mission, datum, &constants, &mut warnings)
         .map_err(|e| model_err("environment.atmosphere", e))?;
     let config = EnvironmentConfig {
         earth_model: earth_model(mission, &constants),
@@ -51,7 +60,26 @@ pub fn build_environment(mission: &Mission) -> Result<Environment, MissionError>
         gravity,
         atmosphere,
     };
-    Environment::new(&config, &constants).map_err(|e| model_err("environment", e))
+    let environment =
+        Environment::new(&config, &constants).map_err(|e| model_err("environment", e))?;
+    Ok((environment, warnings))
+}
+
+/// The mission's geodetic datum.
+fn datum(mission: &Mission) -> karman_atmos::Datum {
+    match mission.spec.environment.datum {
+        None | Some(Datum::Sirgas2000) => karman_atmos::Datum::Sirgas2000,
+        Some(Datum::Wgs84) => karman_atmos::Datum::Wgs84,
+        Some(Datum::Sad69) => karman_atmos::Datum::Sad69,
+        Some(Datum::Nad83) => karman_atmos::Datum::Nad83,
+    }
+}
+
+/// The Earth radius (m) that turns the weather data's geopotential heights into geometric
+/// ones: the datum radius at the earth model's latitude, else the site's.
+#[must_use]
+pub fn weather_earth_radius(mission: &Mission) -> f64 {
+    datum(mission).radius(earth_latitude(mission), &PhysicalConstants::SI)
 }
 
 /// `[environment.earth_model]` with its defaults, if present.
@@ -105,6 +133,7 @@ fn build_atmosphere(
     mission: &Mission,
     datum: karman_atmos::Datum,
     constants: &PhysicalConstants,
+    warnings: &mut Vec<String>,
 ) -> Result<Atmosphere, AtmosError> {
     let env = &mission.spec.environment;
     let spec = &env.atmosphere;
@@ -146,6 +175,7 @@ fn build_atmosphere(
                 SoundingFormat::Wyoming => Sounding::parse_wyoming(&text, &name)?,
                 SoundingFormat::NoaaRuc => Sounding::parse_noaa_ruc(&text, &name)?,
             };
+            warn_fold(&sounding.level_profile(radius), warnings);
             Ok(Atmosphere::Profiles(sounding.profiles(radius)?))
         }
         AtmosphereModel::Reanalysis | AtmosphereModel::Forecast | AtmosphereModel::Ensemble => {
@@ -168,10 +198,37 @@ fn build_atmosphere(
                 earth_radius: radius,
                 standard_gravity: constants.standard_gravity,
             };
-            Ok(Atmosphere::Profiles(
-                grid.profile(&request)?.profiles(&name),
-            ))
+            let levels = grid.profile(&request)?;
+            warn_fold(&levels, warnings);
+            Ok(Atmosphere::Profiles(levels.profiles(&name)))
         }
+        AtmosphereModel::OpenMeteo => {
+            let path = data_file()?;
+            let name = path.display().to_string();
+            let unix_time =
+                launch_unix_time(mission).ok_or(AtmosError::DateRequired { file: name.clone() })?;
+            let bytes = karman_math::read_data_file(&path).map_err(|e| AtmosError::Io {
+                file: name.clone(),
+                message: e.to_string(),
+            })?;
+            let forecast = OpenMeteo::parse(&bytes, &name)?;
+            let levels = forecast.profile(unix_time, spec.member.map(|m| m as usize), radius)?;
+            warn_fold(&levels, warnings);
+            Ok(Atmosphere::Profiles(levels.profiles(&name)))
+        }
+    }
+}
+
+/// The warning for heights that fold back through the levels ([`LevelProfile::height_fold`]).
+fn warn_fold(levels: &LevelProfile, warnings: &mut Vec<String>) {
+    if let Some(([p0, h0], [p1, h1])) = levels.height_fold() {
+        warnings.push(format!(
+            "`environment.atmosphere.file`: the heights are not monotonic through the levels: \
+             {:.1} hPa at {h0:.0} m, then {:.1} hPa at {h1:.0} m (the profile is sorted by \
+             height, which mixes these levels; is the file damaged?)",
+            p0 / 100.0,
+            p1 / 100.0
+        ));
     }
 }
 

@@ -24,7 +24,8 @@
 //! Warnings (flyable, but a range-safety officer would ask): the rocket's own
 //! ([`karman_airframe::Rocket::warnings`]), the thrust file's, no fins, a negative static
 //! margin at any time of the powered flight (RocketPy 1.13 warns as well), a thrust-to-weight
-//! ratio below 1 at rail exit, pressure rising with height, strong winds.
+//! ratio below 1 at rail exit, pressure rising with height, weather-data heights that are not
+//! monotonic through the levels, strong winds.
 
 use karman_airframe::Rocket;
 use karman_atmos::Environment;
@@ -32,7 +33,7 @@ use karman_dynamics::FlightSettings;
 use karman_dynamics::equations::coasts_off_rail;
 use karman_propulsion::{Motor, ThrustSource};
 
-use super::environment::build_environment;
+use super::environment::build_environment_checked;
 use super::flight::flight_settings;
 use super::motor::{build_motor_with, thrust_source};
 use super::rocket::build_rocket;
@@ -102,7 +103,7 @@ pub fn prepare(mission: &Mission, seed: u64) -> Result<Models, MissionError> {
                 .to_owned(),
         ));
     }
-    let environment = build_environment(mission)?;
+    let (environment, weather_warnings) = build_environment_checked(mission)?;
     let thrust = thrust_source(mission)?;
     let motor = build_motor_with(mission, &thrust)?;
     let rocket = build_rocket(mission, &motor)?;
@@ -117,7 +118,7 @@ pub fn prepare(mission: &Mission, seed: u64) -> Result<Models, MissionError> {
         };
         mission.model_error(&key, e)
     })?;
-    let mut warnings = Vec::new();
+    let mut warnings = weather_warnings;
     if let ThrustSource::Data(data) = &thrust {
         warnings.extend(data.warnings.iter().map(|w| format!("`motor.thrust`: {w}")));
     }

@@ -24,7 +24,7 @@ pub use drag::{DragEstimateSpec, FinDragSpec, LaunchLugSpec, RailButtonSizeSpec}
 pub use names::{
     AngleUnit, AtmosphereModel, Datum, ExtrapolationKind, FinCrossSection, InterpolationKind,
     MotorCoordinateSystem, MotorKind, NoseKind, RocketCoordinateSystem, SoundingFormat,
-    SurfaceFinish, SurfaceType, TankGeometryKind, TankKindName,
+    SurfaceFinish, SurfaceType, TankGeometryKind, TankKindName, WeatherSource,
 };
 pub use surfaces::{
     AirfoilSpec, EllipticalFinsSpec, FreeFormFinsSpec, NoseSpec, SurfaceSpec, Sweep, TailSpec,
@@ -224,9 +224,16 @@ pub struct AtmosphereSpec {
     /// ...); absent: detected from the file's variable names.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub dictionary: Option<String>,
-    /// Ensemble member index (`ensemble` only).
+    /// Ensemble member index (`ensemble`, `open_meteo`).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub member: Option<u32>,
+    /// The service `karman simulate/montecarlo --fetch` downloads `file` from (the launch
+    /// site and date of `[environment]`); absent: the file is only read.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub source: Option<WeatherSource>,
+    /// Sounding station, WMO number or ICAO id (`source = "wyoming"`).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub station: Option<String>,
     /// Pressure of height ASL, Pa (`custom`); absent: standard atmosphere.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub pressure: Option<Curve>,
@@ -249,6 +256,8 @@ impl Default for AtmosphereSpec {
             format: None,
             dictionary: None,
             member: None,
+            source: None,
+            station: None,
             pressure: None,
             temperature: None,
             wind_u: None,

@@ -118,6 +118,21 @@ names! {
         Forecast => ["forecast"],
         /// One member of an ensemble forecast grid (netCDF).
         Ensemble => ["ensemble"],
+        /// An Open-Meteo pressure-level forecast saved as its JSON (a member of it when the
+        /// file comes from the ensemble API).
+        OpenMeteo => ["open_meteo"],
+    }
+}
+
+names! {
+    /// `environment.atmosphere.source`: the service `--fetch` downloads the file from.
+    pub enum WeatherSource ("weather source") {
+        /// Open-Meteo (forecast API; the ensemble API when `member` is given).
+        OpenMeteo => ["open-meteo"],
+        /// GFS 0.25° through UCAR THREDDS' NetCDF Subset Service.
+        Gfs => ["gfs"],
+        /// University of Wyoming soundings (needs `station`).
+        Wyoming => ["wyoming"],
     }
 }
 
