@@ -17,6 +17,9 @@ use std::path::{Path, PathBuf};
 use std::process::Command;
 
 use anyhow::{Context, Result, bail};
+use karman_mission::dispersion::files::write_atomic;
+use karman_mission::math::csv::{parse_named_columns, read_data_file};
+use karman_mission::math::{Extrapolation, Interpolation, PointOrder, Table1};
 use karman_validation::{IMPACT_FRACTION, SUMMARY_PARITY, Tolerance};
 use serde_json::{Value, json};
 
@@ -37,6 +40,11 @@ const MEASURED_BANDS: &[(&str, f64, &str)] = &[
         "bella_lui",
         0.02,
         "ERA5 weather, constant Cd 0.43; RocketPy +0.3 %",
+    ),
+    (
+        "camoes",
+        0.02,
+        "air brakes replaying the team's actuation open-loop, ERA5 weather; RocketPy −0.40 %",
     ),
     (
         "halcyon",
@@ -111,10 +119,10 @@ pub fn run(root: &Path, args: &[String]) -> Result<()> {
     let (openrocket, openrocket_failures) = openrocket_report(root)?;
     report += &openrocket;
     print!("{report}");
-    std::fs::write(out.join("report.md"), &report)?;
-    std::fs::write(
-        out.join("report.json"),
-        serde_json::to_string_pretty(&report_json(&flights))?,
+    write_atomic(&out.join("report.md"), report.as_bytes())?;
+    write_atomic(
+        &out.join("report.json"),
+        serde_json::to_string_pretty(&report_json(&flights))?.as_bytes(),
     )?;
     write_figures(&flights, &out)?;
     eprintln!(
@@ -203,38 +211,23 @@ fn fly(exe: &Path, dir: &Path, out: &Path) -> Result<Flight> {
     Ok(flight)
 }
 
-/// Reads two named columns of a CSV with `#` comment lines and a header.
+/// Reads two named columns of a CSV with `#` comment lines and a header (karman-math's CSV
+/// reader); a column is found by its name, or by its name followed by a unit (`time_s (s)`).
 pub fn read_series(path: &Path, xcol: &str, ycol: &str) -> Result<Vec<(f64, f64)>> {
-    let text =
-        std::fs::read_to_string(path).with_context(|| format!("cannot read {}", path.display()))?;
-    let mut lines = text
-        .lines()
-        .enumerate()
-        .filter(|(_, l)| !l.trim().is_empty() && !l.starts_with('#'));
-    let (_, header) = lines
-        .next()
-        .with_context(|| format!("{}: no header", path.display()))?;
-    let names: Vec<&str> = header.split(',').map(str::trim).collect();
+    let text = read_data_file(path).with_context(|| format!("cannot read {}", path.display()))?;
+    let (names, columns) = parse_named_columns(&String::from_utf8_lossy(&text), path)?;
     let find = |c: &str| {
         names
             .iter()
-            .position(|n| *n == c || n.starts_with(&format!("{c} ")))
+            .position(|n| n == c || n.starts_with(&format!("{c} ")))
             .with_context(|| format!("{}: no column {c}", path.display()))
     };
     let (ix, iy) = (find(xcol)?, find(ycol)?);
-    let mut out = Vec::new();
-    for (n, line) in lines {
-        let fields: Vec<&str> = line.split(',').map(str::trim).collect();
-        let get = |i: usize| -> Result<f64> {
-            let s = fields
-                .get(i)
-                .with_context(|| format!("{}:{}: short row", path.display(), n + 1))?;
-            s.parse()
-                .with_context(|| format!("{}:{}: bad number {s:?}", path.display(), n + 1))
-        };
-        out.push((get(ix)?, get(iy)?));
-    }
-    Ok(out)
+    Ok(columns[ix]
+        .iter()
+        .copied()
+        .zip(columns[iy].iter().copied())
+        .collect())
 }
 
 fn rel(a: f64, b: f64) -> f64 {
@@ -289,19 +282,17 @@ fn check(f: &Flight) -> Vec<String> {
     failures
 }
 
-/// Linear interpolation of a time series (held at the ends).
-fn interp(series: &[(f64, f64)], t: f64) -> Option<f64> {
-    let first = series.first()?;
-    let last = series.last()?;
-    if t <= first.0 {
-        return Some(first.1);
-    }
-    if t >= last.0 {
-        return Some(last.1);
-    }
-    let i = series.partition_point(|p| p.0 <= t);
-    let (a, b) = (series[i - 1], series[i]);
-    Some(a.1 + (b.1 - a.1) * (t - a.0) / (b.0 - a.0))
+/// The series as a linear table of time, held at its ends (a repeated time is a step), or
+/// `None` for fewer than two points.
+fn series_table(series: &[(f64, f64)]) -> Option<Table1> {
+    let points: Vec<[f64; 2]> = series.iter().map(|&(t, h)| [t, h]).collect();
+    Table1::from_points(
+        &points,
+        Interpolation::Linear,
+        Extrapolation::Constant,
+        PointOrder::SortStably,
+    )
+    .ok()
 }
 
 /// Measured time of apogee (first maximum) and the RMSE of the simulated altitude at the
@@ -315,11 +306,12 @@ fn ascent_fit(f: &Flight) -> Option<(f64, f64)> {
             Some(b) if b.1 >= p.1 => Some(b),
             _ => Some(p),
         })?;
+    let simulated = series_table(&f.simulated)?;
     let ascent: Vec<f64> = f
         .measured
         .iter()
         .filter(|p| p.0 >= 0.0 && p.0 <= t_apo)
-        .filter_map(|&(t, h)| interp(&f.simulated, t).map(|s| (s - h).powi(2)))
+        .map(|&(t, h)| (simulated.eval(t) - h).powi(2))
         .collect();
     if ascent.is_empty() {
         return None;
@@ -543,8 +535,8 @@ fn write_figures(flights: &[Flight], out: &Path) -> Result<()> {
         })
         .collect();
     if !points.is_empty() {
-        let path = out.join("apogee_scatter.svg");
-        let root = SVGBackend::new(&path, (800, 700)).into_drawing_area();
+        let mut svg = String::new();
+        let root = SVGBackend::with_string(&mut svg, (800, 700)).into_drawing_area();
         root.fill(&WHITE).map_err(|e| err(&e))?;
         let top = points.iter().map(|p| p.1.max(p.2)).fold(0.0, f64::max) * 1.1;
         let mut chart = ChartBuilder::on(&root)
@@ -571,14 +563,17 @@ fn write_figures(flights: &[Flight], out: &Path) -> Result<()> {
             }))
             .map_err(|e| err(&e))?;
         root.present().map_err(|e| err(&e))?;
+        drop(chart);
+        drop(root);
+        write_atomic(&out.join("apogee_scatter.svg"), svg.as_bytes())?;
     }
     // Per flight: simulated altitude over the measured one.
     for f in flights
         .iter()
         .filter(|f| !f.measured.is_empty() && !f.simulated.is_empty())
     {
-        let path = out.join(format!("{}_altitude.svg", f.name));
-        let root = SVGBackend::new(&path, (900, 600)).into_drawing_area();
+        let mut svg = String::new();
+        let root = SVGBackend::with_string(&mut svg, (900, 600)).into_drawing_area();
         root.fill(&WHITE).map_err(|e| err(&e))?;
         let all = f.measured.iter().chain(&f.simulated);
         let (t0, t1, h1) = all.fold((0.0_f64, 0.0_f64, 0.0_f64), |(a, b, c), p| {
@@ -613,6 +608,12 @@ fn write_figures(flights: &[Flight], out: &Path) -> Result<()> {
             .draw()
             .map_err(|e| err(&e))?;
         root.present().map_err(|e| err(&e))?;
+        drop(chart);
+        drop(root);
+        write_atomic(
+            &out.join(format!("{}_altitude.svg", f.name)),
+            svg.as_bytes(),
+        )?;
     }
     Ok(())
 }
@@ -622,12 +623,12 @@ mod tests {
     use super::*;
 
     #[test]
-    fn interpolation_holds_ends_and_is_linear_inside() {
-        let s = [(0.0, 0.0), (1.0, 10.0), (3.0, 30.0)];
-        assert!((interp(&s, -1.0).unwrap_or(f64::NAN) - 0.0).abs() < 1e-12);
-        assert!((interp(&s, 2.0).unwrap_or(f64::NAN) - 20.0).abs() < 1e-12);
-        assert!((interp(&s, 9.0).unwrap_or(f64::NAN) - 30.0).abs() < 1e-12);
-        assert!(interp(&[], 1.0).is_none());
+    fn series_hold_their_ends_and_are_linear_inside() {
+        let s = series_table(&[(0.0, 0.0), (1.0, 10.0), (3.0, 30.0)]).expect("a table");
+        assert!((s.eval(-1.0) - 0.0).abs() < 1e-12);
+        assert!((s.eval(2.0) - 20.0).abs() < 1e-12);
+        assert!((s.eval(9.0) - 30.0).abs() < 1e-12);
+        assert!(series_table(&[]).is_none());
     }
 
     #[test]

@@ -118,6 +118,49 @@ fn out_writes_summary_trajectory_kml_and_plots() {
     }
 }
 
+#[test]
+fn two_simultaneous_runs_into_one_folder_leave_whole_files() {
+    let root = Path::new(env!("CARGO_TARGET_TMPDIR")).join("karman-cli/simulate-twice");
+    let _ = std::fs::remove_dir_all(&root);
+    let (alone, shared) = (root.join("alone"), root.join("shared"));
+    let run = |dir: &Path| {
+        std::process::Command::new(env!("CARGO_BIN_EXE_karman"))
+            .args([
+                "simulate",
+                &example_arg(),
+                "--out",
+                dir.to_str().expect("UTF-8"),
+            ])
+            .stdout(std::process::Stdio::null())
+            .stderr(std::process::Stdio::piped())
+            .spawn()
+            .expect("the karman binary runs")
+    };
+    let output = run(&alone).wait_with_output().expect("a run");
+    assert!(output.status.success(), "{}", stderr(&output));
+    // Two runs writing the same files at once: each writes its own temporary files, so both
+    // succeed and every file is one run's whole file (the same bytes as a run alone).
+    let (first, second) = (run(&shared), run(&shared));
+    for child in [first, second] {
+        let output = child.wait_with_output().expect("a run");
+        assert!(output.status.success(), "{}", stderr(&output));
+    }
+    let names = |dir: &Path| {
+        let mut names: Vec<String> = std::fs::read_dir(dir)
+            .expect("the output folder")
+            .map(|e| e.expect("entry").file_name().to_string_lossy().into_owned())
+            .collect();
+        names.sort();
+        names
+    };
+    assert_eq!(names(&shared), names(&alone), "no temporary file left");
+    for name in names(&alone) {
+        let same = std::fs::read(alone.join(&name)).expect("file")
+            == std::fs::read(shared.join(&name)).expect("file");
+        assert!(same, "{name} differs from a run alone");
+    }
+}
+
 /// A full disk for `simulate --out`, simulated portably on Unix: the child runs under a file
 /// size limit (`ulimit -f`, with SIGXFSZ ignored), so every write past the limit fails with
 /// EFBIG as it would with ENOSPC. The error names the file; no partial file is left under its

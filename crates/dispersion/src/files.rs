@@ -7,7 +7,8 @@ use crate::sampling::draw;
 use crate::study::Record;
 use std::fs::{File, OpenOptions};
 use std::io::{BufRead, BufReader, Write as _};
-use std::path::Path;
+use std::path::{Path, PathBuf};
+use std::sync::atomic::{AtomicU64, Ordering};
 
 /// The lock of an output directory: one run (or merge) writes a study at a time.
 pub const LOCK_FILE: &str = "study.lock";
@@ -169,17 +170,29 @@ pub(crate) fn shard_is_complete(scan: &Scan, record: &Record) -> bool {
     scan.rows == record.shard.len(record.samples)
 }
 
-/// Writes `bytes` to `path` atomically: into a temporary file beside it (`.NAME.tmp`),
-/// flushed to the disk, then renamed over `path`. A reader sees the old file or the whole
-/// new one, never a part; on an error (a full disk) the temporary file is removed, `path` is
-/// left as it was, and the error names `path`.
+/// A temporary file name beside `path`, unique to this process and this call:
+/// `.NAME.PID.N.tmp`. Two runs writing into one folder (two `simulate --out` of the same
+/// folder) never share a temporary file, and each run removes only its own.
+pub fn temporary_path(path: &Path) -> PathBuf {
+    static NEXT: AtomicU64 = AtomicU64::new(0);
+    let name = path.file_name().unwrap_or_default().to_string_lossy();
+    let call = NEXT.fetch_add(1, Ordering::Relaxed);
+    path.with_file_name(format!(".{name}.{}.{call}.tmp", std::process::id()))
+}
+
+/// Writes `bytes` to `path` atomically: into a temporary file beside it
+/// ([`temporary_path`], created new), flushed to the disk, then renamed over `path`. A reader
+/// sees the old file or the whole new one, never a part; on an error (a full disk) the
+/// temporary file is removed, `path` is left as it was, and the error names `path`.
 ///
 /// # Errors
 /// [`DispersionError::Io`] naming `path`.
 pub fn write_atomic(path: &Path, bytes: &[u8]) -> Result<(), DispersionError> {
-    let name = path.file_name().unwrap_or_default().to_string_lossy();
-    let temporary = path.with_file_name(format!(".{name}.tmp"));
-    let written = File::create(&temporary)
+    let temporary = temporary_path(path);
+    let written = OpenOptions::new()
+        .write(true)
+        .create_new(true)
+        .open(&temporary)
         .and_then(|mut file| file.write_all(bytes).and_then(|()| file.sync_all()))
         .and_then(|()| std::fs::rename(&temporary, path));
     written.map_err(|e| {

@@ -124,9 +124,7 @@ pub fn merge(out: &Path, dirs: &[PathBuf]) -> Result<Summary, DispersionError> {
     }
     files::write_atomic(&out.join(STUDY_FILE), whole.to_json().as_bytes())?;
     let samples_path = out.join(SAMPLES_FILE);
-    let mut temporary = samples_path.as_os_str().to_owned();
-    temporary.push(".tmp");
-    let temporary = PathBuf::from(temporary);
+    let temporary = files::temporary_path(&samples_path);
     let file = File::create(&temporary).map_err(DispersionError::io(&temporary))?;
     let mut writer = BufWriter::with_capacity(1 << 16, file);
     let header = crate::csv::header(&whole.study().columns());

@@ -71,3 +71,33 @@ fn a_second_run_on_a_directory_being_written_fails_and_touches_nothing() {
     run(&study, &dir, &options(1, Shard::WHOLE), fly).expect("a later run");
     assert_same_outputs(&undisturbed, &dir);
 }
+
+#[test]
+fn simultaneous_atomic_writes_of_one_file_leave_one_whole_file() {
+    use karman_dispersion::files::{temporary_path, write_atomic};
+    let tmp = tempfile::tempdir().expect("temporary directory");
+    let path = tmp.path().join("summary.json");
+    assert_ne!(
+        temporary_path(&path),
+        temporary_path(&path),
+        "one name per write"
+    );
+    let contents: Vec<Vec<u8>> = (0..4u8).map(|k| vec![b'a' + k; 100_000]).collect();
+    std::thread::scope(|scope| {
+        for content in &contents {
+            let path = &path;
+            scope.spawn(move || {
+                for _ in 0..25 {
+                    write_atomic(path, content).expect("a whole write");
+                }
+            });
+        }
+    });
+    let last = std::fs::read(&path).expect("the file");
+    assert!(contents.contains(&last), "a mix of writes");
+    let names: Vec<_> = std::fs::read_dir(tmp.path())
+        .expect("folder")
+        .map(|e| e.expect("entry").file_name())
+        .collect();
+    assert_eq!(names, ["summary.json"], "no temporary file left");
+}

@@ -1,9 +1,10 @@
 //! Sampled processes and resumed flights on the mock rocket: a process that terminates the
-//! flight, one that records values, and `simulate_from` from a mid-flight state.
+//! flight, one that records values, a control value set in the step a parachute deploys in,
+//! and `simulate_from` from a mid-flight state.
 
 use karman_dynamics::{
-    Action, Configuration, FlightSettings, Probe, SampledProcess, Termination, simulate,
-    simulate_from, simulate_with,
+    Action, Configuration, FlightSettings, ParachuteSpec, Probe, SampledProcess, Termination,
+    TriggerKind, simulate, simulate_from, simulate_with,
 };
 
 use crate::mock::{MockAtmosphere, MockRocket};
@@ -71,6 +72,105 @@ fn a_process_returning_terminate_ends_the_flight_at_its_sample_instant() {
         assert!(((r.t * 8.0).round() - r.t * 8.0).abs() < 1e-9, "{}", r.t);
         assert!(r.value > atm.elevation && r.t < 3.0);
     }
+}
+
+/// A process at `rate` Hz that acts once, at its first instant at or after `at`.
+struct Once {
+    rate: f64,
+    at: f64,
+    action: Action,
+    done: bool,
+}
+
+impl SampledProcess for Once {
+    fn rate(&self) -> f64 {
+        self.rate
+    }
+    fn sample(&mut self, probe: &mut Probe<'_>) -> Option<Action> {
+        if self.done || probe.t() < self.at {
+            return None;
+        }
+        self.done = true;
+        Some(self.action)
+    }
+    fn is_done(&self) -> bool {
+        self.done
+    }
+}
+
+#[test]
+fn a_control_set_for_after_the_step_survives_a_deployment_later_in_that_step() {
+    let atm = MockAtmosphere::default();
+    let mut rocket = MockRocket::stable();
+    // A parachute whose own trigger never fires: the second process deploys it.
+    rocket.parachutes = vec![ParachuteSpec {
+        name: "chute".into(),
+        cd_s: 2.0,
+        trigger: TriggerKind::HeightAboveGround(-1.0),
+        sampling_rate: 100.0,
+        lag: 0.5,
+        noise: [0.0; 3],
+        radius: 0.5,
+        height: 0.5,
+        added_mass_coefficient: 1.0,
+    }];
+    let settings = FlightSettings::new(3.0);
+    let (set_at, deploy_at, level) = (3.0, 3.001, 0.7);
+    let fly = |deploy: bool| {
+        let mut processes: Vec<Box<dyn SampledProcess>> = vec![Box::new(Once {
+            rate: 1000.0,
+            at: set_at,
+            action: Action::SetControlAfterStep {
+                index: 0,
+                value: level,
+            },
+            done: false,
+        })];
+        if deploy {
+            processes.push(Box::new(Once {
+                rate: 1000.0,
+                at: deploy_at,
+                action: Action::DeployDevice(0),
+                done: false,
+            }));
+        }
+        simulate_with(&atm, &rocket, &settings, processes).expect("flies")
+    };
+    // Alone, the value acts from the end of the step holding its instant.
+    let alone = fly(false);
+    let first = alone
+        .points
+        .iter()
+        .position(|p| p.configuration.controls[0].to_bits() == level.to_bits())
+        .expect("the value is flown");
+    assert!(alone.points[first - 1].t >= set_at, "from a step end");
+    assert!(
+        alone.points[first..]
+            .iter()
+            .all(|p| p.configuration.controls[0].to_bits() == level.to_bits())
+    );
+    // With the deployment one instant later in the same step, the step ends there and the
+    // value acts from that instant, in the lag phase and under the parachute.
+    let deployed = fly(true);
+    assert_eq!(deployed.parachute_events.len(), 1);
+    let event = &deployed.parachute_events[0];
+    let cut = deployed
+        .points
+        .iter()
+        .position(|p| p.t.to_bits() == event.trigger_time.to_bits())
+        .expect("the step is cut at the deployment");
+    assert!(
+        deployed.points[cut - 1].t < set_at,
+        "both instants are in one step"
+    );
+    let after = &deployed.points[cut + 1..];
+    assert!(after.iter().any(|p| p.configuration.is_deployed(0)));
+    assert!(
+        after
+            .iter()
+            .all(|p| p.configuration.controls[0].to_bits() == level.to_bits()),
+        "the value is lost after the deployment"
+    );
 }
 
 #[test]

@@ -68,6 +68,44 @@ pub fn parse_columns(text: &str, origin: &Path) -> Result<Vec<Vec<f64>>, CsvErro
     Ok(columns)
 }
 
+/// The columns of a text whose first line names them (`time_s,altitude_agl_m`, a trajectory
+/// or a measured flight): the names and the numeric columns in that order, under the rules of
+/// [`parse_columns`], with as many fields in every row as the header names.
+///
+/// # Errors
+/// As [`read_columns`]; [`CsvError::NoHeader`] when the first line holds numbers only.
+pub fn parse_named_columns(
+    text: &str,
+    origin: &Path,
+) -> Result<(Vec<String>, Vec<Vec<f64>>), CsvError> {
+    let text = text.strip_prefix('\u{feff}').unwrap_or(text);
+    let first = text
+        .lines()
+        .enumerate()
+        .map(|(i, l)| (i + 1, l.trim()))
+        .find(|(_, l)| !l.is_empty() && !l.starts_with('#'));
+    let Some((line, header)) = first else {
+        return Err(CsvError::NoData {
+            path: origin.to_path_buf(),
+        });
+    };
+    let names: Vec<String> = fields(header).map(str::to_owned).collect();
+    if names.iter().all(|name| name.parse::<f64>().is_ok()) {
+        return Err(CsvError::NoHeader {
+            path: origin.to_path_buf(),
+            line,
+        });
+    }
+    let rows = parse_rows(text, origin, Some(names.len()))?;
+    let mut columns = vec![Vec::with_capacity(rows.lines.len()); rows.width];
+    for row in rows.values.chunks_exact(rows.width.max(1)) {
+        for (column, value) in columns.iter_mut().zip(row) {
+            column.push(*value);
+        }
+    }
+    Ok((names, columns))
+}
+
 /// Parses two-column text into `[x, y]` points; `origin` names the source in errors.
 ///
 /// # Errors
@@ -225,6 +263,27 @@ fn parse_rows(text: &str, origin: &Path, width: Option<usize>) -> Result<Rows, C
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn named_columns_come_with_their_header() {
+        let text = "# a comment\ntime_s,altitude_agl_m\n0,1\n0.5,2.5\n";
+        let (names, columns) = parse_named_columns(text, Path::new("f.csv")).unwrap();
+        assert_eq!(names, ["time_s", "altitude_agl_m"]);
+        assert_eq!(columns, [vec![0.0, 0.5], vec![1.0, 2.5]]);
+        let e = parse_named_columns("0,1\n1,2\n", Path::new("f.csv")).unwrap_err();
+        assert_eq!(
+            e,
+            CsvError::NoHeader {
+                path: "f.csv".into(),
+                line: 1
+            }
+        );
+        let e = parse_named_columns("t,h\n0,1,2\n", Path::new("f.csv")).unwrap_err();
+        assert!(
+            matches!(e, CsvError::WrongColumnCount { line: 2, .. }),
+            "{e}"
+        );
+    }
 
     fn p() -> &'static Path {
         Path::new("curve.csv")

@@ -174,4 +174,12 @@ pub enum CsvError {
         /// The file.
         path: PathBuf,
     },
+    /// A file read by column names has no header line naming its columns.
+    #[error("{}:{line}: expected a header line naming the columns", path.display())]
+    NoHeader {
+        /// The file.
+        path: PathBuf,
+        /// 1-based line of the first row, numbers instead of names.
+        line: usize,
+    },
 }

@@ -37,3 +37,18 @@ pub fn load_reference(mission: &Path) -> serde_json::Value {
     serde_json::from_str(&text)
         .unwrap_or_else(|e| panic!("{}: reference.json: {e}", mission.display()))
 }
+
+/// The Calisto validation mission's file, or `None` when the validation folder is absent.
+pub fn calisto_path() -> Option<PathBuf> {
+    Some(validation_dir()?.join("calisto/mission.toml"))
+}
+
+/// The Calisto validation mission with `--set` overrides, or `None` when the validation folder
+/// is absent.
+pub fn calisto_with(overrides: &[(&str, &str)]) -> Option<karman_mission::Mission> {
+    let items: Vec<karman_mission::Override> = overrides
+        .iter()
+        .map(|(p, v)| karman_mission::Override::new(p, v).expect("override parses"))
+        .collect();
+    Some(karman_mission::load(&calisto_path()?, &items).expect("Calisto loads with overrides"))
+}

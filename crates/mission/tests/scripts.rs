@@ -356,3 +356,145 @@ fn validate_camoes() {
         );
     }
 }
+
+/// A mission of the repository's `fixtures/airbrakes` folder, flown with RocketPy 1.13's
+/// equations.
+fn fly_airbrakes(name: &str) -> karman_mission::build::flight::FlightRun {
+    let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("../../fixtures/airbrakes")
+        .join(name);
+    let equations = Override::new("flight.equations", "\"rocketpy_1_13\"").expect("override");
+    let mission = karman_mission::load(&path, &[equations]).unwrap_or_else(|e| panic!("{e}"));
+    karman_mission::build::flight::simulate(&mission).unwrap_or_else(|e| panic!("{e}"))
+}
+
+/// The summary of `run` against RocketPy's figures `reference` (summary key, value) within
+/// the tolerances of the validation flights (`karman_validation::SUMMARY_PARITY`).
+fn summary_parity(
+    flight: &str,
+    run: &karman_mission::build::flight::FlightRun,
+    reference: &[(&str, f64)],
+) {
+    let s = serde_json::to_value(run.summary()).expect("summary");
+    for tolerance in karman_validation::SUMMARY_PARITY {
+        let r = reference
+            .iter()
+            .find(|(key, _)| *key == tolerance.key)
+            .map(|(_, value)| *value)
+            .expect("a reference figure for every tolerance");
+        let k = s[tolerance.key].as_f64().expect(tolerance.key);
+        let error = ((k - r) / r).abs();
+        println!("{flight} {}: {:+.4} %", tolerance.key, 100.0 * (k - r) / r);
+        assert!(
+            error < tolerance.relative,
+            "{flight} {}: {k} against {r}",
+            tolerance.key
+        );
+    }
+}
+
+/// RocketPy's "Air Brakes" user guide flown as fixtures/airbrakes/calisto_docs.toml (its
+/// controller, a closed loop on the vertical speed, at 10 Hz, time_overshoot = false, to
+/// apogee). The figures are RocketPy 1.13.0's for exactly that mission: the page's Python
+/// (controller_function, add_air_brakes with air_brakes_cd.csv, Flight(rail_length=5.2,
+/// inclination=85, heading=0, time_overshoot=False, terminate_on_apogee=True)) on the Calisto
+/// validation flight's rocket, motor and ISA atmosphere, run in a scratch script (not kept);
+/// the levels are those of `get_controller_observed_variables()` at the times given.
+#[test]
+fn validate_airbrakes_docs() {
+    let run = fly_airbrakes("calisto_docs.toml");
+    summary_parity(
+        "airbrakes calisto_docs",
+        &run,
+        &[
+            ("apogee_agl_m", 3000.391113819249),
+            ("apogee_time_s", 23.360233082859637),
+            ("out_of_rail_velocity_mps", 26.203027914774793),
+            ("max_speed_mps", 285.9585357012037),
+            ("max_mach", 0.8601636959780354),
+        ],
+    );
+    let record = run.controller.expect("record");
+    // RocketPy: the level ramps at 0.2/s from 1500 m AGL (7.3 s) to 1, clamped.
+    for (t, level) in [
+        (4.0, 0.0),
+        (8.0, 0.14),
+        (12.0, 0.940_000_000_000_000_5),
+        (16.0, 1.0),
+        (22.0, 1.0),
+    ] {
+        let call = record
+            .levels
+            .iter()
+            .find(|r| (r.time - t).abs() < 1e-9)
+            .unwrap_or_else(|| panic!("no call at {t} s"));
+        assert!((call.level - level).abs() < 1e-9, "{t} s: {}", call.level);
+    }
+    // The record: the initial entry, then one per call from burn-out (3.9 s) on.
+    let observed = &record.observed_variables;
+    assert_eq!(observed[0], serde_json::json!([0.0, 0.0, 0.0]));
+    assert!((observed[1][0].as_f64().unwrap() - 3.9).abs() < 1e-9);
+}
+
+/// Calisto with the guide's air brakes driven at 100 Hz by a proportional controller on the
+/// predicted apogee (fixtures/airbrakes/calisto_apogee.toml, time_overshoot left true, to the
+/// ground). The figures are RocketPy 1.13.0's for exactly that mission (apogee_controller.rhai
+/// written in Python line for line, its parachutes with noise zeroed), from a scratch script
+/// (not kept); the levels are those of `get_controller_observed_variables()` at the times
+/// given.
+#[test]
+fn validate_airbrakes_apogee() {
+    let run = fly_airbrakes("calisto_apogee.toml");
+    summary_parity(
+        "airbrakes calisto_apogee",
+        &run,
+        &[
+            ("apogee_agl_m", 3046.7598677104115),
+            ("apogee_time_s", 24.619815488918565),
+            ("out_of_rail_velocity_mps", 26.207270098401477),
+            ("max_speed_mps", 285.9596195562594),
+            ("max_mach", 0.8601644986275152),
+        ],
+    );
+    let s = run.summary();
+    let (x, y) = (-5.116480540228628, 613.1858079097015);
+    let miss = (s.impact_x_m.expect("impact") - x).hypot(s.impact_y_m.expect("impact") - y);
+    println!(
+        "airbrakes calisto_apogee impact: {:.4} % of range",
+        100.0 * miss / x.hypot(y)
+    );
+    assert!(miss / x.hypot(y) < karman_validation::IMPACT_FRACTION);
+    // The level the controller left at its calls, against RocketPy's at the same instants
+    // (the predictions differ by under a metre, the levels by under 0.003 over the climb).
+    let record = run.controller.expect("record");
+    for (t, level) in [
+        (3.9, 0.534_232_095_893_759_9),
+        (4.5, 0.365_837_755_737_968_1),
+        (6.0, 0.236_160_424_120_811_5),
+        (8.0, 0.185_445_564_065_956_22),
+        (12.0, 0.192_117_439_190_098_6),
+        (16.0, 0.188_093_323_149_118_09),
+        (20.0, 0.185_719_302_365_074_33),
+        (24.0, 0.186_919_854_272_991_88),
+    ] {
+        let call = record
+            .levels
+            .iter()
+            .find(|r| (r.time - t).abs() < 1e-9)
+            .unwrap_or_else(|| panic!("no call at {t} s"));
+        assert!(
+            (call.level - level).abs() < 5e-3,
+            "{t} s: {} against {level}",
+            call.level
+        );
+    }
+    // Shut from the apogee on.
+    let apogee = s.apogee_time_s.expect("apogee");
+    assert!(
+        record
+            .levels
+            .iter()
+            .filter(|r| r.time > apogee + 0.01)
+            .all(|r| r.level == 0.0)
+    );
+}

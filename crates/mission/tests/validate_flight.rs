@@ -5,7 +5,7 @@
 //! triggers within 0.1 % of their time. The tolerances are `karman_validation`'s, which
 //! `cargo xtask validate` applies too.
 
-use crate::common::{flight_name, load_reference, validation_missions};
+use crate::common::{calisto_with, flight_name, load_reference, validation_missions};
 use karman_mission::Override;
 use karman_mission::build::flight::simulate;
 use karman_mission::report::flight::{SummaryComparison, flight_summary};
@@ -256,17 +256,6 @@ fn validate_equations_of_motion_vectors() {
         &dp[3..6],
         &[-14.39058946, -191.67246242, -728.42306466],
     );
-}
-
-/// The Calisto validation mission with `--set` overrides, or `None` when the validation folder
-/// is absent.
-fn calisto_with(overrides: &[(&str, &str)]) -> Option<karman_mission::Mission> {
-    let path = crate::common::validation_dir()?.join("calisto/mission.toml");
-    let items: Vec<Override> = overrides
-        .iter()
-        .map(|(p, v)| Override::new(p, v).expect("override parses"))
-        .collect();
-    Some(karman_mission::load(&path, &items).expect("Calisto loads with overrides"))
 }
 
 #[test]

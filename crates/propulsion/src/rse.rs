@@ -6,11 +6,14 @@
 //! attributes `code`, `mfg`, `dia`/`len` (mm), `propWt`/`initWt` (g) and `delays` give the
 //! [`MotorHeader`], and its `<eng-data>` elements the `(t, f)` points, used as they are (no
 //! point is prepended). Unlike RocketPy, a missing `t` or `f` attribute is an error rather
-//! than a silent zero, and times must strictly increase and thrust be non-negative.
+//! than a silent zero, times must not go back (a repeated time is a step) and thrust must be
+//! non-negative.
 //!
-//! The reader is a small tolerant tag scanner, not a validating XML parser: it skips the
-//! prolog, comments, CDATA and declarations, decodes the five predefined entities in
-//! attribute values, and ignores element nesting beyond "inside the first `<engine>`".
+//! The text is parsed by a conforming XML parser (`roxmltree`): a file that is not
+//! well-formed XML is an error naming the line, entities and character references are
+//! decoded, and a UTF-8 byte-order mark is ignored.
+
+use roxmltree::{Document, Node, ParsingOptions};
 
 use crate::PropulsionError;
 use crate::data::{MotorHeader, PointsBuilder, ThrustData, ThrustFormat, parse_number};
@@ -18,74 +21,55 @@ use crate::data::{MotorHeader, PointsBuilder, ThrustData, ThrustFormat, parse_nu
 /// Parses the text of a RockSim `.rse` file; `source_name` names it in errors.
 ///
 /// # Errors
-/// [`PropulsionError::Xml`] for unterminated tags, comments or quotes and a missing
-/// `<engine>` element; [`PropulsionError::Malformed`] for a missing or non-numeric
-/// attribute; [`PropulsionError::TimeNotIncreasing`], [`PropulsionError::NegativeThrust`],
+/// [`PropulsionError::Xml`] for text that is not well-formed XML and a missing `<engine>`
+/// element; [`PropulsionError::Malformed`] for a missing or non-numeric attribute;
+/// [`PropulsionError::TimeNotIncreasing`], [`PropulsionError::NegativeThrust`],
 /// [`PropulsionError::TooFewPoints`] as for the other formats.
 pub fn parse(text: &str, source_name: &str) -> Result<ThrustData, PropulsionError> {
-    let mut scanner = Scanner {
-        text,
-        pos: 0,
-        line: 1,
-        source_name,
+    let text = text.strip_prefix('\u{feff}').unwrap_or(text);
+    let xml_error = |line: u32, reason: String| PropulsionError::Xml {
+        source_name: source_name.to_owned(),
+        line: line as usize,
+        reason,
     };
-    let mut header: Option<MotorHeader> = None;
+    // RockSim files may carry a document type declaration.
+    let options = ParsingOptions {
+        allow_dtd: true,
+        ..ParsingOptions::default()
+    };
+    let document = Document::parse_with_options(text, options)
+        .map_err(|e| xml_error(e.pos().row, e.to_string()))?;
+    let line = |node: Node<'_, '_>| document.text_pos_at(node.range().start).row as usize;
+    let Some(engine) = document.descendants().find(|n| n.has_tag_name("engine")) else {
+        let root = document
+            .text_pos_at(document.root_element().range().start)
+            .row;
+        return Err(xml_error(root, "no <engine> element".to_owned()));
+    };
+    let header = read_header(engine, source_name, line(engine))?;
     let mut points = PointsBuilder::new(source_name, ThrustFormat::Rse);
-    while let Some(tag) = scanner.next_tag()? {
-        match (&tag, header.is_some()) {
-            (
-                Tag::Start {
-                    name,
-                    attributes,
-                    line,
-                    self_closing,
-                },
-                false,
-            ) if name == "engine" => {
-                header = Some(read_header(attributes, source_name, *line)?);
-                if *self_closing {
-                    break;
-                }
-            }
-            (
-                Tag::Start {
-                    name,
-                    attributes,
-                    line,
-                    ..
-                },
-                true,
-            ) if name == "eng-data" => {
-                let time = required(attributes, "t", source_name, *line)?;
-                let thrust = required(attributes, "f", source_name, *line)?;
-                if thrust < 0.0 {
-                    return Err(points.negative_thrust(*line, thrust));
-                }
-                points.push(*line, time, thrust)?;
-            }
-            (Tag::End { name }, true) if name == "engine" => break,
-            _ => {}
+    for point in engine.descendants().filter(|n| n.has_tag_name("eng-data")) {
+        let at = line(point);
+        let time = required(point, "t", source_name, at)?;
+        let thrust = required(point, "f", source_name, at)?;
+        if thrust < 0.0 {
+            return Err(points.negative_thrust(at, thrust));
         }
+        points.push(at, time, thrust)?;
     }
-    if header.is_none() {
-        return Err(PropulsionError::Xml {
-            source_name: source_name.to_owned(),
-            line: scanner.line,
-            reason: "no <engine> element".to_owned(),
-        });
-    }
-    points.finish(header, 2)
+    points.finish(Some(header), 2)
 }
 
 /// The motor description from the `<engine>` attributes.
 fn read_header(
-    attributes: &[(String, String)],
+    engine: Node<'_, '_>,
     source_name: &str,
     line: usize,
 ) -> Result<MotorHeader, PropulsionError> {
-    let text = |key: &str| attribute(attributes, key).unwrap_or("").to_owned();
+    let text = |key: &str| engine.attribute(key).unwrap_or("").to_owned();
     let scaled = |key: &str, factor: f64| -> Result<Option<f64>, PropulsionError> {
-        attribute(attributes, key)
+        engine
+            .attribute(key)
             .map(|v| parse_number(source_name, line, v).map(|x| x / factor))
             .transpose()
     };
@@ -100,20 +84,13 @@ fn read_header(
     })
 }
 
-fn attribute<'a>(attributes: &'a [(String, String)], key: &str) -> Option<&'a str> {
-    attributes
-        .iter()
-        .find(|(k, _)| k == key)
-        .map(|(_, v)| v.as_str())
-}
-
 fn required(
-    attributes: &[(String, String)],
+    point: Node<'_, '_>,
     key: &'static str,
     source_name: &str,
     line: usize,
 ) -> Result<f64, PropulsionError> {
-    match attribute(attributes, key) {
+    match point.attribute(key) {
         Some(v) => parse_number(source_name, line, v),
         None => Err(PropulsionError::Malformed {
             source_name: source_name.to_owned(),
@@ -122,162 +99,6 @@ fn required(
             reason: "missing attribute",
         }),
     }
-}
-
-/// A start or end tag.
-enum Tag {
-    Start {
-        name: String,
-        attributes: Vec<(String, String)>,
-        line: usize,
-        self_closing: bool,
-    },
-    End {
-        name: String,
-    },
-}
-
-/// Walks the text tag by tag, counting lines.
-struct Scanner<'a> {
-    text: &'a str,
-    pos: usize,
-    line: usize,
-    source_name: &'a str,
-}
-
-impl Scanner<'_> {
-    fn error(&self, line: usize, reason: &str) -> PropulsionError {
-        PropulsionError::Xml {
-            source_name: self.source_name.to_owned(),
-            line,
-            reason: reason.to_owned(),
-        }
-    }
-
-    /// Moves to byte offset `to` (a char boundary), counting the newlines passed.
-    fn advance(&mut self, to: usize) {
-        self.line += self.text[self.pos..to].matches('\n').count();
-        self.pos = to;
-    }
-
-    /// Skips past `terminator` (searched from the current position).
-    fn skip_past(&mut self, terminator: &str, what: &str) -> Result<(), PropulsionError> {
-        match self.text[self.pos..].find(terminator) {
-            Some(offset) => {
-                self.advance(self.pos + offset + terminator.len());
-                Ok(())
-            }
-            None => Err(self.error(self.line, &format!("unterminated {what}"))),
-        }
-    }
-
-    fn next_tag(&mut self) -> Result<Option<Tag>, PropulsionError> {
-        loop {
-            let Some(offset) = self.text[self.pos..].find('<') else {
-                return Ok(None);
-            };
-            self.advance(self.pos + offset);
-            let rest = &self.text[self.pos..];
-            if rest.starts_with("<!--") {
-                self.skip_past("-->", "comment")?;
-            } else if rest.starts_with("<![CDATA[") {
-                self.skip_past("]]>", "CDATA section")?;
-            } else if rest.starts_with("<?") {
-                self.skip_past("?>", "processing instruction")?;
-            } else if rest.starts_with("<!") {
-                self.skip_past(">", "declaration")?;
-            } else {
-                return self.tag().map(Some);
-            }
-        }
-    }
-
-    /// Reads the tag starting at the current `<`.
-    fn tag(&mut self) -> Result<Tag, PropulsionError> {
-        let line = self.line;
-        let body_start = self.pos + 1;
-        // Find the closing '>' outside quotes.
-        let mut quote: Option<char> = None;
-        let mut end = None;
-        for (i, c) in self.text[body_start..].char_indices() {
-            match (quote, c) {
-                (Some(q), c) if c == q => quote = None,
-                (Some(_), _) => {}
-                (None, '"' | '\'') => quote = Some(c),
-                (None, '>') => {
-                    end = Some(body_start + i);
-                    break;
-                }
-                (None, '<') => return Err(self.error(line, "'<' inside a tag")),
-                _ => {}
-            }
-        }
-        let Some(end) = end else {
-            return Err(self.error(
-                line,
-                if quote.is_some() {
-                    "unterminated attribute value"
-                } else {
-                    "unterminated tag"
-                },
-            ));
-        };
-        let body = &self.text[body_start..end];
-        self.advance(end + 1);
-        if let Some(name) = body.strip_prefix('/') {
-            return Ok(Tag::End {
-                name: name.trim().to_owned(),
-            });
-        }
-        let (body, self_closing) = match body.strip_suffix('/') {
-            Some(b) => (b, true),
-            None => (body, false),
-        };
-        let name_end = body.find(|c: char| c.is_whitespace()).unwrap_or(body.len());
-        let name = body[..name_end].to_owned();
-        if name.is_empty() {
-            return Err(self.error(line, "tag without a name"));
-        }
-        let attributes = parse_attributes(&body[name_end..])
-            .ok_or_else(|| self.error(line, "malformed attribute list"))?;
-        Ok(Tag::Start {
-            name,
-            attributes,
-            line,
-            self_closing,
-        })
-    }
-}
-
-/// Parses `key="value" key2='value'` pairs; `None` when the list is malformed.
-fn parse_attributes(mut s: &str) -> Option<Vec<(String, String)>> {
-    let mut out = Vec::new();
-    loop {
-        s = s.trim_start();
-        if s.is_empty() {
-            return Some(out);
-        }
-        let eq = s.find('=')?;
-        let key = s[..eq].trim();
-        if key.is_empty() || key.contains(char::is_whitespace) {
-            return None;
-        }
-        let after = s[eq + 1..].trim_start();
-        let quote = after.chars().next().filter(|c| *c == '"' || *c == '\'')?;
-        let value_part = &after[1..];
-        let close = value_part.find(quote)?;
-        out.push((key.to_owned(), decode_entities(&value_part[..close])));
-        s = &value_part[close + 1..];
-    }
-}
-
-/// Decodes the five predefined XML entities.
-fn decode_entities(s: &str) -> String {
-    s.replace("&lt;", "<")
-        .replace("&gt;", ">")
-        .replace("&quot;", "\"")
-        .replace("&apos;", "'")
-        .replace("&amp;", "&")
 }
 
 #[cfg(test)]
@@ -303,6 +124,8 @@ mod tests {
 
     #[test]
     fn reads_first_engine() {
+        let with_bom = format!("\u{feff}{SAMPLE}");
+        assert_eq!(parse(&with_bom, "m.rse"), parse(SAMPLE, "m.rse"));
         let d = parse(SAMPLE, "m.rse").unwrap();
         assert_eq!(d.times, vec![0.0, 0.5, 3.9]);
         assert_eq!(d.thrusts, vec![0.0, 1800.0, 0.0]);
@@ -336,6 +159,10 @@ mod tests {
         assert!(matches!(e, PropulsionError::Xml { line: 1, .. }), "{e}");
         let e = parse("<a><!-- never closed", "m.rse").unwrap_err();
         assert!(matches!(e, PropulsionError::Xml { .. }), "{e}");
+        // Not well-formed: a mismatched end tag, named by its line.
+        let bad = SAMPLE.replace("</data>", "</dta>");
+        let e = parse(&bad, "m.rse").unwrap_err();
+        assert!(matches!(e, PropulsionError::Xml { line: 11, .. }), "{e}");
         let e = parse("<a></a>", "m.rse").unwrap_err();
         assert!(e.to_string().contains("no <engine>"), "{e}");
         let e = parse("<engine><data><eng-data f=\"1\"/></data></engine>", "m.rse").unwrap_err();

@@ -57,8 +57,8 @@ fn validation_thrust_files_load() {
             loaded += 1;
         }
     }
-    // 6 .eng files and 4 CSV curves (andromeda, juno3, valetudo, hedy).
-    assert_eq!(loaded, 10);
+    // 6 .eng files and 5 CSV curves (andromeda, juno3, valetudo, hedy, camoes).
+    assert_eq!(loaded, 11);
 }
 
 #[test]
@@ -80,7 +80,7 @@ fn bad_files_name_file_and_line() {
     let rse = dir.join("bad.rse");
     std::fs::write(
         &rse,
-        "<engine code=\"x\">\n<data>\n<eng-data t=\"1\" f=\"-3\"/>\n",
+        "<engine code=\"x\">\n<data>\n<eng-data t=\"1\" f=\"-3\"/>\n</data></engine>\n",
     )
     .expect("write");
     let e = ThrustData::load(&rse).unwrap_err();
@@ -88,6 +88,15 @@ fn bad_files_name_file_and_line() {
         matches!(e, PropulsionError::NegativeThrust { line: 3, .. }),
         "{e}"
     );
+    // Not well-formed XML (never closed): an XML error naming the file.
+    std::fs::write(
+        &rse,
+        "<engine code=\"x\">\n<data>\n<eng-data t=\"1\" f=\"3\"/>\n",
+    )
+    .expect("write");
+    let e = ThrustData::load(&rse).unwrap_err();
+    assert!(matches!(e, PropulsionError::Xml { .. }), "{e}");
+    assert!(e.to_string().contains("bad.rse:"), "{e}");
     let missing = dir.join("missing.eng");
     let e = ThrustData::load(&missing).unwrap_err();
     assert!(

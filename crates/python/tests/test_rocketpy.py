@@ -106,3 +106,26 @@ def test_callable_curves_and_gravity_are_named(validation):
     constant = rocketpy.Environment(gravity=9.81, elevation=1400)
     assert mission_dict(constant, rocket, **kwargs)["environment"]["gravity"] == 9.81
     assert math.isfinite(from_rocketpy(constant, rocket, **kwargs).simulate().apogee_agl_m)
+
+
+@pytest.mark.parametrize("weathercock", [0.0, 1.0])
+def test_three_dof_parity(weathercock, validation):
+    """RocketPy's 3-DOF mode (``simulation_mode="3 DOF"``, the rocket's ``weathercock_coeff``
+    read as RocketPy's 3-DOF equations read it) flies in karman's within 0.1 %."""
+    env, rocket, kwargs = rocketpy_flights.calisto(validation)
+    if weathercock:
+        rocket.weathercock_coeff = weathercock
+    kwargs = {**kwargs, "simulation_mode": "3 DOF"}
+    data = mission_dict(env, rocket, **kwargs)["flight"]
+    assert data["simulation_mode"] == "3 DOF"
+    assert data.get("weathercock_coeff", 0.0) == weathercock
+    reference = rocketpy.Flight(rocket=rocket, environment=env, **kwargs)
+    flight = from_rocketpy(env, rocket, **kwargs).simulate()
+    for key, value in {
+        "apogee_agl_m": reference.apogee - env.elevation,
+        "apogee_time_s": reference.apogee_time,
+    }.items():
+        ours = getattr(flight, key)
+        assert relative_error(ours, value) < TOLERANCE, f"3 DOF {key}: {ours} vs {value}"
+    with pytest.raises(UnsupportedError, match="flight.simulation_mode"):
+        mission_dict(env, rocket, **{**kwargs, "simulation_mode": "2 DOF"})

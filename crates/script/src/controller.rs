@@ -336,6 +336,9 @@ pub struct Controller {
     environment: EnvironmentHandle,
     observed: Vec<Dynamic>,
     levels: Vec<LevelRecord>,
+    /// The scope the calls run in, kept between calls for its storage: a call pushes the
+    /// arguments and its local variables and the scope is rewound to empty after it.
+    scope: Scope<'static>,
 }
 
 impl fmt::Debug for Controller {
@@ -414,6 +417,7 @@ impl Controller {
             environment: EnvironmentHandle(setup.environment),
             observed,
             levels: Vec::new(),
+            scope: Scope::new(),
         })
     }
 
@@ -464,12 +468,11 @@ impl Controller {
         if self.parameters >= 8 {
             args.push(Dynamic::from(self.environment.clone()));
         }
-        let mut scope = Scope::new();
         let returned = self
             .engine
             .call_fn_with_options::<Dynamic>(
-                CallFnOptions::new().eval_ast(false),
-                &mut scope,
+                CallFnOptions::new().eval_ast(false).rewind_scope(true),
+                &mut self.scope,
                 &self.ast,
                 CONTROLLER_FUNCTION,
                 args,

@@ -59,10 +59,7 @@ pub struct Pending {
 
 /// The flights skipped until their feature lands. The issue that builds a feature removes its
 /// flight from this list, and from then on every test and `cargo xtask validate` fly it.
-pub const PENDING: &[Pending] = &[Pending {
-    flight: "camoes",
-    needs: "air brakes with a Rhai controller and an expression trigger (issue 22)",
-}];
+pub const PENDING: &[Pending] = &[];
 
 /// The pending entry of `flight`, if it is skipped.
 pub fn pending(flight: &str) -> Option<&'static Pending> {

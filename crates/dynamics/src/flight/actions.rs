@@ -63,6 +63,22 @@ pub struct Record {
     pub value: f64,
 }
 
+/// The first action of a step's samples ([`Run::sample_processes`]).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(super) struct Acted {
+    /// The process that acted.
+    pub process: usize,
+    /// Its action.
+    pub action: Action,
+    /// The sampling instant, s.
+    pub t: f64,
+    /// A control value `(index, value)` set for after the step
+    /// ([`Action::SetControlAfterStep`]) at an earlier instant of the same step: the action
+    /// ends the step at its instant, so the value acts from there, in the phases the action
+    /// starts and in those already scheduled.
+    pub control: Option<(usize, f64)>,
+}
+
 impl Run<'_> {
     /// Stores a recorded value.
     pub(super) fn record(&mut self, process: usize, channel: usize, value: f64, t: f64) {
@@ -74,19 +90,39 @@ impl Run<'_> {
         });
     }
 
-    /// Carries out `action` of process `p` at `t` inside the last step of phase `index`:
-    /// the step is cut there, and the state the next phase starts from is returned.
-    #[allow(clippy::too_many_arguments)]
+    /// Carries out the action `acted` inside the last step of phase `index`: the step is cut
+    /// at its instant (except for [`Action::SetControlAfterStep`]), and the state the next
+    /// phase starts from is returned.
     pub(super) fn act<F: FnMut(f64, &State) -> State>(
         &mut self,
         integ: &mut RungeKutta<13, F>,
-        p: usize,
-        action: Action,
+        acted: Acted,
         index: usize,
         phase: &Phase,
         kind: PhaseKind,
-        t: f64,
     ) -> (f64, State) {
+        let Acted {
+            process: p,
+            action,
+            t,
+            control,
+        } = acted;
+        // A value set earlier in the step acts from the action's instant on.
+        let controlled;
+        let phase = match control.and_then(|(c, value)| {
+            let configuration = phase.configuration.with_control(c, value)?;
+            Some((c, value, configuration))
+        }) {
+            Some((c, value, configuration)) => {
+                self.set_later_controls(index, c, value);
+                controlled = Phase {
+                    configuration,
+                    ..*phase
+                };
+                &controlled
+            }
+            None => phase,
+        };
         let cut = match action {
             // The step stands: the next phase starts from its end point.
             Action::SetControlAfterStep { .. } => (integ.t(), *integ.y()),
@@ -103,12 +139,7 @@ impl Run<'_> {
             } => {
                 let set = |phase: &Phase| phase.configuration.with_control(control, value);
                 if let Some(configuration) = set(phase) {
-                    // The phases already scheduled fly the new value too.
-                    for later in &mut self.phases[index + 1..] {
-                        if later.kind.is_some() && control < MAX_CONTROLS {
-                            later.configuration.controls[control] = value;
-                        }
-                    }
+                    self.set_later_controls(index, control, value);
                     insert_phase(
                         &mut self.phases,
                         index + 1,
@@ -126,11 +157,7 @@ impl Run<'_> {
                 value,
             } => {
                 if let Some(configuration) = phase.configuration.with_control(control, value) {
-                    for later in &mut self.phases[index + 1..] {
-                        if later.kind.is_some() && control < MAX_CONTROLS {
-                            later.configuration.controls[control] = value;
-                        }
-                    }
+                    self.set_later_controls(index, control, value);
                     // A phase at the step end, unless the next phase starts there anyway.
                     if self.phases.get(index + 1).is_none_or(|next| next.t > t) {
                         insert_phase(
@@ -154,6 +181,15 @@ impl Run<'_> {
             Action::Record { channel, value } => self.record(p, channel, value, t),
         }
         cut
+    }
+
+    /// The phases already scheduled after phase `index` fly control `control` at `value`.
+    fn set_later_controls(&mut self, index: usize, control: usize, value: f64) {
+        for later in &mut self.phases[index + 1..] {
+            if later.kind.is_some() && control < MAX_CONTROLS {
+                later.configuration.controls[control] = value;
+            }
+        }
     }
 
     /// Schedules a triggered parachute: an optional lag phase with the current equations,

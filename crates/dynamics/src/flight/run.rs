@@ -336,9 +336,7 @@ pub(super) fn fly<'a, A: AtmosphereModel, V: VehicleModel>(
                         #[cfg(test)]
                         Sampling::Direct => run.sample_every_instant(&mut integ, &phase),
                     };
-                    acted.map(|(p, action, t_action)| {
-                        run.act(&mut integ, p, action, index, &phase, kind, t_action)
-                    })
+                    acted.map(|acted| run.act(&mut integ, acted, index, &phase, kind))
                 }
             };
             if let Some((t_event, y_event)) = outcome {

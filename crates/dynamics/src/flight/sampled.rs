@@ -12,6 +12,7 @@
 //! are only counted ([`SampledProcess::pass_over`]), not sampled.
 
 use super::Action;
+use super::actions::Acted;
 use super::phases::Phase;
 use super::run::Run;
 use crate::integrator::RungeKutta;
@@ -238,13 +239,15 @@ impl Run<'_> {
     /// ([`SampledProcess::cannot_act`], [`SampledProcess::first_candidate`]); when none may
     /// act the step's instants are only passed over; otherwise they are evaluated in order,
     /// those before a process's first candidate only passed over. Recorded values
-    /// ([`Action::Record`]) are stored on the way and do not end the step.
+    /// ([`Action::Record`]) are stored on the way and do not end the step; nor does a value
+    /// set for after the step ([`Action::SetControlAfterStep`]), which goes with the action
+    /// that ends the step, if one does ([`Acted::control`]).
     pub(super) fn sample_processes<F: FnMut(f64, &State) -> State>(
         &mut self,
         integ: &mut RungeKutta<13, F>,
         phase: &Phase,
         rail: bool,
-    ) -> Option<(usize, Action, f64)> {
+    ) -> Option<Acted> {
         if self.active.is_empty() {
             return None;
         }
@@ -371,12 +374,22 @@ impl Run<'_> {
         for range in &self.instants {
             self.processes[range.p].end_step();
         }
-        // A value set for after the step takes effect at its end, unless an action ended the
-        // step earlier (the later phases then start from that action's instant).
-        acted.or_else(|| {
-            after_step
-                .map(|(p, index, value)| (p, Action::SetControlAfterStep { index, value }, t_end))
-        })
+        // A value set for after the step takes effect at its end, or, when an action ended the
+        // step earlier, from that action's instant (the later phases start there).
+        match acted {
+            Some((process, action, t)) => Some(Acted {
+                process,
+                action,
+                t,
+                control: after_step.map(|(_, index, value)| (index, value)),
+            }),
+            None => after_step.map(|(process, index, value)| Acted {
+                process,
+                action: Action::SetControlAfterStep { index, value },
+                t: t_end,
+                control: None,
+            }),
+        }
     }
 }
 

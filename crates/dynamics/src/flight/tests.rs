@@ -3,10 +3,11 @@
 
 use karman_model::{ParachuteSpec, TriggerKind};
 
+use super::actions::Acted;
 use super::phases::Phase;
 use super::run::{Run, Sampling, Start, fly};
 use super::sampled::{Probe, node_key};
-use super::{Action, Flight, IntegrationStats, acceleration, evaluate};
+use super::{Flight, IntegrationStats, acceleration, evaluate};
 use crate::equations::{Cursors, Equations};
 use crate::integrator::RungeKutta;
 use crate::settings::FlightSettings;
@@ -21,7 +22,7 @@ impl Run<'_> {
         &mut self,
         integ: &mut RungeKutta<13, F>,
         phase: &Phase,
-    ) -> Option<(usize, Action, f64)> {
+    ) -> Option<Acted> {
         if self.active.is_empty() {
             return None;
         }
@@ -61,7 +62,12 @@ impl Run<'_> {
                 .map_or(t, |m| m.0);
             let mut probe = Probe::new(t_node, integ);
             if let Some(action) = self.processes[p].sample_directly(&mut probe) {
-                return Some((p, action, t_node));
+                return Some(Acted {
+                    process: p,
+                    action,
+                    t: t_node,
+                    control: None,
+                });
             }
         }
         None

@@ -22,6 +22,9 @@ What the adapter reads (attributes of RocketPy 1.13's objects):
   drag inputs as given (file, points, constant or a tabulated ``Function``), the motor
   position, rail buttons, nose cones, trapezoidal/elliptical/free-form fins (with airfoils),
   tails and parachutes in the order they were added.
+- ``Flight``'s arguments: rail length, inclination, heading, ``max_time``, ``max_time_step``,
+  ``terminate_on_apogee``, tolerances and ``simulation_mode`` (``"3 DOF"`` with the rocket's
+  ``weathercock_coeff`` attribute, which RocketPy's 3-DOF equations read).
 
 Anything else that would change the flight — callables (a thrust, drag, trigger or gravity
 given as Python code), hybrid/liquid motors, air brakes, eccentricities, non-default solver
@@ -70,7 +73,6 @@ _FLIGHT_DEFAULTS: dict[str, Any] = {
     "time_overshoot": True,
     "equations_of_motion": "standard",
     "ode_solver": "LSODA",
-    "simulation_mode": "6 DOF",
 }
 _FLIGHT_IGNORED = ("verbose", "name")
 
@@ -395,6 +397,12 @@ def _parachute(chute: Any) -> dict[str, Any]:
 
 
 def _rocket(rocket: Any) -> dict[str, Any]:
+    if type(rocket).__name__ == "PointMassRocket":
+        raise UnsupportedError(
+            "rocket",
+            "a PointMassRocket (no surfaces or inertia); karman's 3-DOF mode flies a Rocket:"
+            ' pass simulation_mode="3 DOF"',
+        )
     for name in (
         "cm_eccentricity_x",
         "cm_eccentricity_y",
@@ -476,12 +484,22 @@ def _rocket(rocket: Any) -> dict[str, Any]:
     return out
 
 
-def _flight(kwargs: dict[str, Any]) -> dict[str, Any]:
+def _flight(kwargs: dict[str, Any], rocket: Any) -> dict[str, Any]:
     if "rail_length" not in kwargs:
         raise UnsupportedError("flight.rail_length", "Flight needs rail_length")
     out: dict[str, Any] = {}
     for key, value in kwargs.items():
-        if key in _FLIGHT_KEYS:
+        if key == "simulation_mode":
+            if value not in ("6 DOF", "3 DOF"):
+                raise UnsupportedError("flight.simulation_mode", f"{value!r}")
+            if value == "3 DOF":
+                out["simulation_mode"] = value
+                # RocketPy's 3-DOF equations read the rocket's attribute (PointMassRocket's
+                # argument) with getattr, default 0.
+                weathercock = getattr(rocket, "weathercock_coeff", 0.0)
+                if weathercock != 0.0:
+                    out["weathercock_coeff"] = _number(weathercock, "rocket.weathercock_coeff")
+        elif key in _FLIGHT_KEYS:
             if value is None and key == "atol":
                 continue
             if key == "terminate_on_apogee":
@@ -518,7 +536,7 @@ def mission_dict(environment: Any, rocket: Any, **flight_kwargs: Any) -> dict[st
         "environment": _environment(environment),
         "motor": _motor(rocket.motor),
         "rocket": _rocket(rocket),
-        "flight": _flight(flight_kwargs),
+        "flight": _flight(flight_kwargs, rocket),
     }
     name = flight_kwargs.get("name")
     if isinstance(name, str) and name != "Flight":
