@@ -117,12 +117,24 @@ def test_a_python_thread_runs_during_a_study(example):
 
 def test_ctrl_c_stops_a_study_that_then_resumes(example, tmp_path):
     out = tmp_path / "study"
-    timer = threading.Timer(0.3, _thread.interrupt_main)
+
+    def interrupt_once_flying():
+        # Ctrl-C while samples are being flown: once samples.csv holds rows (a fixed delay
+        # could land before the run starts on a slow machine).
+        csv = out / "samples.csv"
+        deadline = time.monotonic() + 30.0
+        while time.monotonic() < deadline:
+            if csv.exists() and csv.stat().st_size > 4096:
+                break
+            time.sleep(0.01)
+        _thread.interrupt_main()
+
+    timer = threading.Thread(target=interrupt_once_flying)
     timer.start()
     started = time.perf_counter()
     with pytest.raises(KeyboardInterrupt):
         example.montecarlo(samples=100_000, seed=3, threads=2, out=out, progress=False)
-    assert time.perf_counter() - started < 30.0
+    assert time.perf_counter() - started < 60.0
     timer.join()
     rows = (out / "samples.csv").read_text().count("\n") - 1
     assert 0 < rows < 100_000
