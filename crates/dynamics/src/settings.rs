@@ -63,6 +63,21 @@ pub struct FlightSettings {
     /// thrust exceeds weight, so the controller would otherwise grow the step without bound
     /// and skip the burn (physics.md §10.4).
     pub rail_max_time_step: f64,
+    /// Largest step where a sampled process that sets a control input needs short steps, s
+    /// (default ∞: no bound). A control input set "after the step"
+    /// ([`Action::SetControlAfterStep`], RocketPy's `time_overshoot`) acts from the end of
+    /// the solver step that holds the sample (physics.md §16.4), so a mission with a
+    /// controller bounds the steps of the phases whose equations read the control inputs
+    /// (the free flight, [`PhaseKind::reads_controls`]) by its sampling interval, keeping
+    /// that delay as short as RocketPy's LSODA steps make it. The steps that end the flight's
+    /// sampling early are bounded too, since their instants are not sampled: the rail's
+    /// (rail exit) and the one that reaches the ground (a descent step longer than the bound
+    /// that reaches the ground is integrated again with bounded steps). The rest of the
+    /// parachute descents, where the controls act on nothing, keep the solver's steps.
+    ///
+    /// [`PhaseKind::reads_controls`]: crate::flight::PhaseKind::reads_controls
+    /// [`Action::SetControlAfterStep`]: crate::flight::Action::SetControlAfterStep
+    pub control_max_time_step: f64,
     /// Smallest step before the flight fails, s (default 1e-12).
     pub min_time_step: f64,
     /// Step budget per flight phase (default 200 000).
@@ -105,6 +120,7 @@ impl FlightSettings {
             atol: DEFAULT_ATOL,
             max_time_step: f64::INFINITY,
             rail_max_time_step: 0.01,
+            control_max_time_step: f64::INFINITY,
             min_time_step: 1e-12,
             max_steps_per_phase: 200_000,
             noise_seed: 0,
@@ -171,6 +187,8 @@ impl FlightSettings {
         check("max_time_step", s, s > 0.0, "must be positive")?;
         let s = self.rail_max_time_step;
         check("rail_max_time_step", s, s > 0.0, "must be positive")?;
+        let s = self.control_max_time_step;
+        check("control_max_time_step", s, s > 0.0, "must be positive")?;
         let s = self.min_time_step;
         check(
             "min_time_step",

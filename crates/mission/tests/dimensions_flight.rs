@@ -211,6 +211,7 @@ fn settings(u: &Units) -> FlightSettings {
     s.max_time = u.scale(600.0, T);
     s.max_time_step = u.scale(s.max_time_step, T);
     s.rail_max_time_step = u.scale(s.rail_max_time_step, T);
+    s.control_max_time_step = u.scale(s.control_max_time_step, T);
     s.min_time_step = u.scale(s.min_time_step, T);
     s.trigger_band = u.scale(s.trigger_band, L);
     // State: position (m), velocity (m/s), quaternion (1), angular velocity (1/s).

@@ -5,6 +5,7 @@
 use crate::common::fixture;
 use karman_mission::schema::{AirBrakesCurve, Trigger};
 use karman_mission::{MissionError, Override, ProblemKind, parse, paths};
+use std::sync::Arc;
 
 /// The minimal fixture with `extra` appended to its `[rocket.parachutes.main]` table and
 /// `brakes` (an `[rocket.air_brakes]` table, or nothing) before `[flight]`.
@@ -178,6 +179,21 @@ fn brakes_with(script: &str, extra: &str) -> String {
     )
 }
 
+/// The environment, rocket and flight settings of `mission`.
+fn models(
+    mission: &karman_mission::Mission,
+) -> (
+    Arc<karman_mission::atmos::Environment>,
+    karman_mission::airframe::Rocket,
+    karman_mission::dynamics::FlightSettings,
+) {
+    use karman_mission::build::{environment, flight, motor, rocket};
+    let env = Arc::new(environment::build_environment(mission).unwrap_or_else(|e| panic!("{e}")));
+    let motor = motor::build_motor(mission).unwrap_or_else(|e| panic!("{e}"));
+    let rocket = rocket::build_rocket(mission, &motor).unwrap_or_else(|e| panic!("{e}"));
+    (env, rocket, flight::flight_settings(mission, 0))
+}
+
 fn same_flight(a: &karman_mission::dynamics::Flight, b: &karman_mission::dynamics::Flight) {
     assert_eq!(a.points.len(), b.points.len());
     for (p, q) in a.points.iter().zip(&b.points) {
@@ -202,10 +218,18 @@ fn shut_brakes_fly_as_no_brakes_bit_for_bit() {
     same_flight(&bare.flight, &shut.flight);
     let record = shut.controller.expect("record");
     assert!(record.levels.iter().all(|r| r.level.to_bits() == 0));
-    let bare =
-        fly("200", "", &[("flight.max_time_step", "0.05")]).unwrap_or_else(|e| panic!("{e}"));
+    // With overshoot the free-flight steps are at most one sampling interval long (the rail
+    // and the descents are not bounded by it): the flight without brakes with that bound.
+    let bare = load(&mission("200", ""), &[]).unwrap_or_else(|e| panic!("{e}"));
+    let (environment, rocket, mut settings) = models(&bare);
+    settings.control_max_time_step = 0.05;
+    let (bare, _) =
+        karman_mission::build::flight::fly(&bare, &*environment, &rocket, &settings, None, || {
+            unreachable!("no controller")
+        })
+        .unwrap_or_else(|e| panic!("{e}"));
     let shut = fly("200", &brakes_with("shut.rhai", ""), &[]).unwrap_or_else(|e| panic!("{e}"));
-    same_flight(&bare.flight, &shut.flight);
+    same_flight(&bare, &shut.flight);
     // Called at j / 20 from launch, the rail included, in order.
     let times: Vec<f64> = shut
         .controller
@@ -497,4 +521,61 @@ fn validate_airbrakes_apogee() {
             .filter(|r| r.time > apogee + 0.01)
             .all(|r| r.level == 0.0)
     );
+}
+
+/// Every air-brake mission of the repository flown with its controller compiled and with
+/// every call interpreted by Rhai: the same flight and record, bit for bit.
+#[test]
+fn compiled_controllers_fly_as_the_interpreter_bit_for_bit() {
+    use karman_mission::build::scripts::{ControllerEnvironment, compile_controller};
+    let mut paths: Vec<std::path::PathBuf> = ["calisto_apogee.toml", "calisto_docs.toml"]
+        .iter()
+        .map(|name| {
+            std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
+                .join("../../fixtures/airbrakes")
+                .join(name)
+        })
+        .collect();
+    if let Some(dir) = crate::common::validation_dir() {
+        paths.push(dir.join("camoes/mission.toml"));
+    }
+    for path in paths {
+        let mission = karman_mission::load(&path, &[]).unwrap_or_else(|e| panic!("{e}"));
+        let (environment, rocket, settings) = models(&mission);
+        let script = compile_controller(&mission)
+            .unwrap_or_else(|e| panic!("{e}"))
+            .expect("a controller");
+        assert_eq!(script.interpreted_because(), None, "{}", path.display());
+        let fly = |script| {
+            karman_mission::build::flight::fly(
+                &mission,
+                &*environment,
+                &rocket,
+                &settings,
+                Some(script),
+                || {
+                    Arc::new(ControllerEnvironment::new(
+                        Arc::clone(&environment),
+                        1.0,
+                        0.0,
+                    ))
+                },
+            )
+            .unwrap_or_else(|e| panic!("{e}"))
+        };
+        let (compiled, a) = fly(&script);
+        let (interpreted, b) = fly(&script.interpreted());
+        same_flight(&compiled, &interpreted);
+        assert_eq!(compiled.parachute_events, interpreted.parachute_events);
+        let (a, b) = (a.expect("record"), b.expect("record"));
+        assert_eq!(a.to_json(), b.to_json(), "{}", path.display());
+        assert!(
+            a.levels
+                .iter()
+                .zip(&b.levels)
+                .all(|(x, y)| x.level.to_bits() == y.level.to_bits()),
+            "{}",
+            path.display()
+        );
+    }
 }

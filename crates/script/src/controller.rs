@@ -11,7 +11,28 @@
 //! The scripts run sandboxed ([`crate::sandbox`]): no file, network, clock or module access,
 //! and every call is bounded in operations, call depth and data size, so a runaway script ends
 //! its flight with a located [`ScriptError`] instead of hanging.
+//!
+//! ## Compiled calls
+//!
+//! Rhai's interpreter spends tens of thousands of instructions on one call of a typical
+//! controller (arguments boxed, functions resolved by hash), more than the flight step that
+//! holds it. A script within the controllers' common subset is therefore also compiled, once,
+//! from the AST Rhai parsed and optimised, to a tree evaluated natively with Rhai's semantics:
+//! numbers, booleans, `()` and array literals; `let`/`const`, assignment and arithmetic
+//! op-assignment of locals and of `air_brakes.deployment_level`; `if`/`else` (also as an
+//! expression) and `return`; the arithmetic, comparison and logical operators (floats as
+//! Rhai's checked build computes them, its relative float comparisons included); `sqrt`,
+//! `exp`, `ln`, `log`, `sin`, `cos`, `tan`, `abs`; `state[i]` and `state_history[-1][i]` at
+//! literal indices; `time`, `sampling_rate`, `global::NAME`, `motor::NAME`; the air-brake
+//! handle's properties and `drag_coefficient`; the environment's `elevation` and queries.
+//! A call the tree cannot decide with certainty (integer arithmetic, a value of an
+//! unexpected type, an index out of range) has had no effect outside it and is made again
+//! by the interpreter, which gives Rhai's result or its located error; a script outside the
+//! subset runs interpreted throughout ([`ControllerScript::interpreted_because`] says why).
+//! Without loops or script-function calls a compiled call is bounded by the tree's size, far
+//! below the operation limit.
 
+use crate::compiled::{self, Bound, Compiled, Inputs};
 use crate::sandbox;
 use rhai::{
     AST, Array, CallFnOptions, Dynamic, Engine, EvalAltResult, Map, Module, Position, Scope,
@@ -109,6 +130,8 @@ pub struct ControllerScript {
     parameters: usize,
     definition: Option<(usize, usize)>,
     constants: Vec<(String, f64)>,
+    /// `controller_function` compiled (module documentation), or why the interpreter runs it.
+    compiled: Result<Compiled, String>,
 }
 
 impl ControllerScript {
@@ -161,12 +184,14 @@ impl ControllerScript {
             .iter_literal_variables(true, false)
             .filter_map(|(name, _, value)| value.as_float().ok().map(|v| (name.to_owned(), v)))
             .collect();
+        let compiled = compiled::compile(&ast, CONTROLLER_FUNCTION);
         Ok(ControllerScript {
             file: file.to_owned(),
             ast,
             parameters,
             definition: definition(source),
             constants,
+            compiled,
         })
     }
 
@@ -180,6 +205,25 @@ impl ControllerScript {
     #[must_use]
     pub fn parameters(&self) -> usize {
         self.parameters
+    }
+
+    /// Why the calls of this script run in Rhai's interpreter rather than compiled (the
+    /// script uses something outside the compiled subset of the module documentation), or
+    /// `None` when they run compiled. Either way the results are the same; the interpreter
+    /// is slower.
+    #[must_use]
+    pub fn interpreted_because(&self) -> Option<&str> {
+        self.compiled.as_ref().err().map(String::as_str)
+    }
+
+    /// This script with its calls always made by the interpreter (the reference the
+    /// compiled calls are tested against).
+    #[must_use]
+    pub fn interpreted(&self) -> Self {
+        Self {
+            compiled: Err("interpretation asked for".to_owned()),
+            ..self.clone()
+        }
     }
 
     /// The script's top-level `const NAME = <float>;` declarations, in order: the constants a
@@ -273,13 +317,15 @@ impl AirBrakesHandle {
 
     /// Stores `value`, clipped to `[0, 1]` when the brakes clamp (physics.md §16.3).
     pub(crate) fn set_level(&self, value: f64) {
-        let stored = if self.setup.clamp {
-            value.clamp(0.0, 1.0)
-        } else {
-            value
-        };
+        let stored = stored_level(self.setup.clamp, value);
         self.level.store(stored.to_bits(), Ordering::Relaxed);
     }
+}
+
+/// The level a write of `value` stores: clipped to `[0, 1]` when the brakes clamp
+/// (physics.md §16.3).
+pub(crate) fn stored_level(clamp: bool, value: f64) -> f64 {
+    if clamp { value.clamp(0.0, 1.0) } else { value }
 }
 
 /// The `environment` argument.
@@ -339,6 +385,10 @@ pub struct Controller {
     /// The scope the calls run in, kept between calls for its storage: a call pushes the
     /// arguments and its local variables and the scope is rewound to empty after it.
     scope: Scope<'static>,
+    /// The compiled calls, when the script is in the compiled subset.
+    fast: Option<Bound>,
+    /// Calls made compiled.
+    compiled_calls: usize,
 }
 
 impl fmt::Debug for Controller {
@@ -388,6 +438,15 @@ impl Controller {
         for (name, value) in &setup.constants {
             globals.set_var(name.as_str(), *value);
         }
+        let (burn_start, burn_out) = (setup.burn_start, setup.burn_out);
+        let fast = script.compiled.as_ref().ok().and_then(|compiled| {
+            compiled.bind(|namespace, name| match (namespace, name) {
+                (GLOBAL, _) => globals.get_var(name),
+                ("motor", "burn_start_time") => Some(Dynamic::from_float(burn_start)),
+                ("motor", "burn_out_time") => Some(Dynamic::from_float(burn_out)),
+                _ => None,
+            })
+        });
         engine.register_static_module(GLOBAL, globals.into());
         let ast = script.ast.clone_functions_only();
         let air_brakes = AirBrakesHandle {
@@ -418,6 +477,8 @@ impl Controller {
             observed,
             levels: Vec::new(),
             scope: Scope::new(),
+            fast,
+            compiled_calls: 0,
         })
     }
 
@@ -427,6 +488,13 @@ impl Controller {
         self.sampling_rate
     }
 
+    /// How many calls so far ran compiled (module documentation), the others in Rhai's
+    /// interpreter.
+    #[must_use]
+    pub fn compiled_calls(&self) -> usize {
+        self.compiled_calls
+    }
+
     /// The current deployment level.
     #[must_use]
     pub fn level(&self) -> f64 {
@@ -434,12 +502,49 @@ impl Controller {
     }
 
     /// Calls the script at sampling instant `time` with the state there and the last stored
-    /// solution row `[t, x, …, wz]`; returns the deployment level it leaves.
+    /// solution row `[t, x, …, wz]`; returns the deployment level it leaves. A script of the
+    /// compiled subset runs compiled (module documentation), any call the compiled form cannot
+    /// decide (and every call of another script) in Rhai's interpreter, with the same result.
     ///
     /// # Errors
     /// [`ScriptError`] located in the script for any run-time error (a type error, a limit of
     /// the sandbox such as its operation count).
     pub fn call(
+        &mut self,
+        time: f64,
+        state: &[f64; 13],
+        last_row: &[f64; 14],
+    ) -> Result<f64, ScriptError> {
+        if let Some(fast) = &mut self.fast {
+            let inputs = Inputs {
+                time,
+                sampling_rate: self.sampling_rate,
+                state,
+                last_row,
+                air_brakes: &self.air_brakes.setup,
+                environment: &*self.environment.0,
+            };
+            if let Ok((returned, level)) = fast.call(&inputs, self.air_brakes.level()) {
+                self.air_brakes.set_level(level);
+                self.compiled_calls += 1;
+                return Ok(self.recorded(time, returned));
+            }
+        }
+        self.interpret(time, state, last_row)
+    }
+
+    /// The record of a call that returned `returned`: the level it left.
+    fn recorded(&mut self, time: f64, returned: Dynamic) -> f64 {
+        if !returned.is_unit() {
+            self.observed.push(returned);
+        }
+        let level = self.air_brakes.level();
+        self.levels.push(LevelRecord { time, level });
+        level
+    }
+
+    /// [`Controller::call`] in Rhai's interpreter.
+    fn interpret(
         &mut self,
         time: f64,
         state: &[f64; 13],
@@ -478,12 +583,7 @@ impl Controller {
                 args,
             )
             .map_err(|e| runtime(&self.file, self.definition, &e))?;
-        if !returned.is_unit() {
-            self.observed.push(returned);
-        }
-        let level = self.air_brakes.level();
-        self.levels.push(LevelRecord { time, level });
-        Ok(level)
+        Ok(self.recorded(time, returned))
     }
 
     /// What the controller recorded so far.

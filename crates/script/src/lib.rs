@@ -9,7 +9,9 @@
 //! - [`controller`]: air-brake controllers, RocketPy's `controller_function` written in Rhai
 //!   (the `rhai` crate), compiled once per mission and run sandboxed
 //!   ([`sandbox`]: no file, network, clock or module access; bounded operations, call depth
-//!   and data sizes per call).
+//!   and data sizes per call); a script of the controllers' common subset also compiled to a
+//!   natively evaluated tree with Rhai's semantics, the interpreter making whatever that tree
+//!   cannot decide (module `controller`, "Compiled calls").
 //!
 //! ```
 //! use karman_script::ControllerScript;
@@ -27,6 +29,7 @@
 //! # Ok::<(), karman_script::ScriptError>(())
 //! ```
 
+mod compiled;
 pub mod controller;
 pub mod expression;
 pub mod sandbox;

@@ -1,4 +1,5 @@
 //! Integration tests of karman-script, one module per topic.
 
+mod compiled;
 mod controllers;
 mod expressions;

@@ -5,6 +5,7 @@
 use super::MissionArgs;
 use clap::Args;
 use karman_mission::build::preflight::prepare;
+use karman_mission::build::scripts::compile_controller;
 use karman_mission::build::stages::prepare_staged;
 use std::io::Write;
 
@@ -15,7 +16,8 @@ pub struct CheckArgs {
     pub mission: MissionArgs,
 }
 
-/// Prints the warnings, then "ok" when the mission loads, validates and its models build;
+/// Prints the warnings (and a note when the air-brake controller runs interpreted rather
+/// than compiled), then "ok" when the mission loads, validates and its models build;
 /// otherwise the error (every problem, each with `file:line:column`) goes back to `main`.
 pub fn run(args: &CheckArgs) -> anyhow::Result<()> {
     let mission = args.mission.load()?;
@@ -25,6 +27,18 @@ pub fn run(args: &CheckArgs) -> anyhow::Result<()> {
         prepare_staged(&mission, 0)?
     };
     super::print_warnings(&mission, &warnings);
+    // A controller outside the compiled subset is no error: its calls run in Rhai's
+    // interpreter, with the same results, slower.
+    if let Some(script) = compile_controller(&mission)?
+        && let Some(reason) = script.interpreted_because()
+    {
+        let _ = writeln!(
+            std::io::stderr().lock(),
+            "{}: note: rocket.air_brakes.controller: its calls run in Rhai's interpreter \
+             (same results, slower); outside the compiled subset: {reason}",
+            mission.path.display()
+        );
+    }
     // A closed stdout is an error to report, not a panic (as `println!` would).
     writeln!(std::io::stdout().lock(), "ok")?;
     Ok(())

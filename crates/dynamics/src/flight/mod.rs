@@ -113,6 +113,14 @@ impl PhaseKind {
             },
         }
     }
+
+    /// Whether the phase's equations read the configuration's control inputs (the air
+    /// brakes' level, physics.md §16.1): the free flight, 6-DOF or point mass. The rail's
+    /// equations drop them and a canopy's descent has none.
+    #[must_use]
+    pub fn reads_controls(&self) -> bool {
+        matches!(self, Self::SixDof | Self::PointMass { .. })
+    }
 }
 
 /// One stored solution point.

@@ -277,11 +277,19 @@ pub(super) fn fly<'a, A: AtmosphereModel, V: VehicleModel>(
         let Some(kind) = phase.kind else { break };
         let t_bound = run.phases[index + 1].t;
         let max_step = if kind == PhaseKind::Rail {
-            settings.max_time_step.min(settings.rail_max_time_step)
+            settings
+                .max_time_step
+                .min(settings.rail_max_time_step)
+                .min(settings.control_max_time_step)
+        } else if kind.reads_controls() {
+            settings.max_time_step.min(settings.control_max_time_step)
         } else {
             settings.max_time_step
         };
-        let tol = Tolerances {
+        // Whether the steps are bounded by `control_max_time_step` (in a descent, from the
+        // step that reaches the ground on).
+        let mut bounded = max_step <= settings.control_max_time_step;
+        let mut tol = Tolerances {
             rtol: settings.rtol,
             atol: settings.atol,
             max_step,
@@ -311,6 +319,22 @@ pub(super) fn fly<'a, A: AtmosphereModel, V: VehicleModel>(
                     .unwrap_or(f64::INFINITY),
             );
             let status = integ.step()?;
+            // The step that finds the impact is not sampled (physics.md §16.4): in a phase
+            // whose steps are not bounded, a step longer than the bound that reaches the
+            // ground is integrated again with bounded steps, so that the instants the last
+            // step of the flight leaves unsampled are as few as in the bounded phases.
+            if !bounded
+                && run.off_rail
+                && integ.y()[2] < run.elevation
+                && integ.last_step() > settings.control_max_time_step
+            {
+                run.stats.add(&integ);
+                tol.max_step = max_step.min(settings.control_max_time_step);
+                let pair = integ.pair();
+                integ = RungeKutta::new(pair, integ.into_rhs(), t, y, t_bound, tol)?;
+                bounded = true;
+                continue;
+            }
             policy.accepted(&integ);
             t = integ.t();
             y = *integ.y();

@@ -71,10 +71,13 @@ pub fn flight_settings(mission: &Mission, seed: u64) -> FlightSettings {
         && spec.time_overshoot
         && ab.sampling_rate > 0.0
     {
-        // A level written by the controller acts from the end of the solver step holding
-        // the call (physics.md §16.4); steps at most one sampling interval long keep that
-        // delay as short as RocketPy's LSODA steps make it.
-        settings.max_time_step = settings.max_time_step.min(1.0 / ab.sampling_rate);
+        // Deviation from RocketPy: a level written by the controller acts from the end of
+        // the solver step holding the call (physics.md §16.4); steps at most one sampling
+        // interval long keep that delay as short as RocketPy's LSODA steps make it. The
+        // bound covers the free flight, where the level is in the equations (§16.1), and the
+        // steps whose instants are not sampled (rail exit, the impact); the parachute
+        // descents otherwise keep the solver's steps (`FlightSettings::control_max_time_step`).
+        settings.control_max_time_step = 1.0 / ab.sampling_rate;
     }
     settings
 }
