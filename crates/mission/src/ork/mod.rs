@@ -25,7 +25,7 @@ use std::path::{Path, PathBuf};
 
 use thiserror::Error;
 
-pub use design::{Component, Design, Kind, Simulation};
+pub use design::{Component, Design, Kind, MotorRef, SeparationRef, Simulation};
 
 /// Errors of the `.ork` reader; each names the file and, where there is one, the component.
 #[derive(Debug, Error)]
