@@ -111,6 +111,9 @@ pub struct Component {
     pub overhang: f64,
     /// Of a stage: its separation by configuration id, and under `""` its default.
     pub separations: BTreeMap<String, SeparationRef>,
+    /// Of a recovery device: its deployment settings (`deployevent`, `deployaltitude`,
+    /// `deploydelay`) by configuration id, where a configuration has its own.
+    pub deployments: BTreeMap<String, BTreeMap<String, String>>,
     /// Sub-components.
     pub children: Vec<Component>,
     file: PathBuf,
@@ -421,6 +424,7 @@ fn component(
     let mut motors = BTreeMap::new();
     let mut overhang = 0.0;
     let mut separations = BTreeMap::new();
+    let mut deployments = BTreeMap::new();
     let mut axial = None;
     for e in node.children().filter(|e| e.is_element()) {
         let t = e.tag_name().name();
@@ -499,6 +503,20 @@ fn component(
                     );
                 }
             }
+            "deploymentconfiguration" => {
+                let id = e.attribute("configid").unwrap_or("").to_owned();
+                let settings = e
+                    .children()
+                    .filter(|k| k.is_element())
+                    .map(|k| {
+                        (
+                            k.tag_name().name().to_owned(),
+                            k.text().unwrap_or("").trim().to_owned(),
+                        )
+                    })
+                    .collect();
+                deployments.insert(id, settings);
+            }
             "separationconfiguration" => {
                 let id = e.attribute("configid").unwrap_or("").to_owned();
                 separations.insert(id, separation_of(e));
@@ -521,6 +539,7 @@ fn component(
         motors,
         overhang,
         separations,
+        deployments,
         children: Vec::new(),
         file: file.to_owned(),
     };

@@ -426,6 +426,7 @@ fn spent_stage_drag(front: f64, base: f64, radius: f64) -> String {
 #[allow(clippy::too_many_arguments)]
 fn body_text(
     file: &Path,
+    config: &str,
     group: &Group,
     top: bool,
     rocket_key: &str,
@@ -841,6 +842,11 @@ fn body_text(
     for c in &all {
         match c.kind {
             Kind::Parachute => {
+                // The chosen configuration's deployment settings, else the device's own.
+                let mut c = (*c).clone();
+                if let Some(settings) = c.deployments.get(config) {
+                    c.fields.extend(settings.clone());
+                }
                 let d = c.dim("diameter")?;
                 let cd = c.num_or("cd", 0.8)?;
                 let area = std::f64::consts::PI * 0.25 * d * d;
@@ -852,9 +858,12 @@ fn body_text(
                     "never" => continue,
                     "ejection" => {
                         warnings.push(format!(
-                            "`{}`: deployed by the motor's ejection charge ({} s after burnout) in OpenRocket; flown deploying at apogee",
+                            "`{}`: deployed by the motor's ejection charge ({}) in OpenRocket; flown deploying at apogee",
                             c.name,
-                            motor.delay.map_or_else(|| "plugged".to_owned(), |d| d.to_string())
+                            motor.delay.map_or_else(
+                                || "never: the motor is plugged".to_owned(),
+                                |d| format!("{d} s after burnout")
+                            )
                         ));
                         "\"apogee\"".to_owned()
                     }
@@ -933,6 +942,7 @@ pub(super) fn mission(
     let mut used = BTreeSet::new();
     let top = body_text(
         file,
+        &sim.config,
         &groups[0],
         true,
         "rocket",
@@ -945,6 +955,7 @@ pub(super) fn mission(
     for group in &groups[1..] {
         lower.push(body_text(
             file,
+            &sim.config,
             group,
             false,
             "stages.rocket",
