@@ -326,7 +326,8 @@ impl StagedComparison {
     pub fn failures(&self, check_apogee: bool) -> Vec<String> {
         let mut out = Vec::new();
         let error = self.apogee_error();
-        if check_apogee && !(error <= STAGED_APOGEE) {
+        let within = error <= STAGED_APOGEE; // false for NaN
+        if check_apogee && !within {
             out.push(format!("apogee {error:.4} > {STAGED_APOGEE}"));
         }
         if !self.one_body && self.separations.len() != self.reference_separations.len() {
@@ -337,7 +338,8 @@ impl StagedComparison {
             ));
         }
         for (i, e) in self.separation_errors().into_iter().enumerate() {
-            if !(e <= SEPARATION_TIME) {
+            let within = e <= SEPARATION_TIME; // false for NaN
+            if !within {
                 out.push(format!(
                     "separation {} time {e:.4} > {SEPARATION_TIME}",
                     i + 1
