@@ -7,7 +7,7 @@ use std::sync::Arc;
 
 use karman_airframe::{
     self as airframe, AirBrakes, AirBrakesSpec, Airfoil, AirframeError, CoordinateSystem,
-    DragEstimate, MotorProperties, NoseKind, Parachute, RailButtons, Rocket, RocketInputs,
+    DragEstimate, DragGeometry, MotorProperties, NoseKind, Parachute, RailButtons, Rocket, RocketInputs,
     SurfaceInput, Trigger,
 };
 use karman_script::Expression;
@@ -251,6 +251,22 @@ pub fn estimated_drag(
         .map(|(name, s)| surface_input(name, s, None))
         .collect();
     super::drag::estimate(mission, &surfaces, motor.nozzle_radius()).map(Some)
+}
+
+/// The body and fins the drag estimate implies for `mission`'s rocket (no nozzle): the
+/// geometry of [`karman_airframe::BodyLift`].
+///
+/// # Errors
+/// As [`estimated_drag`].
+pub fn estimate_geometry(mission: &Mission) -> Result<DragGeometry, MissionError> {
+    let surfaces: Vec<SurfaceInput> = mission
+        .spec
+        .rocket
+        .surfaces
+        .iter()
+        .map(|(name, s)| surface_input(name, s, None))
+        .collect();
+    super::drag::drag_geometry(mission, &surfaces, 0.0)
 }
 
 /// The airframe's description of one mission surface.

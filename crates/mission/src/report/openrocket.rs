@@ -6,16 +6,20 @@ use std::path::Path;
 
 use serde_json::Value;
 
+use karman_airframe::{BodyLift, Geometry};
+
 use crate::build::flight::simulate;
+use crate::build::rocket::estimate_geometry;
 use crate::ork::{ImportOptions, import};
 
 /// The single-stage designs of `fixtures/openrocket` that karman imports, and whether the CP
-/// criterion holds for them. `base_drag_hack_short_wide` (CP 1.1 % of the body length aft of
-/// OpenRocket's, free-form fins behind a 0.001 in to 3 in tail cone) and
-/// `simulation_scripting` (3 %: its two canards and three single fins roll, and OpenRocket's
-/// normal force of a set of one or two fins follows the roll angle, which karman's Barrowman
-/// fin sets average) are held to the other criteria only. Clusters, pods and tube fins
-/// (`clustered_motors`, `pods_airframes_and_winglets`, `tube_fin_rocket`) are refused.
+/// criterion holds for them. `base_drag_hack_short_wide` (CP 1.2 % of the body length aft of
+/// OpenRocket's at rod exit, free-form fins behind a 0.001 in to 3 in tail cone) and
+/// `simulation_scripting` (3.2 %: its two canards form a fin set of two, whose normal force
+/// OpenRocket takes as `2 C_Nα1 sin²(θ − φ)` at the flow's roll angle θ, where karman's
+/// Barrowman fin sets, like RocketPy's, average it to `C_Nα1`) are held to the other criteria
+/// only. Clusters, pods and tube fins (`clustered_motors`, `pods_airframes_and_winglets`,
+/// `tube_fin_rocket`) are refused.
 pub const DESIGNS: [(&str, bool); 5] = [
     ("a_simple_model_rocket", true),
     ("base_drag_hack_short_wide", false),
@@ -52,15 +56,18 @@ pub struct OpenRocketComparison {
     pub cd_subsonic: f64,
     /// Worst relative error of the total Cd at or above Mach 0.8 (`NaN` without such rows).
     pub cd_transonic: f64,
-    /// Centre of pressure from the nose tip (m), karman and OpenRocket, at the compared row.
+    /// Centre of pressure from the nose tip (m) at the compared row: karman's estimate at
+    /// OpenRocket's angle of attack and Mach there ([`BodyLift::cp_at_angle`]), and
+    /// OpenRocket's.
     pub cp: (f64, f64),
     /// Body length (m), the scale of the CP error.
     pub body_length: f64,
     /// Stability margin (calibers), karman and OpenRocket, at the compared row.
     pub margin: (f64, f64),
-    /// Time of the compared row (s): the ascent row of least angle of attack after rod exit,
-    /// where OpenRocket's CP is its zero-angle CP.
+    /// Time of the compared row (s): rod exit, OpenRocket's first stored CP.
     pub cp_time: f64,
+    /// OpenRocket's angle of attack at that row (rad), at which both CPs are taken.
+    pub cp_alpha: f64,
 }
 
 impl OpenRocketComparison {
@@ -119,7 +126,7 @@ impl std::fmt::Display for OpenRocketComparison {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
         write!(
             f,
-            "{:<28} apogee {:8.1} / {:8.1} m ({:5.2} %)  vmax {:6.1} / {:6.1} m/s ({:5.2} %)  Cd <M0.8 {:5.1} %  ≥M0.8 {:5.1} %  CP {:.4} / {:.4} m ({:.2} % of L)  margin {:.2} / {:.2} cal",
+            "{:<28} apogee {:8.1} / {:8.1} m ({:5.2} %)  vmax {:6.1} / {:6.1} m/s ({:5.2} %)  Cd <M0.8 {:5.1} %  ≥M0.8 {:5.1} %  CP {:.4} / {:.4} m ({:.2} % of L)  margin {:.2} / {:.2} cal (rod exit, α {:.1}°)",
             self.simulation,
             self.apogee.0,
             self.apogee.1,
@@ -134,6 +141,7 @@ impl std::fmt::Display for OpenRocketComparison {
             100.0 * self.cp_error(),
             self.margin.0,
             self.margin.1,
+            self.cp_alpha.to_degrees(),
         )
     }
 }
@@ -175,15 +183,12 @@ pub fn compare_design(design_dir: &Path) -> Result<Vec<OpenRocketComparison>, St
 
         let branch = &sim["branches"][0];
         let ascent = &branch["ascent"];
-        let (t, mach, cd, aoa, cp, thrust) = (
+        let (t, mach, cd, thrust) = (
             column(ascent, "time_s"),
             column(ascent, "mach"),
             column(ascent, "cd"),
-            column(ascent, "aoa_rad"),
-            column(ascent, "cp_m"),
             column(ascent, "thrust_n"),
         );
-        let stability = column(ascent, "stability_cal");
         let rod = branch["launch"]["first_finite_cp"]["time_s"]
             .as_f64()
             .unwrap_or(0.0);
@@ -200,13 +205,25 @@ pub fn compare_design(design_dir: &Path) -> Result<Vec<OpenRocketComparison>, St
                 sup = if sup.is_nan() { e } else { sup.max(e) };
             }
         }
-        // OpenRocket's CP moves forward with the angle of attack (its body-lift term, ∝ α²);
-        // karman's normal-force model is linear in α (RocketPy's), so the CPs compare at the
-        // ascent row of least angle of attack.
-        let row = (0..t.len())
-            .filter(|&i| t[i] >= rod && cp[i].is_finite() && aoa[i].is_finite())
-            .min_by(|&a, &b| aoa[a].abs().total_cmp(&aoa[b].abs()))
-            .ok_or_else(|| format!("{name}: no CP row"))?;
+        // OpenRocket's CP at rod exit (its first stored CP), at the angle of attack and Mach
+        // it stored there: Barrowman's terms with its body lift (karman's flight keeps the
+        // linear CP of RocketPy; the estimate reports this one).
+        let launch = &branch["launch"]["first_finite_cp"];
+        let at = |key: &str| launch[key].as_f64().unwrap_or(f64::NAN);
+        let (cp_time, cp_alpha, cp_mach) = (at("time_s"), at("aoa_rad"), at("mach"));
+        if !(cp_time.is_finite() && cp_alpha.is_finite() && cp_mach.is_finite()) {
+            return Err(format!("{name}: no rod-exit CP row"));
+        }
+        let lift = BodyLift::new(&estimate_geometry(&mission).map_err(|e| e.to_string())?);
+        let tip = rocket
+            .surfaces()
+            .iter()
+            .find(|s| matches!(s.geometry, Geometry::Nose { .. }))
+            .map_or(0.0, |s| s.position);
+        let ours_cp = lift.cp_at_angle(rocket, tip, cp_alpha, cp_mach);
+        let csys = rocket.csys();
+        let cg = csys * (tip - rocket.center_of_mass(cp_time));
+        let caliber = 2.0 * rocket.radius();
         let body_length = mission
             .spec
             .rocket
@@ -228,10 +245,11 @@ pub fn compare_design(design_dir: &Path) -> Result<Vec<OpenRocketComparison>, St
             ),
             cd_subsonic: sub,
             cd_transonic: sup,
-            cp: (rocket.cp_position(mach[row]), cp[row]),
+            cp: (ours_cp, at("cp_m")),
             body_length,
-            margin: (rocket.stability_margin(mach[row], t[row]), stability[row]),
-            cp_time: t[row],
+            margin: ((ours_cp - cg) / caliber, at("stability_cal")),
+            cp_time,
+            cp_alpha,
         });
     }
     Ok(out)
