@@ -17,8 +17,9 @@ use crate::ork::{ImportOptions, import};
 /// OpenRocket's at rod exit, free-form fins behind a 0.001 in to 3 in tail cone) and
 /// `simulation_scripting` (3.2 %: its two canards form a fin set of two, whose normal force
 /// OpenRocket takes as `2 C_Nα1 sin²(θ − φ)` at the flow's roll angle θ, where karman's
-/// Barrowman fin sets, like RocketPy's, average it to `C_Nα1`) are held to the other criteria
-/// only. Clusters, pods and tube fins (`clustered_motors`, `pods_airframes_and_winglets`,
+/// Barrowman fin sets, like RocketPy's, average it to `C_Nα1`; with the pair at `2 C_Nα1`,
+/// flow normal to the canards, the rod-exit CP comes out at OpenRocket's 1.760 m) are held to
+/// the other criteria only. Clusters, pods and tube fins (`clustered_motors`, `pods_airframes_and_winglets`,
 /// `tube_fin_rocket`) are refused.
 pub const DESIGNS: [(&str, bool); 5] = [
     ("a_simple_model_rocket", true),
