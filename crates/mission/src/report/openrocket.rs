@@ -13,8 +13,8 @@ use crate::build::rocket::estimate_geometry;
 use crate::ork::{ImportOptions, import};
 
 /// The single-stage designs of `fixtures/openrocket` that karman imports, and whether the CP
-/// criterion holds for them. `base_drag_hack_short_wide` (CP 1.2 % of the body length aft of
-/// OpenRocket's at rod exit, free-form fins behind a 0.001 in to 3 in tail cone) and
+/// criterion holds for them. `base_drag_hack_short_wide` (CP 1.2 % of the body length forward
+/// of OpenRocket's at rod exit, free-form fins behind a 0.001 in to 3 in tail cone) and
 /// `simulation_scripting` (3.2 %: its two canards form a fin set of two, whose normal force
 /// OpenRocket takes as `2 C_Nα1 sin²(θ − φ)` at the flow's roll angle θ, where karman's
 /// Barrowman fin sets, like RocketPy's, average it to `C_Nα1`; with the pair at `2 C_Nα1`,
@@ -48,11 +48,15 @@ pub const MARGIN_CALIBERS: f64 = 0.1;
 pub struct OpenRocketComparison {
     /// The simulation's name.
     pub simulation: String,
-    /// karman's apogee above the site (m) and OpenRocket's (`optimum_altitude_m`: the apogee
-    /// without a premature deployment).
+    /// karman's apogee above the site (m) and OpenRocket's (`maxaltitude`; both deploy the
+    /// parachutes as OpenRocket does, a short ejection delay before apogee included).
     pub apogee: (f64, f64),
     /// Maximum speed (m/s), karman and OpenRocket.
     pub max_speed: (f64, f64),
+    /// Flight time to the ground hit (s), karman and OpenRocket (`flighttime`).
+    pub flight_time: (f64, f64),
+    /// Speed at the ground hit (m/s), karman and OpenRocket (`groundhitvelocity`).
+    pub landing_speed: (f64, f64),
     /// Worst relative error of the total Cd over the ascent rows below Mach 0.8.
     pub cd_subsonic: f64,
     /// Worst relative error of the total Cd at or above Mach 0.8 (`NaN` without such rows).
@@ -127,7 +131,7 @@ impl std::fmt::Display for OpenRocketComparison {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
         write!(
             f,
-            "{:<28} apogee {:8.1} / {:8.1} m ({:5.2} %)  vmax {:6.1} / {:6.1} m/s ({:5.2} %)  Cd <M0.8 {:5.1} %  ≥M0.8 {:5.1} %  CP {:.4} / {:.4} m ({:.2} % of L)  margin {:.2} / {:.2} cal (rod exit, α {:.1}°)",
+            "{:<28} apogee {:8.1} / {:8.1} m ({:5.2} %)  vmax {:6.1} / {:6.1} m/s ({:5.2} %)  Cd <M0.8 {:5.1} %  ≥M0.8 {:5.1} %  CP {:.4} / {:.4} m ({:.2} % of L)  margin {:.2} / {:.2} cal (rod exit, α {:.1}°)  landing {:6.1} / {:6.1} s, {:4.2} / {:4.2} m/s",
             self.simulation,
             self.apogee.0,
             self.apogee.1,
@@ -143,6 +147,10 @@ impl std::fmt::Display for OpenRocketComparison {
             self.margin.0,
             self.margin.1,
             self.cp_alpha.to_degrees(),
+            self.flight_time.0,
+            self.flight_time.1,
+            self.landing_speed.0,
+            self.landing_speed.1,
         )
     }
 }
@@ -183,6 +191,7 @@ pub fn compare_design(design_dir: &Path) -> Result<Vec<OpenRocketComparison>, St
         let rocket = &run.rocket;
 
         let branch = &sim["branches"][0];
+        let stored = |key: &str| sim["summary"][key].as_f64().unwrap_or(f64::NAN);
         let ascent = &branch["ascent"];
         let (t, mach, cd, thrust) = (
             column(ascent, "time_s"),
@@ -236,14 +245,17 @@ pub fn compare_design(design_dir: &Path) -> Result<Vec<OpenRocketComparison>, St
             simulation: name,
             apogee: (
                 summary.apogee_agl_m.unwrap_or(f64::NAN),
-                // The apogee without a premature deployment (karman deploys at apogee the
-                // parachutes OpenRocket ejects a delay after burnout).
-                branch["optimum_altitude_m"].as_f64().unwrap_or(f64::NAN),
+                stored("maxaltitude"),
             ),
-            max_speed: (
-                summary.max_speed_mps,
-                sim["summary"]["maxvelocity"].as_f64().unwrap_or(f64::NAN),
+            flight_time: (
+                summary.impact_time_s.unwrap_or(f64::NAN),
+                stored("flighttime"),
             ),
+            landing_speed: (
+                summary.impact_velocity_mps.unwrap_or(f64::NAN),
+                stored("groundhitvelocity"),
+            ),
+            max_speed: (summary.max_speed_mps, stored("maxvelocity")),
             cd_subsonic: sub,
             cd_transonic: sup,
             cp: (ours_cp, at("cp_m")),
