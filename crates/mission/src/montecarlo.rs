@@ -392,7 +392,10 @@ impl MonteCarlo {
                         Meaning::Factor => [value, 0.0],
                         Meaning::Offset => [1.0, value],
                         Meaning::Value => {
-                            return Err(format!("`{}`: an estimated curve takes a factor or an offset", input.name));
+                            return Err(format!(
+                                "`{}`: an estimated curve takes a factor or an offset",
+                                input.name
+                            ));
                         }
                     };
                 }

@@ -158,7 +158,10 @@ fn a_factor_or_offset_on_an_estimated_curve_changes_each_samples_estimate() {
     let columns: Vec<String> = mc.study().inputs.iter().map(|i| i.column()).collect();
     assert_eq!(
         columns,
-        ["rocket.power_off_drag:factor", "rocket.power_on_drag:offset"]
+        [
+            "rocket.power_off_drag:factor",
+            "rocket.power_on_drag:offset"
+        ]
     );
     let apogee = |values: &[f64]| mc.fly(0, values).expect("flight").values()[0].expect("apogee");
     // Factor 1 and offset 0 fly the nominal estimate exactly; more drag flies lower.

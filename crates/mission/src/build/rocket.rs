@@ -7,8 +7,8 @@ use std::sync::Arc;
 
 use karman_airframe::{
     self as airframe, AirBrakes, AirBrakesSpec, Airfoil, AirframeError, CoordinateSystem,
-    DragEstimate, DragGeometry, MotorProperties, NoseKind, Parachute, RailButtons, Rocket, RocketInputs,
-    SurfaceInput, Trigger,
+    DragEstimate, DragGeometry, MotorProperties, NoseKind, Parachute, RailButtons, Rocket,
+    RocketInputs, SurfaceInput, Trigger,
 };
 use karman_script::Expression;
 
