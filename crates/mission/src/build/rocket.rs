@@ -209,9 +209,7 @@ fn build(
             };
             let table = if on { e.power_on() } else { e.power_off() }
                 .map_err(|e| model("rocket.drag_estimate".to_owned(), e))?;
-            if [a, b] == [1.0, 0.0] {
-                return Ok(table);
-            }
+            // `1 · Cd + 0` is `Cd` exactly: the nominal estimate is unchanged.
             let ys = table.ys().iter().map(|cd| a * cd + b).collect();
             Table1::linear(table.xs().to_vec(), ys)
                 .map_err(|source| mission.model_error(key, source))
