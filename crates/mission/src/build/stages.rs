@@ -574,7 +574,14 @@ pub fn simulate_staged(mission: &Mission, seed: u64) -> Result<StagedRun, Missio
                 Configuration::default(),
                 Vec::new(),
             )
-            .map_err(flight_error)?;
+            .map_err(|e| {
+                mission.model_error(
+                    &format!("stages.{index}"),
+                    format!(
+                        "the stage `{name}` flying alone from its separation at t = {t} s: {e}"
+                    ),
+                )
+            })?;
             segments.push(Segment {
                 vehicle: name.clone(),
                 motor_stage: name.clone(),

@@ -852,21 +852,23 @@ fn body_text(
                 let area = std::f64::consts::PI * 0.25 * d * d;
                 let event = c.text("deployevent").unwrap_or("ejection");
                 let delay = c.num_or("deploydelay", 0.0)?;
+                // OpenRocket's deployment events, each then delayed by `deploydelay` (the lag).
                 let trigger = match event {
                     "apogee" => "\"apogee\"".to_owned(),
                     "altitude" => n(c.num("deployaltitude")?),
+                    "launch" => "\"launch + 0\"".to_owned(),
                     "never" => continue,
-                    "ejection" => {
-                        warnings.push(format!(
-                            "`{}`: deployed by the motor's ejection charge ({}) in OpenRocket; flown deploying at apogee",
-                            c.name,
-                            motor.delay.map_or_else(
-                                || "never: the motor is plugged".to_owned(),
-                                |d| format!("{d} s after burnout")
-                            )
-                        ));
-                        "\"apogee\"".to_owned()
-                    }
+                    // The motor's ejection charge fires its delay after burn-out.
+                    "ejection" => match motor.delay {
+                        Some(charge) => format!("\"burnout + {}\"", n(charge)),
+                        None => {
+                            warnings.push(format!(
+                                "`{}`: deployed by the ejection charge of a plugged motor in OpenRocket, so never deployed; left out",
+                                c.name
+                            ));
+                            continue;
+                        }
+                    },
                     other => {
                         warnings.push(format!(
                             "`{}`: deployment event {other:?} flown as apogee",
@@ -1041,7 +1043,6 @@ pub(super) fn mission(
         n(heading),
         n(max_time)
     );
-    let _ = writeln!(w, "terminate_on_apogee = true");
     // Stage names as reports show them, made unique by OpenRocket's stage number.
     let title = |g: &Group| {
         if groups.iter().filter(|o| o.name() == g.name()).count() > 1 {
