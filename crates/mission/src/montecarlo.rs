@@ -34,6 +34,7 @@ use crate::build::flight::{early_ending, flight_settings, fly};
 use crate::build::motor::{build_motor_with, thrust_source};
 use crate::build::rocket::build_rocket;
 use crate::build::scripts::{ControllerEnvironment, compile_controller};
+use crate::build::stages;
 use crate::paths::{self, DerivedKnob, Input};
 use crate::schema::{AirBrakesCurve, Curve, Distribution, MissionSpec};
 use crate::{Mission, MissionError};
@@ -41,8 +42,8 @@ use karman_airframe::{AirBrakesDrag, Rocket};
 use karman_atmos::Environment;
 use karman_dispersion::sampling::flight_seed;
 use karman_dispersion::{
-    DataFile, DispersionError, Distribution as Draw, Meaning, Outcome, Points, Site, Study, Target,
-    Variation, VariedInput,
+    BodyPoints, DataFile, DispersionError, Distribution as Draw, Meaning, Outcome, Points, Site,
+    Study, Target, Variation, VariedInput,
 };
 use karman_dynamics::{Air, AtmosphereModel, Summary};
 use karman_math::Cursor;
@@ -74,6 +75,28 @@ pub const OUTPUTS: [&str; 18] = [
     "impact_y_m",
     "impact_velocity_mps",
 ];
+
+/// The outputs of each lower stage of a multi-stage rocket that flies to its own landing,
+/// after its `<stage name>.` (mission-format.md "Monte Carlo of a multi-stage rocket"); each
+/// lower stage also has `<stage name>.separation_time_s`.
+pub const BODY_OUTPUTS: [&str; 13] = [
+    "apogee_agl_m",
+    "apogee_asl_m",
+    "apogee_time_s",
+    "apogee_x_m",
+    "apogee_y_m",
+    "max_speed_mps",
+    "max_mach",
+    "max_dynamic_pressure_pa",
+    "max_acceleration_mps2",
+    "impact_time_s",
+    "impact_x_m",
+    "impact_y_m",
+    "impact_velocity_mps",
+];
+
+/// The output of a lower stage's separation time.
+const SEPARATION_OUTPUT: &str = "separation_time_s";
 
 /// The values of [`OUTPUTS`] in a flight summary.
 fn output_values(s: &Summary) -> Vec<Option<f64>> {
@@ -110,8 +133,22 @@ enum Apply {
     Curve { path: String, points: Vec<[f64; 2]> },
     /// The air brakes' drag table, with its nominal rows (the Cd column varies).
     Rows { rows: Vec<[f64; 3]> },
-    /// A derived knob, with its nominal value.
-    Knob { knob: DerivedKnob, nominal: f64 },
+    /// A derived knob, with its nominal value, of the top stage's motor (`stage` none) or of
+    /// a lower stage's.
+    Knob {
+        knob: DerivedKnob,
+        nominal: f64,
+        stage: Option<usize>,
+    },
+}
+
+/// A lower stage of a multi-stage study and the outputs it adds.
+#[derive(Debug, Clone)]
+struct LowerStage {
+    /// Its name in reports and before its columns.
+    name: String,
+    /// It flies to its own landing (it has a motor and a mass): its [`BODY_OUTPUTS`] exist.
+    flies: bool,
 }
 
 /// Which models the varied inputs reach (the others are built once and shared).
@@ -158,6 +195,10 @@ pub struct MonteCarlo {
     /// The nominal motor's burn end time and total impulse (the `motor.burn_time` and
     /// `motor.total_impulse` knobs reshape the thrust curve from them).
     nominal_reshape: [f64; 2],
+    /// The same of each lower stage's own motor (none without one).
+    stage_reshapes: Vec<Option<[f64; 2]>>,
+    /// The lower stages of a multi-stage mission (each sample flies the staged flight).
+    lower: Vec<LowerStage>,
 }
 
 /// `--samples` / `--seed` overrides of the `[dispersion]` table.
@@ -236,6 +277,16 @@ impl MonteCarlo {
         let motor = build_motor_with(mission, &thrust)?;
         let rocket = build_rocket(mission, &motor)?;
         let environment = build_environment(mission)?;
+        let mut stage_reshapes = Vec::with_capacity(spec.stages.len());
+        for (index, stage) in spec.stages.iter().enumerate() {
+            stage_reshapes.push(match stage.motor {
+                Some(_) => {
+                    let motor = stages::stage_motor(mission, index)?;
+                    Some([motor.burn_out(), motor.total_impulse()])
+                }
+                None => None,
+            });
+        }
         let mut inputs = Vec::new();
         let mut applies = Vec::new();
         let mut reach = Reach::default();
@@ -289,24 +340,62 @@ impl MonteCarlo {
                     (Target::Curve, Apply::Rows { rows })
                 }
                 Input::Knob(knob) => {
+                    let stage = paths::stage_path(path).map(|(index, _)| index);
+                    let [burn, impulse] = match stage {
+                        None => [motor.burn_out(), motor.total_impulse()],
+                        Some(index) => stage_reshapes
+                            .get(index)
+                            .copied()
+                            .flatten()
+                            .ok_or_else(|| invalid(format!("`{path}`: the stage has no motor")))?,
+                    };
                     let nominal = match knob {
-                        DerivedKnob::TotalImpulse => motor.total_impulse(),
-                        DerivedKnob::BurnTime => motor.burn_out(),
+                        DerivedKnob::TotalImpulse => impulse,
+                        DerivedKnob::BurnTime => burn,
                         DerivedKnob::WindFactor => 1.0,
                         DerivedKnob::WindDirectionOffset => 0.0,
                     };
-                    (Target::Number(nominal), Apply::Knob { knob, nominal })
+                    let apply = Apply::Knob {
+                        knob,
+                        nominal,
+                        stage,
+                    };
+                    (Target::Number(nominal), apply)
                 }
             };
             inputs.push(VariedInput::new(path.clone(), target, variation));
             applies.push(apply);
         }
-        let outputs = OUTPUTS.iter().map(|s| (*s).to_owned()).collect();
+        let lower: Vec<LowerStage> = spec
+            .stages
+            .iter()
+            .enumerate()
+            .map(|(index, stage)| LowerStage {
+                name: stages::stage_name(stage, index),
+                flies: stage.rocket.mass > 0.0 && stage.motor.is_some(),
+            })
+            .collect();
+        let mut outputs: Vec<String> = OUTPUTS.iter().map(|s| (*s).to_owned()).collect();
+        let mut bodies = Vec::new();
+        for stage in &lower {
+            let column = |output: &str| format!("{}.{output}", stage.name);
+            outputs.push(column(SEPARATION_OUTPUT));
+            if stage.flies {
+                outputs.extend(BODY_OUTPUTS.iter().map(|o| column(o)));
+                bodies.push(BodyPoints {
+                    name: stage.name.clone(),
+                    apogee: Some([column("apogee_x_m"), column("apogee_y_m")]),
+                    landing: Some([column("impact_x_m"), column("impact_y_m")]),
+                });
+            }
+        }
         let mut study = Study::new(seed, samples, inputs, outputs);
         study.points = Points {
             apogee: Some(["apogee_x_m".into(), "apogee_y_m".into()]),
             landing: Some(["impact_x_m".into(), "impact_y_m".into()]),
             histogram: Some("apogee_agl_m".into()),
+            body: (!lower.is_empty()).then(|| stages::TOP_STAGE.to_owned()),
+            bodies,
         };
         study.site = Some(Site {
             latitude_deg: spec.environment.latitude_deg,
@@ -330,6 +419,8 @@ impl MonteCarlo {
             controller: compile_controller(mission)?,
             thrust,
             nominal_reshape: [motor.burn_out(), motor.total_impulse()],
+            stage_reshapes,
+            lower,
             motor,
             rocket,
         })
@@ -346,6 +437,7 @@ impl MonteCarlo {
         let mut spec = self.mission.spec.clone();
         let mut wind = [1.0, 0.0];
         let mut reshape: [Option<f64>; 2] = [None, None];
+        let mut stage_reshape: Vec<[Option<f64>; 2]> = vec![[None, None]; spec.stages.len()];
         for ((apply, input), &value) in self.applies.iter().zip(&self.study.inputs).zip(values) {
             let combine = |nominal: f64| match input.meaning() {
                 Meaning::Value => value,
@@ -365,7 +457,7 @@ impl MonteCarlo {
                 }
                 Apply::Curve { path, points } => {
                     let scaled = points.iter().map(|[x, y]| [*x, combine(*y)]).collect();
-                    let slot = curve_mut(&mut spec, path)
+                    let slot = paths::curve_mut(&mut spec, path)
                         .ok_or_else(|| format!("`{path}` is not a curve"))?;
                     *slot = Curve::Points(scaled);
                 }
@@ -375,18 +467,44 @@ impl MonteCarlo {
                         ab.drag_coefficient_curve = AirBrakesCurve::Rows(scaled);
                     }
                 }
-                Apply::Knob { knob, nominal } => match knob {
-                    DerivedKnob::TotalImpulse => reshape[1] = Some(combine(*nominal)),
-                    DerivedKnob::BurnTime => reshape[0] = Some(combine(*nominal)),
-                    DerivedKnob::WindFactor => wind[0] = combine(*nominal),
-                    DerivedKnob::WindDirectionOffset => wind[1] = combine(*nominal),
-                },
+                Apply::Knob {
+                    knob,
+                    nominal,
+                    stage,
+                } => {
+                    let value = combine(*nominal);
+                    let target = match stage {
+                        None => &mut reshape,
+                        Some(index) => stage_reshape
+                            .get_mut(*index)
+                            .ok_or_else(|| format!("no stage {index}"))?,
+                    };
+                    match knob {
+                        DerivedKnob::TotalImpulse => target[1] = Some(value),
+                        DerivedKnob::BurnTime => target[0] = Some(value),
+                        DerivedKnob::WindFactor => wind[0] = value,
+                        DerivedKnob::WindDirectionOffset => wind[1] = value,
+                    }
+                }
             }
         }
+        let merged = |drawn: [Option<f64>; 2], [burn, impulse]: [f64; 2]| {
+            [drawn[0].unwrap_or(burn), drawn[1].unwrap_or(impulse)]
+        };
         if reshape.iter().any(Option::is_some) {
-            let [burn, impulse] = self.nominal_reshape;
-            spec.motor.reshape_thrust_curve =
-                Some([reshape[0].unwrap_or(burn), reshape[1].unwrap_or(impulse)]);
+            spec.motor.reshape_thrust_curve = Some(merged(reshape, self.nominal_reshape));
+        }
+        for ((stage, drawn), nominal) in spec
+            .stages
+            .iter_mut()
+            .zip(stage_reshape)
+            .zip(&self.stage_reshapes)
+        {
+            if let (Some(motor), Some(nominal)) = (stage.motor.as_mut(), nominal)
+                && drawn.iter().any(Option::is_some)
+            {
+                motor.reshape_thrust_curve = Some(merged(drawn, *nominal));
+            }
         }
         Ok((spec, wind))
     }
@@ -405,6 +523,9 @@ impl MonteCarlo {
             Some(environment) => Arc::clone(environment),
             None => Arc::new(build_environment(&mission).map_err(|e| chain(&e))?),
         };
+        if !self.lower.is_empty() {
+            return self.fly_staged(index, &mission, &environment, [factor, offset_deg]);
+        }
         let (sample_motor, sample_rocket);
         let rocket = if self.reach.rocket {
             let motor = if self.reach.motor {
@@ -445,6 +566,52 @@ impl MonteCarlo {
         .map_err(|e| chain(&e))?;
         let values = output_values(&flight.summary(&atmosphere, rocket));
         Ok(match early_ending(flight.termination, &settings) {
+            None => Outcome::new(values),
+            Some((kind, message)) => Outcome::ended(values, kind, message),
+        })
+    }
+}
+
+impl MonteCarlo {
+    /// Flies sample `index` of a multi-stage mission (`mission` the sample's) as
+    /// [`stages::simulate_staged`] does: the top stage's [`OUTPUTS`], then each lower stage's
+    /// separation time and, when it flies alone, its [`BODY_OUTPUTS`] (none where its flight
+    /// did not get there: no separation, no landing). A body ending early ends the sample.
+    fn fly_staged(
+        &self,
+        index: u64,
+        mission: &Mission,
+        environment: &Environment,
+        wind: [f64; 2],
+    ) -> Result<Outcome, String> {
+        let noise_seed = flight_seed(self.study.seed, index);
+        let run = stages::simulate_staged_in(mission, environment.clone(), wind, noise_seed)
+            .map_err(|e| chain(&e))?;
+        let body = |name: &str| run.bodies.iter().position(|b| b.name == name);
+        let top = body(stages::TOP_STAGE).ok_or("the top stage did not fly")?;
+        let top_summary = run.summary(top);
+        let mut values = output_values(&top_summary);
+        let mut ended = early_ending(top_summary.termination, &run.settings);
+        for stage in &self.lower {
+            let separation = run.separations.iter().find(|s| s.stage == stage.name);
+            values.push(separation.map(|s| s.time_s));
+            if !stage.flies {
+                continue;
+            }
+            let summary = body(&stage.name).map(|b| run.summary(b));
+            let all = summary.as_ref().map(output_values);
+            for output in BODY_OUTPUTS {
+                let at = OUTPUTS.iter().position(|o| *o == output);
+                values.push(all.as_ref().zip(at).and_then(|(all, i)| all[i]));
+            }
+            if ended.is_none()
+                && let Some(summary) = &summary
+                && let Some((kind, message)) = early_ending(summary.termination, &run.settings)
+            {
+                ended = Some((kind, format!("{}: {message}", stage.name)));
+            }
+        }
+        Ok(match ended {
             None => Outcome::new(values),
             Some((kind, message)) => Outcome::ended(values, kind, message),
         })
@@ -532,26 +699,6 @@ fn inline_rocket_curves(mission: &mut Mission) -> Result<(), MissionError> {
         }
     }
     Ok(())
-}
-
-/// The curve-valued key at `path`.
-fn curve_mut<'a>(spec: &'a mut MissionSpec, path: &str) -> Option<&'a mut Curve> {
-    if let Some(rest) = path.strip_prefix("motor.tanks.") {
-        let (index, key) = rest.split_once('.')?;
-        let tank = spec.motor.tanks.get_mut(index.parse::<usize>().ok()?)?;
-        return paths::tank_curve_mut(tank, key);
-    }
-    let atm = &mut spec.environment.atmosphere;
-    match path {
-        "motor.thrust" => Some(&mut spec.motor.thrust),
-        "rocket.power_off_drag" => Some(&mut spec.rocket.power_off_drag),
-        "rocket.power_on_drag" => Some(&mut spec.rocket.power_on_drag),
-        "environment.atmosphere.pressure" => atm.pressure.as_mut(),
-        "environment.atmosphere.temperature" => atm.temperature.as_mut(),
-        "environment.atmosphere.wind_u" => atm.wind_u.as_mut(),
-        "environment.atmosphere.wind_v" => atm.wind_v.as_mut(),
-        _ => None,
-    }
 }
 
 /// An error and its sources, `: `-separated.
