@@ -492,7 +492,11 @@ fn a_two_stage_study_has_each_body_and_the_same_bytes_on_any_split() {
 fn a_bad_stage_path_is_located() {
     let fixtures = two_stage().with_file_name("");
     let mut text = std::fs::read_to_string(two_stage()).expect("fixture");
-    for file in ["example_K1960.eng", "power_off_drag.csv", "power_on_drag.csv"] {
+    for file in [
+        "example_K1960.eng",
+        "power_off_drag.csv",
+        "power_on_drag.csv",
+    ] {
         let absolute = fixtures.join(file).display().to_string();
         text = text.replace(&format!("\"{file}\""), &format!("'{absolute}'"));
     }
@@ -508,5 +512,8 @@ fn a_bad_stage_path_is_located() {
         "{message}"
     );
     assert!(message.contains("stages.0.ignition_dlay"), "{message}");
-    assert!(message.contains("ignition_delay"), "the keys there: {message}");
+    assert!(
+        message.contains("ignition_delay"),
+        "the keys there: {message}"
+    );
 }

@@ -1015,6 +1015,98 @@ mod tests {
         assert_eq!(nominal.status(), &karman_dispersion::Status::Completed);
     }
 
+    /// The two-stage fixture in a custom atmosphere with a constant wind (5, −2) m/s, with
+    /// `vary` as its `[dispersion.vary]` table.
+    fn two_stage(vary: &str) -> Mission {
+        let path = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../../fixtures/two_stage.toml");
+        let text = std::fs::read_to_string(&path).expect("fixture").replace(
+            "model = \"standard\"",
+            "model = \"custom\"\nwind_u = 5\nwind_v = -2",
+        );
+        let end = text
+            .find("[dispersion.vary]")
+            .expect("the fixture has a study");
+        let text = format!("{}[dispersion.vary]\n{vary}", &text[..end]);
+        crate::parse(&text, &path, &[]).expect("valid mission")
+    }
+
+    #[test]
+    fn neutral_draws_fly_the_nominal_stack_and_each_body_has_its_columns() {
+        let mission = two_stage(
+            "\"stages.0.rocket.mass\" = { std = 0.05 }\n\
+             \"stages.0.separation\" = { uniform = [0.3, 0.8] }\n\
+             \"stages.0.stack_power_off_drag\" = { factor = { normal = [1, 0.05] } }\n\
+             \"environment.wind_factor\" = { normal = [1, 0.1] }\n",
+        );
+        let mc = MonteCarlo::new(&mission, StudyOverrides::default()).expect("study");
+        let outputs = &mc.study().outputs;
+        assert_eq!(outputs.len(), OUTPUTS.len() + 1 + BODY_OUTPUTS.len());
+        assert_eq!(outputs[OUTPUTS.len()], "booster.separation_time_s");
+        assert_eq!(outputs[OUTPUTS.len() + 1], "booster.apogee_agl_m");
+        let points = &mc.study().points;
+        assert_eq!(points.body.as_deref(), Some("sustainer"));
+        assert_eq!(points.bodies[0].name, "booster");
+        let neutral = [1.1, 0.5, 1.0, 1.0];
+        let outcome = mc.fly(3, &neutral).expect("flight");
+        assert_eq!(outcome.status(), &karman_dispersion::Status::Completed);
+        let run = stages::simulate_staged(&mission, flight_seed(11, 3)).expect("nominal");
+        let mut expected = output_values(&run.summary(0));
+        expected.push(Some(run.separations[0].time_s));
+        let booster = output_values(&run.summary(1));
+        for output in BODY_OUTPUTS {
+            let at = OUTPUTS.iter().position(|o| *o == output).expect("output");
+            expected.push(booster[at]);
+        }
+        let bits = |v: &[Option<f64>]| v.iter().map(|x| x.map(f64::to_bits)).collect::<Vec<_>>();
+        assert_eq!(bits(outcome.values()), bits(&expected));
+        // A later separation, a heavier booster: the booster separates later and lands
+        // elsewhere; more wind carries both bodies farther.
+        let value = |o: &Outcome, name: &str| {
+            let at = outputs.iter().position(|n| n == name).expect("column");
+            o.values()[at].expect("value")
+        };
+        let later = mc.fly(3, &[1.1, 0.8, 1.0, 1.0]).expect("flight");
+        let shift = value(&later, "booster.separation_time_s")
+            - value(&outcome, "booster.separation_time_s");
+        assert!((shift - 0.3).abs() < 0.02, "{shift}");
+        let windy = mc.fly(3, &[1.1, 0.5, 1.0, 3.0]).expect("flight");
+        for body in ["", "booster."] {
+            let distance = |o: &Outcome| {
+                value(o, &format!("{body}impact_x_m")).hypot(value(o, &format!("{body}impact_y_m")))
+            };
+            assert!(distance(&windy) != distance(&outcome), "{body}");
+        }
+    }
+
+    #[test]
+    fn a_stage_motor_knob_reshapes_that_motor_only() {
+        let mission =
+            two_stage("\"stages.0.motor.total_impulse\" = { factor = { normal = [1, 0.03] } }\n");
+        let mc = MonteCarlo::new(&mission, StudyOverrides::default()).expect("study");
+        let [burn, impulse] = mc.stage_reshapes[0].expect("the booster's motor");
+        assert_eq!(mc.study().inputs[0].target, Target::Number(impulse));
+        let (spec, _) = mc.sample_spec(&[1.1]).expect("applied");
+        let reshaped = spec.stages[0]
+            .motor
+            .as_ref()
+            .and_then(|m| m.reshape_thrust_curve)
+            .expect("reshaped");
+        assert_eq!(reshaped[0].to_bits(), burn.to_bits());
+        assert!((reshaped[1] - 1.1 * impulse).abs() < 1e-9 * impulse);
+        assert_eq!(spec.motor.reshape_thrust_curve, None);
+        // More impulse in the booster: a higher booster apogee.
+        let apogee = |factor: f64| {
+            let o = mc.fly(0, &[factor]).expect("flight");
+            let at = mc
+                .study()
+                .outputs
+                .iter()
+                .position(|n| n == "booster.apogee_agl_m");
+            o.values()[at.expect("column")].expect("apogee")
+        };
+        assert!(apogee(1.1) > apogee(0.9));
+    }
+
     #[test]
     fn overrides_and_missing_table() {
         let mission = mission("\"rocket.mass\" = { std = 0.1 }\n");
