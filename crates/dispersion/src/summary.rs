@@ -5,12 +5,13 @@
 //! depend on how a flight ended); the output statistics, the ellipses, the landing points and
 //! the histogram cover the completed flights only (status `ok`), the flights the study asked
 //! for. Samples that ended early (`max_time`, `stuck_on_rail`) or failed are counted
-//! separately and listed with their messages.
+//! separately and listed with their messages. A study of several bodies ([`crate::Points`])
+//! gets the apogee and landing ellipses of each, in the order of its bodies.
 //!
 //! Memory does not grow without bound with the number of samples: the quantiles need every
 //! value of a column, so columns are read in groups of at most `VALUES_PER_PASS` values
 //! (64 MB), one pass over the file per group; the ellipses use running moments; the KML and
-//! the scatter plot show at most the first `MAX_DRAWN_POINTS` landing points.
+//! the scatter plot show at most the first `MAX_DRAWN_POINTS` landing points of each body.
 
 use crate::csv::{Counts, Row};
 use crate::error::DispersionError;

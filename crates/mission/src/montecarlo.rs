@@ -25,6 +25,14 @@
 //! rocket curve files are read once. Parachute trigger noise of sample `i` is seeded from the
 //! sample's reserved stream ([`karman_dispersion::sampling::flight_seed`]), so it replays with
 //! the sample.
+//!
+//! A multi-stage mission (`[[stages]]`) flies each sample as
+//! [`crate::build::stages::simulate_staged`] does, in the shared environment unless a stored
+//! environment input varies, with the wind knobs applied
+//! ([`crate::build::stages::simulate_staged_in`]); a lower stage's inputs are reached by
+//! `stages.<index>.` paths (its motor's knobs reshape that motor's thrust curve), and each lower
+//! stage adds its separation time and, when it flies alone, its body's outputs
+//! ([`BODY_OUTPUTS`]) and landing points to the study.
 //! The KML export converts (x, y) to latitude/longitude with the datum's local Earth radius,
 //! as the flight's own track does (RocketPy's ellipse export uses 6.3781e6 m: up to 0.1 %
 //! apart, about 1 m per km of drift).
