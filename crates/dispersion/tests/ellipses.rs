@@ -116,7 +116,7 @@ fn each_body_of_a_study_gets_its_own_ellipses() {
     let mut rows: Vec<Row> = (0..200)
         .map(|i| {
             let [x, y] = points[i];
-            let booster = (i < 199).then(|| [0.5 * x, 0.5 * y]);
+            let booster = (i < 199).then_some([0.5 * x, 0.5 * y]);
             Row {
                 index: i as u64,
                 status: Status::Completed,

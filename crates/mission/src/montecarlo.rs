@@ -1068,7 +1068,7 @@ mod tests {
         let bits = |v: &[Option<f64>]| v.iter().map(|x| x.map(f64::to_bits)).collect::<Vec<_>>();
         assert_eq!(bits(outcome.values()), bits(&expected));
         // A later separation, a heavier booster: the booster separates later and lands
-        // elsewhere; more wind carries both bodies farther.
+        // elsewhere; three times the wind carries both bodies farther.
         let value = |o: &Outcome, name: &str| {
             let at = outputs.iter().position(|n| n == name).expect("column");
             o.values()[at].expect("value")
@@ -1082,7 +1082,7 @@ mod tests {
             let distance = |o: &Outcome| {
                 value(o, &format!("{body}impact_x_m")).hypot(value(o, &format!("{body}impact_y_m")))
             };
-            assert!(distance(&windy) != distance(&outcome), "{body}");
+            assert!(distance(&windy) > distance(&outcome) + 100.0, "{body}");
         }
     }
 
