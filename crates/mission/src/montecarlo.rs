@@ -333,6 +333,12 @@ impl MonteCarlo {
                     (Target::Array(values), Apply::Array { components })
                 }
                 Input::Curve(curve) if curve.is_estimate() => {
+                    if !spec.stages.is_empty() {
+                        return Err(invalid(format!(
+                            "`{path}`: the estimated drag of a multi-stage rocket takes no \
+                             `factor` or `offset` yet; give the curve as points or a file"
+                        )));
+                    }
                     let power_on = path == "rocket.power_on_drag";
                     (Target::Curve, Apply::Estimate { power_on })
                 }
@@ -1117,13 +1123,40 @@ mod tests {
     }
 
     #[test]
+    fn an_estimated_drag_of_a_stack_is_not_scaled() {
+        let path = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../../fixtures/two_stage.toml");
+        let text = std::fs::read_to_string(&path).expect("fixture");
+        let end = text
+            .find("[dispersion.vary]")
+            .expect("the fixture has a study");
+        let lines: Vec<&str> = text[..end]
+            .lines()
+            .map(|line| {
+                if line.starts_with("stack_power_on_drag") {
+                    "stack_power_on_drag = \"estimate\""
+                } else {
+                    line
+                }
+            })
+            .collect();
+        let text = format!(
+            "{}\n[dispersion.vary]\n\"stages.0.stack_power_on_drag\" = {{ factor = {{ std = 0.05 }} }}\n",
+            lines.join("\n")
+        );
+        let error = crate::parse(&text, &path, &[]).expect_err("refused");
+        let text = error.to_string();
+        assert!(text.contains("stages.0.stack_power_on_drag"), "{text}");
+        assert!(text.contains("multi-stage"), "{text}");
+    }
+
+    #[test]
     fn a_stage_motor_knob_reshapes_that_motor_only() {
         let mission =
             two_stage("\"stages.0.motor.total_impulse\" = { factor = { normal = [1, 0.03] } }\n");
         let mc = MonteCarlo::new(&mission, StudyOverrides::default()).expect("study");
         let [burn, impulse] = mc.stage_reshapes[0].expect("the booster's motor");
         assert_eq!(mc.study().inputs[0].target, Target::Number(impulse));
-        let (spec, _) = mc.sample_spec(&[1.1]).expect("applied");
+        let (spec, _, _) = mc.sample_spec(&[1.1]).expect("applied");
         let reshaped = spec.stages[0]
             .motor
             .as_ref()
