@@ -190,14 +190,6 @@ fn stages(c: &mut Checker<'_, '_>, spec: &MissionSpec) {
             },
         );
     }
-    if spec.dispersion.is_some() {
-        c.report(
-            "dispersion",
-            ProblemKind::Unsupported {
-                what: "a Monte Carlo study of a multi-stage rocket".to_owned(),
-            },
-        );
-    }
     let mut surfaces: Vec<&str> = spec.rocket.surfaces.keys().map(String::as_str).collect();
     let mut parachutes: Vec<&str> = spec.rocket.parachutes.keys().map(String::as_str).collect();
     for (index, stage) in spec.stages.iter().enumerate() {
@@ -1138,6 +1130,13 @@ fn dispersion(c: &mut Checker<'_, '_>, spec: &MissionSpec) {
     for (path, distribution) in &d.vary {
         let key = format!("dispersion.vary.{path}");
         let problem = match paths::resolve(spec, path) {
+            Ok(paths::Input::Curve(curve)) if curve.is_estimate() && !spec.stages.is_empty() => {
+                Some(
+                    "the estimated drag of a multi-stage rocket takes no `factor` or `offset` \
+                     yet; give the curve as points or a file"
+                        .to_owned(),
+                )
+            }
             Ok(input) => paths::check_distribution(&input, distribution).err(),
             Err(error) => Some(error.to_string()),
         };
