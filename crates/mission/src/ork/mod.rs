@@ -4,7 +4,8 @@
 //! The file format is OpenRocket's (`OpenRocketSaver` / `importt` in the OpenRocket sources,
 //! read for the element names only). The reader maps
 //! - the body (nose cone, body tubes, transitions) onto a `"nose"` surface and `"tail"`
-//!   surfaces, and trapezoidal, elliptical and free-form fin sets onto fin surfaces;
+//!   surfaces, trapezoidal, elliptical and free-form fin sets onto fin surfaces and tube fin
+//!   sets onto `"tube_fins"`;
 //! - every component's mass, centre of mass and inertia, with OpenRocket's mass and CG
 //!   overrides, onto the rocket's mass, centre of mass and inertia without motor
 //!   (module `mass`);
@@ -14,7 +15,7 @@
 //! - the drag onto `power_off_drag = "estimate"` with `[rocket.drag_estimate]` (finish, fin
 //!   thickness and edges, launch lugs, rail buttons).
 //!
-//! Stages beyond the first, pods, motor clusters and tube fins are refused, naming the
+//! Stages beyond the first, pods and motor clusters are refused, naming the
 //! component; what is mapped approximately is listed in [`Imported::warnings`].
 
 mod design;

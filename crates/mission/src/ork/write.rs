@@ -590,6 +590,20 @@ pub(super) fn mission(
                     }
                     fins.push('\n');
                 }
+                Kind::TubeFins => {
+                    let (outer, inner) = c.tube_fin_radii(tube_radius)?;
+                    let _ = write!(
+                        surfaces,
+                        "[rocket.surfaces.{}]\ntype = \"tube_fins\"\nn = {}\nlength = {}\nouter_radius = {}\ninner_radius = {}\nposition = {}\nradius = {}\n\n",
+                        key(&c.name, &mut used),
+                        c.dim("fincount")? as u32,
+                        n(c.length),
+                        n(outer),
+                        n(inner),
+                        n(c.x),
+                        n(tube_radius)
+                    );
+                }
                 Kind::LaunchLug => {
                     let r = c.dim("radius")?;
                     let _ = write!(
