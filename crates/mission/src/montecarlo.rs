@@ -333,6 +333,12 @@ impl MonteCarlo {
                     (Target::Array(values), Apply::Array { components })
                 }
                 Input::Curve(curve) if curve.is_estimate() => {
+                    if !spec.stages.is_empty() {
+                        return Err(invalid(format!(
+                            "`{path}`: a factor or offset on an estimated drag curve is not \
+                             available in a multi-stage mission yet"
+                        )));
+                    }
                     let power_on = path == "rocket.power_on_drag";
                     (Target::Curve, Apply::Estimate { power_on })
                 }
@@ -1123,7 +1129,7 @@ mod tests {
         let mc = MonteCarlo::new(&mission, StudyOverrides::default()).expect("study");
         let [burn, impulse] = mc.stage_reshapes[0].expect("the booster's motor");
         assert_eq!(mc.study().inputs[0].target, Target::Number(impulse));
-        let (spec, _) = mc.sample_spec(&[1.1]).expect("applied");
+        let (spec, _, _) = mc.sample_spec(&[1.1]).expect("applied");
         let reshaped = spec.stages[0]
             .motor
             .as_ref()
