@@ -658,23 +658,21 @@ pub fn stage_outputs(spec: &MissionSpec) -> Vec<String> {
     outputs
 }
 
+/// A staged flight's output values and how it ended early, if it did: the status word and
+/// the message ([`early_ending`]).
+pub type StagedValues = (Vec<Option<f64>>, Option<(&'static str, String)>);
+
 /// The values of [`OUTPUTS`] and [`stage_outputs`] of the staged flight `run` of `spec` (none
 /// where a body's flight did not get there: no separation, no landing), and how it ended
 /// early if a body did (its message naming a lower body).
 ///
 /// # Errors
 /// When the top stage did not fly (it always does).
-pub fn staged_outputs(
-    run: &stages::StagedRun,
-    spec: &MissionSpec,
-) -> Result<(Vec<Option<f64>>, Option<(&'static str, String)>), String> {
+pub fn staged_outputs(run: &stages::StagedRun, spec: &MissionSpec) -> Result<StagedValues, String> {
     staged_values(run, &lower_stages(spec))
 }
 
-fn staged_values(
-    run: &stages::StagedRun,
-    lower: &[LowerStage],
-) -> Result<(Vec<Option<f64>>, Option<(&'static str, String)>), String> {
+fn staged_values(run: &stages::StagedRun, lower: &[LowerStage]) -> Result<StagedValues, String> {
     let body = |name: &str| run.bodies.iter().position(|b| b.name == name);
     let top = body(stages::TOP_STAGE).ok_or("the top stage did not fly")?;
     let top_summary = run.summary(top);
