@@ -114,7 +114,8 @@ impl Motor {
     ///
     /// # Errors
     /// [`PropulsionError::InvalidParameter`] for a parameter out of range,
-    /// [`PropulsionError::NoImpulse`] for a curve without positive impulse.
+    /// [`PropulsionError::NoImpulse`] for a curve without positive impulse,
+    /// [`PropulsionError::ExhaustVelocity`] when `I_tot / m_p0` gives no finite mass flow.
     pub fn solid(
         thrust: ThrustCurve,
         structure: MotorStructure,
@@ -277,6 +278,21 @@ impl Motor {
         }
         let initial_mass = model.initial_mass();
         let exhaust_velocity = impulse / initial_mass;
+        // `ṁ = −T/v̄_e` must be finite wherever the thrust is: v̄_e positive (+∞ for a motor
+        // without propellant) and the peak flow representable.
+        let peak_thrust = thrust
+            .table()
+            .ys()
+            .iter()
+            .fold(0.0_f64, |a, t| a.max(t.abs()));
+        if !(exhaust_velocity > 0.0 && (peak_thrust / exhaust_velocity).is_finite()) {
+            return Err(PropulsionError::ExhaustVelocity {
+                impulse,
+                initial_mass,
+                exhaust_velocity,
+                peak_thrust,
+            });
+        }
         Ok((
             initial_mass,
             exhaust_velocity,

@@ -67,3 +67,30 @@ proptest! {
         }
     }
 }
+
+/// Regression (found by `motors_never_panic`): an impulse of 3.5e-290 N·s over a grain of
+/// density 2.3e167 kg/m³ gives an exhaust velocity `I/m_p0` that underflows to 0, and so a
+/// mass flow `−T/v̄_e` of −∞ (NaN outside the burn). The motor is refused instead.
+#[test]
+fn an_exhaust_velocity_that_underflows_is_refused() {
+    let data = ThrustData::from_points("inline", &[[0.0, 0.0], [1.0, 100.0], [2.0, 0.0]]).unwrap();
+    let options = ThrustOptions {
+        burn_time: None,
+        reshape: Some((BurnTime::End(2.0), 3.5e-290)),
+        interpolation: Interpolation::Linear,
+    };
+    let curve = ThrustCurve::new(&ThrustSource::Data(Box::new(data)), &options).unwrap();
+    let grains = BatesGrains {
+        number: 1,
+        density: 2.3e167,
+        outer_radius: 0.05,
+        initial_inner_radius: 0.02,
+        initial_height: 0.1,
+        separation: 0.0,
+        center_of_mass_position: 0.4,
+        throat_radius: 0.01,
+        only_radial_burn: false,
+    };
+    let err = Motor::solid(curve, structure(), grains).unwrap_err();
+    assert!(err.to_string().contains("exhaust velocity"), "{err}");
+}
