@@ -180,3 +180,26 @@ proptest! {
         }
     }
 }
+
+#[test]
+fn tanks_without_resampling_keep_their_points_or_are_located_errors() {
+    let path = fixture("liquid.toml");
+    // The ullage tank keeps its two points.
+    let text = liquid_text().replacen("ullage = [[0", "discretize = false\nullage = [[0", 1);
+    let mission = parse(&text, &path, &[]).expect("loads");
+    let motor = build_motor(&mission).expect("builds");
+    assert_eq!(motor.tanks()[1].tank.mass().xs(), [0.0, 4.5]);
+    // A mass-flow-rate tank, and a mass tank with a constant mass: RocketPy 1.13 builds
+    // neither without resampling.
+    for (anchor, key) in [
+        ("initial_liquid_mass = 2.5", "motor.tanks.0.discretize"),
+        ("liquid_mass = 0", "motor.tanks.3.liquid_mass"),
+    ] {
+        let text = liquid_text().replacen(anchor, &format!("discretize = false\n{anchor}"), 1);
+        let Err(MissionError::Invalid { problems, .. }) = parse(&text, &path, &[]) else {
+            panic!("accepted discretize = false before {anchor}");
+        };
+        assert_eq!(problems[0].key, key);
+        assert!(matches!(problems[0].location, Location::File { .. }));
+    }
+}

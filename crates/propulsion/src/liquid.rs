@@ -11,8 +11,10 @@
 //! ```
 //!
 //! RocketPy forms these with `Function` arithmetic: tanks on one time grid (same flux time
-//! and `discretize`) give node-wise sums with the first tank's interpolation (its mass tables'
-//! for the mass and the centre of mass, linear for the inertia), reproduced exactly here; on
+//! and `discretize`, or the same points without resampling) give node-wise sums with the
+//! first tank's interpolation and extrapolation (its mass table's for the mass and the centre
+//! of mass, its inertia table's interpolation, held constant, for the inertia), reproduced
+//! exactly here; on
 //! different grids RocketPy evaluates the formulas pointwise, which is tabulated here on the
 //! union of the grids, linear between its nodes (the tanks' own tables are smooth on their
 //! grid spacing, so the difference is of second order in it).
@@ -101,14 +103,25 @@ impl PropellantModel for LiquidPropellant<'_> {
     ) -> Result<PropellantTables, PropulsionError> {
         let first = self.tanks[0].tank.mass();
         let one_grid = self.tanks.iter().all(|p| p.tank.mass().xs() == first.xs());
-        let (times, interpolation) = if one_grid {
-            (first.xs().to_vec(), first.interpolation())
+        let hold = Extrapolation::Constant;
+        let (times, interpolation, extrapolation, inertia_interpolation) = if one_grid {
+            (
+                first.xs().to_vec(),
+                first.interpolation(),
+                first.extrapolation(),
+                self.tanks[0].tank.inertia().interpolation(),
+            )
         } else {
             let all = self
                 .tanks
                 .iter()
                 .flat_map(|p| p.tank.mass().xs().iter().copied());
-            (union_grid(all), Interpolation::Linear)
+            (
+                union_grid(all),
+                Interpolation::Linear,
+                hold,
+                Interpolation::Linear,
+            )
         };
         // On one grid the tank tables' ordinates are the node values; elsewhere the tables are
         // evaluated.
@@ -123,19 +136,24 @@ impl PropellantModel for LiquidPropellant<'_> {
             center.push(c);
             inertia.push(i);
         }
-        let hold = Extrapolation::Constant;
-        let mass = Table1::new(times, mass, interpolation, hold)
+        let mass = Table1::new(times, mass, interpolation, extrapolation)
             .map_err(PropulsionError::table("propellant mass"))?;
-        let like = |ys, interpolation, what| {
-            Table1::on_same_abscissae(&mass, ys, interpolation, hold)
+        let like = |ys, interpolation, extrapolation, what| {
+            Table1::on_same_abscissae(&mass, ys, interpolation, extrapolation)
                 .map_err(PropulsionError::table(what))
         };
         Ok(PropellantTables {
-            center_of_mass: like(center, interpolation, "propellant centre of mass")?,
-            i11: like(inertia, Interpolation::Linear, "propellant I11")?,
+            center_of_mass: like(
+                center,
+                interpolation,
+                extrapolation,
+                "propellant centre of mass",
+            )?,
+            i11: like(inertia, inertia_interpolation, hold, "propellant I11")?,
             i33: like(
                 vec![0.0; mass.xs().len()],
                 Interpolation::Linear,
+                hold,
                 "propellant I33",
             )?,
             mass,
