@@ -114,7 +114,7 @@ fn thrust_points_too_close_for_a_spline_are_refused() {
     let curve = ThrustCurve::new(&ThrustSource::Data(Box::new(data)), &options).unwrap();
     let grains = BatesGrains {
         number: 1,
-        density: 6714.3275105602225,
+        density: 6_714.327_510_560_222,
         outer_radius: 2.99942151836678e64,
         initial_inner_radius: 0.0,
         initial_height: 0.27183020695253095,
