@@ -482,7 +482,7 @@ fn openrocket_report(root: &Path) -> Result<(String, Vec<String>)> {
     use karman_mission::report::openrocket::{DESIGNS, compare_design};
     let mut s = String::from(
         "\n## OpenRocket designs imported and flown (fixtures/openrocket)\n\n\
-         karman / OpenRocket; CP and margin at the ascent row of least angle of attack.\n\n```\n",
+         karman / OpenRocket; CP and margin at rod exit, at the angle of attack OpenRocket stored there.\n\n```\n",
     );
     let mut failures = Vec::new();
     for (design, cp_holds) in DESIGNS {

@@ -80,7 +80,7 @@ pub mod surfaces;
 
 pub use air_brakes::{AIR_BRAKES_CONTROL, AirBrakes, AirBrakesDrag, AirBrakesSpec};
 pub use drag::{
-    BodySegment, DragComponents, DragEstimate, DragGeometry, DragModel, FinCrossSection,
+    BodyLift, BodySegment, DragComponents, DragEstimate, DragGeometry, DragModel, FinCrossSection,
     FinSetDrag, FlowReference, LaunchLug, Profile, RailButtonDrag,
 };
 pub use error::AirframeError;

@@ -8,7 +8,9 @@
 //! - A component of an array (`rocket.inertia.0`) is a stored number; the whole array
 //!   (`rocket.inertia`) takes `factor` / `offset` on every component.
 //! - A curve (`rocket.power_off_drag` from a file or points) takes `factor` / `offset` on
-//!   every ordinate; a file curve is read once and replaced by its scaled points.
+//!   every ordinate; a file curve is read once and replaced by its scaled points. A drag
+//!   curve estimated from the geometry (`"estimate"`) takes them too, on the sample's own
+//!   estimate (geometry varied in the same sample included).
 //! - `motor.total_impulse` / `motor.burn_time` reshape the thrust curve
 //!   (`reshape_thrust_curve = [burn end time, impulse]`, RocketPy's `reshape_thrust_curve`);
 //!   the nominal values are those of the nominal motor.
@@ -32,7 +34,7 @@
 use crate::build::environment::build_environment;
 use crate::build::flight::{early_ending, flight_settings, fly};
 use crate::build::motor::{build_motor_with, thrust_source};
-use crate::build::rocket::build_rocket;
+use crate::build::rocket::{EstimateScaling, build_rocket, build_rocket_scaled};
 use crate::build::scripts::{ControllerEnvironment, compile_controller};
 use crate::paths::{self, DerivedKnob, Input};
 use crate::schema::{AirBrakesCurve, Curve, Distribution, MissionSpec};
@@ -108,6 +110,9 @@ enum Apply {
     Array { components: Vec<(String, f64)> },
     /// A curve at this path, with its nominal points.
     Curve { path: String, points: Vec<[f64; 2]> },
+    /// A drag curve estimated from the geometry (power-on or off): each sample's own estimate
+    /// is scaled or shifted.
+    Estimate { power_on: bool },
     /// The air brakes' drag table, with its nominal rows (the Cd column varies).
     Rows { rows: Vec<[f64; 3]> },
     /// A derived knob, with its nominal value.
@@ -268,6 +273,10 @@ impl MonteCarlo {
                         .collect();
                     (Target::Array(values), Apply::Array { components })
                 }
+                Input::Curve(curve) if curve.is_estimate() => {
+                    let power_on = path == "rocket.power_on_drag";
+                    (Target::Curve, Apply::Estimate { power_on })
+                }
                 Input::Curve(curve) => {
                     let points = curve
                         .points(&mission.dir)
@@ -340,11 +349,15 @@ impl MonteCarlo {
         &self.study
     }
 
-    /// The mission with sampled `values` applied, and the wind (factor, direction offset in
-    /// degrees).
-    fn sample_spec(&self, values: &[f64]) -> Result<(MissionSpec, [f64; 2]), String> {
+    /// The mission with sampled `values` applied, the wind (factor, direction offset in
+    /// degrees) and the change of the estimated drag curves.
+    fn sample_spec(
+        &self,
+        values: &[f64],
+    ) -> Result<(MissionSpec, [f64; 2], EstimateScaling), String> {
         let mut spec = self.mission.spec.clone();
         let mut wind = [1.0, 0.0];
+        let mut drag = EstimateScaling::default();
         let mut reshape: [Option<f64>; 2] = [None, None];
         for ((apply, input), &value) in self.applies.iter().zip(&self.study.inputs).zip(values) {
             let combine = |nominal: f64| match input.meaning() {
@@ -369,6 +382,23 @@ impl MonteCarlo {
                         .ok_or_else(|| format!("`{path}` is not a curve"))?;
                     *slot = Curve::Points(scaled);
                 }
+                Apply::Estimate { power_on } => {
+                    let slot = if *power_on {
+                        &mut drag.power_on
+                    } else {
+                        &mut drag.power_off
+                    };
+                    *slot = match input.meaning() {
+                        Meaning::Factor => [value, 0.0],
+                        Meaning::Offset => [1.0, value],
+                        Meaning::Value => {
+                            return Err(format!(
+                                "`{}`: an estimated curve takes a factor or an offset",
+                                input.name
+                            ));
+                        }
+                    };
+                }
                 Apply::Rows { rows } => {
                     let scaled = rows.iter().map(|&[l, m, cd]| [l, m, combine(cd)]).collect();
                     if let Some(ab) = spec.rocket.air_brakes.as_mut() {
@@ -388,13 +418,13 @@ impl MonteCarlo {
             spec.motor.reshape_thrust_curve =
                 Some([reshape[0].unwrap_or(burn), reshape[1].unwrap_or(impulse)]);
         }
-        Ok((spec, wind))
+        Ok((spec, wind, drag))
     }
 
     /// Flies sample `index` with its sampled `values` (in the order of the study's inputs);
     /// an error is the whole message chain.
     pub fn fly(&self, index: u64, values: &[f64]) -> Result<Outcome, String> {
-        let (spec, [factor, offset_deg]) = self.sample_spec(values)?;
+        let (spec, [factor, offset_deg], drag) = self.sample_spec(values)?;
         let mission = Mission {
             path: self.mission.path.clone(),
             dir: self.mission.dir.clone(),
@@ -420,7 +450,7 @@ impl MonteCarlo {
             } else {
                 &self.motor
             };
-            sample_rocket = build_rocket(&mission, motor).map_err(|e| chain(&e))?;
+            sample_rocket = build_rocket_scaled(&mission, motor, drag).map_err(|e| chain(&e))?;
             &sample_rocket
         } else {
             &self.rocket
@@ -780,7 +810,7 @@ mod tests {
             (burn - 2.2).abs() < 1e-12,
             "burn-out of the fixture's curve: {burn}"
         );
-        let (spec, _) = mc.sample_spec(&[1.1, 2.5]).expect("applied");
+        let (spec, _, _) = mc.sample_spec(&[1.1, 2.5]).expect("applied");
         let reshaped = spec.motor.reshape_thrust_curve.expect("reshaped");
         assert!((reshaped[0] - 2.5).abs() < 1e-12);
         assert!((reshaped[1] - 1.1 * impulse).abs() < 1e-9);
@@ -811,7 +841,7 @@ mod tests {
             Target::Array(vec![0.5, 0.5, 0.002, 0.0, 0.0, 0.0])
         );
         // In file order: the factor scales every component, then component 0 is set.
-        let (spec, _) = mc.sample_spec(&[2.0, 0.7, 0.001]).expect("applied");
+        let (spec, _, _) = mc.sample_spec(&[2.0, 0.7, 0.001]).expect("applied");
         let bits = |v: [f64; 6]| v.map(f64::to_bits);
         assert_eq!(
             bits(spec.rocket.inertia.0),

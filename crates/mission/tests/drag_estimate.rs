@@ -1,11 +1,14 @@
 //! `power_off_drag = "estimate"`: the body implied by the surfaces, the estimate's tables,
-//! and the errors of an incomplete geometry.
+//! the errors of an incomplete geometry, and a Monte Carlo factor on the estimate.
 
 use crate::common::fixture;
 use karman_airframe::{BodySegment, DragGeometry, DragModel, FinCrossSection, FinSetDrag, Profile};
 use karman_math::PhysicalConstants;
 use karman_mission::build::drag::launch_air;
-use karman_mission::build::{motor::build_motor, rocket::build_rocket};
+use karman_mission::build::flight::simulate;
+use karman_mission::build::motor::build_motor;
+use karman_mission::build::rocket::{EstimateScaling, build_rocket, build_rocket_scaled};
+use karman_mission::montecarlo::{MonteCarlo, StudyOverrides};
 use karman_mission::{Override, load};
 
 fn load_with(sets: &[(&str, &str)]) -> karman_mission::Mission {
@@ -128,4 +131,44 @@ fn a_fin_set_without_thickness_is_named() {
         .map(ToString::to_string)
         .unwrap_or_default();
     assert!(text.contains("[rocket.drag_estimate.fins.fins]"), "{text}");
+}
+
+#[test]
+fn a_factor_or_offset_on_an_estimated_curve_changes_each_samples_estimate() {
+    let path = fixture("estimate.toml");
+    let text = std::fs::read_to_string(&path).expect("fixture")
+        + "\n[dispersion]\nsamples = 4\nseed = 1\n\n[dispersion.vary]\n\
+           \"rocket.power_off_drag\" = { factor = { normal = [1, 0.1] } }\n\
+           \"rocket.power_on_drag\" = { offset = { normal = [0, 0.02] } }\n";
+    let mission = karman_mission::parse(&text, &path, &[]).unwrap_or_else(|e| panic!("{e}"));
+    let motor = build_motor(&mission).expect("motor");
+    let nominal = build_rocket(&mission, &motor).expect("rocket");
+    let scaling = EstimateScaling {
+        power_off: [1.25, 0.0],
+        power_on: [1.0, 0.02],
+    };
+    let scaled = build_rocket_scaled(&mission, &motor, scaling).expect("scaled rocket");
+    for mach in [0.1, 0.9, 2.0] {
+        let off = nominal.drag_coefficient(false, mach);
+        let on = nominal.drag_coefficient(true, mach);
+        assert!((scaled.drag_coefficient(false, mach) - 1.25 * off).abs() < 1e-12);
+        assert!((scaled.drag_coefficient(true, mach) - (on + 0.02)).abs() < 1e-12);
+    }
+    let mc = MonteCarlo::new(&mission, StudyOverrides::default()).expect("study");
+    let columns: Vec<String> = mc.study().inputs.iter().map(|i| i.column()).collect();
+    assert_eq!(
+        columns,
+        [
+            "rocket.power_off_drag:factor",
+            "rocket.power_on_drag:offset"
+        ]
+    );
+    let apogee = |values: &[f64]| mc.fly(0, values).expect("flight").values()[0].expect("apogee");
+    // Factor 1 and offset 0 fly the nominal estimate exactly; more drag flies lower.
+    let neutral = apogee(&[1.0, 0.0]);
+    let flown = simulate(&mission).expect("nominal flight").summary();
+    assert_eq!(Some(neutral), flown.apogee_agl_m);
+    assert!(apogee(&[1.2, 0.0]) < neutral);
+    assert!(apogee(&[0.8, 0.0]) > neutral);
+    assert!(apogee(&[1.0, 0.05]) < neutral);
 }

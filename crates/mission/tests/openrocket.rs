@@ -1,8 +1,9 @@
 //! `karman import` of every single-stage design in `fixtures/openrocket` (OpenRocket 24.12's
 //! example designs with their stored flights), flown and compared with OpenRocket: apogee
 //! within 5 %, maximum speed within 3 %, total Cd within 10 % below Mach 0.8 and 15 % above,
-//! CP within 1 % of the body length and stability margin within 0.1 caliber (at the ascent
-//! row of least angle of attack, where OpenRocket's CP is its zero-angle CP).
+//! CP within 1 % of the body length and stability margin within 0.1 caliber at launch (rod
+//! exit, OpenRocket's first stored CP: karman's estimate at the angle of attack and Mach
+//! OpenRocket stored there, Barrowman with Galejs' body lift).
 //! The designs and tolerances are `karman_mission::report::openrocket::{DESIGNS, ...}`, which
 //! `cargo xtask validate` reports too.
 

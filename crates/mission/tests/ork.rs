@@ -4,6 +4,7 @@
 use std::path::{Path, PathBuf};
 
 use karman_mission::ork::{Design, ImportOptions, OrkError, document_text, import};
+use karman_mission::schema::Trigger;
 use proptest::prelude::*;
 
 fn design(name: &str) -> PathBuf {
@@ -104,6 +105,45 @@ fn imported_missions_load_and_estimate_their_drag() {
     assert!(imported.mission.contains("power_off_drag = \"estimate\""));
     let path = design("chute_release").with_file_name("imported.toml");
     karman_mission::parse(&imported.mission, &path, &[]).unwrap_or_else(|e| panic!("{e}"));
+}
+
+#[test]
+fn ejection_charges_deploy_their_delay_after_burnout() {
+    // A C6-3, C6-5 and C6-7 in the same rocket: the parachute follows each motor's delay,
+    // and a design's own deployment delay (0 s here) is the lag.
+    let dir = design("a_simple_model_rocket")
+        .parent()
+        .expect("dir")
+        .to_owned();
+    for (simulation, delay) in [
+        ("Simulation 3 - too short delay", 3.0),
+        ("Simulation 4", 5.0),
+        ("Simulation 5", 7.0),
+    ] {
+        let options = ImportOptions {
+            simulation: Some(simulation.into()),
+            motors: Vec::new(),
+            output_dir: Some(dir.clone()),
+        };
+        let imported = import(&design("a_simple_model_rocket"), &options).expect(simulation);
+        let expected = format!("trigger = \"burnout + {delay:?}\"\nlag = 0.0\n");
+        assert!(
+            imported.mission.contains(&expected),
+            "{simulation}:\n{}",
+            imported.mission
+        );
+        assert!(!imported.mission.contains("terminate_on_apogee"));
+        let mission = karman_mission::parse(&imported.mission, &dir.join("imported.toml"), &[])
+            .unwrap_or_else(|e| panic!("{e}"));
+        let chute = mission
+            .spec
+            .rocket
+            .parachutes
+            .values()
+            .next()
+            .expect("a parachute");
+        assert_eq!(chute.trigger, Trigger::Burnout(delay), "{simulation}");
+    }
 }
 
 proptest! {

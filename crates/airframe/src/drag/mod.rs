@@ -17,7 +17,10 @@
 //! (wetted areas, nose tables, fin planforms) once; [`DragModel::components`] evaluates the
 //! terms at one flight condition and [`DragModel::estimate`] tabulates them against Mach from
 //! 0 to [`ESTIMATE_MAX_MACH`] at the Reynolds numbers of one reference atmosphere.
+//! [`BodyLift`] gives, from the same geometry, OpenRocket's centre of pressure at an angle of
+//! attack (Barrowman with Galejs' body lift), for the estimate's report.
 
+pub mod body_lift;
 pub mod fins;
 pub mod friction;
 pub mod parasitic;
@@ -29,6 +32,7 @@ use std::f64::consts::PI;
 use karman_math::{PhysicalConstants, Table1};
 
 use crate::error::{AirframeError, finite, non_negative, positive};
+pub use body_lift::BodyLift;
 pub use fins::FinCrossSection;
 pub use parasitic::{LaunchLug, RailButtonDrag};
 pub use shape::Profile;

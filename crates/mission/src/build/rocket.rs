@@ -7,13 +7,13 @@ use std::sync::Arc;
 
 use karman_airframe::{
     self as airframe, AirBrakes, AirBrakesSpec, Airfoil, AirframeError, CoordinateSystem,
-    DragEstimate, MotorProperties, NoseKind, Parachute, RailButtons, Rocket, RocketInputs,
-    SurfaceInput, Trigger,
+    DragEstimate, DragGeometry, MotorProperties, NoseKind, Parachute, RailButtons, Rocket,
+    RocketInputs, SurfaceInput, Trigger,
 };
 use karman_script::Expression;
 
 use super::scripts::{AfterTime, ExpressionTrigger};
-use karman_math::{Extrapolation, Interpolation};
+use karman_math::{Extrapolation, Interpolation, Table1};
 use karman_propulsion::Motor;
 
 use crate::schema::{self, AngleUnit, RocketCoordinateSystem, SurfaceSpec};
@@ -90,6 +90,48 @@ pub fn build_rocket_ignited_at(
     motor: &Motor,
     ignition: f64,
 ) -> Result<Rocket, MissionError> {
+    build(mission, motor, ignition, EstimateScaling::default())
+}
+
+/// A change `a · Cd + b` of each drag curve estimated from the geometry (`"estimate"`), as
+/// `[a, b]`: a Monte Carlo `factor` (`[f, 0]`) or `offset` (`[1, o]`) on
+/// `rocket.power_off_drag` / `rocket.power_on_drag`, applied to the sample's own estimate.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct EstimateScaling {
+    /// Of the power-off curve.
+    pub power_off: [f64; 2],
+    /// Of the power-on curve.
+    pub power_on: [f64; 2],
+}
+
+impl Default for EstimateScaling {
+    fn default() -> Self {
+        EstimateScaling {
+            power_off: [1.0, 0.0],
+            power_on: [1.0, 0.0],
+        }
+    }
+}
+
+/// [`build_rocket`] with its estimated drag curves changed by `scaling` (curves read from the
+/// mission are not estimates, and stay as they are).
+///
+/// # Errors
+/// As [`build_rocket`].
+pub fn build_rocket_scaled(
+    mission: &Mission,
+    motor: &Motor,
+    scaling: EstimateScaling,
+) -> Result<Rocket, MissionError> {
+    build(mission, motor, 0.0, scaling)
+}
+
+fn build(
+    mission: &Mission,
+    motor: &Motor,
+    ignition: f64,
+    scaling: EstimateScaling,
+) -> Result<Rocket, MissionError> {
     let spec = &mission.spec.rocket;
     // A curve as a table of the given kind: airfoils are linear with held ends, the drag
     // curves follow the rocket's `interpolation` / `extrapolation`.
@@ -159,8 +201,19 @@ pub fn build_rocket_ignited_at(
     // both when either asks for it).
     let estimated = estimated_drag(mission, motor)?;
     let drag_table = |key: &str, c: &schema::Curve, on: bool| match &estimated {
-        Some(e) if c.is_estimate() => (if on { e.power_on() } else { e.power_off() })
-            .map_err(|e| model("rocket.drag_estimate".to_owned(), e)),
+        Some(e) if c.is_estimate() => {
+            let [a, b] = if on {
+                scaling.power_on
+            } else {
+                scaling.power_off
+            };
+            let table = if on { e.power_on() } else { e.power_off() }
+                .map_err(|e| model("rocket.drag_estimate".to_owned(), e))?;
+            // `1 · Cd + 0` is `Cd` exactly: the nominal estimate is unchanged.
+            let ys = table.ys().iter().map(|cd| a * cd + b).collect();
+            Table1::linear(table.xs().to_vec(), ys)
+                .map_err(|source| mission.model_error(key, source))
+        }
         _ => curve(key.to_owned(), c, drag),
     };
     let power_off_drag = drag_table("rocket.power_off_drag", &spec.power_off_drag, false)?;
@@ -251,6 +304,22 @@ pub fn estimated_drag(
         .map(|(name, s)| surface_input(name, s, None))
         .collect();
     super::drag::estimate(mission, &surfaces, motor.nozzle_radius()).map(Some)
+}
+
+/// The body and fins the drag estimate implies for `mission`'s rocket (no nozzle): the
+/// geometry of [`karman_airframe::BodyLift`].
+///
+/// # Errors
+/// As [`estimated_drag`].
+pub fn estimate_geometry(mission: &Mission) -> Result<DragGeometry, MissionError> {
+    let surfaces: Vec<SurfaceInput> = mission
+        .spec
+        .rocket
+        .surfaces
+        .iter()
+        .map(|(name, s)| surface_input(name, s, None))
+        .collect();
+    super::drag::drag_geometry(mission, &surfaces, 0.0)
 }
 
 /// The airframe's description of one mission surface.

@@ -671,18 +671,23 @@ pub(super) fn mission(
                 let area = std::f64::consts::PI * 0.25 * d * d;
                 let event = c.text("deployevent").unwrap_or("ejection");
                 let delay = c.num_or("deploydelay", 0.0)?;
+                // OpenRocket's deployment events, each then delayed by `deploydelay` (the lag).
                 let trigger = match event {
                     "apogee" => "\"apogee\"".to_owned(),
                     "altitude" => n(c.num("deployaltitude")?),
+                    "launch" => "\"launch + 0\"".to_owned(),
                     "never" => continue,
-                    "ejection" => {
-                        warnings.push(format!(
-                            "`{}`: deployed by the motor's ejection charge ({} s after burnout) in OpenRocket; flown deploying at apogee",
-                            c.name,
-                            motor.delay.map_or_else(|| "plugged".to_owned(), |d| d.to_string())
-                        ));
-                        "\"apogee\"".to_owned()
-                    }
+                    // The motor's ejection charge fires its delay after burn-out.
+                    "ejection" => match motor.delay {
+                        Some(charge) => format!("\"burnout + {}\"", n(charge)),
+                        None => {
+                            warnings.push(format!(
+                                "`{}`: deployed by the ejection charge of a plugged motor in OpenRocket, so never deployed; left out",
+                                c.name
+                            ));
+                            continue;
+                        }
+                    },
                     other => {
                         warnings.push(format!(
                             "`{}`: deployment event {other:?} flown as apogee",
@@ -716,7 +721,6 @@ pub(super) fn mission(
         n(heading),
         n(max_time)
     );
-    let _ = writeln!(w, "terminate_on_apogee = true");
     if !warnings.is_empty() {
         let mut head = String::new();
         for warning in &warnings {

@@ -6,16 +6,21 @@ use std::path::Path;
 
 use serde_json::Value;
 
+use karman_airframe::{BodyLift, Geometry};
+
 use crate::build::flight::simulate;
+use crate::build::rocket::estimate_geometry;
 use crate::ork::{ImportOptions, import};
 
 /// The single-stage designs of `fixtures/openrocket` that karman imports, and whether the CP
-/// criterion holds for them. `base_drag_hack_short_wide` (CP 1.1 % of the body length aft of
-/// OpenRocket's, free-form fins behind a 0.001 in to 3 in tail cone) and
-/// `simulation_scripting` (3 %: its two canards and three single fins roll, and OpenRocket's
-/// normal force of a set of one or two fins follows the roll angle, which karman's Barrowman
-/// fin sets average) are held to the other criteria only. Clusters, pods and tube fins
-/// (`clustered_motors`, `pods_airframes_and_winglets`, `tube_fin_rocket`) are refused.
+/// criterion holds for them. `base_drag_hack_short_wide` (CP 1.2 % of the body length forward
+/// of OpenRocket's at rod exit, free-form fins behind a 0.001 in to 3 in tail cone) and
+/// `simulation_scripting` (3.2 %: its two canards form a fin set of two, whose normal force
+/// OpenRocket takes as `2 C_Nα1 sin²(θ − φ)` at the flow's roll angle θ, where karman's
+/// Barrowman fin sets, like RocketPy's, average it to `C_Nα1`; with the pair at `2 C_Nα1`,
+/// flow normal to the canards, the rod-exit CP comes out at OpenRocket's 1.760 m) are held to
+/// the other criteria only. Clusters, pods and tube fins (`clustered_motors`, `pods_airframes_and_winglets`,
+/// `tube_fin_rocket`) are refused.
 pub const DESIGNS: [(&str, bool); 5] = [
     ("a_simple_model_rocket", true),
     ("base_drag_hack_short_wide", false),
@@ -43,24 +48,31 @@ pub const MARGIN_CALIBERS: f64 = 0.1;
 pub struct OpenRocketComparison {
     /// The simulation's name.
     pub simulation: String,
-    /// karman's apogee above the site (m) and OpenRocket's (`optimum_altitude_m`: the apogee
-    /// without a premature deployment).
+    /// karman's apogee above the site (m) and OpenRocket's (`maxaltitude`; both deploy the
+    /// parachutes as OpenRocket does, a short ejection delay before apogee included).
     pub apogee: (f64, f64),
     /// Maximum speed (m/s), karman and OpenRocket.
     pub max_speed: (f64, f64),
+    /// Flight time to the ground hit (s), karman and OpenRocket (`flighttime`).
+    pub flight_time: (f64, f64),
+    /// Speed at the ground hit (m/s), karman and OpenRocket (`groundhitvelocity`).
+    pub landing_speed: (f64, f64),
     /// Worst relative error of the total Cd over the ascent rows below Mach 0.8.
     pub cd_subsonic: f64,
     /// Worst relative error of the total Cd at or above Mach 0.8 (`NaN` without such rows).
     pub cd_transonic: f64,
-    /// Centre of pressure from the nose tip (m), karman and OpenRocket, at the compared row.
+    /// Centre of pressure from the nose tip (m) at the compared row: karman's estimate at
+    /// OpenRocket's angle of attack and Mach there ([`BodyLift::cp_at_angle`]), and
+    /// OpenRocket's.
     pub cp: (f64, f64),
     /// Body length (m), the scale of the CP error.
     pub body_length: f64,
     /// Stability margin (calibers), karman and OpenRocket, at the compared row.
     pub margin: (f64, f64),
-    /// Time of the compared row (s): the ascent row of least angle of attack after rod exit,
-    /// where OpenRocket's CP is its zero-angle CP.
+    /// Time of the compared row (s): rod exit, OpenRocket's first stored CP.
     pub cp_time: f64,
+    /// OpenRocket's angle of attack at that row (rad), at which both CPs are taken.
+    pub cp_alpha: f64,
 }
 
 impl OpenRocketComparison {
@@ -119,7 +131,7 @@ impl std::fmt::Display for OpenRocketComparison {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
         write!(
             f,
-            "{:<28} apogee {:8.1} / {:8.1} m ({:5.2} %)  vmax {:6.1} / {:6.1} m/s ({:5.2} %)  Cd <M0.8 {:5.1} %  ≥M0.8 {:5.1} %  CP {:.4} / {:.4} m ({:.2} % of L)  margin {:.2} / {:.2} cal",
+            "{:<28} apogee {:8.1} / {:8.1} m ({:5.2} %)  vmax {:6.1} / {:6.1} m/s ({:5.2} %)  Cd <M0.8 {:5.1} %  ≥M0.8 {:5.1} %  CP {:.4} / {:.4} m ({:.2} % of L)  margin {:.2} / {:.2} cal (rod exit, α {:.1}°)  landing {:6.1} / {:6.1} s, {:4.2} / {:4.2} m/s",
             self.simulation,
             self.apogee.0,
             self.apogee.1,
@@ -134,6 +146,11 @@ impl std::fmt::Display for OpenRocketComparison {
             100.0 * self.cp_error(),
             self.margin.0,
             self.margin.1,
+            self.cp_alpha.to_degrees(),
+            self.flight_time.0,
+            self.flight_time.1,
+            self.landing_speed.0,
+            self.landing_speed.1,
         )
     }
 }
@@ -174,16 +191,14 @@ pub fn compare_design(design_dir: &Path) -> Result<Vec<OpenRocketComparison>, St
         let rocket = &run.rocket;
 
         let branch = &sim["branches"][0];
+        let stored = |key: &str| sim["summary"][key].as_f64().unwrap_or(f64::NAN);
         let ascent = &branch["ascent"];
-        let (t, mach, cd, aoa, cp, thrust) = (
+        let (t, mach, cd, thrust) = (
             column(ascent, "time_s"),
             column(ascent, "mach"),
             column(ascent, "cd"),
-            column(ascent, "aoa_rad"),
-            column(ascent, "cp_m"),
             column(ascent, "thrust_n"),
         );
-        let stability = column(ascent, "stability_cal");
         let rod = branch["launch"]["first_finite_cp"]["time_s"]
             .as_f64()
             .unwrap_or(0.0);
@@ -200,13 +215,25 @@ pub fn compare_design(design_dir: &Path) -> Result<Vec<OpenRocketComparison>, St
                 sup = if sup.is_nan() { e } else { sup.max(e) };
             }
         }
-        // OpenRocket's CP moves forward with the angle of attack (its body-lift term, ∝ α²);
-        // karman's normal-force model is linear in α (RocketPy's), so the CPs compare at the
-        // ascent row of least angle of attack.
-        let row = (0..t.len())
-            .filter(|&i| t[i] >= rod && cp[i].is_finite() && aoa[i].is_finite())
-            .min_by(|&a, &b| aoa[a].abs().total_cmp(&aoa[b].abs()))
-            .ok_or_else(|| format!("{name}: no CP row"))?;
+        // OpenRocket's CP at rod exit (its first stored CP), at the angle of attack and Mach
+        // it stored there: Barrowman's terms with its body lift (karman's flight keeps the
+        // linear CP of RocketPy; the estimate reports this one).
+        let launch = &branch["launch"]["first_finite_cp"];
+        let at = |key: &str| launch[key].as_f64().unwrap_or(f64::NAN);
+        let (cp_time, cp_alpha, cp_mach) = (at("time_s"), at("aoa_rad"), at("mach"));
+        if !(cp_time.is_finite() && cp_alpha.is_finite() && cp_mach.is_finite()) {
+            return Err(format!("{name}: no rod-exit CP row"));
+        }
+        let lift = BodyLift::new(&estimate_geometry(&mission).map_err(|e| e.to_string())?);
+        let tip = rocket
+            .surfaces()
+            .iter()
+            .find(|s| matches!(s.geometry, Geometry::Nose { .. }))
+            .map_or(0.0, |s| s.position);
+        let ours_cp = lift.cp_at_angle(rocket, tip, cp_alpha, cp_mach);
+        let csys = rocket.csys();
+        let cg = csys * (tip - rocket.center_of_mass(cp_time));
+        let caliber = 2.0 * rocket.radius();
         let body_length = mission
             .spec
             .rocket
@@ -218,20 +245,24 @@ pub fn compare_design(design_dir: &Path) -> Result<Vec<OpenRocketComparison>, St
             simulation: name,
             apogee: (
                 summary.apogee_agl_m.unwrap_or(f64::NAN),
-                // The apogee without a premature deployment (karman deploys at apogee the
-                // parachutes OpenRocket ejects a delay after burnout).
-                branch["optimum_altitude_m"].as_f64().unwrap_or(f64::NAN),
+                stored("maxaltitude"),
             ),
-            max_speed: (
-                summary.max_speed_mps,
-                sim["summary"]["maxvelocity"].as_f64().unwrap_or(f64::NAN),
+            flight_time: (
+                summary.impact_time_s.unwrap_or(f64::NAN),
+                stored("flighttime"),
             ),
+            landing_speed: (
+                summary.impact_velocity_mps.unwrap_or(f64::NAN),
+                stored("groundhitvelocity"),
+            ),
+            max_speed: (summary.max_speed_mps, stored("maxvelocity")),
             cd_subsonic: sub,
             cd_transonic: sup,
-            cp: (rocket.cp_position(mach[row]), cp[row]),
+            cp: (ours_cp, at("cp_m")),
             body_length,
-            margin: (rocket.stability_margin(mach[row], t[row]), stability[row]),
-            cp_time: t[row],
+            margin: ((ours_cp - cg) / caliber, at("stability_cal")),
+            cp_time,
+            cp_alpha,
         });
     }
     Ok(out)
