@@ -1,7 +1,7 @@
 //! `karman montecarlo` and `karman merge`: a small study of the example mission, its files,
 //! shards merged into the single run's bytes, resume, and clear errors (never a panic).
 
-use crate::common::{example, failure, karman, stderr};
+use crate::common::{example, failure, karman, scratch, stderr};
 use std::path::{Path, PathBuf};
 
 /// A fresh output directory under this test binary's scratch folder.
@@ -399,4 +399,121 @@ fn a_3dof_study_is_the_same_on_one_and_two_threads() {
         serde_json::from_slice(&std::fs::read(one.join("summary.json")).expect("summary.json"))
             .expect("JSON");
     assert_eq!(summary["completed"], 12, "{summary}");
+}
+
+/// The two-stage example mission (with its `[dispersion]` study).
+fn two_stage() -> PathBuf {
+    PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../../fixtures/two_stage.toml")
+}
+
+#[test]
+fn a_two_stage_study_has_each_body_and_the_same_bytes_on_any_split() {
+    let single = fresh("staged-single");
+    let output = montecarlo_of(&two_stage(), &single, &["--threads", "2"]);
+    assert_eq!(output.status.code(), Some(0), "{}", stderr(&output));
+    let stdout = String::from_utf8_lossy(&output.stdout);
+    assert!(stdout.contains("booster.impact_x_m"), "{stdout}");
+    assert!(stdout.contains("sustainer landing ellipse"), "{stdout}");
+    assert!(stdout.contains("booster landing ellipse"), "{stdout}");
+    let csv = std::fs::read_to_string(single.join("samples.csv")).expect("samples.csv");
+    let header: Vec<&str> = csv.lines().next().expect("header").split(',').collect();
+    // The top stage's columns as in a single-stage study, then the booster's.
+    let at = |name: &str| header.iter().position(|c| *c == name);
+    assert!(at("stages.0.separation").is_some(), "{header:?}");
+    let top = at("impact_velocity_mps").expect("top stage column");
+    assert_eq!(header[top + 1], "booster.separation_time_s");
+    assert_eq!(header.last(), Some(&"booster.impact_velocity_mps"));
+    // Every sample flew both bodies: the booster lands short of the sustainer.
+    let (sx, bx) = (
+        at("impact_x_m").expect("x"),
+        at("booster.impact_x_m").expect("x"),
+    );
+    for row in csv.lines().skip(1) {
+        let fields: Vec<&str> = row.split(',').collect();
+        assert_eq!(fields[1], "ok", "{row}");
+        let x = |i: usize| fields[i].parse::<f64>().expect("number");
+        assert!(x(bx).abs() < x(sx).abs(), "{row}");
+    }
+    let summary: serde_json::Value =
+        serde_json::from_slice(&std::fs::read(single.join("summary.json")).expect("summary.json"))
+            .expect("JSON");
+    let ellipses = summary["ellipses"].as_array().expect("ellipses");
+    let named: Vec<(&str, &str)> = ellipses
+        .iter()
+        .map(|e| {
+            (
+                e["body"].as_str().unwrap_or_default(),
+                e["name"].as_str().unwrap_or_default(),
+            )
+        })
+        .collect();
+    assert_eq!(
+        named,
+        [
+            ("sustainer", "apogee"),
+            ("sustainer", "landing"),
+            ("booster", "apogee"),
+            ("booster", "landing")
+        ]
+    );
+    let kml = std::fs::read_to_string(single.join("dispersion.kml")).expect("KML");
+    assert!(kml.contains("<Folder><name>sustainer</name>"));
+    assert!(kml.contains("<Folder><name>booster</name>"));
+    let svg = std::fs::read_to_string(single.join("landing.svg")).expect("plot");
+    assert!(svg.contains("booster: landing points"));
+
+    // One thread, shards merged, and a resume after a cut give the same files.
+    let one = fresh("staged-one-thread");
+    let output = montecarlo_of(&two_stage(), &one, &["--threads", "1"]);
+    assert_eq!(output.status.code(), Some(0), "{}", stderr(&output));
+    assert_same_files(&single, &one);
+    let mut shards = Vec::new();
+    for k in ["2/2", "1/2"] {
+        let dir = fresh(&format!("staged-shard{}", &k[..1]));
+        let output = montecarlo_of(&two_stage(), &dir, &["--threads", "1", "--shard", k]);
+        assert_eq!(output.status.code(), Some(0), "{}", stderr(&output));
+        shards.push(dir.display().to_string());
+    }
+    let merged = fresh("staged-merged");
+    let merged_arg = merged.display().to_string();
+    let mut args = vec!["merge", merged_arg.as_str()];
+    args.extend(shards.iter().map(String::as_str));
+    let output = karman(&args);
+    assert_eq!(output.status.code(), Some(0), "{}", stderr(&output));
+    assert_same_files(&single, &merged);
+    let path = single.join("samples.csv");
+    std::fs::write(&path, &csv.as_bytes()[..csv.len() / 2]).expect("cut samples.csv");
+    let output = montecarlo_of(&two_stage(), &single, &[]);
+    assert_eq!(output.status.code(), Some(0), "{}", stderr(&output));
+    assert_same_files(&single, &merged);
+}
+
+#[test]
+fn a_bad_stage_path_is_located() {
+    let fixtures = two_stage().with_file_name("");
+    let mut text = std::fs::read_to_string(two_stage()).expect("fixture");
+    for file in [
+        "example_K1960.eng",
+        "power_off_drag.csv",
+        "power_on_drag.csv",
+    ] {
+        let absolute = fixtures.join(file).display().to_string();
+        text = text.replace(&format!("\"{file}\""), &format!("'{absolute}'"));
+    }
+    let text = text.replace("\"stages.0.ignition_delay\"", "\"stages.0.ignition_dlay\"");
+    let line = 1 + text
+        .lines()
+        .position(|l| l.contains("ignition_dlay"))
+        .expect("the entry");
+    let mission = scratch("two_stage_bad_path.toml", text.as_bytes());
+    let message = failure(&["check", &mission.display().to_string()]);
+    assert!(
+        message.contains(&format!("two_stage_bad_path.toml:{line}:")),
+        "{message}"
+    );
+    assert!(message.contains("stages.0.ignition_dlay"), "{message}");
+    assert!(
+        message.contains("ignition_delay"),
+        "the keys there: {message}"
+    );
 }

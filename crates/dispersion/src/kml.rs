@@ -32,15 +32,26 @@ fn escape(text: &str) -> String {
         .replace('"', "&quot;")
 }
 
-/// The KML document. `ellipses` are (label, ellipse) pairs ("Landing", "Apogee");
-/// `points` are (sample index, x, y) landing points.
-pub fn document(
-    title: &str,
-    site: &Site,
-    ellipses: &[(&str, Ellipse)],
-    points: &[(u64, [f64; 2])],
-    points_total: u64,
-) -> String {
+/// Icon colours (KML `aabbggrr`) of the landing points of the second, third, ... body of a
+/// study of several (the first keeps the default icon): magenta, cyan, yellow, violet.
+const BODY_COLOURS: [&str; 4] = ["ffff00ff", "ffffff00", "ff00ffff", "ffff0080"];
+
+/// One body's ellipses and landing points in the KML document.
+#[derive(Debug, Clone, Copy)]
+pub struct Body<'a> {
+    /// Its name; none in a study of one body.
+    pub name: Option<&'a str>,
+    /// (label, ellipse) pairs ("Apogee", "Landing").
+    pub ellipses: &'a [(&'a str, Ellipse)],
+    /// (sample index, [x, y]) landing points drawn.
+    pub points: &'a [(u64, [f64; 2])],
+    /// Landing points in all.
+    pub points_total: u64,
+}
+
+/// The KML document: for each body its ellipses, in both conventions, and its landing
+/// points; a named body's in a folder of its name, its points in a style of their own.
+pub fn document(title: &str, site: &Site, bodies: &[Body<'_>]) -> String {
     let mut kml = String::new();
     let coordinates = |x: f64, y: f64| {
         let (lat, lon) = offset_to_lat_lon(site, x, y);
@@ -63,7 +74,34 @@ pub fn document(
         kml,
         "<Style id=\"point\"><IconStyle><scale>0.4</scale></IconStyle></Style>"
     );
-    for (label, ellipse) in ellipses {
+    for index in 1..bodies.len() {
+        let colour = BODY_COLOURS[(index - 1) % BODY_COLOURS.len()];
+        let _ = writeln!(
+            kml,
+            "<Style id=\"point{index}\"><IconStyle><color>{colour}</color><scale>0.4</scale></IconStyle></Style>"
+        );
+    }
+    for (index, body) in bodies.iter().enumerate() {
+        if let Some(name) = body.name {
+            let _ = writeln!(kml, "<Folder><name>{}</name>", escape(name));
+        }
+        write_body(&mut kml, body, index, &coordinates);
+        if body.name.is_some() {
+            let _ = writeln!(kml, "</Folder>");
+        }
+    }
+    let _ = writeln!(kml, "</Document>\n</kml>");
+    kml
+}
+
+/// The ellipse folders and the landing-point folder of body `index`.
+fn write_body(
+    kml: &mut String,
+    body: &Body<'_>,
+    index: usize,
+    coordinates: &dyn Fn(f64, f64) -> String,
+) {
+    for (label, ellipse) in body.ellipses {
         for (convention, scales) in [
             ("k-sigma (RocketPy)", [1.0, 2.0, 3.0]),
             (
@@ -97,21 +135,25 @@ pub fn document(
             let _ = writeln!(kml, "</Folder>");
         }
     }
-    let shown = if (points.len() as u64) < points_total {
-        format!(" (first {} of {points_total})", points.len())
+    let shown = if (body.points.len() as u64) < body.points_total {
+        format!(" (first {} of {})", body.points.len(), body.points_total)
     } else {
         String::new()
     };
+    let style = if index == 0 {
+        "point".to_owned()
+    } else {
+        format!("point{index}")
+    };
     let _ = writeln!(kml, "<Folder><name>Landing points{shown}</name>");
-    for (index, [x, y]) in points {
+    for (sample, [x, y]) in body.points {
         let _ = writeln!(
             kml,
-            "<Placemark><name>{index}</name><styleUrl>#point</styleUrl><Point><coordinates>{}</coordinates></Point></Placemark>",
+            "<Placemark><name>{sample}</name><styleUrl>#{style}</styleUrl><Point><coordinates>{}</coordinates></Point></Placemark>",
             coordinates(*x, *y)
         );
     }
-    let _ = writeln!(kml, "</Folder>\n</Document>\n</kml>");
-    kml
+    let _ = writeln!(kml, "</Folder>");
 }
 
 #[cfg(test)]
@@ -148,16 +190,40 @@ mod tests {
             earth_radius: 6.3781e6,
         };
         let ellipse = Ellipse::fit(&[[0.0, 0.0], [10.0, 5.0], [3.0, -2.0]]).expect("fit");
-        let kml = document(
-            "a < b",
-            &site,
-            &[("Landing", ellipse)],
-            &[(0, [1.0, 2.0])],
-            5,
-        );
+        let ellipses = [("Landing", ellipse)];
+        let body = Body {
+            name: None,
+            ellipses: &ellipses,
+            points: &[(0, [1.0, 2.0])],
+            points_total: 5,
+        };
+        let kml = document("a < b", &site, &[body]);
         assert!(kml.contains("<name>a &lt; b</name>"));
         assert_eq!(kml.matches("<Polygon>").count(), 6);
         assert!(kml.contains("Landing points (first 1 of 5)"));
         assert!(kml.trim_end().ends_with("</kml>"));
+        assert!(!kml.contains("point1"));
+        // Two bodies: a folder and a point style each, the second's points in its style.
+        let bodies = [
+            Body {
+                name: Some("sustainer"),
+                ..body
+            },
+            Body {
+                name: Some("booster & co"),
+                ellipses: &[],
+                points: &[(3, [-1.0, 0.5])],
+                points_total: 1,
+            },
+        ];
+        let kml = document("two", &site, &bodies);
+        assert!(kml.contains("<Folder><name>sustainer</name>"));
+        assert!(kml.contains("<Folder><name>booster &amp; co</name>"));
+        assert!(kml.contains("<Style id=\"point1\">"));
+        assert!(kml.contains("<name>3</name><styleUrl>#point1</styleUrl>"));
+        assert_eq!(
+            kml.matches("<Folder>").count(),
+            kml.matches("</Folder>").count()
+        );
     }
 }

@@ -68,5 +68,5 @@ pub use stats::{
     Ellipse, Moments, NORMAL_SIGMA_PROBABILITY, Statistics, k_sigma_probability, probability_scale,
     quantile,
 };
-pub use study::{DataFile, Points, Shard, Site, Study};
+pub use study::{BodyPoints, DataFile, Points, Shard, Site, Study};
 pub use summary::{Column, Contour, EllipseSummary, Failure, Summary, summarize, summarize_rows};

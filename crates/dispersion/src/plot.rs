@@ -1,5 +1,5 @@
-//! SVG plots (plotters' SVG backend): the landing scatter with its k-σ ellipses and a
-//! histogram of one output (the apogee).
+//! SVG plots (plotters' SVG backend): the landing scatter with its k-σ ellipses (each body's
+//! in its own colour, in a study of several) and a histogram of one output (the apogee).
 
 use crate::error::DispersionError;
 use crate::stats::Ellipse;
@@ -18,30 +18,40 @@ fn failed(path: &Path) -> impl FnOnce(Box<dyn std::error::Error>) -> DispersionE
 /// Colours of the 1σ, 2σ, 3σ contours.
 const SIGMA_COLOURS: [RGBColor; 3] = [RGBColor(0, 160, 0), RGBColor(255, 140, 0), RED];
 
-/// Draws `points` (x east, y north, m) and the 1σ/2σ/3σ ellipses of `ellipse` to `path`.
-pub fn landing(
-    path: &Path,
-    title: &str,
-    points: &[[f64; 2]],
-    ellipse: Option<&Ellipse>,
-) -> Result<(), DispersionError> {
+/// Colours of the landing points of the bodies of a study, the first body's first.
+const BODY_COLOURS: [RGBColor; 4] = [BLUE, MAGENTA, CYAN, RGBColor(128, 0, 128)];
+
+/// One body's landing points and ellipse in the landing plot.
+#[derive(Debug, Clone, Copy)]
+pub struct Landings<'a> {
+    /// Its name; none in a study of one body.
+    pub body: Option<&'a str>,
+    /// Landing points (x east, y north), m.
+    pub points: &'a [[f64; 2]],
+    /// Their ellipse.
+    pub ellipse: Option<&'a Ellipse>,
+}
+
+/// Draws each body's landing points and the 1σ/2σ/3σ rings of its ellipse to `path`.
+pub fn landing(path: &Path, title: &str, bodies: &[Landings<'_>]) -> Result<(), DispersionError> {
     let mut svg = String::new();
-    draw_landing(&mut svg, title, points, ellipse).map_err(failed(path))?;
+    draw_landing(&mut svg, title, bodies).map_err(failed(path))?;
     crate::files::write_atomic(path, svg.as_bytes())
 }
 
-fn draw_landing(
-    svg: &mut String,
-    title: &str,
-    points: &[[f64; 2]],
-    ellipse: Option<&Ellipse>,
-) -> PlotResult {
-    let rings: Vec<Vec<[f64; 2]>> = ellipse
-        .map(|e| (1..=3).map(|k| e.boundary(f64::from(k), 100)).collect())
-        .unwrap_or_default();
-    let everything = points
+fn draw_landing(svg: &mut String, title: &str, bodies: &[Landings<'_>]) -> PlotResult {
+    let rings: Vec<Vec<Vec<[f64; 2]>>> = bodies
         .iter()
-        .chain(rings.iter().flatten())
+        .map(|b| {
+            b.ellipse
+                .map(|e| (1..=3).map(|k| e.boundary(f64::from(k), 100)).collect())
+                .unwrap_or_default()
+        })
+        .collect();
+    let everything = bodies
+        .iter()
+        .flat_map(|b| b.points.iter())
+        .chain(rings.iter().flatten().flatten())
         .chain([&[0.0, 0.0]]);
     let (mut x0, mut x1, mut y0, mut y1) = (0.0f64, 0.0f64, 0.0f64, 0.0f64);
     for p in everything.filter(|p| p[0].is_finite() && p[1].is_finite()) {
@@ -66,29 +76,36 @@ fn draw_landing(
         .x_desc("x, east of the pad (m)")
         .y_desc("y, north of the pad (m)")
         .draw()?;
-    chart
-        .draw_series(
-            points
-                .iter()
-                .map(|p| Circle::new((p[0], p[1]), 2, BLUE.mix(0.35).filled())),
-        )?
-        .label("landing points")
-        .legend(|(x, y)| Circle::new((x + 10, y), 3, BLUE.filled()));
-    for (level, ring) in rings.into_iter().enumerate() {
-        let colour = SIGMA_COLOURS[level % 3];
-        let mut closed = ring.clone();
-        if let Some(first) = ring.first() {
-            closed.push(*first);
-        }
+    for (index, (body, rings)) in bodies.iter().zip(rings).enumerate() {
+        let prefix = body
+            .body
+            .map(|name| format!("{name}: "))
+            .unwrap_or_default();
+        let colour = BODY_COLOURS[index % BODY_COLOURS.len()];
         chart
-            .draw_series(LineSeries::new(
-                closed.into_iter().map(|p| (p[0], p[1])),
-                colour.stroke_width(2),
-            ))?
-            .label(format!("{} sigma (RocketPy k-sigma)", level + 1))
-            .legend(move |(x, y)| {
-                PathElement::new(vec![(x, y), (x + 20, y)], colour.stroke_width(2))
-            });
+            .draw_series(
+                body.points
+                    .iter()
+                    .map(|p| Circle::new((p[0], p[1]), 2, colour.mix(0.35).filled())),
+            )?
+            .label(format!("{prefix}landing points"))
+            .legend(move |(x, y)| Circle::new((x + 10, y), 3, colour.filled()));
+        for (level, ring) in rings.into_iter().enumerate() {
+            let colour = SIGMA_COLOURS[level % 3];
+            let mut closed = ring.clone();
+            if let Some(first) = ring.first() {
+                closed.push(*first);
+            }
+            chart
+                .draw_series(LineSeries::new(
+                    closed.into_iter().map(|p| (p[0], p[1])),
+                    colour.stroke_width(2),
+                ))?
+                .label(format!("{prefix}{} sigma (RocketPy k-sigma)", level + 1))
+                .legend(move |(x, y)| {
+                    PathElement::new(vec![(x, y), (x + 20, y)], colour.stroke_width(2))
+                });
+        }
     }
     chart
         .draw_series([Cross::new((0.0, 0.0), 6, BLACK.stroke_width(2))])?

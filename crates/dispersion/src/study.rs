@@ -11,6 +11,11 @@ use std::path::Path;
 use std::str::FromStr;
 
 /// Which outputs are the apogee and landing points and which one the histogram shows.
+///
+/// A study of several bodies (the stages of a multi-stage rocket, each landing on its own)
+/// names the body of [`Points::apogee`] and [`Points::landing`] in [`Points::body`] and the
+/// points of the others in [`Points::bodies`]; each body gets its own ellipses, and its own
+/// colour in the landing plot and the KML file.
 #[derive(Debug, Clone, Default, PartialEq, Serialize, Deserialize)]
 pub struct Points {
     /// Output names of the apogee's (x east, y north), m.
@@ -19,6 +24,23 @@ pub struct Points {
     pub landing: Option<[String; 2]>,
     /// Output drawn as a histogram (e.g. `apogee_agl_m`).
     pub histogram: Option<String>,
+    /// The body `apogee` and `landing` are of, when the study has several.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub body: Option<String>,
+    /// The apogee and landing points of the other bodies.
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub bodies: Vec<BodyPoints>,
+}
+
+/// The apogee and landing points of one more body of a study ([`Points::bodies`]).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct BodyPoints {
+    /// The body's name (`booster`).
+    pub name: String,
+    /// Output names of its apogee's (x east, y north), m.
+    pub apogee: Option<[String; 2]>,
+    /// Output names of its landing point's (x east, y north), m.
+    pub landing: Option<[String; 2]>,
 }
 
 /// The launch site, to turn (x, y) offsets into latitude/longitude in `dispersion.kml`.
@@ -104,16 +126,29 @@ impl Study {
                 return invalid(format!("column `{name}` appears twice"));
             }
         }
-        let pairs = [&self.points.apogee, &self.points.landing];
-        let named = pairs
+        let others = self.points.bodies.iter();
+        let pairs = [&self.points.apogee, &self.points.landing]
             .into_iter()
-            .flatten()
-            .flatten()
-            .chain(&self.points.histogram);
+            .chain(others.flat_map(|b| [&b.apogee, &b.landing]));
+        let named = pairs.flatten().flatten().chain(&self.points.histogram);
         for name in named {
             if !self.outputs.contains(name) {
                 return invalid(format!("`{name}` is not one of the outputs"));
             }
+        }
+        let mut bodies = HashSet::new();
+        let names = self
+            .points
+            .body
+            .iter()
+            .chain(self.points.bodies.iter().map(|b| &b.name));
+        for name in names {
+            if name.is_empty() || !bodies.insert(name) {
+                return invalid(format!("body name {name:?} is empty or appears twice"));
+            }
+        }
+        if !self.points.bodies.is_empty() && self.points.body.is_none() {
+            return invalid("a study of several bodies names the first one".to_owned());
         }
         if let Some(site) = self.site {
             let finite = [site.latitude_deg, site.longitude_deg, site.earth_radius]

@@ -5,12 +5,13 @@
 //! depend on how a flight ended); the output statistics, the ellipses, the landing points and
 //! the histogram cover the completed flights only (status `ok`), the flights the study asked
 //! for. Samples that ended early (`max_time`, `stuck_on_rail`) or failed are counted
-//! separately and listed with their messages.
+//! separately and listed with their messages. A study of several bodies ([`crate::Points`])
+//! gets the apogee and landing ellipses of each, in the order of its bodies.
 //!
 //! Memory does not grow without bound with the number of samples: the quantiles need every
 //! value of a column, so columns are read in groups of at most `VALUES_PER_PASS` values
 //! (64 MB), one pass over the file per group; the ellipses use running moments; the KML and
-//! the scatter plot show at most the first `MAX_DRAWN_POINTS` landing points.
+//! the scatter plot show at most the first `MAX_DRAWN_POINTS` landing points of each body.
 
 use crate::csv::{Counts, Row};
 use crate::error::DispersionError;
@@ -82,6 +83,9 @@ pub struct Column {
 pub struct EllipseSummary {
     /// `apogee` or `landing`.
     pub name: String,
+    /// The body whose points these are, in a study of several ([`crate::Points::body`]).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub body: Option<String>,
     /// Output names of x (east) and y (north).
     pub outputs: [String; 2],
     /// Samples with both values.
@@ -116,7 +120,7 @@ pub struct Contour {
 }
 
 impl EllipseSummary {
-    fn new(name: &str, outputs: &[String; 2], ellipse: &Ellipse) -> Self {
+    fn new(name: &str, body: Option<&str>, outputs: &[String; 2], ellipse: &Ellipse) -> Self {
         let contour = |sigma: u32, k: f64, normal_probability: f64| {
             let [semi_major_m, semi_minor_m] = ellipse.semi_axes(k);
             Contour {
@@ -129,6 +133,7 @@ impl EllipseSummary {
         };
         EllipseSummary {
             name: name.to_owned(),
+            body: body.map(str::to_owned),
             outputs: outputs.clone(),
             points: ellipse.count,
             center_m: ellipse.center,
@@ -201,23 +206,39 @@ pub fn summarize(dir: &Path) -> Result<Summary, DispersionError> {
             study.context, study.samples, study.seed
         )
     };
-    if study.points.landing.is_some() {
-        let points: Vec<[f64; 2]> = computed.drawn.iter().map(|(_, p)| *p).collect();
-        let ellipse = computed.landing.ellipse();
-        plot::landing(
-            &dir.join(LANDING_PLOT_FILE),
-            &title,
-            &points,
-            ellipse.as_ref(),
-        )?;
+    let landed: Vec<&Body> = computed
+        .bodies
+        .iter()
+        .filter(|b| b.landing_names.is_some())
+        .collect();
+    if !landed.is_empty() {
+        let points: Vec<Vec<[f64; 2]>> = landed
+            .iter()
+            .map(|b| b.drawn.iter().map(|(_, p)| *p).collect())
+            .collect();
+        let ellipses: Vec<Option<Ellipse>> = landed.iter().map(|b| b.landing.ellipse()).collect();
+        let drawn: Vec<plot::Landings<'_>> = landed
+            .iter()
+            .zip(&points)
+            .zip(&ellipses)
+            .map(|((b, points), ellipse)| plot::Landings {
+                body: b.name.as_deref(),
+                points,
+                ellipse: ellipse.as_ref(),
+            })
+            .collect();
+        plot::landing(&dir.join(LANDING_PLOT_FILE), &title, &drawn)?;
         if let Some(site) = &study.site {
-            let document = kml::document(
-                &title,
-                site,
-                &computed.kml_ellipses,
-                &computed.drawn,
-                computed.landing.count(),
-            );
+            let bodies: Vec<kml::Body<'_>> = landed
+                .iter()
+                .map(|b| kml::Body {
+                    name: b.name.as_deref(),
+                    ellipses: &b.kml_ellipses,
+                    points: &b.drawn,
+                    points_total: b.landing.count(),
+                })
+                .collect();
+            let document = kml::document(&title, site, &bodies);
             files::write_atomic(&dir.join(KML_FILE), document.as_bytes())?;
         }
     }
@@ -240,10 +261,24 @@ struct Computed {
     summary: Summary,
     /// The histogram's output and its values (completed flights).
     histogram: Option<(String, Vec<f64>)>,
-    /// The landing points drawn (at most [`MAX_DRAWN_POINTS`]) with their sample indices.
-    drawn: Vec<(u64, [f64; 2])>,
+    /// The bodies' points, the study's first body first.
+    bodies: Vec<Body>,
+}
+
+/// The apogee and landing points of one body of a study, as the rows are read.
+struct Body {
+    /// Its name; none in a study of one body.
+    name: Option<String>,
+    apogee_names: Option<[String; 2]>,
+    landing_names: Option<[String; 2]>,
+    /// The output indices of the apogee's and the landing's (x, y).
+    apogee_pair: Option<(usize, usize)>,
+    landing_pair: Option<(usize, usize)>,
+    apogee: Moments,
     /// Moments of every landing point.
     landing: Moments,
+    /// The landing points drawn (at most [`MAX_DRAWN_POINTS`]) with their sample indices.
+    drawn: Vec<(u64, [f64; 2])>,
     /// The ellipses with their KML labels.
     kml_ellipses: Vec<(&'static str, Ellipse)>,
 }
@@ -261,8 +296,26 @@ fn compute<E>(study: &Study, rows: &mut RowPass<'_, E>) -> Result<Computed, E> {
             .as_ref()
             .and_then(|[x, y]| Some((output_index(x)?, output_index(y)?)))
     };
-    let apogee_pair = pair(&study.points.apogee);
-    let landing_pair = pair(&study.points.landing);
+    let points = &study.points;
+    let first = (points.body.clone(), &points.apogee, &points.landing);
+    let others = points
+        .bodies
+        .iter()
+        .map(|b| (Some(b.name.clone()), &b.apogee, &b.landing));
+    let mut bodies: Vec<Body> = std::iter::once(first)
+        .chain(others)
+        .map(|(name, apogee, landing)| Body {
+            name,
+            apogee_names: apogee.clone(),
+            landing_names: landing.clone(),
+            apogee_pair: pair(apogee),
+            landing_pair: pair(landing),
+            apogee: Moments::default(),
+            landing: Moments::default(),
+            drawn: Vec::new(),
+            kml_ellipses: Vec::new(),
+        })
+        .collect();
     let histogram_column = study
         .points
         .histogram
@@ -273,9 +326,6 @@ fn compute<E>(study: &Study, rows: &mut RowPass<'_, E>) -> Result<Computed, E> {
     // First pass: counts, failures, moments, landing points.
     let mut failures = Vec::new();
     let mut counts = Counts::default();
-    let mut apogee = Moments::default();
-    let mut landing = Moments::default();
-    let mut drawn: Vec<(u64, [f64; 2])> = Vec::new();
     let value = |row: &Row, i: usize| row.outputs.get(i).copied().flatten();
     rows(&mut |row| {
         counts.add(&row.status);
@@ -289,16 +339,18 @@ fn compute<E>(study: &Study, rows: &mut RowPass<'_, E>) -> Result<Computed, E> {
             }
             return;
         }
-        if let Some((x, y)) = apogee_pair {
-            if let (Some(x), Some(y)) = (value(row, x), value(row, y)) {
-                apogee.push(x, y);
+        for body in &mut bodies {
+            if let Some((x, y)) = body.apogee_pair
+                && let (Some(x), Some(y)) = (value(row, x), value(row, y))
+            {
+                body.apogee.push(x, y);
             }
-        }
-        if let Some((x, y)) = landing_pair {
-            if let (Some(x), Some(y)) = (value(row, x), value(row, y)) {
-                landing.push(x, y);
-                if drawn.len() < MAX_DRAWN_POINTS && x.is_finite() && y.is_finite() {
-                    drawn.push((row.index, [x, y]));
+            if let Some((x, y)) = body.landing_pair
+                && let (Some(x), Some(y)) = (value(row, x), value(row, y))
+            {
+                body.landing.push(x, y);
+                if body.drawn.len() < MAX_DRAWN_POINTS && x.is_finite() && y.is_finite() {
+                    body.drawn.push((row.index, [x, y]));
                 }
             }
         }
@@ -344,14 +396,20 @@ fn compute<E>(study: &Study, rows: &mut RowPass<'_, E>) -> Result<Computed, E> {
     let outputs = columns.split_off(n_inputs);
 
     let mut ellipses = Vec::new();
-    let mut kml_ellipses = Vec::new();
-    for (name, label, moments, names) in [
-        ("apogee", "Apogee", &apogee, &study.points.apogee),
-        ("landing", "Landing", &landing, &study.points.landing),
-    ] {
-        if let (Some(ellipse), Some(names)) = (moments.ellipse(), names) {
-            ellipses.push(EllipseSummary::new(name, names, &ellipse));
-            kml_ellipses.push((label, ellipse));
+    for body in &mut bodies {
+        for (name, label, moments, names) in [
+            ("apogee", "Apogee", &body.apogee, &body.apogee_names),
+            ("landing", "Landing", &body.landing, &body.landing_names),
+        ] {
+            if let (Some(ellipse), Some(names)) = (moments.ellipse(), names) {
+                ellipses.push(EllipseSummary::new(
+                    name,
+                    body.name.as_deref(),
+                    names,
+                    &ellipse,
+                ));
+                body.kml_ellipses.push((label, ellipse));
+            }
         }
     }
     let summary = Summary {
@@ -366,8 +424,6 @@ fn compute<E>(study: &Study, rows: &mut RowPass<'_, E>) -> Result<Computed, E> {
     Ok(Computed {
         summary,
         histogram,
-        drawn,
-        landing,
-        kml_ellipses,
+        bodies,
     })
 }

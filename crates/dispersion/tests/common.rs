@@ -73,6 +73,7 @@ pub fn study(samples: u64) -> Study {
         apogee: Some(["apogee_x_m".to_owned(), "apogee_y_m".to_owned()]),
         landing: Some(["impact_x_m".to_owned(), "impact_y_m".to_owned()]),
         histogram: Some("apogee_agl_m".to_owned()),
+        ..Points::default()
     };
     study.site = Some(Site {
         latitude_deg: 32.990254,

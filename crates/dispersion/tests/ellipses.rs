@@ -92,3 +92,102 @@ fn boundary_points_lie_on_the_contour() {
         assert!((distance2(&e, &p) - 9.0).abs() < 1e-9);
     }
 }
+
+#[test]
+fn each_body_of_a_study_gets_its_own_ellipses() {
+    use karman_dispersion::{BodyPoints, Points, Row, Status, Study, summarize_rows};
+    let names = ["x", "y", "booster.x", "booster.y"].map(str::to_owned);
+    let mut study = Study::new(5, 200, Vec::new(), names.to_vec());
+    study.points = Points {
+        landing: Some(["x".into(), "y".into()]),
+        body: Some("sustainer".into()),
+        bodies: vec![BodyPoints {
+            name: "booster".into(),
+            apogee: None,
+            landing: Some(["booster.x".into(), "booster.y".into()]),
+        }],
+        ..Points::default()
+    };
+    study.validate().expect("valid study");
+    // Two clouds: the first 200 points of `cloud()` for the sustainer, the booster's half as
+    // far from the pad and a quarter as spread; the booster is missing from the last row and
+    // a failed sample counts for neither.
+    let points = cloud();
+    let mut rows: Vec<Row> = (0..200)
+        .map(|i| {
+            let [x, y] = points[i];
+            let booster = (i < 199).then_some([0.5 * x, 0.5 * y]);
+            Row {
+                index: i as u64,
+                status: Status::Completed,
+                inputs: Vec::new(),
+                outputs: vec![
+                    Some(x),
+                    Some(y),
+                    booster.map(|b| b[0]),
+                    booster.map(|b| b[1]),
+                ],
+            }
+        })
+        .collect();
+    rows[7].status = Status::Failed("diverged".into());
+    let summary = summarize_rows(&study, &rows);
+    assert_eq!(summary.ellipses.len(), 2);
+    let completed = |take: usize| -> Vec<usize> { (0..take).filter(|&i| i != 7).collect() };
+    let sustainer: Vec<[f64; 2]> = completed(200).iter().map(|&i| points[i]).collect();
+    let booster: Vec<[f64; 2]> = completed(199)
+        .iter()
+        .map(|&i| [0.5 * points[i][0], 0.5 * points[i][1]])
+        .collect();
+    for (ellipse, body, cloud) in [
+        (&summary.ellipses[0], "sustainer", &sustainer),
+        (&summary.ellipses[1], "booster", &booster),
+    ] {
+        let fit = Ellipse::fit(cloud).expect("fit");
+        assert_eq!(ellipse.body.as_deref(), Some(body));
+        assert_eq!(ellipse.name, "landing");
+        assert_eq!(ellipse.points, cloud.len() as u64);
+        for (a, b) in ellipse.center_m.iter().zip(&fit.center) {
+            assert!((a - b).abs() < 1e-9 * (1.0 + b.abs()), "{body}: {a} vs {b}");
+        }
+        let semi = fit.semi_axes(1.0);
+        let k1 = &ellipse.k_sigma_rocketpy[0];
+        assert!((k1.semi_major_m - semi[0]).abs() < 1e-9 * semi[0], "{body}");
+        assert!((k1.semi_minor_m - semi[1]).abs() < 1e-9 * semi[1], "{body}");
+    }
+    // The booster's cloud is half the size of the sustainer's.
+    let ratio = summary.ellipses[1].k_sigma_rocketpy[0].semi_major_m
+        / summary.ellipses[0].k_sigma_rocketpy[0].semi_major_m;
+    assert!((ratio - 0.5).abs() < 0.02, "{ratio}");
+    // A study of one body says nothing of bodies in its summary.
+    let mut single = study.clone();
+    single.points.body = None;
+    single.points.bodies.clear();
+    let text = serde_json::to_string(&summarize_rows(&single, &rows)).expect("JSON");
+    assert!(!text.contains("\"body\""), "{text}");
+}
+
+#[test]
+fn body_names_are_checked() {
+    use karman_dispersion::{BodyPoints, Points, Study};
+    let names = ["x", "y"].map(str::to_owned);
+    let other = |name: &str, landing: [&str; 2]| BodyPoints {
+        name: name.into(),
+        apogee: None,
+        landing: Some(landing.map(str::to_owned)),
+    };
+    for (body, bodies) in [
+        (Some("a"), vec![other("a", ["x", "y"])]),
+        (None, vec![other("b", ["x", "y"])]),
+        (Some("a"), vec![other("b", ["x", "z"])]),
+        (Some(""), Vec::new()),
+    ] {
+        let mut study = Study::new(1, 10, Vec::new(), names.to_vec());
+        study.points = Points {
+            body: body.map(str::to_owned),
+            bodies,
+            ..Points::default()
+        };
+        assert!(study.validate().is_err(), "{:?}", study.points);
+    }
+}

@@ -27,6 +27,14 @@
 //! rocket curve files are read once. Parachute trigger noise of sample `i` is seeded from the
 //! sample's reserved stream ([`karman_dispersion::sampling::flight_seed`]), so it replays with
 //! the sample.
+//!
+//! A multi-stage mission (`[[stages]]`) flies each sample as
+//! [`crate::build::stages::simulate_staged`] does, in the shared environment unless a stored
+//! environment input varies, with the wind knobs applied
+//! ([`crate::build::stages::simulate_staged_in`]); a lower stage's inputs are reached by
+//! `stages.<index>.` paths (its motor's knobs reshape that motor's thrust curve), and each lower
+//! stage adds its separation time and, when it flies alone, its body's outputs
+//! ([`BODY_OUTPUTS`]) and landing points to the study.
 //! The KML export converts (x, y) to latitude/longitude with the datum's local Earth radius,
 //! as the flight's own track does (RocketPy's ellipse export uses 6.3781e6 m: up to 0.1 %
 //! apart, about 1 m per km of drift).
@@ -36,6 +44,7 @@ use crate::build::flight::{early_ending, flight_settings, fly};
 use crate::build::motor::{build_motor_with, thrust_source};
 use crate::build::rocket::{EstimateScaling, build_rocket, build_rocket_scaled};
 use crate::build::scripts::{ControllerEnvironment, compile_controller};
+use crate::build::stages;
 use crate::paths::{self, DerivedKnob, Input};
 use crate::schema::{AirBrakesCurve, Curve, Distribution, MissionSpec};
 use crate::{Mission, MissionError};
@@ -43,8 +52,8 @@ use karman_airframe::{AirBrakesDrag, Rocket};
 use karman_atmos::Environment;
 use karman_dispersion::sampling::flight_seed;
 use karman_dispersion::{
-    DataFile, DispersionError, Distribution as Draw, Meaning, Outcome, Points, Site, Study, Target,
-    Variation, VariedInput,
+    BodyPoints, DataFile, DispersionError, Distribution as Draw, Meaning, Outcome, Points, Site,
+    Study, Target, Variation, VariedInput,
 };
 use karman_dynamics::{Air, AtmosphereModel, Summary};
 use karman_math::Cursor;
@@ -76,6 +85,28 @@ pub const OUTPUTS: [&str; 18] = [
     "impact_y_m",
     "impact_velocity_mps",
 ];
+
+/// The outputs of each lower stage of a multi-stage rocket that flies to its own landing,
+/// after its `<stage name>.` (mission-format.md "Monte Carlo of a multi-stage rocket"); each
+/// lower stage also has `<stage name>.separation_time_s`.
+pub const BODY_OUTPUTS: [&str; 13] = [
+    "apogee_agl_m",
+    "apogee_asl_m",
+    "apogee_time_s",
+    "apogee_x_m",
+    "apogee_y_m",
+    "max_speed_mps",
+    "max_mach",
+    "max_dynamic_pressure_pa",
+    "max_acceleration_mps2",
+    "impact_time_s",
+    "impact_x_m",
+    "impact_y_m",
+    "impact_velocity_mps",
+];
+
+/// The output of a lower stage's separation time.
+const SEPARATION_OUTPUT: &str = "separation_time_s";
 
 /// The values of [`OUTPUTS`] in a flight summary.
 fn output_values(s: &Summary) -> Vec<Option<f64>> {
@@ -115,8 +146,22 @@ enum Apply {
     Estimate { power_on: bool },
     /// The air brakes' drag table, with its nominal rows (the Cd column varies).
     Rows { rows: Vec<[f64; 3]> },
-    /// A derived knob, with its nominal value.
-    Knob { knob: DerivedKnob, nominal: f64 },
+    /// A derived knob, with its nominal value, of the top stage's motor (`stage` none) or of
+    /// a lower stage's.
+    Knob {
+        knob: DerivedKnob,
+        nominal: f64,
+        stage: Option<usize>,
+    },
+}
+
+/// A lower stage of a multi-stage study and the outputs it adds.
+#[derive(Debug, Clone)]
+struct LowerStage {
+    /// Its name in reports and before its columns.
+    name: String,
+    /// It flies to its own landing (it has a motor and a mass): its [`BODY_OUTPUTS`] exist.
+    flies: bool,
 }
 
 /// Which models the varied inputs reach (the others are built once and shared).
@@ -163,6 +208,10 @@ pub struct MonteCarlo {
     /// The nominal motor's burn end time and total impulse (the `motor.burn_time` and
     /// `motor.total_impulse` knobs reshape the thrust curve from them).
     nominal_reshape: [f64; 2],
+    /// The same of each lower stage's own motor (none without one).
+    stage_reshapes: Vec<Option<[f64; 2]>>,
+    /// The lower stages of a multi-stage mission (each sample flies the staged flight).
+    lower: Vec<LowerStage>,
 }
 
 /// `--samples` / `--seed` overrides of the `[dispersion]` table.
@@ -241,6 +290,16 @@ impl MonteCarlo {
         let motor = build_motor_with(mission, &thrust)?;
         let rocket = build_rocket(mission, &motor)?;
         let environment = build_environment(mission)?;
+        let mut stage_reshapes = Vec::with_capacity(spec.stages.len());
+        for (index, stage) in spec.stages.iter().enumerate() {
+            stage_reshapes.push(match stage.motor {
+                Some(_) => {
+                    let motor = stages::stage_motor(mission, index)?;
+                    Some([motor.burn_out(), motor.total_impulse()])
+                }
+                None => None,
+            });
+        }
         let mut inputs = Vec::new();
         let mut applies = Vec::new();
         let mut reach = Reach::default();
@@ -298,24 +357,62 @@ impl MonteCarlo {
                     (Target::Curve, Apply::Rows { rows })
                 }
                 Input::Knob(knob) => {
+                    let stage = paths::stage_path(path).map(|(index, _)| index);
+                    let [burn, impulse] = match stage {
+                        None => [motor.burn_out(), motor.total_impulse()],
+                        Some(index) => stage_reshapes
+                            .get(index)
+                            .copied()
+                            .flatten()
+                            .ok_or_else(|| invalid(format!("`{path}`: the stage has no motor")))?,
+                    };
                     let nominal = match knob {
-                        DerivedKnob::TotalImpulse => motor.total_impulse(),
-                        DerivedKnob::BurnTime => motor.burn_out(),
+                        DerivedKnob::TotalImpulse => impulse,
+                        DerivedKnob::BurnTime => burn,
                         DerivedKnob::WindFactor => 1.0,
                         DerivedKnob::WindDirectionOffset => 0.0,
                     };
-                    (Target::Number(nominal), Apply::Knob { knob, nominal })
+                    let apply = Apply::Knob {
+                        knob,
+                        nominal,
+                        stage,
+                    };
+                    (Target::Number(nominal), apply)
                 }
             };
             inputs.push(VariedInput::new(path.clone(), target, variation));
             applies.push(apply);
         }
-        let outputs = OUTPUTS.iter().map(|s| (*s).to_owned()).collect();
+        let lower: Vec<LowerStage> = spec
+            .stages
+            .iter()
+            .enumerate()
+            .map(|(index, stage)| LowerStage {
+                name: stages::stage_name(stage, index),
+                flies: stage.rocket.mass > 0.0 && stage.motor.is_some(),
+            })
+            .collect();
+        let mut outputs: Vec<String> = OUTPUTS.iter().map(|s| (*s).to_owned()).collect();
+        let mut bodies = Vec::new();
+        for stage in &lower {
+            let column = |output: &str| format!("{}.{output}", stage.name);
+            outputs.push(column(SEPARATION_OUTPUT));
+            if stage.flies {
+                outputs.extend(BODY_OUTPUTS.iter().map(|o| column(o)));
+                bodies.push(BodyPoints {
+                    name: stage.name.clone(),
+                    apogee: Some([column("apogee_x_m"), column("apogee_y_m")]),
+                    landing: Some([column("impact_x_m"), column("impact_y_m")]),
+                });
+            }
+        }
         let mut study = Study::new(seed, samples, inputs, outputs);
         study.points = Points {
             apogee: Some(["apogee_x_m".into(), "apogee_y_m".into()]),
             landing: Some(["impact_x_m".into(), "impact_y_m".into()]),
             histogram: Some("apogee_agl_m".into()),
+            body: (!lower.is_empty()).then(|| stages::TOP_STAGE.to_owned()),
+            bodies,
         };
         study.site = Some(Site {
             latitude_deg: spec.environment.latitude_deg,
@@ -339,6 +436,8 @@ impl MonteCarlo {
             controller: compile_controller(mission)?,
             thrust,
             nominal_reshape: [motor.burn_out(), motor.total_impulse()],
+            stage_reshapes,
+            lower,
             motor,
             rocket,
         })
@@ -359,6 +458,7 @@ impl MonteCarlo {
         let mut wind = [1.0, 0.0];
         let mut drag = EstimateScaling::default();
         let mut reshape: [Option<f64>; 2] = [None, None];
+        let mut stage_reshape: Vec<[Option<f64>; 2]> = vec![[None, None]; spec.stages.len()];
         for ((apply, input), &value) in self.applies.iter().zip(&self.study.inputs).zip(values) {
             let combine = |nominal: f64| match input.meaning() {
                 Meaning::Value => value,
@@ -378,7 +478,7 @@ impl MonteCarlo {
                 }
                 Apply::Curve { path, points } => {
                     let scaled = points.iter().map(|[x, y]| [*x, combine(*y)]).collect();
-                    let slot = curve_mut(&mut spec, path)
+                    let slot = paths::curve_mut(&mut spec, path)
                         .ok_or_else(|| format!("`{path}` is not a curve"))?;
                     *slot = Curve::Points(scaled);
                 }
@@ -405,18 +505,44 @@ impl MonteCarlo {
                         ab.drag_coefficient_curve = AirBrakesCurve::Rows(scaled);
                     }
                 }
-                Apply::Knob { knob, nominal } => match knob {
-                    DerivedKnob::TotalImpulse => reshape[1] = Some(combine(*nominal)),
-                    DerivedKnob::BurnTime => reshape[0] = Some(combine(*nominal)),
-                    DerivedKnob::WindFactor => wind[0] = combine(*nominal),
-                    DerivedKnob::WindDirectionOffset => wind[1] = combine(*nominal),
-                },
+                Apply::Knob {
+                    knob,
+                    nominal,
+                    stage,
+                } => {
+                    let value = combine(*nominal);
+                    let target = match stage {
+                        None => &mut reshape,
+                        Some(index) => stage_reshape
+                            .get_mut(*index)
+                            .ok_or_else(|| format!("no stage {index}"))?,
+                    };
+                    match knob {
+                        DerivedKnob::TotalImpulse => target[1] = Some(value),
+                        DerivedKnob::BurnTime => target[0] = Some(value),
+                        DerivedKnob::WindFactor => wind[0] = value,
+                        DerivedKnob::WindDirectionOffset => wind[1] = value,
+                    }
+                }
             }
         }
+        let merged = |drawn: [Option<f64>; 2], [burn, impulse]: [f64; 2]| {
+            [drawn[0].unwrap_or(burn), drawn[1].unwrap_or(impulse)]
+        };
         if reshape.iter().any(Option::is_some) {
-            let [burn, impulse] = self.nominal_reshape;
-            spec.motor.reshape_thrust_curve =
-                Some([reshape[0].unwrap_or(burn), reshape[1].unwrap_or(impulse)]);
+            spec.motor.reshape_thrust_curve = Some(merged(reshape, self.nominal_reshape));
+        }
+        for ((stage, drawn), nominal) in spec
+            .stages
+            .iter_mut()
+            .zip(stage_reshape)
+            .zip(&self.stage_reshapes)
+        {
+            if let (Some(motor), Some(nominal)) = (stage.motor.as_mut(), nominal)
+                && drawn.iter().any(Option::is_some)
+            {
+                motor.reshape_thrust_curve = Some(merged(drawn, *nominal));
+            }
         }
         Ok((spec, wind, drag))
     }
@@ -435,6 +561,9 @@ impl MonteCarlo {
             Some(environment) => Arc::clone(environment),
             None => Arc::new(build_environment(&mission).map_err(|e| chain(&e))?),
         };
+        if !self.lower.is_empty() {
+            return self.fly_staged(index, &mission, &environment, [factor, offset_deg]);
+        }
         let (sample_motor, sample_rocket);
         let rocket = if self.reach.rocket {
             let motor = if self.reach.motor {
@@ -475,6 +604,52 @@ impl MonteCarlo {
         .map_err(|e| chain(&e))?;
         let values = output_values(&flight.summary(&atmosphere, rocket));
         Ok(match early_ending(flight.termination, &settings) {
+            None => Outcome::new(values),
+            Some((kind, message)) => Outcome::ended(values, kind, message),
+        })
+    }
+}
+
+impl MonteCarlo {
+    /// Flies sample `index` of a multi-stage mission (`mission` the sample's) as
+    /// [`stages::simulate_staged`] does: the top stage's [`OUTPUTS`], then each lower stage's
+    /// separation time and, when it flies alone, its [`BODY_OUTPUTS`] (none where its flight
+    /// did not get there: no separation, no landing). A body ending early ends the sample.
+    fn fly_staged(
+        &self,
+        index: u64,
+        mission: &Mission,
+        environment: &Environment,
+        wind: [f64; 2],
+    ) -> Result<Outcome, String> {
+        let noise_seed = flight_seed(self.study.seed, index);
+        let run = stages::simulate_staged_in(mission, environment.clone(), wind, noise_seed)
+            .map_err(|e| chain(&e))?;
+        let body = |name: &str| run.bodies.iter().position(|b| b.name == name);
+        let top = body(stages::TOP_STAGE).ok_or("the top stage did not fly")?;
+        let top_summary = run.summary(top);
+        let mut values = output_values(&top_summary);
+        let mut ended = early_ending(top_summary.termination, &run.settings);
+        for stage in &self.lower {
+            let separation = run.separations.iter().find(|s| s.stage == stage.name);
+            values.push(separation.map(|s| s.time_s));
+            if !stage.flies {
+                continue;
+            }
+            let summary = body(&stage.name).map(|b| run.summary(b));
+            let all = summary.as_ref().map(output_values);
+            for output in BODY_OUTPUTS {
+                let at = OUTPUTS.iter().position(|o| *o == output);
+                values.push(all.as_ref().zip(at).and_then(|(all, i)| all[i]));
+            }
+            if ended.is_none()
+                && let Some(summary) = &summary
+                && let Some((kind, message)) = early_ending(summary.termination, &run.settings)
+            {
+                ended = Some((kind, format!("{}: {message}", stage.name)));
+            }
+        }
+        Ok(match ended {
             None => Outcome::new(values),
             Some((kind, message)) => Outcome::ended(values, kind, message),
         })
@@ -562,26 +737,6 @@ fn inline_rocket_curves(mission: &mut Mission) -> Result<(), MissionError> {
         }
     }
     Ok(())
-}
-
-/// The curve-valued key at `path`.
-fn curve_mut<'a>(spec: &'a mut MissionSpec, path: &str) -> Option<&'a mut Curve> {
-    if let Some(rest) = path.strip_prefix("motor.tanks.") {
-        let (index, key) = rest.split_once('.')?;
-        let tank = spec.motor.tanks.get_mut(index.parse::<usize>().ok()?)?;
-        return paths::tank_curve_mut(tank, key);
-    }
-    let atm = &mut spec.environment.atmosphere;
-    match path {
-        "motor.thrust" => Some(&mut spec.motor.thrust),
-        "rocket.power_off_drag" => Some(&mut spec.rocket.power_off_drag),
-        "rocket.power_on_drag" => Some(&mut spec.rocket.power_on_drag),
-        "environment.atmosphere.pressure" => atm.pressure.as_mut(),
-        "environment.atmosphere.temperature" => atm.temperature.as_mut(),
-        "environment.atmosphere.wind_u" => atm.wind_u.as_mut(),
-        "environment.atmosphere.wind_v" => atm.wind_v.as_mut(),
-        _ => None,
-    }
 }
 
 /// An error and its sources, `: `-separated.
@@ -896,6 +1051,98 @@ mod tests {
         let [burn, impulse] = mc.nominal_reshape;
         let nominal = mc.fly(0, &[impulse, burn]).expect("flight");
         assert_eq!(nominal.status(), &karman_dispersion::Status::Completed);
+    }
+
+    /// The two-stage fixture in a custom atmosphere with a constant wind (5, −2) m/s, with
+    /// `vary` as its `[dispersion.vary]` table.
+    fn two_stage(vary: &str) -> Mission {
+        let path = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../../fixtures/two_stage.toml");
+        let text = std::fs::read_to_string(&path).expect("fixture").replace(
+            "model = \"standard\"",
+            "model = \"custom\"\nwind_u = 5\nwind_v = -2",
+        );
+        let end = text
+            .find("[dispersion.vary]")
+            .expect("the fixture has a study");
+        let text = format!("{}[dispersion.vary]\n{vary}", &text[..end]);
+        crate::parse(&text, &path, &[]).expect("valid mission")
+    }
+
+    #[test]
+    fn neutral_draws_fly_the_nominal_stack_and_each_body_has_its_columns() {
+        let mission = two_stage(
+            "\"stages.0.rocket.mass\" = { std = 0.05 }\n\
+             \"stages.0.separation\" = { uniform = [0.3, 0.8] }\n\
+             \"stages.0.stack_power_off_drag\" = { factor = { normal = [1, 0.05] } }\n\
+             \"environment.wind_factor\" = { normal = [1, 0.1] }\n",
+        );
+        let mc = MonteCarlo::new(&mission, StudyOverrides::default()).expect("study");
+        let outputs = &mc.study().outputs;
+        assert_eq!(outputs.len(), OUTPUTS.len() + 1 + BODY_OUTPUTS.len());
+        assert_eq!(outputs[OUTPUTS.len()], "booster.separation_time_s");
+        assert_eq!(outputs[OUTPUTS.len() + 1], "booster.apogee_agl_m");
+        let points = &mc.study().points;
+        assert_eq!(points.body.as_deref(), Some("sustainer"));
+        assert_eq!(points.bodies[0].name, "booster");
+        let neutral = [1.1, 0.5, 1.0, 1.0];
+        let outcome = mc.fly(3, &neutral).expect("flight");
+        assert_eq!(outcome.status(), &karman_dispersion::Status::Completed);
+        let run = stages::simulate_staged(&mission, flight_seed(11, 3)).expect("nominal");
+        let mut expected = output_values(&run.summary(0));
+        expected.push(Some(run.separations[0].time_s));
+        let booster = output_values(&run.summary(1));
+        for output in BODY_OUTPUTS {
+            let at = OUTPUTS.iter().position(|o| *o == output).expect("output");
+            expected.push(booster[at]);
+        }
+        let bits = |v: &[Option<f64>]| v.iter().map(|x| x.map(f64::to_bits)).collect::<Vec<_>>();
+        assert_eq!(bits(outcome.values()), bits(&expected));
+        // A later separation, a heavier booster: the booster separates later and lands
+        // elsewhere; three times the wind carries both bodies farther.
+        let value = |o: &Outcome, name: &str| {
+            let at = outputs.iter().position(|n| n == name).expect("column");
+            o.values()[at].expect("value")
+        };
+        let later = mc.fly(3, &[1.1, 0.8, 1.0, 1.0]).expect("flight");
+        let shift = value(&later, "booster.separation_time_s")
+            - value(&outcome, "booster.separation_time_s");
+        assert!((shift - 0.3).abs() < 0.02, "{shift}");
+        let windy = mc.fly(3, &[1.1, 0.5, 1.0, 3.0]).expect("flight");
+        for body in ["", "booster."] {
+            let distance = |o: &Outcome| {
+                value(o, &format!("{body}impact_x_m")).hypot(value(o, &format!("{body}impact_y_m")))
+            };
+            assert!(distance(&windy) > distance(&outcome) + 100.0, "{body}");
+        }
+    }
+
+    #[test]
+    fn a_stage_motor_knob_reshapes_that_motor_only() {
+        let mission =
+            two_stage("\"stages.0.motor.total_impulse\" = { factor = { normal = [1, 0.03] } }\n");
+        let mc = MonteCarlo::new(&mission, StudyOverrides::default()).expect("study");
+        let [burn, impulse] = mc.stage_reshapes[0].expect("the booster's motor");
+        assert_eq!(mc.study().inputs[0].target, Target::Number(impulse));
+        let (spec, _) = mc.sample_spec(&[1.1]).expect("applied");
+        let reshaped = spec.stages[0]
+            .motor
+            .as_ref()
+            .and_then(|m| m.reshape_thrust_curve)
+            .expect("reshaped");
+        assert_eq!(reshaped[0].to_bits(), burn.to_bits());
+        assert!((reshaped[1] - 1.1 * impulse).abs() < 1e-9 * impulse);
+        assert_eq!(spec.motor.reshape_thrust_curve, None);
+        // More impulse in the booster: a higher booster apogee.
+        let apogee = |factor: f64| {
+            let o = mc.fly(0, &[factor]).expect("flight");
+            let at = mc
+                .study()
+                .outputs
+                .iter()
+                .position(|n| n == "booster.apogee_agl_m");
+            o.values()[at.expect("column")].expect("apogee")
+        };
+        assert!(apogee(1.1) > apogee(0.9));
     }
 
     #[test]

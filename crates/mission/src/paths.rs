@@ -9,10 +9,16 @@
 //! or of numbers (`rocket.inertia.0`, one component; `rocket.inertia`, the whole array, takes
 //! `factor` / `offset` on every component). Besides stored keys, four derived knobs exist
 //! ([`DerivedKnob`]).
+//!
+//! A lower stage's inputs are those of its `[[stages]]` entry: `stages.<index>.` before the
+//! stage's keys (`stages.0.rocket.mass`, `stages.0.motor.total_impulse`, a knob of the stage's
+//! motor, `stages.0.ignition_delay`); `stages.<index>.separation` is the number of the
+//! separation trigger: its height above ground, or the delay of `"launch + X"` /
+//! `"burnout + X"`.
 
 use crate::schema::{
-    AirBrakesCurve, Atol, Curve, DensitySpec, Discretize, Distribution, MissionSpec, RocketSpec,
-    SurfaceSpec, Sweep, TankSpec, Trigger,
+    AirBrakesCurve, Atol, Curve, DensitySpec, Discretize, Distribution, MissionSpec, MotorSpec,
+    RocketSpec, StageSpec, SurfaceSpec, Sweep, TankSpec, Trigger,
 };
 use thiserror::Error;
 
@@ -117,9 +123,17 @@ fn hint(available: &[String]) -> String {
 /// The path of the air brakes' drag table.
 pub const AIR_BRAKES_CURVE: &str = "rocket.air_brakes.drag_coefficient_curve";
 
-/// The tank and the key within it of a `motor.tanks.<index>.<key>` path.
-fn tank_path(path: &str) -> Option<(usize, &str)> {
-    let rest = path.strip_prefix("motor.tanks.")?;
+/// The tank and the key within it of a motor's `tanks.<index>.<key>` key.
+fn tank_key(key: &str) -> Option<(usize, &str)> {
+    let rest = key.strip_prefix("tanks.")?;
+    let (index, key) = rest.split_once('.')?;
+    Some((index.parse().ok()?, key))
+}
+
+/// The lower stage and the path within its `[[stages]]` entry of a `stages.<index>.<path>`
+/// path.
+pub(crate) fn stage_path(path: &str) -> Option<(usize, &str)> {
+    let rest = path.strip_prefix("stages.")?;
     let (index, key) = rest.split_once('.')?;
     Some((index.parse().ok()?, key))
 }
@@ -143,7 +157,7 @@ fn tank_curve<'a>(tank: &'a TankSpec, key: &str) -> Option<&'a Curve> {
 }
 
 /// [`tank_curve`], mutable.
-pub(crate) fn tank_curve_mut<'a>(tank: &'a mut TankSpec, key: &str) -> Option<&'a mut Curve> {
+fn tank_curve_mut<'a>(tank: &'a mut TankSpec, key: &str) -> Option<&'a mut Curve> {
     match key {
         "geometry.radius" => Some(&mut tank.geometry.radius),
         "temperature" => tank.temperature.as_mut(),
@@ -162,18 +176,80 @@ pub(crate) fn tank_curve_mut<'a>(tank: &'a mut TankSpec, key: &str) -> Option<&'
 
 /// Paths of the curve-valued keys (a `Constant` curve among them resolves to a number).
 fn curve_at<'a>(spec: &'a MissionSpec, path: &str) -> Option<&'a Curve> {
-    let atm = &spec.environment.atmosphere;
-    if let Some((index, key)) = tank_path(path) {
-        return tank_curve(spec.motor.tanks.get(index)?, key);
+    if let Some((index, rest)) = stage_path(path) {
+        let stage = spec.stages.get(index)?;
+        return match rest {
+            "stack_power_off_drag" => Some(&stage.stack_power_off_drag),
+            "stack_power_on_drag" => Some(&stage.stack_power_on_drag),
+            _ => part_curve(&stage.rocket, stage.motor.as_ref(), rest),
+        };
     }
+    let atm = &spec.environment.atmosphere;
     match path {
-        "motor.thrust" => Some(&spec.motor.thrust),
-        "rocket.power_off_drag" => Some(&spec.rocket.power_off_drag),
-        "rocket.power_on_drag" => Some(&spec.rocket.power_on_drag),
         "environment.atmosphere.pressure" => atm.pressure.as_ref(),
         "environment.atmosphere.temperature" => atm.temperature.as_ref(),
         "environment.atmosphere.wind_u" => atm.wind_u.as_ref(),
         "environment.atmosphere.wind_v" => atm.wind_v.as_ref(),
+        _ => part_curve(&spec.rocket, Some(&spec.motor), path),
+    }
+}
+
+/// The curve at `rocket.<key>` or `motor.<key>` of a stage's airframe and motor.
+fn part_curve<'a>(
+    rocket: &'a RocketSpec,
+    motor: Option<&'a MotorSpec>,
+    path: &str,
+) -> Option<&'a Curve> {
+    if let Some(key) = path.strip_prefix("motor.") {
+        let motor = motor?;
+        if let Some((index, key)) = tank_key(key) {
+            return tank_curve(motor.tanks.get(index)?, key);
+        }
+        return (key == "thrust").then_some(&motor.thrust);
+    }
+    match path {
+        "rocket.power_off_drag" => Some(&rocket.power_off_drag),
+        "rocket.power_on_drag" => Some(&rocket.power_on_drag),
+        _ => None,
+    }
+}
+
+/// [`curve_at`], mutable.
+pub(crate) fn curve_mut<'a>(spec: &'a mut MissionSpec, path: &str) -> Option<&'a mut Curve> {
+    if let Some((index, rest)) = stage_path(path) {
+        let stage = spec.stages.get_mut(index)?;
+        return match rest {
+            "stack_power_off_drag" => Some(&mut stage.stack_power_off_drag),
+            "stack_power_on_drag" => Some(&mut stage.stack_power_on_drag),
+            _ => part_curve_mut(&mut stage.rocket, stage.motor.as_mut(), rest),
+        };
+    }
+    let atm = &mut spec.environment.atmosphere;
+    match path {
+        "environment.atmosphere.pressure" => atm.pressure.as_mut(),
+        "environment.atmosphere.temperature" => atm.temperature.as_mut(),
+        "environment.atmosphere.wind_u" => atm.wind_u.as_mut(),
+        "environment.atmosphere.wind_v" => atm.wind_v.as_mut(),
+        _ => part_curve_mut(&mut spec.rocket, Some(&mut spec.motor), path),
+    }
+}
+
+/// [`part_curve`], mutable.
+fn part_curve_mut<'a>(
+    rocket: &'a mut RocketSpec,
+    motor: Option<&'a mut MotorSpec>,
+    path: &str,
+) -> Option<&'a mut Curve> {
+    if let Some(key) = path.strip_prefix("motor.") {
+        let motor = motor?;
+        if let Some((index, key)) = tank_key(key) {
+            return tank_curve_mut(motor.tanks.get_mut(index)?, key);
+        }
+        return (key == "thrust").then_some(&mut motor.thrust);
+    }
+    match path {
+        "rocket.power_off_drag" => Some(&mut rocket.power_off_drag),
+        "rocket.power_on_drag" => Some(&mut rocket.power_on_drag),
         _ => None,
     }
 }
@@ -256,6 +332,25 @@ pub fn resolve<'a>(spec: &'a MissionSpec, path: &str) -> Result<Input<'a>, PathE
     if let Some(knob) = DerivedKnob::from_path(path) {
         return Ok(Input::Knob(knob));
     }
+    // A lower stage's motor has the motor knobs; its separation trigger is a number.
+    if let Some((index, rest)) = stage_path(path)
+        && let Some(stage) = spec.stages.get(index)
+    {
+        if let Some(knob @ (DerivedKnob::TotalImpulse | DerivedKnob::BurnTime)) =
+            DerivedKnob::from_path(rest)
+            && stage.motor.is_some()
+        {
+            return Ok(Input::Knob(knob));
+        }
+        if rest == "separation"
+            && let Some(value) = separation_number(&stage.separation)
+        {
+            return Ok(Input::Number {
+                value,
+                integer: false,
+            });
+        }
+    }
     if path == AIR_BRAKES_CURVE
         && let Some(ab) = &spec.rocket.air_brakes
         && !matches!(ab.drag_coefficient_curve, AirBrakesCurve::Constant(_))
@@ -272,13 +367,21 @@ pub fn resolve<'a>(spec: &'a MissionSpec, path: &str) -> Result<Input<'a>, PathE
         });
     }
     // A tank's flux time is addressed as a number: its end.
-    if let Some((index, "flux_time")) = tank_path(path) {
-        if let Some(tank) = spec.motor.tanks.get(index) {
-            return Ok(Input::Number {
-                value: tank.flux_time.end,
-                integer: false,
-            });
-        }
+    let tank = match stage_path(path) {
+        Some((index, rest)) => spec
+            .stages
+            .get(index)
+            .and_then(|s| Some((s.motor.as_ref()?, rest.strip_prefix("motor.")?))),
+        None => path.strip_prefix("motor.").map(|rest| (&spec.motor, rest)),
+    };
+    if let Some((motor, rest)) = tank
+        && let Some((index, "flux_time")) = tank_key(rest)
+        && let Some(tank) = motor.tanks.get(index)
+    {
+        return Ok(Input::Number {
+            value: tank.flux_time.end,
+            integer: false,
+        });
     }
     let mut table = as_table(spec);
     match walk(&mut table, path)? {
@@ -296,6 +399,16 @@ pub fn resolve<'a>(spec: &'a MissionSpec, path: &str) -> Result<Input<'a>, PathE
                 path: path.to_owned(),
                 found: type_name(other),
             }),
+    }
+}
+
+/// The number of a separation trigger: its height, or the delay after launch or burn-out.
+fn separation_number(trigger: &Trigger) -> Option<f64> {
+    match trigger {
+        Trigger::HeightAboveGround(value) | Trigger::Launch(value) | Trigger::Burnout(value) => {
+            Some(*value)
+        }
+        Trigger::Apogee | Trigger::Expression(_) => None,
     }
 }
 
@@ -347,10 +460,19 @@ enum Slot<'a> {
 /// every fixture and validation mission.
 fn slot<'a>(spec: &'a mut MissionSpec, path: &str) -> Option<Slot<'a>> {
     use Slot::{Float, Integer};
+    if let Some((index, rest)) = stage_path(path) {
+        return stage_slot(spec.stages.get_mut(index)?, rest);
+    }
     if let Some((array, index)) = path.rsplit_once('.')
         && let Ok(index) = index.parse::<usize>()
     {
-        return component(spec, array, index).map(Float);
+        if array == "flight.atol" {
+            return match spec.flight.atol.as_mut()? {
+                Atol::PerState(values) => values.get_mut(index).map(Float),
+                Atol::Scalar(_) => None,
+            };
+        }
+        return part_component(&mut spec.rocket, Some(&mut spec.motor), array, index).map(Float);
     }
     let (section, rest) = path.split_once('.')?;
     match section {
@@ -374,38 +496,7 @@ fn slot<'a>(spec: &'a mut MissionSpec, path: &str) -> Option<Slot<'a>> {
                 _ => return None,
             })
         }
-        "motor" => {
-            let m = &mut spec.motor;
-            if let Some((index, key)) = tank_path(path) {
-                return tank_slot(m.tanks.get_mut(index)?, key);
-            }
-            Some(match rest {
-                "thrust" => constant(&mut m.thrust)?,
-                "dry_mass" => Float(&mut m.dry_mass),
-                "nozzle_position" => Float(&mut m.nozzle_position),
-                "nozzle_radius" => Float(&mut m.nozzle_radius),
-                "grain_number" => Integer(m.grain_number.as_mut()?),
-                other => Float(
-                    match other {
-                        "center_of_dry_mass_position" => &mut m.center_of_dry_mass_position,
-                        "throat_radius" => &mut m.throat_radius,
-                        "reference_pressure" => &mut m.reference_pressure,
-                        "grain_separation" => &mut m.grain_separation,
-                        "grain_density" => &mut m.grain_density,
-                        "grain_outer_radius" => &mut m.grain_outer_radius,
-                        "grain_initial_inner_radius" => &mut m.grain_initial_inner_radius,
-                        "grain_initial_height" => &mut m.grain_initial_height,
-                        "grains_center_of_mass_position" => &mut m.grains_center_of_mass_position,
-                        "propellant_initial_mass" => &mut m.propellant_initial_mass,
-                        "chamber_radius" => &mut m.chamber_radius,
-                        "chamber_height" => &mut m.chamber_height,
-                        "chamber_position" => &mut m.chamber_position,
-                        _ => return None,
-                    }
-                    .as_mut()?,
-                ),
-            })
-        }
+        "motor" => motor_slot(&mut spec.motor, rest),
         "rocket" => rocket_slot(&mut spec.rocket, rest),
         "flight" => {
             let f = &mut spec.flight;
@@ -428,38 +519,108 @@ fn slot<'a>(spec: &'a mut MissionSpec, path: &str) -> Option<Slot<'a>> {
     }
 }
 
-/// Component `index` of the array of numbers at `array` (its file form: an inertia always has
-/// six components, a burn time two).
-fn component<'a>(spec: &'a mut MissionSpec, array: &str, index: usize) -> Option<&'a mut f64> {
+/// The numeric slot at `path` within a `[[stages]]` entry: its own keys, or its airframe's
+/// and motor's as in `[rocket]` and `[motor]`.
+fn stage_slot<'a>(stage: &'a mut StageSpec, path: &str) -> Option<Slot<'a>> {
+    use Slot::Float;
+    if let Some((array, index)) = path.rsplit_once('.')
+        && let Ok(index) = index.parse::<usize>()
+    {
+        return part_component(&mut stage.rocket, stage.motor.as_mut(), array, index).map(Float);
+    }
+    match path {
+        "sampling_rate" => Some(Float(&mut stage.sampling_rate)),
+        "ignition_delay" => Some(Float(&mut stage.ignition_delay)),
+        "separation" => match &mut stage.separation {
+            Trigger::HeightAboveGround(value)
+            | Trigger::Launch(value)
+            | Trigger::Burnout(value) => Some(Float(value)),
+            Trigger::Apogee | Trigger::Expression(_) => None,
+        },
+        "stack_power_off_drag" => constant(&mut stage.stack_power_off_drag),
+        "stack_power_on_drag" => constant(&mut stage.stack_power_on_drag),
+        _ => {
+            if let Some(rest) = path.strip_prefix("rocket.") {
+                rocket_slot(&mut stage.rocket, rest)
+            } else {
+                motor_slot(stage.motor.as_mut()?, path.strip_prefix("motor.")?)
+            }
+        }
+    }
+}
+
+/// The numeric slot `key` of a motor.
+fn motor_slot<'a>(m: &'a mut MotorSpec, key: &str) -> Option<Slot<'a>> {
+    use Slot::{Float, Integer};
+    if let Some((index, key)) = tank_key(key) {
+        return tank_slot(m.tanks.get_mut(index)?, key);
+    }
+    Some(match key {
+        "thrust" => constant(&mut m.thrust)?,
+        "dry_mass" => Float(&mut m.dry_mass),
+        "nozzle_position" => Float(&mut m.nozzle_position),
+        "nozzle_radius" => Float(&mut m.nozzle_radius),
+        "grain_number" => Integer(m.grain_number.as_mut()?),
+        other => Float(
+            match other {
+                "center_of_dry_mass_position" => &mut m.center_of_dry_mass_position,
+                "throat_radius" => &mut m.throat_radius,
+                "reference_pressure" => &mut m.reference_pressure,
+                "grain_separation" => &mut m.grain_separation,
+                "grain_density" => &mut m.grain_density,
+                "grain_outer_radius" => &mut m.grain_outer_radius,
+                "grain_initial_inner_radius" => &mut m.grain_initial_inner_radius,
+                "grain_initial_height" => &mut m.grain_initial_height,
+                "grains_center_of_mass_position" => &mut m.grains_center_of_mass_position,
+                "propellant_initial_mass" => &mut m.propellant_initial_mass,
+                "chamber_radius" => &mut m.chamber_radius,
+                "chamber_height" => &mut m.chamber_height,
+                "chamber_position" => &mut m.chamber_position,
+                _ => return None,
+            }
+            .as_mut()?,
+        ),
+    })
+}
+
+/// Component `index` of the array of numbers at `rocket.<key>` or `motor.<key>` (its file
+/// form: an inertia always has six components, a burn time two).
+fn part_component<'a>(
+    rocket: &'a mut RocketSpec,
+    motor: Option<&'a mut MotorSpec>,
+    array: &str,
+    index: usize,
+) -> Option<&'a mut f64> {
     let pair = |[start, end]: [&'a mut f64; 2]| match index {
         0 => Some(start),
         1 => Some(end),
         _ => None,
     };
-    if let Some((tank, "flux_time")) = tank_path(array) {
-        let t = &mut spec.motor.tanks.get_mut(tank)?.flux_time;
-        return pair([&mut t.start, &mut t.end]);
+    if let Some(key) = array.strip_prefix("motor.") {
+        let motor = motor?;
+        if let Some((tank, "flux_time")) = tank_key(key) {
+            let t = &mut motor.tanks.get_mut(tank)?.flux_time;
+            return pair([&mut t.start, &mut t.end]);
+        }
+        return match key {
+            "dry_inertia" => motor.dry_inertia.0.get_mut(index),
+            "burn_time" => {
+                let b = motor.burn_time.as_mut()?;
+                pair([&mut b.start, &mut b.end])
+            }
+            "reshape_thrust_curve" => motor.reshape_thrust_curve.as_mut()?.get_mut(index),
+            _ => None,
+        };
     }
     if let Some(name) = array
         .strip_prefix("rocket.parachutes.")
         .and_then(|rest| rest.strip_suffix(".noise"))
     {
-        return spec.rocket.parachutes.get_mut(name)?.noise.get_mut(index);
+        return rocket.parachutes.get_mut(name)?.noise.get_mut(index);
     }
     match array {
-        "rocket.inertia" => spec.rocket.inertia.0.get_mut(index),
-        "motor.dry_inertia" => spec.motor.dry_inertia.0.get_mut(index),
-        "motor.burn_time" => {
-            let b = spec.motor.burn_time.as_mut()?;
-            pair([&mut b.start, &mut b.end])
-        }
-        "motor.reshape_thrust_curve" => spec.motor.reshape_thrust_curve.as_mut()?.get_mut(index),
-        "flight.atol" => match spec.flight.atol.as_mut()? {
-            Atol::PerState(values) => values.get_mut(index),
-            Atol::Scalar(_) => None,
-        },
-        "rocket.air_brakes.initial_observed_variables" => spec
-            .rocket
+        "rocket.inertia" => rocket.inertia.0.get_mut(index),
+        "rocket.air_brakes.initial_observed_variables" => rocket
             .air_brakes
             .as_mut()?
             .initial_observed_variables

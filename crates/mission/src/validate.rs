@@ -190,14 +190,6 @@ fn stages(c: &mut Checker<'_, '_>, spec: &MissionSpec) {
             },
         );
     }
-    if spec.dispersion.is_some() {
-        c.report(
-            "dispersion",
-            ProblemKind::Unsupported {
-                what: "a Monte Carlo study of a multi-stage rocket".to_owned(),
-            },
-        );
-    }
     let mut surfaces: Vec<&str> = spec.rocket.surfaces.keys().map(String::as_str).collect();
     let mut parachutes: Vec<&str> = spec.rocket.parachutes.keys().map(String::as_str).collect();
     for (index, stage) in spec.stages.iter().enumerate() {

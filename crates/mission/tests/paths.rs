@@ -329,9 +329,103 @@ fn every_key_mission() -> karman_mission::schema::MissionSpec {
     toml::Value::Table(table).try_into().expect("deserializes")
 }
 
+/// [`every_key_mission`] with a lower stage of the same airframe and motor, separating at a
+/// height: every key of `[rocket]` and `[motor]` under `stages.0.`, and the stage's own.
+fn every_key_stage_mission() -> karman_mission::schema::MissionSpec {
+    use karman_mission::schema::{Curve, StageSpec, Trigger};
+    let mut spec = every_key_mission();
+    spec.stages.push(StageSpec {
+        name: Some("booster".to_owned()),
+        separation: Trigger::HeightAboveGround(150.0),
+        sampling_rate: 50.0,
+        ignition_delay: 0.5,
+        stack_power_off_drag: Curve::Constant(0.6),
+        stack_power_on_drag: Curve::Points(vec![[0.0, 0.5], [1.0, 0.7]]),
+        motor: Some(spec.motor.clone()),
+        rocket: spec.rocket.clone(),
+    });
+    spec
+}
+
+#[test]
+fn stage_inputs_resolve_by_their_dotted_paths() {
+    let mission = load(&fixture("../../../../fixtures/two_stage.toml"), &[])
+        .unwrap_or_else(|e| panic!("{e}"));
+    let mut spec = mission.spec.clone();
+    let number = |value: f64| Input::Number {
+        value,
+        integer: false,
+    };
+    for (path, expected) in [
+        ("stages.0.rocket.mass", number(1.1)),
+        ("stages.0.ignition_delay", number(1.0)),
+        ("stages.0.sampling_rate", number(100.0)),
+        // The delay of `"burnout + 0.5"`.
+        ("stages.0.separation", number(0.5)),
+        ("stages.0.motor.dry_mass", number(0.95)),
+        (
+            "stages.0.motor.grain_number",
+            Input::Number {
+                value: 3.0,
+                integer: true,
+            },
+        ),
+        ("stages.0.rocket.parachutes.booster_chute.cd_s", number(1.2)),
+        (
+            "stages.0.motor.total_impulse",
+            Input::Knob(DerivedKnob::TotalImpulse),
+        ),
+        (
+            "stages.0.motor.burn_time",
+            Input::Knob(DerivedKnob::BurnTime),
+        ),
+    ] {
+        assert_eq!(paths::resolve(&spec, path), Ok(expected), "{path}");
+    }
+    for curve in [
+        "stages.0.stack_power_off_drag",
+        "stages.0.rocket.power_on_drag",
+        "stages.0.motor.thrust",
+    ] {
+        assert!(
+            matches!(paths::resolve(&spec, curve), Ok(Input::Curve(_))),
+            "{curve}"
+        );
+    }
+    assert!(matches!(
+        paths::resolve(&spec, "stages.0.rocket.inertia"),
+        Ok(Input::Array(_))
+    ));
+    // Wind knobs are the environment's, not a stage's; stage 1 does not exist.
+    for path in [
+        "stages.0.environment.wind_factor",
+        "stages.1.rocket.mass",
+        "stages.0.ignition_dlay",
+    ] {
+        assert!(
+            matches!(paths::resolve(&spec, path), Err(PathError::Unknown { .. })),
+            "{path}"
+        );
+    }
+    paths::set_number(&mut spec, "stages.0.separation", 0.8).expect("a delay");
+    paths::set_number(&mut spec, "stages.0.rocket.inertia.2", 0.002).expect("a component");
+    paths::set_number(&mut spec, "stages.0.motor.dry_inertia.0", 0.02).expect("a component");
+    let stage = &spec.stages[0];
+    assert_eq!(
+        stage.separation,
+        karman_mission::schema::Trigger::Burnout(0.8)
+    );
+    assert_eq!(stage.rocket.inertia.0[2].to_bits(), 0.002_f64.to_bits());
+    let motor = stage.motor.as_ref().expect("motor");
+    assert_eq!(motor.dry_inertia.0[0].to_bits(), 0.02_f64.to_bits());
+    // The top stage is untouched.
+    assert_eq!(spec.rocket, mission.spec.rocket);
+    assert_eq!(spec.motor, mission.spec.motor);
+}
+
 #[test]
 fn typed_slots_match_the_file_form() {
-    let mut specs = vec![every_key_mission()];
+    let mut specs = vec![every_key_mission(), every_key_stage_mission()];
     specs.extend(
         validation_missions()
             .unwrap_or_default()
@@ -373,6 +467,18 @@ fn typed_slots_match_the_file_form() {
         "motor.burn_time.0",
         "motor.reshape_thrust_curve.1",
         "rocket.parachutes.main.noise.2",
+        "stages.0.separation",
+        "stages.0.sampling_rate",
+        "stages.0.ignition_delay",
+        "stages.0.stack_power_off_drag",
+        "stages.0.rocket.mass",
+        "stages.0.rocket.inertia.5",
+        "stages.0.rocket.rail_buttons.angular_position",
+        "stages.0.rocket.parachutes.main.noise.2",
+        "stages.0.motor.reference_pressure",
+        "stages.0.motor.dry_inertia.3",
+        "stages.0.motor.burn_time.0",
+        "stages.0.motor.reshape_thrust_curve.1",
     ] {
         assert!(seen.contains(key), "{key} not exercised: {seen:?}");
     }

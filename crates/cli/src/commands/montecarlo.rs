@@ -105,7 +105,8 @@ pub fn run(args: &MonteCarloArgs) -> Result<()> {
     Ok(())
 }
 
-/// A few lines of the summary: apogee, impact, ellipses.
+/// A few lines of the summary: apogee, impact, ellipses (each body's, named, in a study of
+/// several).
 pub fn print_summary(out: &mut impl Write, summary: &Summary) -> Result<()> {
     writeln!(out, "{} samples: {}", summary.samples, summary.counts)?;
     for failure in summary.failures.iter().take(3) {
@@ -115,24 +116,34 @@ pub fn print_summary(out: &mut impl Write, summary: &Summary) -> Result<()> {
             failure.index, failure.status, failure.error
         )?;
     }
+    let width = summary
+        .outputs
+        .iter()
+        .map(|c| c.name.chars().count())
+        .fold(28, usize::max);
     writeln!(
         out,
-        "{:<28} {:>12} {:>10} {:>12} {:>12}",
+        "{:<width$} {:>12} {:>10} {:>12} {:>12}",
         "output", "mean", "std", "2.5 %", "97.5 %"
     )?;
     for column in &summary.outputs {
         if let Some(s) = &column.statistics {
             writeln!(
                 out,
-                "{:<28} {:>12.3} {:>10.3} {:>12.3} {:>12.3}",
+                "{:<width$} {:>12.3} {:>10.3} {:>12.3} {:>12.3}",
                 column.name, s.mean, s.std, s.p2_5, s.p97_5
             )?;
         }
     }
     for ellipse in &summary.ellipses {
+        let body = ellipse
+            .body
+            .as_ref()
+            .map(|b| format!("{b} "))
+            .unwrap_or_default();
         writeln!(
             out,
-            "{} ellipse: centre ({:.1}, {:.1}) m, major axis {:.1} deg from east",
+            "{body}{} ellipse: centre ({:.1}, {:.1}) m, major axis {:.1} deg from east",
             ellipse.name, ellipse.center_m[0], ellipse.center_m[1], ellipse.orientation_deg
         )?;
         for (k, p) in ellipse.k_sigma_rocketpy.iter().zip(&ellipse.probability) {

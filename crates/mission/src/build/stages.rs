@@ -30,6 +30,7 @@ use karman_dynamics::{
     Termination,
 };
 use karman_model::TriggerCondition;
+use karman_propulsion::Motor;
 use karman_script::Expression;
 
 use super::environment::build_environment;
@@ -38,6 +39,7 @@ use super::motor::{build_motor_with, thrust_source};
 use super::preflight::{MAX_KNOT_STOPS, Models, prepare};
 use super::rocket::build_rocket_ignited_at;
 use super::scripts::{AfterTime, ExpressionTrigger};
+use crate::montecarlo::WindAdjusted;
 use crate::report::trajectory::Track;
 use crate::schema::{DragEstimateSpec, Inertia, RocketSpec, StageSpec, Trigger};
 use crate::{KeyLocations, Mission, MissionError};
@@ -89,10 +91,25 @@ pub struct StagedRun {
     pub separations: Vec<SeparationRecord>,
     /// The warnings of the launch checks and of every model, each naming its key.
     pub warnings: Vec<String>,
+    /// The wind the flight saw: the environment's, multiplied by `wind[0]` and turned by
+    /// `wind[1]` degrees ([`WindAdjusted`]; `[1, 0]` but in a Monte Carlo sample).
+    wind: [f64; 2],
+}
+
+/// The wind of a flight that is the environment's.
+const OWN_WIND: [f64; 2] = [1.0, 0.0];
+
+/// The parts of a [`StagedRun`] its flights make.
+struct Tree {
+    settings: FlightSettings,
+    segments: Vec<Segment>,
+    bodies: Vec<Body>,
+    separations: Vec<SeparationRecord>,
+    warnings: Vec<String>,
 }
 
 /// The name of lower stage `index` in reports.
-fn stage_name(stage: &StageSpec, index: usize) -> String {
+pub(crate) fn stage_name(stage: &StageSpec, index: usize) -> String {
     stage
         .name
         .clone()
@@ -127,6 +144,15 @@ fn stage_mission(mission: &Mission, index: usize) -> Mission {
         spec,
         keys: KeyLocations(Arc::new(keys)),
     }
+}
+
+/// The own motor of lower stage `index` (which has one), as it flies after separation.
+///
+/// # Errors
+/// The motor builder's errors, named by the stage's keys.
+pub(crate) fn stage_motor(mission: &Mission, index: usize) -> Result<Motor, MissionError> {
+    let alone = stage_mission(mission, index);
+    build_motor_with(&alone, &thrust_source(&alone)?).map_err(|e| in_stage(e, index))
 }
 
 /// An error found while building stage `index` from its own mission, named by the stage's key.
@@ -441,8 +467,47 @@ enum Start {
 /// checks of the launch stack, and [`MissionError::Model`] (section `flight`) when a flight
 /// cannot be integrated.
 pub fn simulate_staged(mission: &Mission, seed: u64) -> Result<StagedRun, MissionError> {
+    simulate_staged_in(mission, build_environment(mission)?, OWN_WIND, seed)
+}
+
+/// [`simulate_staged`] in a built `environment` whose wind is multiplied by `wind[0]` and
+/// turned clockwise by `wind[1]` degrees ([`WindAdjusted`]), as a Monte Carlo sample flies.
+///
+/// # Errors
+/// As [`simulate_staged`].
+pub fn simulate_staged_in(
+    mission: &Mission,
+    environment: Environment,
+    wind: [f64; 2],
+    seed: u64,
+) -> Result<StagedRun, MissionError> {
+    let tree = if wind == OWN_WIND {
+        fly_tree(mission, &environment, seed)?
+    } else {
+        fly_tree(
+            mission,
+            &WindAdjusted::new(&environment, wind[0], wind[1]),
+            seed,
+        )?
+    };
+    Ok(StagedRun {
+        environment,
+        settings: tree.settings,
+        segments: tree.segments,
+        bodies: tree.bodies,
+        separations: tree.separations,
+        warnings: tree.warnings,
+        wind,
+    })
+}
+
+/// Flies the tree of bodies of a multi-stage mission in `environment`.
+fn fly_tree<A: AtmosphereModel>(
+    mission: &Mission,
+    environment: &A,
+    seed: u64,
+) -> Result<Tree, MissionError> {
     let stages = &mission.spec.stages;
-    let environment = build_environment(mission)?;
     let elevation = environment.elevation();
     let mut count = stages.len();
     let mut ignition = 0.0;
@@ -497,7 +562,7 @@ pub fn simulate_staged(mission: &Mission, seed: u64) -> Result<StagedRun, Missio
         let mut processes: Vec<Box<dyn SampledProcess + '_>> = Vec::new();
         if count > 0 {
             processes.push(Box::new(SeparationTrigger {
-                atmosphere: &environment,
+                atmosphere: environment,
                 elevation,
                 rate: stages[count - 1].sampling_rate,
                 condition: condition(mission, count - 1, rocket.burn_out())?,
@@ -507,10 +572,10 @@ pub fn simulate_staged(mission: &Mission, seed: u64) -> Result<StagedRun, Missio
         }
         let flight = match start {
             Start::Rail => {
-                karman_dynamics::simulate_with(&environment, &rocket, &own_settings, processes)
+                karman_dynamics::simulate_with(environment, &rocket, &own_settings, processes)
             }
             Start::Separation { t, state, cdm } => karman_dynamics::simulate_from(
-                &environment,
+                environment,
                 &rocket,
                 &own_settings,
                 t,
@@ -566,7 +631,7 @@ pub fn simulate_staged(mission: &Mission, seed: u64) -> Result<StagedRun, Missio
             );
             let spent_settings = vehicle_settings(&alone, &spent, seed);
             let flight = karman_dynamics::simulate_from(
-                &environment,
+                environment,
                 &spent,
                 &spent_settings,
                 t,
@@ -598,8 +663,7 @@ pub fn simulate_staged(mission: &Mission, seed: u64) -> Result<StagedRun, Missio
     }
     // The top stage first, then the lower stages in the order they separated.
     bodies.sort_by_key(|b| b.name != TOP_STAGE);
-    Ok(StagedRun {
-        environment,
+    Ok(Tree {
         settings,
         segments,
         bodies,
@@ -612,8 +676,8 @@ impl Segment {
     /// The segment's summary, its events restricted to its own time span (a flight resumed
     /// at a separation does not repeat the burn-out before it) and its burn-out named by the
     /// stage whose motor burnt out.
-    fn summary(&self, environment: &Environment) -> Summary {
-        let mut summary = self.flight.summary(environment, &self.rocket);
+    fn summary<A: AtmosphereModel>(&self, atmosphere: &A) -> Summary {
+        let mut summary = self.flight.summary(atmosphere, &self.rocket);
         let start = self.flight.points.first().map_or(0.0, |p| p.t);
         summary.events.retain(|e| e.time_s >= start);
         for event in &mut summary.events {
@@ -626,16 +690,36 @@ impl Segment {
 }
 
 impl StagedRun {
+    /// The summary of segment `index` in the atmosphere the flight saw.
+    fn segment_summary(&self, index: usize) -> Summary {
+        let segment = &self.segments[index];
+        if self.wind == OWN_WIND {
+            segment.summary(&self.environment)
+        } else {
+            let [factor, offset] = self.wind;
+            segment.summary(&WindAdjusted::new(&self.environment, factor, offset))
+        }
+    }
+
+    /// The post-processed samples of segment `index` in the atmosphere the flight saw.
+    fn segment_samples(&self, index: usize) -> Vec<Sample> {
+        let segment = &self.segments[index];
+        if self.wind == OWN_WIND {
+            segment.flight.samples(&self.environment, &segment.rocket)
+        } else {
+            let [factor, offset] = self.wind;
+            let atmosphere = WindAdjusted::new(&self.environment, factor, offset);
+            segment.flight.samples(&atmosphere, &segment.rocket)
+        }
+    }
+
     /// The summary of body `body`: the launch's rail exit and margins, the first apogee of
     /// its path, the extremes over every segment, the end of its last segment, and its
     /// events with the separations it took part in.
     #[must_use]
     pub fn summary(&self, body: usize) -> Summary {
         let segments = &self.bodies[body].segments;
-        let parts: Vec<Summary> = segments
-            .iter()
-            .map(|&s| self.segments[s].summary(&self.environment))
-            .collect();
+        let parts: Vec<Summary> = segments.iter().map(|&s| self.segment_summary(s)).collect();
         let mut joined = parts[0].clone();
         let apogee = parts.iter().find(|p| p.apogee_time_s.is_some());
         if let Some(a) = apogee {
@@ -684,8 +768,7 @@ impl StagedRun {
     pub fn samples(&self, body: usize) -> Vec<Sample> {
         let mut samples: Vec<Sample> = Vec::new();
         for &s in &self.bodies[body].segments {
-            let segment = &self.segments[s];
-            let mut part = segment.flight.samples(&self.environment, &segment.rocket);
+            let mut part = self.segment_samples(s);
             if !samples.is_empty() && !part.is_empty() {
                 part.remove(0);
             }
@@ -699,8 +782,8 @@ impl StagedRun {
     #[must_use]
     pub fn timeline(&self) -> Vec<(f64, String)> {
         let mut events = Vec::new();
-        for segment in &self.segments {
-            for event in segment.summary(&self.environment).events {
+        for (index, segment) in self.segments.iter().enumerate() {
+            for event in self.segment_summary(index).events {
                 events.push((event.time_s, format!("{}: {}", segment.vehicle, event.name)));
             }
         }
