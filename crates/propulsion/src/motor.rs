@@ -15,8 +15,8 @@ use crate::hybrid::HybridPropellant;
 use crate::liquid::LiquidPropellant;
 use crate::propellant::{finite, non_negative};
 use crate::{
-    BatesGrains, CylindricalChamber, PositionedTank, PropellantModel, PropellantTables,
-    PropulsionError, ThrustCurve,
+    BatesGrains, CylindricalChamber, PositionedTank, PropellantModel, PropellantPart,
+    PropellantTables, PropulsionError, ThrustCurve,
 };
 
 /// Orientation of the motor's axial coordinate.
@@ -259,6 +259,7 @@ impl Motor {
                 center_of_mass: zero(),
                 i11: zero(),
                 i33: zero(),
+                parts: Vec::new(),
             },
         }
     }
@@ -428,6 +429,14 @@ impl Motor {
             MotorKind::Liquid(tanks) | MotorKind::Hybrid(_, tanks) => tanks,
             _ => &[],
         }
+    }
+    /// The parts whose pointwise sum the propellant is (physics.md §15.3): the tanks of a
+    /// liquid motor whose tanks are on different time grids, for which RocketPy evaluates the
+    /// sums pointwise; empty for every other motor, whose propellant tables are exact. The
+    /// propellant tables then tabulate those sums on the union of the grids, for reports.
+    #[must_use]
+    pub fn propellant_parts(&self) -> &[PropellantPart] {
+        &self.propellant.parts
     }
     /// Nozzle throat radius, m (solid and hybrid motors only).
     #[must_use]
