@@ -9,8 +9,7 @@
 //!   derivative, force and moment scaled by its unit, to rounding.
 //! - A whole flight gives the same dimensionless results (Mach, margins) and every
 //!   dimensional one (apogee, its time, impact point and distance, out-of-rail velocity, …)
-//!   scaled by its unit. This test is ignored until two non-scaling pieces of the engine are
-//!   fixed (see its docs); with them fixed it agrees to ~2e-11.
+//!   scaled by its unit, to rounding (tolerance 1e-9).
 
 use karman_airframe::{
     Airfoil, AngleUnit, CoordinateSystem, MotorProperties, NoseConeSpec, NoseKind, Parachute,
