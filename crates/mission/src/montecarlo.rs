@@ -1123,7 +1123,7 @@ mod tests {
         let mc = MonteCarlo::new(&mission, StudyOverrides::default()).expect("study");
         let [burn, impulse] = mc.stage_reshapes[0].expect("the booster's motor");
         assert_eq!(mc.study().inputs[0].target, Target::Number(impulse));
-        let (spec, _) = mc.sample_spec(&[1.1]).expect("applied");
+        let (spec, _, _) = mc.sample_spec(&[1.1]).expect("applied");
         let reshaped = spec.stages[0]
             .motor
             .as_ref()
