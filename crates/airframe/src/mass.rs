@@ -5,7 +5,10 @@
 //! node-wise values with the first operand's interpolation; otherwise it is a pointwise
 //! formula of the operands. Solid motors give tables on one common time grid (so the
 //! CM-offset `c(t)`, which is a ratio, is interpolated linearly between exact node values),
-//! generic motors mix grids (so everything is pointwise). [`MassModel`] reproduces both.
+//! generic motors mix grids (so everything is pointwise). [`MassModel`] reproduces both. A
+//! liquid motor whose tanks are on different grids hands its propellant over in parts
+//! ([`MotorProperties::propellant_parts`]), summed pointwise at each instant as RocketPy's
+//! `LiquidMotor` does (physics.md §15.3).
 //!
 //! Derivatives are those of RocketPy 1.13's complex-step differentiation
 //! (`Function.differentiate_complex_step`): its evaluator picks the interval from the REAL

@@ -14,11 +14,11 @@
 //! and `discretize`, or the same points without resampling) give node-wise sums with the
 //! first tank's interpolation and extrapolation (its mass table's for the mass and the centre
 //! of mass, its inertia table's interpolation, held constant, for the inertia), reproduced
-//! exactly here; on
-//! different grids RocketPy evaluates the formulas pointwise: the rocket then sums the tanks'
-//! own tables at each instant ([`crate::Motor::propellant_parts`]), while the motor's own
-//! propellant tables, for reports, tabulate the same sums on the union of the grids, linear
-//! between its nodes.
+//! exactly here. On different grids RocketPy evaluates the sums pointwise — except that each
+//! tank's moment `m_i (position_i + c_i)` is first its own node-wise table — and so does the
+//! rocket, from the tanks' own tables ([`crate::Motor::propellant_parts`]); the motor's
+//! propellant tables then tabulate the same sums on the union of the grids, linear between
+//! its nodes, for reports.
 //!
 //! The motor's mass flow in the equations of motion is still `−T/v̄_e` with
 //! `v̄_e = I_tot/m_p(burn start)` ([`crate::Motor::mass_flow_rate`]), not the tanks' flow.
