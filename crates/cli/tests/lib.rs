@@ -3,6 +3,7 @@
 mod check;
 mod common;
 mod corpus;
+mod import;
 mod inspect;
 mod montecarlo;
 mod simulate;

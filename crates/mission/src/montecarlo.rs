@@ -333,6 +333,12 @@ impl MonteCarlo {
                     (Target::Array(values), Apply::Array { components })
                 }
                 Input::Curve(curve) if curve.is_estimate() => {
+                    if !spec.stages.is_empty() {
+                        return Err(invalid(format!(
+                            "`{path}`: the estimated drag of a multi-stage rocket takes no \
+                             `factor` or `offset` yet; give the curve as points or a file"
+                        )));
+                    }
                     let power_on = path == "rocket.power_on_drag";
                     (Target::Curve, Apply::Estimate { power_on })
                 }
@@ -1114,6 +1120,33 @@ mod tests {
             };
             assert!(distance(&windy) > distance(&outcome) + 100.0, "{body}");
         }
+    }
+
+    #[test]
+    fn an_estimated_drag_of_a_stack_is_not_scaled() {
+        let path = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../../fixtures/two_stage.toml");
+        let text = std::fs::read_to_string(&path).expect("fixture");
+        let end = text
+            .find("[dispersion.vary]")
+            .expect("the fixture has a study");
+        let lines: Vec<&str> = text[..end]
+            .lines()
+            .map(|line| {
+                if line.starts_with("stack_power_on_drag") {
+                    "stack_power_on_drag = \"estimate\""
+                } else {
+                    line
+                }
+            })
+            .collect();
+        let text = format!(
+            "{}\n[dispersion.vary]\n\"stages.0.stack_power_on_drag\" = {{ factor = {{ std = 0.05 }} }}\n",
+            lines.join("\n")
+        );
+        let error = crate::parse(&text, &path, &[]).expect_err("refused");
+        let text = error.to_string();
+        assert!(text.contains("stages.0.stack_power_on_drag"), "{text}");
+        assert!(text.contains("multi-stage"), "{text}");
     }
 
     #[test]

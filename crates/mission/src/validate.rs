@@ -1188,6 +1188,13 @@ fn dispersion(c: &mut Checker<'_, '_>, spec: &MissionSpec) {
     for (path, distribution) in &d.vary {
         let key = format!("dispersion.vary.{path}");
         let problem = match paths::resolve(spec, path) {
+            Ok(paths::Input::Curve(curve)) if curve.is_estimate() && !spec.stages.is_empty() => {
+                Some(
+                    "the estimated drag of a multi-stage rocket takes no `factor` or `offset` \
+                     yet; give the curve as points or a file"
+                        .to_owned(),
+                )
+            }
             Ok(input) => paths::check_distribution(&input, distribution).err(),
             Err(error) => Some(error.to_string()),
         };

@@ -165,3 +165,118 @@ proptest! {
         let _ = Design::parse(Path::new("fuzz.ork"), &mutated);
     }
 }
+
+/// `two_stage_high_power_rocket` with `edit` applied to its document, imported for its
+/// second simulation (I59WN sustainer lit at the booster's burn-out, separation at that
+/// ignition).
+fn edited_two_stage(
+    edit: impl Fn(&str) -> String,
+) -> Result<karman_mission::ork::Imported, OrkError> {
+    let path = design("two_stage_high_power_rocket");
+    let text = document_text(&path, &std::fs::read(&path).expect("fixture")).expect("document");
+    let file = tempdir().join("edited_two_stage.ork");
+    std::fs::write(&file, edit(&text)).expect("write");
+    let options = ImportOptions {
+        simulation: Some("Simulation 2".into()),
+        motors: vec![path.parent().expect("dir").to_owned()],
+        output_dir: None,
+    };
+    import(&file, &options)
+}
+
+#[test]
+fn staged_designs_map_their_events_onto_separation_and_ignition_delay() {
+    let imported = edited_two_stage(str::to_owned).expect("imports");
+    assert!(
+        imported.mission.contains(
+            "[[stages]]\nname = \"Booster\"\nseparation = \"burnout + 0.0\"\nignition_delay = 0.0"
+        ),
+        "{}",
+        imported.mission
+    );
+    // A 2 s ignition delay and separation 0.5 s after that ignition: separated 2.5 s after
+    // the booster's burn-out, lit at once.
+    let delayed = edited_two_stage(|t| {
+        t.replacen(
+            "<ignitionconfiguration configid=\"fadeeef3-4aa4-49e9-9581-71e14fa91c14\">\n                        <ignitionevent>burnout</ignitionevent>\n                        <ignitiondelay>0.0</ignitiondelay>",
+            "<ignitionconfiguration configid=\"fadeeef3-4aa4-49e9-9581-71e14fa91c14\">\n                        <ignitionevent>burnout</ignitionevent>\n                        <ignitiondelay>2.0</ignitiondelay>",
+            1,
+        )
+    })
+    .expect("imports");
+    assert!(
+        delayed
+            .mission
+            .contains("separation = \"burnout + 2.0\"\nignition_delay = 0.0"),
+        "{}",
+        delayed.mission
+    );
+    // Separation at burn-out, ignition 2 s later: an air start.
+    let air_start = edited_two_stage(|t| {
+        t.replacen("<ignitiondelay>0.0</ignitiondelay>\n                      </ignitionconfiguration>\n                    </motormount>", "<ignitiondelay>2.0</ignitiondelay>\n                      </ignitionconfiguration>\n                    </motormount>", 1)
+            .replacen("<separationevent>upperignition</separationevent>", "<separationevent>burnout</separationevent>", 1)
+    })
+    .expect("imports");
+    assert!(
+        air_start
+            .mission
+            .contains("separation = \"burnout + 0.0\"\nignition_delay = 2.0"),
+        "{}",
+        air_start.mission
+    );
+}
+
+#[test]
+fn staged_events_the_format_cannot_express_are_refused_by_name() {
+    // The sustainer lit at launch, on the booster.
+    let e = edited_two_stage(|t| {
+        t.replacen("<ignitionevent>burnout</ignitionevent>\n                        <ignitiondelay>0.0</ignitiondelay>\n                      </ignitionconfiguration>\n                    </motormount>", "<ignitionevent>launch</ignitionevent>\n                        <ignitiondelay>0.0</ignitiondelay>\n                      </ignitionconfiguration>\n                    </motormount>", 1)
+    })
+    .expect_err("ignition at launch");
+    assert!(matches!(e, OrkError::Unsupported { .. }), "{e}");
+    assert!(
+        e.to_string().contains("Sustainer Motor Mount") && e.to_string().contains("launch"),
+        "{e}"
+    );
+    // A booster that never separates.
+    let e = edited_two_stage(|t| {
+        t.replacen(
+            "<separationevent>upperignition</separationevent>",
+            "<separationevent>never</separationevent>",
+            1,
+        )
+    })
+    .expect_err("never separates");
+    assert!(
+        e.to_string().contains("Booster") && e.to_string().contains("never"),
+        "{e}"
+    );
+    // Separation half a second after the sustainer's ignition: it would burn on the stack.
+    let e = edited_two_stage(|t| {
+        t.replacen("<separationevent>upperignition</separationevent>\n            <separationaltitude>200.0</separationaltitude>\n            <separationdelay>0.0</separationdelay>", "<separationevent>upperignition</separationevent>\n            <separationaltitude>200.0</separationaltitude>\n            <separationdelay>0.5</separationdelay>", 1)
+    })
+    .expect_err("ignites before separation");
+    assert!(
+        e.to_string().contains("before the stage below separates"),
+        "{e}"
+    );
+}
+
+#[test]
+fn a_stage_without_a_motor_rides_on_the_stage_below() {
+    let imported =
+        import(&design("deployable_payload"), &ImportOptions::default()).expect("imports");
+    assert!(
+        !imported.mission.contains("[[stages]]\n"),
+        "{}",
+        imported.mission
+    );
+    assert!(
+        imported
+            .warnings
+            .iter()
+            .any(|w| w.contains("Deployable Payload") && w.contains("not flown")),
+        "{:?}",
+        imported.warnings
+    );
+}

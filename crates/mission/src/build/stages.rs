@@ -639,7 +639,14 @@ fn fly_tree<A: AtmosphereModel>(
                 Configuration::default(),
                 Vec::new(),
             )
-            .map_err(flight_error)?;
+            .map_err(|e| {
+                mission.model_error(
+                    &format!("stages.{index}"),
+                    format!(
+                        "the stage `{name}` flying alone from its separation at t = {t} s: {e}"
+                    ),
+                )
+            })?;
             segments.push(Segment {
                 vehicle: name.clone(),
                 motor_stage: name.clone(),

@@ -109,6 +109,11 @@ pub struct Component {
     pub motors: BTreeMap<String, MotorRef>,
     /// Mount overhang (m).
     pub overhang: f64,
+    /// Of a stage: its separation by configuration id, and under `""` its default.
+    pub separations: BTreeMap<String, SeparationRef>,
+    /// Of a recovery device: its deployment settings (`deployevent`, `deployaltitude`,
+    /// `deploydelay`) by configuration id, where a configuration has its own.
+    pub deployments: BTreeMap<String, BTreeMap<String, String>>,
     /// Sub-components.
     pub children: Vec<Component>,
     file: PathBuf,
@@ -127,6 +132,19 @@ pub struct MotorRef {
     pub diameter: f64,
     /// Length (m).
     pub length: f64,
+    /// What ignites it (`automatic`, `launch`, `burnout`, `ejection`, `never`) and the delay
+    /// after that event (s): the mount's setting for this configuration, else its default.
+    pub ignition: (String, f64),
+}
+
+/// When a stage separates from the stack above it: OpenRocket's event (`upperignition`,
+/// `ignition`, `burnout`, `ejection`, `launch`, `never`) and the delay after it (s).
+#[derive(Debug, Clone, PartialEq)]
+pub struct SeparationRef {
+    /// The event.
+    pub event: String,
+    /// The delay, s.
+    pub delay: f64,
 }
 
 /// One stored simulation.
@@ -136,6 +154,8 @@ pub struct Simulation {
     pub name: String,
     /// Motor configuration id.
     pub config: String,
+    /// The stages (by number, top first) that configuration leaves inactive.
+    pub inactive_stages: Vec<usize>,
     /// `<conditions>` children.
     pub conditions: BTreeMap<String, String>,
 }
@@ -145,8 +165,9 @@ pub struct Simulation {
 pub struct Design {
     /// Rocket name.
     pub name: String,
-    /// The one stage.
-    pub stage: Component,
+    /// The stages, top (the sustainer, OpenRocket's stage 0) first: the bottom one burns
+    /// first.
+    pub stages: Vec<Component>,
     /// Stored simulations.
     pub simulations: Vec<Simulation>,
 }
@@ -262,7 +283,12 @@ fn child_text(node: roxmltree::Node<'_, '_>, tag: &str) -> Option<String> {
 fn positioning_length(kind: Kind, c: &Component) -> Result<f64, OrkError> {
     Ok(match kind {
         Kind::TrapezoidFins | Kind::EllipticalFins => c.dim("rootchord")?,
-        Kind::FreeFormFins => c.points.iter().map(|p| p[0]).fold(0.0, f64::max),
+        // The root chord: from the first outline point to the last (both on the body); a
+        // swept tip may reach further aft.
+        Kind::FreeFormFins => match (c.points.first(), c.points.last()) {
+            (Some(a), Some(b)) => (b[0] - a[0]).abs(),
+            _ => 0.0,
+        },
         Kind::Parachute | Kind::Streamer | Kind::ShockCord | Kind::MassComponent => {
             c.num_or("packedlength", 0.0)?
         }
@@ -280,8 +306,8 @@ impl Design {
     /// Parses the OpenRocket document `text` of `file`.
     ///
     /// # Errors
-    /// [`OrkError`]: malformed XML, an unknown version, more than one stage, pods, a value
-    /// that is not a number.
+    /// [`OrkError`]: malformed XML, an unknown version, no stage, pods, a value that is not a
+    /// number.
     pub fn parse(file: &Path, text: &str) -> Result<Design, OrkError> {
         let doc = roxmltree::Document::parse(text).map_err(|e| OrkError::Xml {
             file: file.to_owned(),
@@ -315,22 +341,28 @@ impl Design {
             .find(|c| c.has_tag_name("subcomponents"))
             .map(|s| s.children().filter(|c| c.is_element()).collect())
             .unwrap_or_default();
-        if stages.len() != 1 {
-            let names: Vec<String> = stages
-                .iter()
-                .map(|s| child_text(*s, "name").unwrap_or_default())
-                .collect();
-            return Err(OrkError::Unsupported {
-                file: file.to_owned(),
-                component: names.join(", "),
-                what: format!(
-                    "a design of {} stages (multi-stage flights are a later issue)",
-                    stages.len()
-                ),
-            });
+        if stages.is_empty() {
+            return Err(container("a <rocket> without stages"));
         }
-        let mut stage = component(file, stages[0], None, None)?;
-        resolve_automatic_radii(&mut stage);
+        let mut parsed: Vec<Component> = Vec::new();
+        for node in &stages {
+            let previous = parsed.last().map(|s| s.x + s.length);
+            parsed.push(component(file, *node, None, previous)?);
+        }
+        resolve_automatic_radii(&mut parsed);
+        let mut inactive: BTreeMap<String, Vec<usize>> = BTreeMap::new();
+        for config in rocket
+            .children()
+            .filter(|c| c.has_tag_name("motorconfiguration"))
+        {
+            let id = config.attribute("configid").unwrap_or("").to_owned();
+            let off = config
+                .children()
+                .filter(|s| s.has_tag_name("stage") && s.attribute("active") == Some("false"))
+                .filter_map(|s| s.attribute("number").and_then(|n| n.parse().ok()))
+                .collect();
+            inactive.insert(id, off);
+        }
 
         let mut simulations = Vec::new();
         if let Some(sims) = root.children().find(|c| c.has_tag_name("simulations")) {
@@ -345,16 +377,18 @@ impl Design {
                         );
                     }
                 }
+                let config = conditions.get("configid").cloned().unwrap_or_default();
                 simulations.push(Simulation {
                     name: child_text(s, "name").unwrap_or_default(),
-                    config: conditions.get("configid").cloned().unwrap_or_default(),
+                    inactive_stages: inactive.get(&config).cloned().unwrap_or_default(),
+                    config,
                     conditions,
                 });
             }
         }
         Ok(Design {
             name,
-            stage,
+            stages: parsed,
             simulations,
         })
     }
@@ -389,6 +423,8 @@ fn component(
     let mut points = Vec::new();
     let mut motors = BTreeMap::new();
     let mut overhang = 0.0;
+    let mut separations = BTreeMap::new();
+    let mut deployments = BTreeMap::new();
     let mut axial = None;
     for e in node.children().filter(|e| e.is_element()) {
         let t = e.tag_name().name();
@@ -431,10 +467,24 @@ fn component(
                 if let Some(o) = child_text(e, "overhang").as_deref().and_then(number) {
                     overhang = o;
                 }
+                let ignition_of = |n: roxmltree::Node<'_, '_>| {
+                    (
+                        child_text(n, "ignitionevent"),
+                        child_text(n, "ignitiondelay").as_deref().and_then(number),
+                    )
+                };
+                let (default_event, default_delay) = ignition_of(e);
                 for m in e.children().filter(|m| m.has_tag_name("motor")) {
                     let id = m.attribute("configid").unwrap_or("").to_owned();
                     let get = |t: &str| child_text(m, t).unwrap_or_default();
                     let delay = child_text(m, "delay").and_then(|d| number(&d));
+                    let (event, ignition_delay) = e
+                        .children()
+                        .find(|c| {
+                            c.has_tag_name("ignitionconfiguration")
+                                && c.attribute("configid") == Some(id.as_str())
+                        })
+                        .map_or((None, None), ignition_of);
                     motors.insert(
                         id,
                         MotorRef {
@@ -443,9 +493,33 @@ fn component(
                             delay,
                             diameter: number(&get("diameter")).unwrap_or(f64::NAN),
                             length: number(&get("length")).unwrap_or(f64::NAN),
+                            ignition: (
+                                event
+                                    .or_else(|| default_event.clone())
+                                    .unwrap_or_else(|| "automatic".to_owned()),
+                                ignition_delay.or(default_delay).unwrap_or(0.0),
+                            ),
                         },
                     );
                 }
+            }
+            "deploymentconfiguration" => {
+                let id = e.attribute("configid").unwrap_or("").to_owned();
+                let settings = e
+                    .children()
+                    .filter(|k| k.is_element())
+                    .map(|k| {
+                        (
+                            k.tag_name().name().to_owned(),
+                            k.text().unwrap_or("").trim().to_owned(),
+                        )
+                    })
+                    .collect();
+                deployments.insert(id, settings);
+            }
+            "separationconfiguration" => {
+                let id = e.attribute("configid").unwrap_or("").to_owned();
+                separations.insert(id, separation_of(e));
             }
             "subcomponents" | "appearance" | "insideappearance" | "motorconfiguration" => {}
             _ => {
@@ -464,9 +538,14 @@ fn component(
         points,
         motors,
         overhang,
+        separations,
+        deployments,
         children: Vec::new(),
         file: file.to_owned(),
     };
+    if kind == Kind::Stage {
+        c.separations.insert(String::new(), separation_of(node));
+    }
     if kind == Kind::InnerTube {
         if let Some(cluster) = c.text("clusterconfiguration") {
             if cluster != "single" {
@@ -511,24 +590,41 @@ fn component(
     Ok(c)
 }
 
+/// The `<separationevent>` and `<separationdelay>` of a stage or one of its
+/// `<separationconfiguration>`s (OpenRocket's default: at the ignition of the stage above).
+fn separation_of(node: roxmltree::Node<'_, '_>) -> SeparationRef {
+    SeparationRef {
+        event: child_text(node, "separationevent").unwrap_or_else(|| "upperignition".to_owned()),
+        delay: child_text(node, "separationdelay")
+            .as_deref()
+            .and_then(number)
+            .unwrap_or(0.0),
+    }
+}
+
 fn is_auto(c: &Component, element: &str) -> bool {
     c.text(element)
         .is_some_and(|t| t.trim_start().starts_with("auto"))
 }
 
-/// OpenRocket's automatic radii of the body: a tube or a transition end marked `auto` takes
+/// OpenRocket's automatic radii of the body (the parts of every stage, top to bottom): a tube or a transition end marked `auto` takes
 /// the radius of the body part it joins (the previous part's aft end first, else the next
 /// part's fore end), as OpenRocket resolves them when it opens the file; the value stored
 /// after `auto` may be stale.
-fn resolve_automatic_radii(stage: &mut Component) {
-    let body: Vec<usize> = (0..stage.children.len())
-        .filter(|&i| stage.children[i].kind.is_body())
-        .collect();
+fn resolve_automatic_radii(stages: &mut [Component]) {
+    let mut body: Vec<(usize, usize)> = Vec::new();
+    for (s, stage) in stages.iter().enumerate() {
+        for (i, c) in stage.children.iter().enumerate() {
+            if c.kind.is_body() {
+                body.push((s, i));
+            }
+        }
+    }
     // (fore, aft, fore is auto, aft is auto) of each body part.
     let mut ends: Vec<(f64, f64, bool, bool)> = body
         .iter()
-        .map(|&i| {
-            let c = &stage.children[i];
+        .map(|&(s, i)| {
+            let c = &stages[s].children[i];
             let get = |e: &str| c.text(e).and_then(number).unwrap_or(0.0);
             match c.kind {
                 Kind::BodyTube => {
@@ -547,7 +643,8 @@ fn resolve_automatic_radii(stage: &mut Component) {
         .collect();
     for _ in 0..ends.len() + 1 {
         for k in 0..ends.len() {
-            let tube = stage.children[body[k]].kind == Kind::BodyTube;
+            let (s, i) = body[k];
+            let tube = stages[s].children[i].kind == Kind::BodyTube;
             let previous = (k > 0 && !ends[k - 1].3).then(|| ends[k - 1].1);
             let next = (k + 1 < ends.len() && !ends[k + 1].2).then(|| ends[k + 1].0);
             if tube && ends[k].2 {
@@ -570,8 +667,8 @@ fn resolve_automatic_radii(stage: &mut Component) {
             }
         }
     }
-    for (k, &i) in body.iter().enumerate() {
-        let c = &mut stage.children[i];
+    for (k, &(s, i)) in body.iter().enumerate() {
+        let c = &mut stages[s].children[i];
         let (fore, aft, _, _) = ends[k];
         match c.kind {
             Kind::BodyTube => {

@@ -29,7 +29,7 @@ pub struct MassProps {
 }
 
 impl MassProps {
-    fn add(self, o: MassProps) -> MassProps {
+    pub(super) fn add(self, o: MassProps) -> MassProps {
         let m = self.mass + o.mass;
         if m <= 0.0 {
             return MassProps::default();

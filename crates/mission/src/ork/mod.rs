@@ -14,8 +14,13 @@
 //! - the drag onto `power_off_drag = "estimate"` with `[rocket.drag_estimate]` (finish, fin
 //!   thickness and edges, launch lugs, rail buttons).
 //!
-//! Stages beyond the first, pods, motor clusters and tube fins are refused, naming the
-//! component; what is mapped approximately is listed in [`Imported::warnings`].
+//! - a design of several stages onto `[[stages]]`: the top stage as `[rocket]` and `[motor]`,
+//!   each stage below with its own airframe, motor and drag-estimate table, and OpenRocket's
+//!   separation and ignition events (with their delays) as `separation = "burnout + X"` and
+//!   `ignition_delay` (module `write`); a stage without a motor rides on the stage below.
+//!
+//! Pods, motor clusters, tube fins and staging events the format cannot express are refused,
+//! naming the component; what is mapped approximately is listed in [`Imported::warnings`].
 
 mod design;
 mod mass;
@@ -25,7 +30,7 @@ use std::path::{Path, PathBuf};
 
 use thiserror::Error;
 
-pub use design::{Component, Design, Kind, Simulation};
+pub use design::{Component, Design, Kind, MotorRef, SeparationRef, Simulation};
 
 /// Errors of the `.ork` reader; each names the file and, where there is one, the component.
 #[derive(Debug, Error)]

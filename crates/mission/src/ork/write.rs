@@ -4,7 +4,7 @@ use std::collections::BTreeSet;
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
 
-use super::design::{Component, Design, Kind, MotorRef, Simulation};
+use super::design::{Component, Design, Kind, MotorRef, SeparationRef, Simulation};
 use super::mass::{self, MassProps};
 use super::{ImportOptions, Imported, OrkError};
 
@@ -198,46 +198,261 @@ fn condition(sim: &Simulation, key: &str, default: f64) -> f64 {
         .unwrap_or(default)
 }
 
-/// Builds the mission text of `design` for the simulation chosen by `options`.
-pub(super) fn mission(
-    file: &Path,
-    design: &Design,
-    options: &ImportOptions,
-) -> Result<Imported, OrkError> {
-    let mut warnings = Vec::new();
-    let sim = match &options.simulation {
-        Some(name) => design.simulations.iter().find(|s| &s.name == name),
-        None => design.simulations.first(),
-    };
-    let Some(sim) = sim else {
-        return Err(OrkError::Simulation {
-            file: file.to_owned(),
-            name: options.simulation.clone().unwrap_or_default(),
-            available: if design.simulations.is_empty() {
-                "none".to_owned()
-            } else {
-                design
-                    .simulations
-                    .iter()
-                    .map(|s| format!("{:?}", s.name))
-                    .collect::<Vec<_>>()
-                    .join(", ")
-            },
-        });
-    };
-    let stage = &design.stage;
-    let all = stage.walk();
+/// One body of the imported flight: consecutive OpenRocket stages, top first, flown as one
+/// airframe with the motor of its lowest stage (a stage without a motor in the chosen
+/// configuration rides on the stage below it).
+struct Group<'a> {
+    /// The OpenRocket stages, top first.
+    stages: Vec<&'a Component>,
+    /// OpenRocket's number of the first (0: the top stage).
+    number: usize,
+    /// The motor mount of the lowest one.
+    mount: &'a Component,
+    /// Its motor in the configuration.
+    motor: &'a MotorRef,
+}
 
-    // Body: the nose first, then tubes and transitions.
-    let body: Vec<&Component> = stage.children.iter().filter(|c| c.kind.is_body()).collect();
-    let Some(nose) = body.first().filter(|c| c.kind == Kind::NoseCone) else {
-        return Err(OrkError::Unsupported {
-            file: file.to_owned(),
-            component: body
+impl Group<'_> {
+    fn name(&self) -> &str {
+        &self.stages[0].name
+    }
+
+    /// Every component of its stages.
+    fn all(&self) -> Vec<&Component> {
+        self.stages.iter().flat_map(|s| s.walk()).collect()
+    }
+
+    /// The body parts (nose cone, tubes, transitions) of its stages, top first.
+    fn body(&self) -> Vec<&Component> {
+        self.stages
+            .iter()
+            .flat_map(|s| s.children.iter().filter(|c| c.kind.is_body()))
+            .collect()
+    }
+}
+
+fn unsupported(file: &Path, component: &str, what: String) -> OrkError {
+    OrkError::Unsupported {
+        file: file.to_owned(),
+        component: component.to_owned(),
+        what,
+    }
+}
+
+/// A time after an OpenRocket event, for messages.
+fn after(event: &str, delay: f64) -> String {
+    if delay == 0.0 {
+        format!("at {event}")
+    } else {
+        format!("{delay} s after {event}")
+    }
+}
+
+/// The design's stages grouped into the bodies karman flies ([`Group`]) for `sim`.
+fn groups<'a>(
+    file: &Path,
+    design: &'a Design,
+    sim: &Simulation,
+    warnings: &mut Vec<String>,
+) -> Result<Vec<Group<'a>>, OrkError> {
+    let mut out: Vec<Group<'a>> = Vec::new();
+    let mut pending: Vec<&Component> = Vec::new();
+    let mut first = 0;
+    for (number, stage) in design.stages.iter().enumerate() {
+        if pending.is_empty() {
+            first = number;
+        }
+        if sim.inactive_stages.contains(&number) {
+            return Err(unsupported(
+                file,
+                &stage.name,
+                format!("a stage left inactive by simulation {:?}", sim.name),
+            ));
+        }
+        pending.push(stage);
+        let mounts: Vec<&Component> = stage
+            .walk()
+            .into_iter()
+            .filter(|c| c.motors.contains_key(&sim.config))
+            .collect();
+        match mounts.as_slice() {
+            [] => {}
+            [mount] => {
+                out.push(Group {
+                    stages: std::mem::take(&mut pending),
+                    number: first,
+                    mount,
+                    motor: &mount.motors[&sim.config],
+                });
+            }
+            several => {
+                let names: Vec<String> = several.iter().map(|m| m.name.clone()).collect();
+                return Err(unsupported(
+                    file,
+                    &names.join(", "),
+                    "several motors in one stage".to_owned(),
+                ));
+            }
+        }
+    }
+    if out.is_empty() {
+        return Err(unsupported(
+            file,
+            &sim.name,
+            "a simulation without a motor".to_owned(),
+        ));
+    }
+    if let Some(stage) = pending.first() {
+        return Err(unsupported(
+            file,
+            &stage.name,
+            "a stage without a motor below the last stage with one".to_owned(),
+        ));
+    }
+    for group in &out {
+        for pair in group.stages.windows(2) {
+            let separation = separation(&sim.config, pair[1]);
+            warnings.push(format!(
+                "`{}` has no motor in this configuration and flies on `{}` as one body: \
+                 karman's stages each carry a motor, so its separation (OpenRocket: {}) is \
+                 not flown",
+                pair[0].name,
+                pair[1].name,
+                after(&separation.event, separation.delay)
+            ));
+        }
+    }
+    Ok(out)
+}
+
+/// The separation of `stage` in configuration `config`.
+fn separation(config: &str, stage: &Component) -> SeparationRef {
+    stage
+        .separations
+        .get(config)
+        .or_else(|| stage.separations.get(""))
+        .cloned()
+        .unwrap_or(SeparationRef {
+            event: "upperignition".to_owned(),
+            delay: 0.0,
+        })
+}
+
+/// The `separation` trigger and `ignition_delay` of lower body `lower` under `upper`:
+/// OpenRocket's separation event of the lower body's top stage and the ignition event of the
+/// upper body's motor, both as times after the lower motor's burn-out.
+fn staging(
+    file: &Path,
+    config: &str,
+    upper: &Group,
+    lower: &Group,
+) -> Result<(f64, f64), OrkError> {
+    let plugged = |what: &str| {
+        unsupported(
+            file,
+            &lower.mount.name,
+            format!("{what} at the ejection charge of a plugged motor (it never fires)"),
+        )
+    };
+    let ejection = lower.motor.delay;
+    let (event, delay) = &upper.motor.ignition;
+    let ignition = match event.as_str() {
+        "automatic" | "burnout" => *delay,
+        "ejection" => ejection.ok_or_else(|| plugged("an ignition"))? + delay,
+        other => {
+            return Err(unsupported(
+                file,
+                &upper.mount.name,
+                format!(
+                    "an upper-stage ignition at {other:?} (karman lights a stage's motor at \
+                     or after the separation below it)"
+                ),
+            ));
+        }
+    };
+    let sep = separation(config, lower.stages[0]);
+    let separate = match sep.event.as_str() {
+        "burnout" => sep.delay,
+        "ejection" => ejection.ok_or_else(|| plugged("a separation"))? + sep.delay,
+        "upperignition" => ignition + sep.delay,
+        other => {
+            return Err(unsupported(
+                file,
+                lower.name(),
+                format!(
+                    "a stage separation at {other:?} (karman separates a stage at or after \
+                     its motor's burn-out)"
+                ),
+            ));
+        }
+    };
+    if ignition < separate {
+        return Err(unsupported(
+            file,
+            upper.name(),
+            format!(
+                "a motor that ignites {} s before the stage below separates",
+                separate - ignition
+            ),
+        ));
+    }
+    Ok((separate, ignition - separate))
+}
+
+/// The text of one body: its `[motor]` table and its `[rocket]` tables (under the dotted
+/// names `motor_key` and `rocket_key`).
+struct BodyText {
+    motor: String,
+    rocket: String,
+}
+
+/// The drag of a spent lower stage flying alone, on its own largest radius: a body with a
+/// blunt front (no nose cone, so no geometry estimate), its stagnation pressure on the front
+/// face, 0.85 (1 + M²/4 + M⁴/40), and its base drag, 0.12 + 0.13 M² (OpenRocket's forms,
+/// Niskanen 2009 §3.4.3 and §3.4.4), each on its area; skin friction and fins are left out.
+/// It concerns the spent stage's own path only.
+fn spent_stage_drag(front: f64, base: f64, radius: f64) -> String {
+    let (f, b) = ((front / radius).powi(2), (base / radius).powi(2));
+    let points: Vec<String> = [0.0, 0.3, 0.6, 0.9]
+        .iter()
+        .map(|&m: &f64| {
+            let cd = 0.85 * (1.0 + m * m / 4.0 + m.powi(4) / 40.0) * f + (0.12 + 0.13 * m * m) * b;
+            format!("[{}, {}]", n(m), n((cd * 1e4).round() / 1e4))
+        })
+        .collect();
+    format!("[{}]", points.join(", "))
+}
+
+#[allow(clippy::too_many_arguments)]
+fn body_text(
+    file: &Path,
+    config: &str,
+    group: &Group,
+    top: bool,
+    rocket_key: &str,
+    motor_key: &str,
+    options: &ImportOptions,
+    used: &mut BTreeSet<String>,
+    warnings: &mut Vec<String>,
+) -> Result<BodyText, OrkError> {
+    let all = group.all();
+    let body = group.body();
+    let nose = body.first().filter(|c| c.kind == Kind::NoseCone);
+    if top && nose.is_none() {
+        return Err(unsupported(
+            file,
+            &body
                 .first()
-                .map_or_else(|| stage.name.clone(), |c| c.name.clone()),
-            what: "a body that does not start with a nose cone".to_owned(),
-        });
+                .map_or_else(|| group.name().to_owned(), |c| c.name.clone()),
+            "a body that does not start with a nose cone".to_owned(),
+        ));
+    }
+    let Some(first) = body.first() else {
+        return Err(unsupported(
+            file,
+            group.name(),
+            "a stage without body tubes".to_owned(),
+        ));
     };
     let mut radius: f64 = 0.0;
     for b in &body {
@@ -248,9 +463,9 @@ pub(super) fn mission(
         }
     }
     if radius <= 0.0 {
-        return Err(nose.value_error("aftradius", "the body has no positive radius"));
+        return Err(first.value_error("radius", "the body has no positive radius"));
     }
-    let body_length = body.last().map_or(0.0, |b| b.x + b.length);
+    let body_end = body.last().map_or(0.0, |b| b.x + b.length);
     for c in &all {
         let overridden = c.fields.contains_key("overridecd");
         let mapped = matches!(c.kind, Kind::NoseCone | Kind::Transition)
@@ -276,33 +491,13 @@ pub(super) fn mission(
     }
 
     // Mass without motor.
-    let props: MassProps = mass::subtree(stage, 0.0, radius)?;
+    let mut props = MassProps::default();
+    for stage in &group.stages {
+        props = props.add(mass::subtree(stage, 0.0, radius)?);
+    }
 
     // Motor of the simulation's configuration.
-    let mounts: Vec<&Component> = all
-        .iter()
-        .copied()
-        .filter(|c| c.motors.contains_key(&sim.config))
-        .collect();
-    if mounts.len() > 1 {
-        return Err(OrkError::Unsupported {
-            file: file.to_owned(),
-            component: mounts
-                .iter()
-                .map(|m| m.name.clone())
-                .collect::<Vec<_>>()
-                .join(", "),
-            what: "several motors in one flight".to_owned(),
-        });
-    }
-    let Some(mount) = mounts.first() else {
-        return Err(OrkError::Unsupported {
-            file: file.to_owned(),
-            component: sim.name.clone(),
-            what: "a simulation without a motor".to_owned(),
-        });
-    };
-    let motor = &mount.motors[&sim.config];
+    let (mount, motor) = (group.mount, group.motor);
     let (eng_path, eng) = find_motor(file, motor, options)?;
     let motor_length = if motor.length.is_finite() {
         motor.length
@@ -317,55 +512,9 @@ pub(super) fn mission(
     let nozzle_at = mount.x + mount.length + mount.overhang;
     let dry = (eng.total - eng.propellant).max(0.0);
 
-    let mut t = String::new();
-    let w = &mut t;
+    let mut m = String::new();
     let _ = writeln!(
-        w,
-        "# {} — imported from {} by `karman import`.",
-        design.name,
-        file.file_name()
-            .map_or_else(String::new, |f| f.to_string_lossy().into_owned())
-    );
-    let _ = writeln!(
-        w,
-        "# Simulation {:?}: motor {} {}; OpenRocket's masses, overrides and launch",
-        sim.name, motor.manufacturer, motor.designation
-    );
-    let _ = writeln!(
-        w,
-        "# conditions; drag estimated from the geometry. Rocket coordinates: nose tip at 0,"
-    );
-    let _ = writeln!(w, "# positions grow toward the tail (m).");
-    let _ = writeln!(w, "name = {}", quoted(&design.name));
-    let _ = writeln!(w);
-
-    let lat = condition(sim, "launchlatitude", 0.0);
-    let lon = condition(sim, "launchlongitude", 0.0);
-    let alt = condition(sim, "launchaltitude", 0.0);
-    let _ = writeln!(
-        w,
-        "[environment]\nlatitude = {}\nlongitude = {}\nelevation = {}\n",
-        n(lat),
-        n(lon),
-        n(alt)
-    );
-    let speed = condition(sim, "windaverage", 0.0);
-    let from = condition(sim, "winddirection", 0.0);
-    let (u, v) = (-speed * from.sin(), -speed * from.cos());
-    let _ = writeln!(
-        w,
-        "# OpenRocket's average wind, {speed} m/s from {:.1}° (its gusts are not modelled).",
-        from.to_degrees()
-    );
-    let _ = writeln!(
-        w,
-        "[environment.atmosphere]\nmodel = \"custom\"\nwind_u = {}\nwind_v = {}\n",
-        n(u),
-        n(v)
-    );
-
-    let _ = writeln!(
-        w,
+        m,
         "# {} {} from {}: RASP masses {} kg propellant, {} kg total; the propellant is",
         motor.manufacturer,
         motor.designation,
@@ -374,42 +523,44 @@ pub(super) fn mission(
         eng.total
     );
     let _ = writeln!(
-        w,
+        m,
         "# a cylinder filling the motor case, and leaves in proportion to the impulse."
     );
     let _ = writeln!(
-        w,
-        "[motor]\nkind = \"generic\"\nthrust = {}",
+        m,
+        "[{motor_key}]\nkind = \"generic\"\nthrust = {}",
         quoted(&relative(&eng_path, options.output_dir.as_deref()))
     );
     let _ = writeln!(
-        w,
+        m,
         "dry_mass = {}\ncenter_of_dry_mass_position = {}",
         n(dry),
         n(0.5 * motor_length)
     );
     let _ = writeln!(
-        w,
+        m,
         "nozzle_radius = {}\npropellant_initial_mass = {}",
         n(0.25 * motor_diameter),
         n(eng.propellant)
     );
     let _ = writeln!(
-        w,
+        m,
         "chamber_radius = {}\nchamber_height = {}\nchamber_position = {}",
         n(0.5 * motor_diameter),
         n(motor_length),
         n(0.5 * motor_length)
     );
-    let _ = writeln!(w, "coordinate_system = \"nozzle_to_combustion_chamber\"\n");
+    let _ = writeln!(m, "coordinate_system = \"nozzle_to_combustion_chamber\"\n");
 
+    let mut t = String::new();
+    let w = &mut t;
     let _ = writeln!(
         w,
         "# Mass properties without motor, summed over the components (with OpenRocket's overrides)."
     );
     let _ = writeln!(
         w,
-        "[rocket]\nradius = {}\nmass = {}",
+        "[{rocket_key}]\nradius = {}\nmass = {}",
         n(radius),
         n(props.mass)
     );
@@ -425,10 +576,25 @@ pub(super) fn mission(
         "center_of_mass_without_motor = {}\ncoordinate_system = \"nose_to_tail\"",
         n(props.cg)
     );
-    let _ = writeln!(
-        w,
-        "power_off_drag = \"estimate\"\npower_on_drag = \"estimate\""
-    );
+    if top {
+        let _ = writeln!(
+            w,
+            "power_off_drag = \"estimate\"\npower_on_drag = \"estimate\""
+        );
+    } else {
+        let front = first.num_or("foreradius", first.num_or("radius", radius)?)?;
+        let base = match body.last() {
+            Some(b) => b.num_or("aftradius", b.num_or("radius", radius)?)?,
+            None => radius,
+        };
+        let drag = spent_stage_drag(front, base, radius);
+        let _ = writeln!(
+            w,
+            "# The spent stage alone (blunt front, no geometry estimate): stagnation pressure on\n\
+             # its front and base drag, OpenRocket's forms; friction and fins left out."
+        );
+        let _ = writeln!(w, "power_off_drag = {drag}\npower_on_drag = {drag}");
+    }
     let _ = writeln!(
         w,
         "motor_position = {}                # nozzle exit: the mount's aft end plus overhang\n",
@@ -442,68 +608,70 @@ pub(super) fn mission(
         .copied()
         .max_by_key(|f| finishes.iter().filter(|g| *g == f).count())
         .unwrap_or("normal");
-    let mut used = BTreeSet::new();
     let mut surfaces = String::new();
     let mut fins = String::new();
     let mut lugs = String::new();
     let mut buttons = None;
     let mut overrides = String::new();
-    let nose_key = key(&nose.name, &mut used);
-    if let Some(cd) = nose
-        .fields
-        .get("overridecd")
-        .and_then(|t| super::design::number(t))
-    {
-        let _ = writeln!(overrides, "{nose_key} = {}", n(cd));
+    if let Some(nose) = nose {
+        let nose_key = key(&nose.name, used);
+        if let Some(cd) = nose
+            .fields
+            .get("overridecd")
+            .and_then(|t| super::design::number(t))
+        {
+            let _ = writeln!(overrides, "{nose_key} = {}", n(cd));
+        }
+        let _ = write!(
+            surfaces,
+            "[{rocket_key}.surfaces.{nose_key}]\ntype = \"nose\"\nlength = {}\n",
+            n(nose.length)
+        );
+        let shape = nose.text("shape").unwrap_or("conical");
+        let parameter = nose.num_or("shapeparameter", 1.0)?;
+        let kind = match shape {
+            "conical" => "conical".to_owned(),
+            "ogive" => {
+                if parameter < 0.999 {
+                    warnings.push(format!(
+                        "`{}`: a secant ogive (parameter {parameter}) is flown as a tangent ogive",
+                        nose.name
+                    ));
+                }
+                "tangent".to_owned()
+            }
+            "ellipsoid" => "elliptical".to_owned(),
+            "power" => "powerseries".to_owned(),
+            "parabolic" => {
+                if parameter < 0.999 {
+                    warnings.push(format!(
+                        "`{}`: a {parameter} parabolic series is flown as a full parabola",
+                        nose.name
+                    ));
+                }
+                "parabolic".to_owned()
+            }
+            "haack" => {
+                if parameter > 1.0 / 6.0 {
+                    "lvhaack".to_owned()
+                } else {
+                    "von karman".to_owned()
+                }
+            }
+            other => return Err(nose.value_error("shape", &format!("unknown shape {other:?}"))),
+        };
+        let _ = writeln!(surfaces, "kind = \"{kind}\"");
+        if kind == "powerseries" {
+            let _ = writeln!(surfaces, "power = {}", n(parameter));
+        }
+        let _ = write!(
+            surfaces,
+            "position = {}\nbase_radius = {}\n\n",
+            n(nose.x),
+            n(nose.dim("aftradius")?)
+        );
     }
-    let _ = write!(
-        surfaces,
-        "[rocket.surfaces.{nose_key}]\ntype = \"nose\"\nlength = {}\n",
-        n(nose.length)
-    );
-    let shape = nose.text("shape").unwrap_or("conical");
-    let parameter = nose.num_or("shapeparameter", 1.0)?;
-    let kind = match shape {
-        "conical" => "conical".to_owned(),
-        "ogive" => {
-            if parameter < 0.999 {
-                warnings.push(format!(
-                    "`{}`: a secant ogive (parameter {parameter}) is flown as a tangent ogive",
-                    nose.name
-                ));
-            }
-            "tangent".to_owned()
-        }
-        "ellipsoid" => "elliptical".to_owned(),
-        "power" => "powerseries".to_owned(),
-        "parabolic" => {
-            if parameter < 0.999 {
-                warnings.push(format!(
-                    "`{}`: a {parameter} parabolic series is flown as a full parabola",
-                    nose.name
-                ));
-            }
-            "parabolic".to_owned()
-        }
-        "haack" => {
-            if parameter > 1.0 / 6.0 {
-                "lvhaack".to_owned()
-            } else {
-                "von karman".to_owned()
-            }
-        }
-        other => return Err(nose.value_error("shape", &format!("unknown shape {other:?}"))),
-    };
-    let _ = writeln!(surfaces, "kind = \"{kind}\"");
-    if kind == "powerseries" {
-        let _ = writeln!(surfaces, "power = {}", n(parameter));
-    }
-    let _ = write!(
-        surfaces,
-        "position = 0.0\nbase_radius = {}\n\n",
-        n(nose.dim("aftradius")?)
-    );
-    for b in &body[1..] {
+    for b in &body {
         if b.kind == Kind::Transition {
             if b.text("shape") != Some("conical") {
                 warnings.push(format!(
@@ -512,7 +680,7 @@ pub(super) fn mission(
                     b.text("shape").unwrap_or("?")
                 ));
             }
-            let tail_key = key(&b.name, &mut used);
+            let tail_key = key(&b.name, used);
             if let Some(cd) = b
                 .fields
                 .get("overridecd")
@@ -522,7 +690,7 @@ pub(super) fn mission(
             }
             let _ = write!(
                 surfaces,
-                "[rocket.surfaces.{tail_key}]\ntype = \"tail\"\ntop_radius = {}\nbottom_radius = {}\nlength = {}\nposition = {}\n\n",
+                "[{rocket_key}.surfaces.{tail_key}]\ntype = \"tail\"\ntop_radius = {}\nbottom_radius = {}\nlength = {}\nposition = {}\n\n",
                 n(b.dim("foreradius")?),
                 n(b.dim("aftradius")?),
                 n(b.length),
@@ -535,7 +703,7 @@ pub(super) fn mission(
         for c in &parent.children {
             match c.kind {
                 Kind::TrapezoidFins | Kind::EllipticalFins | Kind::FreeFormFins => {
-                    let name = key(&c.name, &mut used);
+                    let name = key(&c.name, used);
                     let count = c.num_or("fincount", 1.0)?;
                     let cant = c.num_or("cant", 0.0)?;
                     let common = format!(
@@ -545,11 +713,12 @@ pub(super) fn mission(
                         n(cant),
                         n(tube_radius)
                     );
+                    let table = format!("{rocket_key}.surfaces.{name}");
                     match c.kind {
                         Kind::TrapezoidFins => {
                             let _ = write!(
                                 surfaces,
-                                "[rocket.surfaces.{name}]\ntype = \"trapezoidal_fins\"\nroot_chord = {}\ntip_chord = {}\nspan = {}\nsweep_length = {}\n{common}\n",
+                                "[{table}]\ntype = \"trapezoidal_fins\"\nroot_chord = {}\ntip_chord = {}\nspan = {}\nsweep_length = {}\n{common}\n",
                                 n(c.dim("rootchord")?),
                                 n(c.dim("tipchord")?),
                                 n(c.dim("height")?),
@@ -559,7 +728,7 @@ pub(super) fn mission(
                         Kind::EllipticalFins => {
                             let _ = write!(
                                 surfaces,
-                                "[rocket.surfaces.{name}]\ntype = \"elliptical_fins\"\nroot_chord = {}\nspan = {}\n{common}\n",
+                                "[{table}]\ntype = \"elliptical_fins\"\nroot_chord = {}\nspan = {}\n{common}\n",
                                 n(c.dim("rootchord")?),
                                 n(c.dim("height")?)
                             );
@@ -572,7 +741,7 @@ pub(super) fn mission(
                                 .collect();
                             let _ = write!(
                                 surfaces,
-                                "[rocket.surfaces.{name}]\ntype = \"free_form_fins\"\nshape_points = [{}]\n{common}\n",
+                                "[{table}]\ntype = \"free_form_fins\"\nshape_points = [{}]\n{common}\n",
                                 points.join(", ")
                             );
                         }
@@ -580,7 +749,7 @@ pub(super) fn mission(
                     let section = c.text("crosssection").unwrap_or("square");
                     let _ = write!(
                         fins,
-                        "[rocket.drag_estimate.fins.{name}]\nthickness = {}\ncross_section = \"{section}\"\n",
+                        "[{rocket_key}.drag_estimate.fins.{name}]\nthickness = {}\ncross_section = \"{section}\"\n",
                         n(c.dim("thickness")?)
                     );
                     if let Some(f) = c.text("finish") {
@@ -594,8 +763,8 @@ pub(super) fn mission(
                     let r = c.dim("radius")?;
                     let _ = write!(
                         lugs,
-                        "[rocket.drag_estimate.launch_lugs.{}]\nouter_radius = {}\ninner_radius = {}\nlength = {}\ncount = {}\n\n",
-                        key(&c.name, &mut used),
+                        "[{rocket_key}.drag_estimate.launch_lugs.{}]\nouter_radius = {}\ninner_radius = {}\nlength = {}\ncount = {}\n\n",
+                        key(&c.name, used),
                         n(r),
                         n((r - c.dim("thickness")?).max(0.0)),
                         n(c.length),
@@ -630,24 +799,31 @@ pub(super) fn mission(
             }
         }
     }
+    if !top {
+        let _ = writeln!(
+            w,
+            "# The drag estimate of the stack while this stage is its bottom: the body from the\n\
+             # sustainer's nose tip to this stage's aft end."
+        );
+    }
     let _ = writeln!(
         w,
-        "[rocket.drag_estimate]\nbody_length = {}\nfinish = \"{finish}\"\n",
-        n(body_length)
+        "[{rocket_key}.drag_estimate]\nbody_length = {}\nfinish = \"{finish}\"\n",
+        n(body_end)
     );
     if !overrides.is_empty() {
         let _ = writeln!(
             w,
             "# OpenRocket's drag-coefficient overrides (on the reference area)."
         );
-        let _ = writeln!(w, "[rocket.drag_estimate.overrides]\n{overrides}");
+        let _ = writeln!(w, "[{rocket_key}.drag_estimate.overrides]\n{overrides}");
     }
     w.push_str(&fins);
     w.push_str(&lugs);
     if let Some((upper, lower, od, id, h, inner)) = buttons {
         let _ = writeln!(
             w,
-            "[rocket.drag_estimate.rail_buttons]\nouter_diameter = {}\ninner_diameter = {}\nheight = {}\ninner_height = {}\n",
+            "[{rocket_key}.drag_estimate.rail_buttons]\nouter_diameter = {}\ninner_diameter = {}\nheight = {}\ninner_height = {}\n",
             n(od),
             n(id),
             n(h),
@@ -655,7 +831,7 @@ pub(super) fn mission(
         );
         let _ = writeln!(
             w,
-            "[rocket.rail_buttons]\nupper_position = {}\nlower_position = {}\n",
+            "[{rocket_key}.rail_buttons]\nupper_position = {}\nlower_position = {}\n",
             n(upper),
             n(lower.max(upper + 1e-3))
         );
@@ -666,6 +842,11 @@ pub(super) fn mission(
     for c in &all {
         match c.kind {
             Kind::Parachute => {
+                // The chosen configuration's deployment settings, else the device's own.
+                let mut c = (*c).clone();
+                if let Some(settings) = c.deployments.get(config) {
+                    c.fields.extend(settings.clone());
+                }
                 let d = c.dim("diameter")?;
                 let cd = c.num_or("cd", 0.8)?;
                 let area = std::f64::consts::PI * 0.25 * d * d;
@@ -698,8 +879,8 @@ pub(super) fn mission(
                 };
                 let _ = write!(
                     w,
-                    "[rocket.parachutes.{}]\ncd_s = {}              # Cd {cd} × π ({d} m)² / 4\ntrigger = {trigger}\nlag = {}\nsampling_rate = 100\n\n",
-                    key(&c.name, &mut used),
+                    "[{rocket_key}.parachutes.{}]\ncd_s = {}              # Cd {cd} × π ({d} m)² / 4\ntrigger = {trigger}\nlag = {}\nsampling_rate = 100\n\n",
+                    key(&c.name, used),
                     n(cd * area),
                     n(delay)
                 );
@@ -708,6 +889,147 @@ pub(super) fn mission(
             _ => {}
         }
     }
+    Ok(BodyText {
+        motor: m,
+        rocket: t,
+    })
+}
+
+/// Builds the mission text of `design` for the simulation chosen by `options`: the top body
+/// as `[rocket]` and `[motor]`, the bodies below it as `[[stages]]`, bottom last.
+pub(super) fn mission(
+    file: &Path,
+    design: &Design,
+    options: &ImportOptions,
+) -> Result<Imported, OrkError> {
+    let mut warnings = Vec::new();
+    let sim = match &options.simulation {
+        Some(name) => design.simulations.iter().find(|s| &s.name == name),
+        None => design.simulations.first(),
+    };
+    let Some(sim) = sim else {
+        return Err(OrkError::Simulation {
+            file: file.to_owned(),
+            name: options.simulation.clone().unwrap_or_default(),
+            available: if design.simulations.is_empty() {
+                "none".to_owned()
+            } else {
+                design
+                    .simulations
+                    .iter()
+                    .map(|s| format!("{:?}", s.name))
+                    .collect::<Vec<_>>()
+                    .join(", ")
+            },
+        });
+    };
+    let groups = groups(file, design, sim, &mut warnings)?;
+    let bottom = &groups[groups.len() - 1];
+    if !matches!(bottom.motor.ignition.0.as_str(), "automatic" | "launch")
+        || bottom.motor.ignition.1 != 0.0
+    {
+        return Err(unsupported(
+            file,
+            &bottom.mount.name,
+            format!(
+                "a first motor lit {} (karman lights it at launch)",
+                after(&bottom.motor.ignition.0, bottom.motor.ignition.1)
+            ),
+        ));
+    }
+    let mut staging_of = Vec::new();
+    for pair in groups.windows(2) {
+        staging_of.push(staging(file, &sim.config, &pair[0], &pair[1])?);
+    }
+    let mut used = BTreeSet::new();
+    let top = body_text(
+        file,
+        &sim.config,
+        &groups[0],
+        true,
+        "rocket",
+        "motor",
+        options,
+        &mut used,
+        &mut warnings,
+    )?;
+    let mut lower = Vec::new();
+    for group in &groups[1..] {
+        lower.push(body_text(
+            file,
+            &sim.config,
+            group,
+            false,
+            "stages.rocket",
+            "stages.motor",
+            options,
+            &mut used,
+            &mut warnings,
+        )?);
+    }
+
+    let mut t = String::new();
+    let w = &mut t;
+    let _ = writeln!(
+        w,
+        "# {} — imported from {} by `karman import`.",
+        design.name,
+        file.file_name()
+            .map_or_else(String::new, |f| f.to_string_lossy().into_owned())
+    );
+    let motors: Vec<String> = groups
+        .iter()
+        .map(|g| format!("{} {}", g.motor.manufacturer, g.motor.designation))
+        .collect();
+    let _ = writeln!(
+        w,
+        "# Simulation {:?}: motor{} {}; OpenRocket's masses, overrides and launch",
+        sim.name,
+        if motors.len() > 1 { "s" } else { "" },
+        motors.join(" + ")
+    );
+    let _ = writeln!(
+        w,
+        "# conditions; drag estimated from the geometry. Rocket coordinates: nose tip at 0,"
+    );
+    let _ = writeln!(w, "# positions grow toward the tail (m).");
+    if groups.len() > 1 {
+        let names: Vec<&str> = groups.iter().map(Group::name).collect();
+        let _ = writeln!(
+            w,
+            "# Stages, top first: {} ([rocket] and [motor], then [[stages]]).",
+            names.join(", ")
+        );
+    }
+    let _ = writeln!(w, "name = {}", quoted(&design.name));
+    let _ = writeln!(w);
+
+    let lat = condition(sim, "launchlatitude", 0.0);
+    let lon = condition(sim, "launchlongitude", 0.0);
+    let alt = condition(sim, "launchaltitude", 0.0);
+    let _ = writeln!(
+        w,
+        "[environment]\nlatitude = {}\nlongitude = {}\nelevation = {}\n",
+        n(lat),
+        n(lon),
+        n(alt)
+    );
+    let speed = condition(sim, "windaverage", 0.0);
+    let from = condition(sim, "winddirection", 0.0);
+    let (u, v) = (-speed * from.sin(), -speed * from.cos());
+    let _ = writeln!(
+        w,
+        "# OpenRocket's average wind, {speed} m/s from {:.1}° (its gusts are not modelled).",
+        from.to_degrees()
+    );
+    let _ = writeln!(
+        w,
+        "[environment.atmosphere]\nmodel = \"custom\"\nwind_u = {}\nwind_v = {}\n",
+        n(u),
+        n(v)
+    );
+    w.push_str(&top.motor);
+    w.push_str(&top.rocket);
 
     let rod = condition(sim, "launchrodlength", 1.0);
     let angle = condition(sim, "launchrodangle", 0.0);
@@ -721,6 +1043,43 @@ pub(super) fn mission(
         n(heading),
         n(max_time)
     );
+    // Stage names as reports show them, made unique by OpenRocket's stage number.
+    let title = |g: &Group| {
+        if groups.iter().filter(|o| o.name() == g.name()).count() > 1 {
+            format!("{} {}", g.name(), g.number)
+        } else {
+            g.name().to_owned()
+        }
+    };
+    for (k, (group, text)) in groups[1..].iter().zip(&lower).enumerate() {
+        let (separate, ignition_delay) = staging_of[k];
+        let upper = &groups[k];
+        let sep = separation(&sim.config, group.stages[0]);
+        let _ = writeln!(
+            w,
+            "\n# {} (OpenRocket's stage {}): separated {}; `{}` above lights {}.",
+            title(group),
+            group.number,
+            after(&sep.event, sep.delay),
+            upper.mount.name,
+            after(&upper.motor.ignition.0, upper.motor.ignition.1)
+        );
+        let _ = writeln!(
+            w,
+            "[[stages]]\nname = {}\nseparation = \"burnout + {}\"\nignition_delay = {}",
+            quoted(&title(group)),
+            n(separate),
+            n(ignition_delay)
+        );
+        let _ = writeln!(
+            w,
+            "stack_power_off_drag = \"estimate\"\nstack_power_on_drag = \"estimate\"\n"
+        );
+        w.push_str(&text.motor);
+        w.push_str(&text.rocket);
+    }
+    let t = t.trim_end().to_owned() + "\n";
+    let mut t = t;
     if !warnings.is_empty() {
         let mut head = String::new();
         for warning in &warnings {

@@ -1,6 +1,8 @@
 //! An OpenRocket design imported (`ork`) and flown, against the flight OpenRocket stored in
 //! it (the `reference.json` of `fixtures/openrocket`, see its README): apogee, maximum
-//! speed, total drag coefficient row by row, centre of pressure and stability margin.
+//! speed, total drag coefficient row by row, centre of pressure and stability margin; for the
+//! multi-stage designs the top stage's apogee, the maximum speed and the time of every stage
+//! separation.
 
 use std::path::Path;
 
@@ -10,6 +12,7 @@ use karman_airframe::{BodyLift, Geometry};
 
 use crate::build::flight::simulate;
 use crate::build::rocket::estimate_geometry;
+use crate::build::stages::simulate_staged;
 use crate::ork::{ImportOptions, import};
 
 /// The single-stage designs of `fixtures/openrocket` that karman imports, and whether the CP
@@ -263,6 +266,271 @@ pub fn compare_design(design_dir: &Path) -> Result<Vec<OpenRocketComparison>, St
             margin: ((ours_cp - cg) / caliber, at("stability_cal")),
             cp_time,
             cp_alpha,
+        });
+    }
+    Ok(out)
+}
+
+/// The multi-stage designs of `fixtures/openrocket` (issue 21), each with the simulations
+/// whose apogee cannot match and why (they are flown and reported, not held to
+/// [`STAGED_APOGEE`]). `deployable_payload`'s upper "stage" is a payload without a motor,
+/// ejected by the booster's ejection charge: the import flies it on the booster as one body,
+/// so its apogee and speed are compared and its separation is not flown (the booster's
+/// parachute, ejected with the payload, opens at that time on the one body).
+pub const STAGED_DESIGNS: [(&str, &[(&str, &str)]); 4] = [
+    ("two_stage_high_power_rocket", &[]),
+    (
+        "three_stage_low_power_rocket",
+        &[(
+            "Simulation 3",
+            "OpenRocket 24.12's motor-mass quirk (fixtures/openrocket/README.md): its three \
+             identical C6 share one burn clock, so the two unlit ones lose their propellant with \
+             the booster's and OpenRocket's stack is 0.021 kg (16 %) light at the first \
+             separation; karman burns each motor on its own clock",
+        )],
+    ),
+    ("rasaero_two_stage", &[]),
+    ("deployable_payload", &[]),
+];
+
+/// Acceptance (issue 21): the top stage's apogee and every separation time within 3 %.
+pub const STAGED_APOGEE: f64 = 0.03;
+/// See [`STAGED_APOGEE`].
+pub const SEPARATION_TIME: f64 = 0.03;
+
+/// The figures of one simulation of a multi-stage design.
+#[derive(Debug, Clone, PartialEq)]
+pub struct StagedComparison {
+    /// The simulation's name.
+    pub simulation: String,
+    /// The top stage's apogee above the site (m), karman and OpenRocket (`maxaltitude`; both
+    /// deploy the parachutes as OpenRocket does).
+    pub apogee: (f64, f64),
+    /// Maximum speed of the top stage's path (m/s), karman and OpenRocket.
+    pub max_speed: (f64, f64),
+    /// karman's separation times (s), in time order.
+    pub separations: Vec<f64>,
+    /// OpenRocket's stage-separation events of the main branch up to the top stage's apogee
+    /// (s), in time order.
+    pub reference_separations: Vec<f64>,
+    /// The mission flies the stack as one body (a stage without a motor rides on the one
+    /// below): no separation is flown.
+    pub one_body: bool,
+    /// Worst relative error of the total Cd against OpenRocket's ascent rows after rod exit,
+    /// per vehicle of the top stage's path (the launch stack first, the top stage alone
+    /// last; one body: up to OpenRocket's first separation).
+    pub cd: Vec<f64>,
+}
+
+impl StagedComparison {
+    /// Relative apogee error.
+    #[must_use]
+    pub fn apogee_error(&self) -> f64 {
+        (self.apogee.0 - self.apogee.1).abs() / self.apogee.1
+    }
+
+    /// Relative maximum-speed error.
+    #[must_use]
+    pub fn max_speed_error(&self) -> f64 {
+        (self.max_speed.0 - self.max_speed.1).abs() / self.max_speed.1
+    }
+
+    /// Relative error of each separation time.
+    #[must_use]
+    pub fn separation_errors(&self) -> Vec<f64> {
+        self.separations
+            .iter()
+            .zip(&self.reference_separations)
+            .map(|(k, o)| (k - o).abs() / o)
+            .collect()
+    }
+
+    /// The acceptance criteria this simulation misses; the apogee's only when `check_apogee`
+    /// (see [`STAGED_DESIGNS`]).
+    #[must_use]
+    pub fn failures(&self, check_apogee: bool) -> Vec<String> {
+        let mut out = Vec::new();
+        let error = self.apogee_error();
+        let within = error <= STAGED_APOGEE; // false for NaN
+        if check_apogee && !within {
+            out.push(format!("apogee {error:.4} > {STAGED_APOGEE}"));
+        }
+        if !self.one_body && self.separations.len() != self.reference_separations.len() {
+            out.push(format!(
+                "{} separations flown, OpenRocket has {}",
+                self.separations.len(),
+                self.reference_separations.len()
+            ));
+        }
+        for (i, e) in self.separation_errors().into_iter().enumerate() {
+            let within = e <= SEPARATION_TIME; // false for NaN
+            if !within {
+                out.push(format!(
+                    "separation {} time {e:.4} > {SEPARATION_TIME}",
+                    i + 1
+                ));
+            }
+        }
+        out
+    }
+}
+
+impl std::fmt::Display for StagedComparison {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        write!(
+            f,
+            "{:<28} apogee {:8.1} / {:8.1} m ({:5.2} %)  vmax {:6.1} / {:6.1} m/s ({:5.2} %) ",
+            self.simulation,
+            self.apogee.0,
+            self.apogee.1,
+            100.0 * self.apogee_error(),
+            self.max_speed.0,
+            self.max_speed.1,
+            100.0 * self.max_speed_error(),
+        )?;
+        let cd: Vec<String> = self
+            .cd
+            .iter()
+            .map(|e| format!("{:.1}", 100.0 * e))
+            .collect();
+        write!(f, " Cd {} %;", cd.join(" / "))?;
+        if self.one_body {
+            let times: Vec<String> = self
+                .reference_separations
+                .iter()
+                .map(|t| format!("{t:.3}"))
+                .collect();
+            return write!(
+                f,
+                " separation not flown (one body; OpenRocket: {} s)",
+                times.join(", ")
+            );
+        }
+        write!(f, " separations")?;
+        for ((k, o), e) in self
+            .separations
+            .iter()
+            .zip(&self.reference_separations)
+            .zip(self.separation_errors())
+        {
+            write!(f, " {k:.3} / {o:.3} s ({:.2} %)", 100.0 * e)?;
+        }
+        Ok(())
+    }
+}
+
+/// Imports `design_dir/design.ork` (a multi-stage design) for each stored simulation without
+/// extensions, flies it and compares it with `design_dir/reference.json`.
+///
+/// # Errors
+/// The import's or the flight's error, as text.
+pub fn compare_staged_design(design_dir: &Path) -> Result<Vec<StagedComparison>, String> {
+    let text = std::fs::read_to_string(design_dir.join("reference.json"))
+        .map_err(|e| format!("{}: {e}", design_dir.display()))?;
+    let reference: Value = serde_json::from_str(&text).map_err(|e| e.to_string())?;
+    let design = design_dir.join("design.ork");
+    let mut out = Vec::new();
+    for sim in reference["simulations"].as_array().into_iter().flatten() {
+        if sim["extensions"].as_array().is_some_and(|e| !e.is_empty()) {
+            continue;
+        }
+        let name = sim["name"].as_str().unwrap_or("").to_owned();
+        let options = ImportOptions {
+            simulation: Some(name.clone()),
+            motors: Vec::new(),
+            output_dir: Some(design_dir.to_owned()),
+        };
+        let imported = import(&design, &options).map_err(|e| e.to_string())?;
+        // The ascent is compared: every body's flight ends at its apogee.
+        let text = imported.mission.replacen(
+            "\n[flight]\n",
+            "\n[flight]\nterminate_on_apogee = true\n",
+            1,
+        );
+        let mission = crate::parse(&text, &design_dir.join("imported.toml"), &[])
+            .map_err(|e| format!("{name}: {e}"))?;
+        let one_body = mission.spec.stages.is_empty();
+        let branch = &sim["branches"][0];
+        let ascent = &branch["ascent"];
+        let (t, mach, cd, thrust) = (
+            column(ascent, "time_s"),
+            column(ascent, "mach"),
+            column(ascent, "cd"),
+            column(ascent, "thrust_n"),
+        );
+        let rod = branch["launch"]["first_finite_cp"]["time_s"]
+            .as_f64()
+            .unwrap_or(0.0);
+        // Worst Cd error of `rocket` over the rows in [from, to).
+        let worst = |rocket: &karman_airframe::Rocket, from: f64, to: f64| {
+            (0..t.len())
+                .filter(|&i| t[i] >= rod.max(from) && t[i] < to && cd[i].is_finite())
+                .map(|i| (rocket.drag_coefficient(thrust[i] > 0.0, mach[i]) - cd[i]).abs() / cd[i])
+                .fold(0.0, f64::max)
+        };
+        let reference_separations: Vec<f64> = branch["events"]
+            .as_array()
+            .into_iter()
+            .flatten()
+            .filter(|e| e["type"].as_str() == Some("stageseparation"))
+            .filter_map(|e| e["time_s"].as_f64())
+            .collect();
+        // OpenRocket's vehicle changes at its separations: the rows strictly between two of
+        // them (a stored step away) belong to one vehicle.
+        let window = |k: usize| {
+            let from = if k == 0 {
+                0.0
+            } else {
+                reference_separations[k - 1] + 2e-3
+            };
+            let to = reference_separations
+                .get(k)
+                .map_or(f64::INFINITY, |t| t - 2e-3);
+            (from, to)
+        };
+        let (summary, separations, cd_errors) = if one_body {
+            let run = simulate(&mission).map_err(|e| format!("{name}: {e}"))?;
+            let (from, to) = window(0);
+            (
+                run.summary(),
+                Vec::new(),
+                vec![worst(&run.rocket, from, to)],
+            )
+        } else {
+            let run = simulate_staged(&mission, 0).map_err(|e| format!("{name}: {e}"))?;
+            let times = run.separations.iter().map(|s| s.time_s).collect();
+            let errors = run.bodies[0]
+                .segments
+                .iter()
+                .enumerate()
+                .map(|(k, &segment)| {
+                    let (from, to) = window(k);
+                    worst(&run.segments[segment].rocket, from, to)
+                })
+                .collect();
+            (run.summary(0), times, errors)
+        };
+        let apogee_time = branch["time_to_optimum_altitude_s"]
+            .as_f64()
+            .unwrap_or(f64::INFINITY);
+        let reference_separations = reference_separations
+            .into_iter()
+            .filter(|t| one_body || *t <= apogee_time)
+            .collect();
+        out.push(StagedComparison {
+            simulation: name,
+            apogee: (
+                summary.apogee_agl_m.unwrap_or(f64::NAN),
+                sim["summary"]["maxaltitude"].as_f64().unwrap_or(f64::NAN),
+            ),
+            max_speed: (
+                summary.max_speed_mps,
+                sim["summary"]["maxvelocity"].as_f64().unwrap_or(f64::NAN),
+            ),
+            separations,
+            reference_separations,
+            one_body,
+            cd: cd_errors,
         });
     }
     Ok(out)
