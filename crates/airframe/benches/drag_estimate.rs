@@ -39,6 +39,7 @@ fn geometry() -> DragGeometry {
             cross_section: FinCrossSection::Rounded,
             roughness: k,
         }],
+        tube_fins: Vec::new(),
         launch_lugs: vec![LaunchLug {
             name: "lug".into(),
             outer_radius: 0.004,

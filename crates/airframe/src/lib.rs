@@ -82,7 +82,7 @@ pub mod surfaces;
 pub use air_brakes::{AIR_BRAKES_CONTROL, AirBrakes, AirBrakesDrag, AirBrakesSpec};
 pub use drag::{
     BodyLift, BodySegment, DragComponents, DragEstimate, DragGeometry, DragModel, FinCrossSection,
-    FinSetDrag, FlowReference, LaunchLug, Profile, RailButtonDrag,
+    FinSetDrag, FlowReference, LaunchLug, Profile, RailButtonDrag, TubeFinSetDrag,
 };
 pub use error::AirframeError;
 pub use mass::MassProperties;
@@ -95,5 +95,5 @@ pub use rocket::{CoordinateSystem, Rocket, RocketInputs, inertia_components};
 pub use surfaces::{
     Airfoil, AngleUnit, EllipticalFinsSpec, FinAerodynamics, FreeFormFinsSpec, Geometry,
     NoseConeSpec, NoseKind, Surface, SurfaceInput, SurfaceSpec, Sweep, TailSpec,
-    TrapezoidalFinsSpec,
+    TrapezoidalFinsSpec, TubeFinsSpec,
 };

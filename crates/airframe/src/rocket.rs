@@ -280,7 +280,9 @@ impl Rocket {
                 ));
             }
             let widest = match s.geometry {
-                Geometry::Fins { body_radius, .. } => body_radius,
+                Geometry::Fins { body_radius, .. } | Geometry::TubeFins { body_radius, .. } => {
+                    body_radius
+                }
                 ref g => g.max_radius(),
             };
             if widest > self.radius * (1.0 + 1e-9) {

@@ -53,6 +53,7 @@ fn simple_rocket() -> DragGeometry {
             cross_section: FinCrossSection::Rounded,
             roughness: k,
         }],
+        tube_fins: Vec::new(),
         launch_lugs: vec![LaunchLug {
             name: "Launch lug".into(),
             outer_radius: 0.0035,

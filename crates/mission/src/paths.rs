@@ -778,6 +778,15 @@ fn surface_slot<'a>(surface: &'a mut SurfaceSpec, key: &str) -> Option<Slot<'a>>
             "position" => &mut s.position,
             _ => return None,
         }),
+        SurfaceSpec::TubeFins(s) => match key {
+            "n" => Integer(&mut s.n),
+            "length" => Float(&mut s.length),
+            "outer_radius" => Float(&mut s.outer_radius),
+            "inner_radius" => Float(&mut s.inner_radius),
+            "position" => Float(&mut s.position),
+            "radius" => Float(s.radius.as_mut()?),
+            _ => return None,
+        },
     })
 }
 

@@ -1010,6 +1010,21 @@ fn rocket(c: &mut Checker<'_, '_>, spec: &MissionSpec) {
                 c.positive(&key("bottom_radius"), s.bottom_radius);
                 c.positive(&key("length"), s.length);
             }
+            SurfaceSpec::TubeFins(s) => {
+                c.range(&key("n"), f64::from(s.n), s.n >= 1, "needs at least 1 tube");
+                c.positive(&key("length"), s.length);
+                c.positive(&key("outer_radius"), s.outer_radius);
+                c.positive(&key("inner_radius"), s.inner_radius);
+                c.range(
+                    &key("inner_radius"),
+                    s.inner_radius,
+                    s.inner_radius < s.outer_radius,
+                    "must be smaller than outer_radius",
+                );
+                if let Some(radius) = s.radius {
+                    c.positive(&key("radius"), radius);
+                }
+            }
         }
         if let Some(airfoil) = surface.airfoil() {
             c.curve(&key("airfoil"), &airfoil.lift);

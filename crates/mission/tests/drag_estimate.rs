@@ -55,6 +55,7 @@ fn by_hand() -> DragGeometry {
             cross_section: FinCrossSection::Rounded,
             roughness: k,
         }],
+        tube_fins: Vec::new(),
         launch_lugs: Vec::new(),
         rail_buttons: None,
         nozzle_exit_radius: 0.02,

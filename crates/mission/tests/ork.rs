@@ -83,11 +83,10 @@ fn unknown_simulation_lists_the_names() {
 }
 
 #[test]
-fn clusters_pods_and_tube_fins_are_refused_by_name() {
+fn clusters_and_pods_are_refused_by_name() {
     for (name, component) in [
         ("clustered_motors", "Clustered Inner Tube"),
         ("pods_airframes_and_winglets", "Wing pods"),
-        ("tube_fin_rocket", "Tube fin set"),
     ] {
         let e = import(&design(name), &ImportOptions::default()).expect_err(name);
         assert!(matches!(e, OrkError::Unsupported { .. }), "{e}");
@@ -144,6 +143,33 @@ fn ejection_charges_deploy_their_delay_after_burnout() {
             .expect("a parachute");
         assert_eq!(chute.trigger, Trigger::Burnout(delay), "{simulation}");
     }
+}
+
+#[test]
+fn tube_fins_import_with_the_touching_radius() {
+    // Six tubes touching each other around the body: r = R sin 30° / (1 − sin 30°) = R.
+    let dir = design("tube_fin_rocket").parent().expect("dir").to_owned();
+    let options = ImportOptions {
+        output_dir: Some(dir.clone()),
+        ..ImportOptions::default()
+    };
+    let imported = import(&design("tube_fin_rocket"), &options).expect("imports");
+    let mission = karman_mission::parse(&imported.mission, &dir.join("imported.toml"), &[])
+        .unwrap_or_else(|e| panic!("{e}"));
+    let tubes = mission
+        .spec
+        .rocket
+        .surfaces
+        .values()
+        .find_map(|s| match s {
+            karman_mission::schema::SurfaceSpec::TubeFins(t) => Some(t.clone()),
+            _ => None,
+        })
+        .expect("a tube fin surface");
+    let body = tubes.radius.expect("body radius");
+    assert_eq!(tubes.n, 6);
+    assert!((tubes.outer_radius - body).abs() < 1e-12, "{tubes:?}");
+    assert!((tubes.outer_radius - tubes.inner_radius - 3.302e-4).abs() < 1e-9);
 }
 
 proptest! {

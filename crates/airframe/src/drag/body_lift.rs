@@ -148,6 +148,7 @@ mod tests {
                 segment(1.0, 0.05, 0.05, Profile::Conical),
             ],
             fins: Vec::new(),
+            tube_fins: Vec::new(),
             launch_lugs: Vec::new(),
             rail_buttons: None,
             nozzle_exit_radius: 0.0,

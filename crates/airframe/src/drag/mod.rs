@@ -7,7 +7,8 @@
 //! sum of
 //! - skin friction of the body and the fins ([`friction`]),
 //! - pressure drag of the nose, transitions, steps in radius and boattails ([`pressure`]),
-//!   of the fins' edges ([`fins`]) and of launch lugs and rail buttons ([`parasitic`]),
+//!   of the fins' edges ([`fins`]), of launch lugs and rail buttons ([`parasitic`]) and of
+//!   tube fins ([`tube_fins`], with their friction),
 //! - base drag of every step down in radius and of the rocket's base ([`pressure`]); with the
 //!   motor burning the jet fills the nozzle exit, and the base drag acts on the rest of the
 //!   base only (the usual power-on treatment, e.g. Mandell, Caporaso & Bengen 1973, *Topics
@@ -26,6 +27,7 @@ pub mod friction;
 pub mod parasitic;
 pub mod pressure;
 pub mod shape;
+pub mod tube_fins;
 
 use std::f64::consts::PI;
 
@@ -36,6 +38,7 @@ pub use body_lift::BodyLift;
 pub use fins::FinCrossSection;
 pub use parasitic::{LaunchLug, RailButtonDrag};
 pub use shape::Profile;
+pub use tube_fins::TubeFinSetDrag;
 
 /// Highest Mach number of the tabulated estimate.
 pub const ESTIMATE_MAX_MACH: f64 = 3.0;
@@ -94,6 +97,8 @@ pub struct DragGeometry {
     pub body: Vec<BodySegment>,
     /// Fin sets.
     pub fins: Vec<FinSetDrag>,
+    /// Tube fin sets.
+    pub tube_fins: Vec<TubeFinSetDrag>,
     /// Launch lugs.
     pub launch_lugs: Vec<LaunchLug>,
     /// Rail buttons, if any.
@@ -223,6 +228,8 @@ pub struct DragModel {
     body_correction: f64,
     segments: Vec<Segment>,
     fins: Vec<Fins>,
+    /// Tube fin sets with their `[interstice, wetted]` areas of one tube.
+    tube_fins: Vec<(TubeFinSetDrag, [f64; 2])>,
     launch_lugs: Vec<LaunchLug>,
     rail_buttons: Option<RailButtonDrag>,
     base_area: f64,
@@ -314,6 +321,23 @@ impl DragModel {
                 roughness: f.roughness,
             });
         }
+        let mut tube_fins = Vec::with_capacity(geometry.tube_fins.len());
+        for t in &geometry.tube_fins {
+            finite(&t.name, "position", t.position)?;
+            positive(&t.name, "length", t.length)?;
+            positive(&t.name, "outer radius", t.outer_radius)?;
+            non_negative(&t.name, "inner radius", t.inner_radius)?;
+            non_negative(&t.name, "body radius", t.body_radius)?;
+            non_negative(&t.name, "roughness", t.roughness)?;
+            if t.inner_radius > t.outer_radius {
+                return Err(AirframeError::Geometry {
+                    component: t.name.clone(),
+                    reason: "inner radius larger than the outer radius".to_owned(),
+                });
+            }
+            length = length.max(t.position + t.length);
+            tube_fins.push((t.clone(), tube_fins::areas(t)));
+        }
         for l in &geometry.launch_lugs {
             positive(&l.name, "outer radius", l.outer_radius)?;
             non_negative(&l.name, "inner radius", l.inner_radius)?;
@@ -402,6 +426,7 @@ impl DragModel {
             body_correction: friction::body_fineness_correction(fineness_length, max_radius),
             segments,
             fins,
+            tube_fins,
             launch_lugs: geometry.launch_lugs.clone(),
             rail_buttons: geometry.rail_buttons.clone(),
             base_area: PI * last_aft * last_aft,
@@ -458,6 +483,11 @@ impl DragModel {
                 * fins::edge_coefficient(f.cross_section, f.cos_leading_sweep, mach)
                 * f.span
                 * f.thickness;
+        }
+        for (t, [interstice, wetted]) in &self.tube_fins {
+            let count = f64::from(t.count);
+            fin_friction += count * cf(t.roughness) * wetted;
+            pressure_cd += count * tube_fins::pressure(t, *interstice, mach, speed, nu);
         }
         let mut parasitic = 0.0;
         for l in &self.launch_lugs {

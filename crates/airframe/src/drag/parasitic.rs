@@ -69,26 +69,48 @@ pub(crate) fn launch_lug(
     nu: f64,
     reference_area: f64,
 ) -> f64 {
+    f64::from(lug.count)
+        * open_tube(
+            lug.outer_radius,
+            lug.inner_radius,
+            lug.length,
+            lug.roughness,
+            mach,
+            speed,
+            nu,
+        )
+        / reference_area
+}
+
+/// `C_D A` (m²) of one open tube of radii `outer` / `inner`, `length` long, its bore of sand
+/// roughness `roughness`: the bore's pipe-flow loss and 0.7 (C_stag + C_base) on the face.
+pub(crate) fn open_tube(
+    outer: f64,
+    inner: f64,
+    length: f64,
+    roughness: f64,
+    mach: f64,
+    speed: f64,
+    nu: f64,
+) -> f64 {
     use std::f64::consts::PI;
     if speed <= 0.0 {
         return 0.0;
     }
-    let inner_area = PI * lug.inner_radius * lug.inner_radius;
-    let frontal = PI * lug.outer_radius * lug.outer_radius - inner_area;
-    let bore = if lug.inner_radius > 0.0 {
-        let d = 2.0 * lug.inner_radius;
+    let inner_area = PI * inner * inner;
+    let frontal = PI * outer * outer - inner_area;
+    let bore = if inner > 0.0 {
+        let d = 2.0 * inner;
         let re = speed * d / nu;
         let f = 0.25
-            / (lug.roughness / (3.7 * d) + 5.74 / re.powf(0.9))
+            / (roughness / (3.7 * d) + 5.74 / re.powf(0.9))
                 .log10()
                 .powi(2);
-        f * lug.length / d
+        f * length / d
     } else {
         0.0
     };
-    let cd =
-        bore * inner_area + 0.7 * (stagnation_coefficient(mach) + base_coefficient(mach)) * frontal;
-    f64::from(lug.count) * cd / reference_area
+    bore * inner_area + 0.7 * (stagnation_coefficient(mach) + base_coefficient(mach)) * frontal
 }
 
 /// Pressure drag of the rail buttons at Mach `mach` and airspeed `speed`.

@@ -1,4 +1,4 @@
-//! Aerodynamic surfaces: nose cones, fin sets and tails.
+//! Aerodynamic surfaces: nose cones, fin sets, tube fin sets and tails.
 //!
 //! Each surface is placed at a reference point of the rocket's user axis (physics.md §2.5:
 //! the nose tip, the fin root-chord leading edge, the tail's forward end); its CP lies
@@ -9,6 +9,7 @@
 mod fins;
 mod nose;
 mod tail;
+mod tube_fins;
 
 use std::f64::consts::PI;
 
@@ -20,6 +21,7 @@ pub use fins::{
 };
 pub use nose::{NoseConeSpec, NoseKind};
 pub use tail::TailSpec;
+pub use tube_fins::TubeFinsSpec;
 
 use crate::error::{AirframeError, finite};
 
@@ -36,6 +38,8 @@ pub enum SurfaceSpec {
     FreeFormFins(FreeFormFinsSpec),
     /// A conical tail or transition (reference point: its forward end).
     Tail(TailSpec),
+    /// A tube fin set (reference point: the tubes' forward end).
+    TubeFins(TubeFinsSpec),
 }
 
 /// One named surface of the rocket, at `position` on the user axis.
@@ -76,6 +80,19 @@ pub enum Geometry {
         /// One fin's outline `(x aft of the root leading edge, y outward from the root)`.
         outline: Vec<[f64; 2]>,
     },
+    /// A tube fin set.
+    TubeFins {
+        /// Number of tubes.
+        n: u32,
+        /// Tube length (m).
+        length: f64,
+        /// Outer radius of a tube (m).
+        outer_radius: f64,
+        /// Inner radius of a tube (m).
+        inner_radius: f64,
+        /// Body radius at the tubes (m).
+        body_radius: f64,
+    },
     /// A conical tail or transition.
     Tail {
         /// Radius at the forward end (m).
@@ -92,7 +109,9 @@ impl Geometry {
     #[must_use]
     pub fn length(&self) -> f64 {
         match self {
-            Geometry::Nose { length, .. } | Geometry::Tail { length, .. } => *length,
+            Geometry::Nose { length, .. }
+            | Geometry::Tail { length, .. }
+            | Geometry::TubeFins { length, .. } => *length,
             Geometry::Fins { outline, .. } => {
                 let max = outline
                     .iter()
@@ -117,6 +136,11 @@ impl Geometry {
             Geometry::Fins {
                 body_radius, span, ..
             } => body_radius + span,
+            Geometry::TubeFins {
+                body_radius,
+                outer_radius,
+                ..
+            } => body_radius + 2.0 * outer_radius,
         }
     }
 }
@@ -202,6 +226,17 @@ impl Surface {
                     t.reference_radius,
                     Vec::new(),
                 )
+            }
+            SurfaceSpec::TubeFins(spec) => {
+                let (body, cn_alpha, cp_local) = tube_fins::build(name, spec, rocket_radius)?;
+                let g = Geometry::TubeFins {
+                    n: spec.n,
+                    length: spec.length,
+                    outer_radius: spec.outer_radius,
+                    inner_radius: spec.inner_radius,
+                    body_radius: body,
+                };
+                (g, Aero::Constant(cn_alpha), cp_local, body, Vec::new())
             }
         };
         let surface = Surface {

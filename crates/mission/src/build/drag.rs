@@ -10,6 +10,7 @@
 use karman_airframe::{
     self as airframe, BodySegment, DragEstimate, DragGeometry, DragModel, FinSetDrag,
     FlowReference, Geometry, LaunchLug, NoseKind, Profile, RailButtonDrag, SurfaceInput,
+    TubeFinSetDrag,
 };
 use karman_math::PhysicalConstants;
 
@@ -105,6 +106,7 @@ pub fn drag_geometry(
     // (start aft of the tip, length, fore radius, aft radius, name)
     let mut tails = Vec::new();
     let mut fins = Vec::new();
+    let mut tube_fins = Vec::new();
     let mut aft_end: f64 = 0.0;
     for s in surfaces {
         let g = airframe::Surface::geometry_of(s, rocket.radius, &constants)
@@ -147,6 +149,23 @@ pub fn drag_geometry(
                 outline,
                 ..
             } => fins.push((s.position, n, root_chord, outline, s.name.clone())),
+            Geometry::TubeFins {
+                n,
+                length,
+                outer_radius,
+                inner_radius,
+                body_radius,
+            } => tube_fins.push(TubeFinSetDrag {
+                name: s.name.clone(),
+                count: n,
+                length,
+                outer_radius,
+                inner_radius,
+                body_radius,
+                // Aft of the tip once the nose is known.
+                position: s.position,
+                roughness,
+            }),
         }
     }
     let Some((tip, nose_length, nose_radius, nose_profile, nose_name)) = nose else {
@@ -186,6 +205,10 @@ pub fn drag_geometry(
             cross_section: cross_section(f.cross_section),
             roughness: f.finish.map_or(roughness, SurfaceFinish::roughness),
         });
+    }
+    for t in &mut tube_fins {
+        t.position = aft_of_tip(t.position);
+        aft_end = aft_end.max(t.position + t.length);
     }
     let body_end = spec.body_length.unwrap_or(aft_end);
 
@@ -252,6 +275,7 @@ pub fn drag_geometry(
         _ => None,
     };
     Ok(DragGeometry {
+        tube_fins,
         reference_radius: rocket.radius,
         body,
         fins: fin_sets,

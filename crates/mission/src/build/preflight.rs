@@ -382,7 +382,10 @@ fn check_rail(
 
 /// No fins; a negative static margin during the powered flight.
 fn check_stability(rocket: &Rocket, warnings: &mut Vec<String>) {
-    if !rocket.surfaces().iter().any(|s| s.is_fin_set()) {
+    let fins = |s: &karman_airframe::Surface| {
+        s.is_fin_set() || matches!(s.geometry, karman_airframe::Geometry::TubeFins { .. })
+    };
+    if !rocket.surfaces().iter().any(fins) {
         warnings.push(
             "`rocket.surfaces`: the rocket has no fins; nothing keeps it pointing into the \
              wind"

@@ -421,6 +421,16 @@ fn surface_input(name: &str, surface: &SurfaceSpec, airfoil: Option<Airfoil>) ->
                 radius: None,
             }),
         ),
+        SurfaceSpec::TubeFins(s) => (
+            s.position,
+            airframe::SurfaceSpec::TubeFins(airframe::TubeFinsSpec {
+                n: s.n,
+                length: s.length,
+                outer_radius: s.outer_radius,
+                inner_radius: s.inner_radius,
+                radius: s.radius,
+            }),
+        ),
     };
     SurfaceInput {
         name: name.to_owned(),

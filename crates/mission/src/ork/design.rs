@@ -45,6 +45,8 @@ pub enum Kind {
     ShockCord,
     /// `<masscomponent>`.
     MassComponent,
+    /// `<tubefinset>`.
+    TubeFins,
 }
 
 impl Kind {
@@ -68,6 +70,7 @@ impl Kind {
             "streamer" => Kind::Streamer,
             "shockcord" => Kind::ShockCord,
             "masscomponent" => Kind::MassComponent,
+            "tubefinset" => Kind::TubeFins,
             _ => return None,
         })
     }
@@ -214,6 +217,32 @@ impl Component {
             Some(t) if t.trim() == "auto" => Ok(default),
             Some(_) => self.num(element),
         }
+    }
+
+    /// Outer and inner radius of a tube fin set of `fincount` tubes on a body of radius
+    /// `body_radius` (m). OpenRocket's automatic radius makes three or more tubes touch
+    /// each other around the body, `r = R sin(π/n) / (1 − sin(π/n))` (fewer: the body radius);
+    /// the inner radius is the outer less `thickness`.
+    ///
+    /// # Errors
+    /// As [`Component::dim`] for `radius`, `thickness` or `fincount`.
+    pub fn tube_fin_radii(&self, body_radius: f64) -> Result<(f64, f64), OrkError> {
+        let n = self.dim("fincount")?;
+        let outer = if self
+            .text("radius")
+            .is_none_or(|t| t.trim().starts_with("auto"))
+        {
+            if n < 3.0 {
+                body_radius
+            } else {
+                let s = (std::f64::consts::PI / n).sin();
+                body_radius * s / (1.0 - s)
+            }
+        } else {
+            self.dim("radius")?
+        };
+        let inner = (outer - self.dim("thickness")?).max(0.0);
+        Ok((outer, inner))
     }
 
     /// A non-negative dimension.
@@ -412,7 +441,6 @@ fn component(
     let Some(kind) = Kind::from_tag(tag) else {
         let what = match tag {
             "podset" | "parallelstage" => "a pod or parallel booster set".to_owned(),
-            "tubefinset" => "a tube fin set".to_owned(),
             other => format!("a <{other}> component"),
         };
         return Err(unsupported(what));

@@ -228,6 +228,18 @@ fn own(
             p
         }
         Kind::TrapezoidFins | Kind::EllipticalFins | Kind::FreeFormFins => fins(c, body_radius)?,
+        Kind::TubeFins => {
+            // `n` tubes around the axis at `arm` from it: on the axis as a whole, the ring
+            // adding `M arm² / 2` to the transverse and `M arm²` to the roll inertia.
+            let (ro, ri) = c.tube_fin_radii(body_radius)?;
+            let n = c.dim("fincount")?;
+            let mut p = tube(x, c.length, ro, ri, c.density()?);
+            p = p.scaled(p.mass * n);
+            let arm = body_radius + ro;
+            p.i_long += 0.5 * p.mass * arm * arm;
+            p.i_rot += p.mass * arm * arm;
+            p
+        }
         Kind::CenteringRing | Kind::Bulkhead | Kind::EngineBlock => {
             let ro = c.num_or("outerradius", parent_inner)?;
             let ri = match c.kind {

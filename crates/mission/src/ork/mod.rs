@@ -4,7 +4,8 @@
 //! The file format is OpenRocket's (`OpenRocketSaver` / `importt` in the OpenRocket sources,
 //! read for the element names only). The reader maps
 //! - the body (nose cone, body tubes, transitions) onto a `"nose"` surface and `"tail"`
-//!   surfaces, and trapezoidal, elliptical and free-form fin sets onto fin surfaces;
+//!   surfaces, trapezoidal, elliptical and free-form fin sets onto fin surfaces and tube fin
+//!   sets onto `"tube_fins"`;
 //! - every component's mass, centre of mass and inertia, with OpenRocket's mass and CG
 //!   overrides, onto the rocket's mass, centre of mass and inertia without motor
 //!   (module `mass`);
@@ -19,7 +20,7 @@
 //!   separation and ignition events (with their delays) as `separation = "burnout + X"` and
 //!   `ignition_delay` (module `write`); a stage without a motor rides on the stage below.
 //!
-//! Pods, motor clusters, tube fins and staging events the format cannot express are refused,
+//! Pods, motor clusters and staging events the format cannot express are refused,
 //! naming the component; what is mapped approximately is listed in [`Imported::warnings`].
 
 mod design;

@@ -759,6 +759,20 @@ fn body_text(
                     }
                     fins.push('\n');
                 }
+                Kind::TubeFins => {
+                    let (outer, inner) = c.tube_fin_radii(tube_radius)?;
+                    let _ = write!(
+                        surfaces,
+                        "[{rocket_key}.surfaces.{}]\ntype = \"tube_fins\"\nn = {}\nlength = {}\nouter_radius = {}\ninner_radius = {}\nposition = {}\nradius = {}\n\n",
+                        key(&c.name, used),
+                        c.dim("fincount")? as u32,
+                        n(c.length),
+                        n(outer),
+                        n(inner),
+                        n(c.x),
+                        n(tube_radius)
+                    );
+                }
                 Kind::LaunchLug => {
                     let r = c.dim("radius")?;
                     let _ = write!(

@@ -22,14 +22,15 @@ use crate::ork::{ImportOptions, import};
 /// OpenRocket takes as `2 C_Nα1 sin²(θ − φ)` at the flow's roll angle θ, where karman's
 /// Barrowman fin sets, like RocketPy's, average it to `C_Nα1`; with the pair at `2 C_Nα1`,
 /// flow normal to the canards, the rod-exit CP comes out at OpenRocket's 1.760 m) are held to
-/// the other criteria only. Clusters, pods and tube fins (`clustered_motors`, `pods_airframes_and_winglets`,
-/// `tube_fin_rocket`) are refused.
-pub const DESIGNS: [(&str, bool); 5] = [
+/// the other criteria only. Clusters and pods (`clustered_motors`,
+/// `pods_airframes_and_winglets`) are refused.
+pub const DESIGNS: [(&str, bool); 6] = [
     ("a_simple_model_rocket", true),
     ("base_drag_hack_short_wide", false),
     ("chute_release", true),
     ("dual_parachute_deployment", true),
     ("simulation_scripting", false),
+    ("tube_fin_rocket", true),
 ];
 
 /// Acceptance (issue 20): apogee 5 %, maximum speed 3 %, total Cd 10 % below Mach 0.8 and

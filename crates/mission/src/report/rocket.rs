@@ -225,6 +225,28 @@ pub fn draw_rocket_svg(mission: &Mission, rocket: &Rocket) -> String {
                 polygon(&mut svg, &pts, "#d9e4f5");
                 shells.push((z0, z1, *top_radius, *bottom_radius));
             }
+            Geometry::TubeFins {
+                length,
+                outer_radius,
+                body_radius,
+                ..
+            } => {
+                // One tube seen from the side above and below the body.
+                let (z0, z1) = (s.position, s.position - csys * length);
+                for side in [1.0, -1.0] {
+                    let (r0, r1) = (
+                        side * body_radius,
+                        side * (body_radius + 2.0 * outer_radius),
+                    );
+                    let pts = [
+                        (x(z0), y(r0)),
+                        (x(z1), y(r0)),
+                        (x(z1), y(r1)),
+                        (x(z0), y(r1)),
+                    ];
+                    polygon(&mut svg, &pts, "#f2d8c9");
+                }
+            }
             Geometry::Fins { .. } => {}
         }
     }

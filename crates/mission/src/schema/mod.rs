@@ -28,7 +28,7 @@ pub use names::{
 };
 pub use surfaces::{
     AirfoilSpec, EllipticalFinsSpec, FreeFormFinsSpec, NoseSpec, SurfaceSpec, Sweep, TailSpec,
-    TrapezoidalFinsSpec,
+    TrapezoidalFinsSpec, TubeFinsSpec,
 };
 pub use toml::value::Datetime;
 pub use values::{AirBrakesCurve, Atol, BurnTime, Curve, ESTIMATE, Inertia, STATE_SIZE, Trigger};

@@ -260,6 +260,8 @@ names! {
         FreeFormFins => ["free_form_fins"],
         /// Conical transition or boattail (RocketPy `Tail`).
         Tail => ["tail", "transition", "boattail"],
+        /// Tube fin set (OpenRocket's).
+        TubeFins => ["tube_fins"],
     }
 }
 

@@ -24,6 +24,8 @@ pub enum SurfaceSpec {
     FreeFormFins(FreeFormFinsSpec),
     /// `type = "tail"`.
     Tail(TailSpec),
+    /// `type = "tube_fins"`.
+    TubeFins(TubeFinsSpec),
 }
 
 impl SurfaceSpec {
@@ -35,6 +37,7 @@ impl SurfaceSpec {
             SurfaceSpec::EllipticalFins(_) => SurfaceType::EllipticalFins,
             SurfaceSpec::FreeFormFins(_) => SurfaceType::FreeFormFins,
             SurfaceSpec::Tail(_) => SurfaceType::Tail,
+            SurfaceSpec::TubeFins(_) => SurfaceType::TubeFins,
         }
     }
 
@@ -44,7 +47,7 @@ impl SurfaceSpec {
             SurfaceSpec::TrapezoidalFins(f) => f.airfoil.as_ref(),
             SurfaceSpec::EllipticalFins(f) => f.airfoil.as_ref(),
             SurfaceSpec::FreeFormFins(f) => f.airfoil.as_ref(),
-            SurfaceSpec::Nose(_) | SurfaceSpec::Tail(_) => None,
+            SurfaceSpec::Nose(_) | SurfaceSpec::Tail(_) | SurfaceSpec::TubeFins(_) => None,
         }
     }
 
@@ -54,9 +57,26 @@ impl SurfaceSpec {
             SurfaceSpec::TrapezoidalFins(f) => f.airfoil.as_mut(),
             SurfaceSpec::EllipticalFins(f) => f.airfoil.as_mut(),
             SurfaceSpec::FreeFormFins(f) => f.airfoil.as_mut(),
-            SurfaceSpec::Nose(_) | SurfaceSpec::Tail(_) => None,
+            SurfaceSpec::Nose(_) | SurfaceSpec::Tail(_) | SurfaceSpec::TubeFins(_) => None,
         }
     }
+}
+
+/// A tube fin set: `n` open tubes around the body.
+#[derive(Debug, Clone, PartialEq)]
+pub struct TubeFinsSpec {
+    /// Number of tubes.
+    pub n: u32,
+    /// Tube length, m.
+    pub length: f64,
+    /// Outer radius of a tube, m.
+    pub outer_radius: f64,
+    /// Inner radius of a tube, m.
+    pub inner_radius: f64,
+    /// Position of the tubes' forward end, rocket coordinates, m.
+    pub position: f64,
+    /// Body radius at the tubes, m; absent: the rocket radius.
+    pub radius: Option<f64>,
 }
 
 /// A nose cone.
@@ -228,6 +248,10 @@ struct RawSurface {
     top_radius: Option<f64>,
     #[serde(default, skip_serializing_if = "Option::is_none")]
     bottom_radius: Option<f64>,
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    outer_radius: Option<f64>,
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    inner_radius: Option<f64>,
 }
 
 /// The keys each surface type accepts (besides `type`), the first `required` of them required.
@@ -283,6 +307,17 @@ pub(crate) fn keys_of(surface_type: SurfaceType) -> (&'static [&'static str], us
             3,
         ),
         SurfaceType::Tail => (&["top_radius", "bottom_radius", "length", "position"], 4),
+        SurfaceType::TubeFins => (
+            &[
+                "n",
+                "length",
+                "outer_radius",
+                "inner_radius",
+                "position",
+                "radius",
+            ],
+            5,
+        ),
     }
 }
 
@@ -308,6 +343,8 @@ impl RawSurface {
             ("shape_points", self.shape_points.is_some()),
             ("top_radius", self.top_radius.is_some()),
             ("bottom_radius", self.bottom_radius.is_some()),
+            ("outer_radius", self.outer_radius.is_some()),
+            ("inner_radius", self.inner_radius.is_some()),
         ];
         flags
             .iter()
@@ -453,6 +490,14 @@ impl TryFrom<RawSurface> for SurfaceSpec {
                 length: take(raw.length, "length")?,
                 position: take(raw.position, "position")?,
             }),
+            SurfaceType::TubeFins => SurfaceSpec::TubeFins(TubeFinsSpec {
+                n: take(raw.n, "n")?,
+                length: take(raw.length, "length")?,
+                outer_radius: take(raw.outer_radius, "outer_radius")?,
+                inner_radius: take(raw.inner_radius, "inner_radius")?,
+                position: take(raw.position, "position")?,
+                radius: raw.radius,
+            }),
         })
     }
 }
@@ -533,6 +578,16 @@ impl From<SurfaceSpec> for RawSurface {
                 bottom_radius: Some(s.bottom_radius),
                 length: Some(s.length),
                 position: Some(s.position),
+                ..RawSurface::default()
+            },
+            SurfaceSpec::TubeFins(s) => RawSurface {
+                surface_type,
+                n: Some(s.n),
+                length: Some(s.length),
+                outer_radius: Some(s.outer_radius),
+                inner_radius: Some(s.inner_radius),
+                position: Some(s.position),
+                radius: s.radius,
                 ..RawSurface::default()
             },
         }
