@@ -29,6 +29,7 @@
 //!     propellant_center_of_mass: table(vec![0.15; 3], Extrapolation::Constant)?,
 //!     propellant_i11: table(vec![1e-3, 5e-4, 0.0], Extrapolation::Constant)?,
 //!     propellant_i33: table(vec![1e-4, 5e-5, 0.0], Extrapolation::Constant)?,
+//!     propellant_parts: Vec::new(),
 //!     dry_mass: 0.3,
 //!     center_of_dry_mass: 0.15,
 //!     dry_inertia: [1e-3, 1e-3, 1e-4, 0.0, 0.0, 0.0],
@@ -85,7 +86,7 @@ pub use drag::{
 };
 pub use error::AirframeError;
 pub use mass::MassProperties;
-pub use motor::MotorProperties;
+pub use motor::{MotorProperties, PropellantPart};
 pub use recovery::{
     DEFAULT_CANOPY_DRAG_COEFFICIENT, DEFAULT_POROSITY, DEFAULT_SAMPLING_RATE, Parachute,
     ParachuteSpec, RailButtons, Trigger,

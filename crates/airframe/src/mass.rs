@@ -5,7 +5,10 @@
 //! node-wise values with the first operand's interpolation; otherwise it is a pointwise
 //! formula of the operands. Solid motors give tables on one common time grid (so the
 //! CM-offset `c(t)`, which is a ratio, is interpolated linearly between exact node values),
-//! generic motors mix grids (so everything is pointwise). [`MassModel`] reproduces both.
+//! generic motors mix grids (so everything is pointwise). [`MassModel`] reproduces both. A
+//! liquid motor whose tanks are on different grids hands its propellant over in parts
+//! ([`MotorProperties::propellant_parts`]), summed pointwise at each instant as RocketPy's
+//! `LiquidMotor` does (physics.md §15.3).
 //!
 //! Derivatives are those of RocketPy 1.13's complex-step differentiation
 //! (`Function.differentiate_complex_step`): its evaluator picks the interval from the REAL
@@ -142,7 +145,9 @@ impl MassModel {
             difference_step,
         };
         let m = &model.motor;
-        if same_grid(&m.propellant_center_of_mass, &m.propellant_mass) {
+        if m.propellant_parts.is_empty()
+            && same_grid(&m.propellant_center_of_mass, &m.propellant_mass)
+        {
             // On the common grid the tables' own ordinates are the values at the nodes: the
             // node-wise tables follow from them without a lookup.
             let cpm = &m.propellant_center_of_mass;
@@ -197,7 +202,73 @@ impl MassModel {
     /// Propellant CM in user coordinates, z_pc(t).
     #[inline]
     pub(crate) fn propellant_position(&self, t: f64) -> f64 {
-        self.motor_position + self.s * self.motor.propellant_center_of_mass.eval(t)
+        if self.motor.propellant_parts.is_empty() {
+            self.motor_position + self.s * self.motor.propellant_center_of_mass.eval(t)
+        } else {
+            self.motor_to_user(self.propellant_sum(t).1)
+        }
+    }
+
+    /// Propellant mass `m_p`: the table, or the sum of the parts.
+    #[inline]
+    fn propellant_mass(&self, t: f64) -> f64 {
+        let m = &self.motor;
+        if m.propellant_parts.is_empty() {
+            m.propellant_mass.eval(t)
+        } else {
+            m.propellant_parts.iter().map(|p| p.mass.eval(t)).sum()
+        }
+    }
+
+    /// `(m_p, z_pc, I11_p)` of a propellant in parts ([`MotorProperties::propellant_parts`]),
+    /// summed pointwise as RocketPy 1.13's `LiquidMotor` does on different grids:
+    /// `m_p = Σ m_i`, `z_pc = Σ (m_i z_i)/m_p` with each moment `m_i z_i` the part's own
+    /// node-wise table (the first part's `z` where no mass is left),
+    /// `I11_p = Σ (I_i + m_i (z_i − z_pc)²)`; `z` in motor coordinates.
+    fn propellant_sum(&self, t: f64) -> (f64, f64, f64) {
+        let parts = &self.motor.propellant_parts;
+        let (mut mass, mut moment) = (0.0, 0.0);
+        for p in parts {
+            mass += p.mass.eval(t);
+            moment += p.moment.eval(t);
+        }
+        let z = if mass == 0.0 {
+            parts.first().map_or(0.0, |p| p.center_of_mass.eval(t))
+        } else {
+            moment / mass
+        };
+        let i11 = parts.iter().fold(0.0, |sum, p| {
+            let d = p.center_of_mass.eval(t) - z;
+            sum + (p.i11.eval(t) + p.mass.eval(t) * (d * d))
+        });
+        (mass, z, i11)
+    }
+
+    /// `(ṁ_p, ż_pc, İ11_p)` of [`MassModel::propellant_sum`], differentiated exactly as
+    /// RocketPy's complex step differentiates the pointwise formulas (each table's own slope,
+    /// [`Table1::derivative`]): `ż_pc = (Σ d(m_i z_i)/dt − z_pc ṁ_p)/m_p`,
+    /// `İ11_p = Σ (İ_i + ṁ_i d_i² + 2 m_i d_i ḋ_i)` with `d_i = z_i − z_pc`.
+    fn propellant_sum_rates(&self, t: f64) -> (f64, f64, f64) {
+        let parts = &self.motor.propellant_parts;
+        let (mass, z, _) = self.propellant_sum(t);
+        let (mut mass_rate, mut moment_rate) = (0.0, 0.0);
+        for p in parts {
+            mass_rate += p.mass.derivative(t);
+            moment_rate += p.moment.derivative(t);
+        }
+        let z_dot = if mass == 0.0 {
+            parts
+                .first()
+                .map_or(0.0, |p| p.center_of_mass.derivative(t))
+        } else {
+            (moment_rate - z * mass_rate) / mass
+        };
+        let i11_rate = parts.iter().fold(0.0, |sum, p| {
+            let (mi, d) = (p.mass.eval(t), p.center_of_mass.eval(t) - z);
+            let d_dot = p.center_of_mass.derivative(t) - z_dot;
+            sum + p.i11.derivative(t) + p.mass.derivative(t) * d * d + 2.0 * mi * d * d_dot
+        });
+        (mass_rate, z_dot, i11_rate)
     }
 
     /// Motor-frame point → user coordinates.
@@ -209,7 +280,7 @@ impl MassModel {
     /// m(t).
     #[inline]
     pub(crate) fn total_mass(&self, t: f64) -> f64 {
-        self.dry_mass + self.motor.propellant_mass.eval(t)
+        self.dry_mass + self.propellant_mass(t)
     }
 
     /// Signed ṁ(t) = −T(t)/v̄_e.
@@ -235,11 +306,20 @@ impl MassModel {
                 let at = flow.locate_with(t, cursor);
                 (flow.eval_at(at, t), flow.derivative_at(at, t))
             }
-            None => {
+            None if m.propellant_parts.is_empty() => {
                 let mass = &m.propellant_mass;
                 let at = mass.locate_with(t, cursor);
                 (mass.derivative_at(at, t), mass.second_derivative_at(at, t))
             }
+            None => m
+                .propellant_parts
+                .iter()
+                .fold((0.0, 0.0), |(rate, accel), p| {
+                    (
+                        rate + p.mass.derivative(t),
+                        accel + p.mass.second_derivative(t),
+                    )
+                }),
         }
     }
 
@@ -259,23 +339,49 @@ impl MassModel {
         self.dry_inertia[0] + ip + mp * d * d
     }
 
+    /// `(m_p, z_pc in user coordinates, I11_p)` at `t`, evaluated pointwise.
+    fn propellant_pointwise(&self, t: f64) -> (f64, f64, f64) {
+        let m = &self.motor;
+        if m.propellant_parts.is_empty() {
+            (
+                m.propellant_mass.eval(t),
+                self.propellant_position(t),
+                m.propellant_i11.eval(t),
+            )
+        } else {
+            let (mp, z, ip) = self.propellant_sum(t);
+            (mp, self.motor_to_user(z), ip)
+        }
+    }
+
     fn offset_pointwise(&self, t: f64) -> f64 {
-        let mp = self.motor.propellant_mass.eval(t);
-        self.offset_of(mp, self.propellant_position(t))
+        let (mp, zp, _) = self.propellant_pointwise(t);
+        self.offset_of(mp, zp)
     }
 
     fn center_of_mass_pointwise(&self, t: f64) -> f64 {
-        let mp = self.motor.propellant_mass.eval(t);
-        self.center_of_mass_of(mp, self.propellant_position(t))
+        let (mp, zp, _) = self.propellant_pointwise(t);
+        self.center_of_mass_of(mp, zp)
     }
 
     fn i11_pointwise(&self, t: f64) -> f64 {
-        let mp = self.motor.propellant_mass.eval(t);
-        self.i11_of(
-            mp,
-            self.propellant_position(t),
-            self.motor.propellant_i11.eval(t),
-        )
+        let (mp, zp, ip) = self.propellant_pointwise(t);
+        self.i11_of(mp, zp, ip)
+    }
+
+    /// `(ṁ_p, ż_pc in user coordinates, İ11_p)` at `t`.
+    fn propellant_rates(&self, t: f64) -> (f64, f64, f64) {
+        let m = &self.motor;
+        if m.propellant_parts.is_empty() {
+            (
+                m.propellant_mass.derivative(t),
+                self.s * m.propellant_center_of_mass.derivative(t),
+                m.propellant_i11.derivative(t),
+            )
+        } else {
+            let (mp_dot, z_dot, ip_dot) = self.propellant_sum_rates(t);
+            (mp_dot, self.s * z_dot, ip_dot)
+        }
     }
 
     /// c(t), RocketPy's `com_to_cdm_function` (physics.md §5.4, RocketPy sign).
@@ -293,15 +399,11 @@ impl MassModel {
         if let Some(table) = &self.nodal_offset {
             return table.derivative(t);
         }
-        let m = &self.motor;
-        let mp = m.propellant_mass.eval(t);
-        let mp_dot = m.propellant_mass.derivative(t);
-        let zp_dot = self.s * m.propellant_center_of_mass.derivative(t);
+        let (mp, zp, _) = self.propellant_pointwise(t);
+        let (mp_dot, zp_dot, _) = self.propellant_rates(t);
         let total = self.dry_mass + mp;
         -self.csys
-            * (zp_dot * mp / total
-                + (self.propellant_position(t) - self.cdm) * mp_dot * self.dry_mass
-                    / (total * total))
+            * (zp_dot * mp / total + (zp - self.cdm) * mp_dot * self.dry_mass / (total * total))
     }
 
     /// c̈(t), RocketPy's `differentiate(t, order=2)` of c: the table's second derivative
@@ -354,12 +456,11 @@ impl MassModel {
         let i11 = match &self.nodal_i11 {
             Some(table) => table.derivative(t),
             None => {
-                let mp = m.propellant_mass.eval(t);
-                let d = self.cdm - self.propellant_position(t);
-                let d_dot = -self.s * m.propellant_center_of_mass.derivative(t);
-                m.propellant_i11.derivative(t)
-                    + m.propellant_mass.derivative(t) * d * d
-                    + 2.0 * mp * d * d_dot
+                let (mp, zp, _) = self.propellant_pointwise(t);
+                let (mp_dot, zp_dot, ip_dot) = self.propellant_rates(t);
+                let d = self.cdm - zp;
+                let d_dot = -zp_dot;
+                ip_dot + mp_dot * d * d + 2.0 * mp * d * d_dot
             }
         };
         [i11, i11, m.propellant_i33.derivative(t), 0.0, 0.0, 0.0]

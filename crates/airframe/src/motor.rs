@@ -9,6 +9,23 @@ use karman_math::Table1;
 
 use crate::error::{AirframeError, finite, non_negative, positive};
 
+/// A part of a motor's propellant on a time grid of its own (a tank of a liquid motor), as
+/// [`MotorProperties::propellant_parts`] sums them. It has no axial inertia (RocketPy's
+/// tanks have none).
+#[derive(Debug, Clone, PartialEq)]
+pub struct PropellantPart {
+    /// Mass m_i(t) (kg).
+    pub mass: Table1,
+    /// Centre of mass z_i(t) in motor coordinates (m): the tank's position plus its fluids'
+    /// centre of mass.
+    pub center_of_mass: Table1,
+    /// Mass moment m_i z_i (kg·m), node-wise on the part's grid (RocketPy's product of the
+    /// two tables), interpolated as the mass.
+    pub moment: Table1,
+    /// I11 about z_i (kg·m²).
+    pub i11: Table1,
+}
+
 /// Tabulated properties of one motor (RocketPy `Motor` attributes, physics.md §6).
 ///
 /// The tables must be built exactly as RocketPy builds them (sample points and
@@ -36,6 +53,11 @@ pub struct MotorProperties {
     pub propellant_i11: Table1,
     /// Propellant I33 about the propellant centre of mass (kg·m²).
     pub propellant_i33: Table1,
+    /// The propellant as parts on time grids of their own, summed pointwise (a liquid motor
+    /// whose tanks are on different time grids, for which RocketPy evaluates the motor's sums
+    /// pointwise, physics.md §15.3); the propellant tables above then only tabulate the sums
+    /// (for reports) and the I33. Empty for a motor whose propellant is those tables.
+    pub propellant_parts: Vec<PropellantPart>,
     /// Motor dry mass (kg).
     pub dry_mass: f64,
     /// Motor dry centre of mass, motor coordinates (m).

@@ -71,6 +71,7 @@ fn motor(u: &Units, common_grid: bool) -> MotorProperties {
             lin,
             hold,
         ),
+        propellant_parts: Vec::new(),
         dry_mass: m(1.815),
         center_of_dry_mass: l(0.317),
         dry_inertia: [i(0.125), i(0.125), i(0.002), i(0.0), i(0.0), i(0.0)],

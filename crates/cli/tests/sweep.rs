@@ -76,3 +76,66 @@ fn bad_sweeps_are_clear_errors() {
     ]);
     assert!(text.contains("--series `height`: no such series"), "{text}");
 }
+
+#[test]
+fn a_two_stage_sweep_has_each_body() {
+    let out = tempfile::tempdir().expect("temporary directory");
+    let fixture = example().with_file_name("two_stage.toml");
+    let mission = fixture.display().to_string();
+    let dir = out.path().display().to_string();
+    let output = karman(&[
+        "sweep",
+        &mission,
+        "--vary",
+        "stages.0.separation=\"burnout + 0.2\",\"burnout + 1.2\"",
+        "--out",
+        &dir,
+    ]);
+    assert_eq!(output.status.code(), Some(0), "{}", stderr(&output));
+    let csv = std::fs::read_to_string(out.path().join("summary.csv")).expect("summary.csv");
+    let rows: Vec<Vec<&str>> = csv.lines().map(|l| l.split(',').collect()).collect();
+    assert_eq!(rows.len(), 3, "{csv}");
+    let at = |name: &str| {
+        rows[0]
+            .iter()
+            .position(|h| *h == name)
+            .unwrap_or_else(|| panic!("{name} in {:?}", rows[0]))
+    };
+    let number = |row: usize, name: &str| rows[row][at(name)].parse::<f64>().expect("number");
+    // The same columns as a Monte Carlo study's; one second later, and both bodies land.
+    let separation =
+        number(2, "booster.separation_time_s") - number(1, "booster.separation_time_s");
+    assert!((separation - 1.0).abs() < 0.02, "{separation}");
+    for row in [1, 2] {
+        assert!(number(row, "impact_time_s") > number(row, "booster.impact_time_s"));
+    }
+    // The simulate of the same variant gives the same booster landing.
+    let output = karman(&[
+        "simulate",
+        &mission,
+        "--json",
+        "--set",
+        "stages.0.separation=\"burnout + 1.2\"",
+    ]);
+    assert_eq!(output.status.code(), Some(0), "{}", stderr(&output));
+    let json: serde_json::Value = serde_json::from_slice(&output.stdout).expect("JSON");
+    let booster = json["bodies"]
+        .as_array()
+        .and_then(|b| b.iter().find(|b| b["name"] == "booster"))
+        .expect("booster");
+    let x = booster["summary"]["impact_x_m"].as_f64().expect("x");
+    assert_eq!(x.to_bits(), number(2, "booster.impact_x_m").to_bits());
+    let svg = std::fs::read_to_string(out.path().join("altitude_agl.svg")).expect("chart");
+    assert!(svg.contains("(booster)") && svg.contains("(sustainer)"));
+    // A variant whose booster is not flown alone (no mass) changes the columns: refused.
+    let text = failure(&[
+        "sweep",
+        &mission,
+        "--vary",
+        "stages.0.rocket.mass=1.1,0",
+        "--out",
+        &dir,
+    ]);
+    assert!(text.contains("stages.0.rocket.mass=0"), "{text}");
+    assert!(text.contains("columns"), "{text}");
+}

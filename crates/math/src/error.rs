@@ -54,6 +54,13 @@ pub enum MathError {
         /// The value before it.
         previous: f64,
     },
+    /// Finite samples whose interpolant is not: its coefficients overflow (samples extremely
+    /// close together or extremely large).
+    #[error("interval {interval}: the interpolant's coefficients are not finite")]
+    InterpolantNotFinite {
+        /// Zero-based index of the first such interval (0 for a single polynomial).
+        interval: usize,
+    },
     /// The operation needs a tabulated function.
     #[error("{operation} needs a tabulated function")]
     NotTabulated {

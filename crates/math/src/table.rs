@@ -265,9 +265,10 @@ pub struct Table1 {
     extrapolation: Extrapolation,
 }
 
-/// The interpolant of validated, strictly increasing samples.
+/// The interpolant of validated, strictly increasing samples; finite samples can still give
+/// coefficients that overflow (a spline through samples 1e-222 apart), which is an error.
 fn pieces(xs: &[f64], ys: &[f64], interpolation: Interpolation) -> Result<Pieces, MathError> {
-    Ok(match interpolation {
+    let pieces = match interpolation {
         Interpolation::Linear => Pieces::Cubic(linear_coeffs(xs, ys)),
         Interpolation::Spline => Pieces::Cubic(natural_spline_coeffs(xs, ys)),
         Interpolation::Akima => Pieces::Cubic(hermite_coeffs(xs, ys, &akima_slopes(xs, ys))),
@@ -278,7 +279,15 @@ fn pieces(xs: &[f64], ys: &[f64], interpolation: Interpolation) -> Result<Pieces
                 Pieces::Polynomial(polynomial(xs, ys)?)
             }
         }
-    })
+    };
+    let bad = match &pieces {
+        Pieces::Cubic(coeffs) => coeffs.iter().position(|c| !c.iter().all(|v| v.is_finite())),
+        Pieces::Polynomial(p) => p.coeffs.iter().position(|v| !v.is_finite()).map(|_| 0),
+    };
+    match bad {
+        Some(interval) => Err(MathError::InterpolantNotFinite { interval }),
+        None => Ok(pieces),
+    }
 }
 
 /// Checks lengths and finiteness; `strict` demands strictly increasing x, otherwise
@@ -1368,6 +1377,18 @@ mod tests {
             Table1::linear(vec![], vec![]),
             Err(MathError::TooFewPoints { .. })
         ));
+        // Finite samples 3e-222 apart: the spline's curvature overflows.
+        let (xs, ys) = (vec![0.0, 3e-222, 1.0], vec![0.0, 1.6, 0.0]);
+        assert!(matches!(
+            Table1::new(
+                xs.clone(),
+                ys.clone(),
+                Interpolation::Spline,
+                Extrapolation::Constant
+            ),
+            Err(MathError::InterpolantNotFinite { .. })
+        ));
+        assert!(Table1::linear(xs, ys).is_ok());
     }
 
     #[test]

@@ -389,22 +389,13 @@ impl MonteCarlo {
             inputs.push(VariedInput::new(path.clone(), target, variation));
             applies.push(apply);
         }
-        let lower: Vec<LowerStage> = spec
-            .stages
-            .iter()
-            .enumerate()
-            .map(|(index, stage)| LowerStage {
-                name: stages::stage_name(stage, index),
-                flies: stage.rocket.mass > 0.0 && stage.motor.is_some(),
-            })
-            .collect();
+        let lower = lower_stages(spec);
         let mut outputs: Vec<String> = OUTPUTS.iter().map(|s| (*s).to_owned()).collect();
+        outputs.extend(stage_outputs(spec));
         let mut bodies = Vec::new();
         for stage in &lower {
             let column = |output: &str| format!("{}.{output}", stage.name);
-            outputs.push(column(SEPARATION_OUTPUT));
             if stage.flies {
-                outputs.extend(BODY_OUTPUTS.iter().map(|o| column(o)));
                 bodies.push(BodyPoints {
                     name: stage.name.clone(),
                     apogee: Some([column("apogee_x_m"), column("apogee_y_m")]),
@@ -631,35 +622,82 @@ impl MonteCarlo {
         let noise_seed = flight_seed(self.study.seed, index);
         let run = stages::simulate_staged_in(mission, environment.clone(), wind, noise_seed)
             .map_err(|e| chain(&e))?;
-        let body = |name: &str| run.bodies.iter().position(|b| b.name == name);
-        let top = body(stages::TOP_STAGE).ok_or("the top stage did not fly")?;
-        let top_summary = run.summary(top);
-        let mut values = output_values(&top_summary);
-        let mut ended = early_ending(top_summary.termination, &run.settings);
-        for stage in &self.lower {
-            let separation = run.separations.iter().find(|s| s.stage == stage.name);
-            values.push(separation.map(|s| s.time_s));
-            if !stage.flies {
-                continue;
-            }
-            let summary = body(&stage.name).map(|b| run.summary(b));
-            let all = summary.as_ref().map(output_values);
-            for output in BODY_OUTPUTS {
-                let at = OUTPUTS.iter().position(|o| *o == output);
-                values.push(all.as_ref().zip(at).and_then(|(all, i)| all[i]));
-            }
-            if ended.is_none()
-                && let Some(summary) = &summary
-                && let Some((kind, message)) = early_ending(summary.termination, &run.settings)
-            {
-                ended = Some((kind, format!("{}: {message}", stage.name)));
-            }
-        }
+        let (values, ended) = staged_values(&run, &self.lower)?;
         Ok(match ended {
             None => Outcome::new(values),
             Some((kind, message)) => Outcome::ended(values, kind, message),
         })
     }
+}
+
+/// The lower stages of a multi-stage mission, as its study and sweep report them.
+fn lower_stages(spec: &MissionSpec) -> Vec<LowerStage> {
+    spec.stages
+        .iter()
+        .enumerate()
+        .map(|(index, stage)| LowerStage {
+            name: stages::stage_name(stage, index),
+            flies: stage.rocket.mass > 0.0 && stage.motor.is_some(),
+        })
+        .collect()
+}
+
+/// The outputs a multi-stage mission's flights have after [`OUTPUTS`] (the top stage's):
+/// for each lower stage, in the order of `[[stages]]`, `<name>.separation_time_s` and, when
+/// the stage flies alone, its [`BODY_OUTPUTS`] after `<name>.`. None for a single stage.
+#[must_use]
+pub fn stage_outputs(spec: &MissionSpec) -> Vec<String> {
+    let mut outputs = Vec::new();
+    for stage in lower_stages(spec) {
+        let column = |output: &str| format!("{}.{output}", stage.name);
+        outputs.push(column(SEPARATION_OUTPUT));
+        if stage.flies {
+            outputs.extend(BODY_OUTPUTS.iter().map(|o| column(o)));
+        }
+    }
+    outputs
+}
+
+/// A staged flight's output values and how it ended early, if it did: the status word and
+/// the message ([`early_ending`]).
+pub type StagedValues = (Vec<Option<f64>>, Option<(&'static str, String)>);
+
+/// The values of [`OUTPUTS`] and [`stage_outputs`] of the staged flight `run` of `spec` (none
+/// where a body's flight did not get there: no separation, no landing), and how it ended
+/// early if a body did (its message naming a lower body).
+///
+/// # Errors
+/// When the top stage did not fly (it always does).
+pub fn staged_outputs(run: &stages::StagedRun, spec: &MissionSpec) -> Result<StagedValues, String> {
+    staged_values(run, &lower_stages(spec))
+}
+
+fn staged_values(run: &stages::StagedRun, lower: &[LowerStage]) -> Result<StagedValues, String> {
+    let body = |name: &str| run.bodies.iter().position(|b| b.name == name);
+    let top = body(stages::TOP_STAGE).ok_or("the top stage did not fly")?;
+    let top_summary = run.summary(top);
+    let mut values = output_values(&top_summary);
+    let mut ended = early_ending(top_summary.termination, &run.settings);
+    for stage in lower {
+        let separation = run.separations.iter().find(|s| s.stage == stage.name);
+        values.push(separation.map(|s| s.time_s));
+        if !stage.flies {
+            continue;
+        }
+        let summary = body(&stage.name).map(|b| run.summary(b));
+        let all = summary.as_ref().map(output_values);
+        for output in BODY_OUTPUTS {
+            let at = OUTPUTS.iter().position(|o| *o == output);
+            values.push(all.as_ref().zip(at).and_then(|(all, i)| all[i]));
+        }
+        if ended.is_none()
+            && let Some(summary) = &summary
+            && let Some((kind, message)) = early_ending(summary.termination, &run.settings)
+        {
+            ended = Some((kind, format!("{}: {message}", stage.name)));
+        }
+    }
+    Ok((values, ended))
 }
 
 /// The study's data ([`DataFile`]): the mission after overrides (its `Debug` text, which

@@ -682,6 +682,69 @@ fn drag_estimate(c: &mut Checker<'_, '_>, d: &crate::schema::DragEstimateSpec, r
     }
 }
 
+/// A tank without resampling (`discretize = false`, RocketPy's `discretize=None`): RocketPy
+/// 1.13 builds it only from tables, which keep their own points — the ullage, the liquid
+/// height, or the liquid and gas masses given at the same times — and builds no
+/// mass-flow-rate tank so.
+fn own_points_checks(c: &mut Checker<'_, '_>, index: usize, t: &TankSpec) {
+    let key = |name: &str| format!("motor.tanks.{index}.{name}");
+    let schema = |message: &str| ProblemKind::Schema {
+        message: message.to_owned(),
+    };
+    let curves: &[(&str, Option<&Curve>)] = match t.kind {
+        TankKindName::MassFlowRate => {
+            c.report(
+                &key("discretize"),
+                schema(
+                    "a mass_flow_rate tank needs resampling (discretize = N): RocketPy 1.13 \
+                     builds none with discretize=None",
+                ),
+            );
+            return;
+        }
+        TankKindName::Ullage => &[("ullage", t.ullage.as_ref())],
+        TankKindName::Level => &[("liquid_height", t.liquid_height.as_ref())],
+        TankKindName::Mass => &[
+            ("liquid_mass", t.liquid_mass.as_ref()),
+            ("gas_mass", t.gas_mass.as_ref()),
+        ],
+    };
+    for (name, curve) in curves {
+        if let Some(Curve::Constant(_)) = curve {
+            c.report(
+                &key(name),
+                schema(
+                    "must be a table of time with discretize = false (the tank keeps the \
+                     curve's own points)",
+                ),
+            );
+        }
+    }
+    if let [
+        (_, Some(liquid @ Curve::Points(_))),
+        (_, Some(gas @ Curve::Points(_))),
+    ] = curves
+    {
+        let times = |curve: &Curve| -> Vec<f64> {
+            curve
+                .sorted_points()
+                .unwrap_or_default()
+                .iter()
+                .map(|p| p[0])
+                .collect()
+        };
+        if times(liquid) != times(gas) {
+            c.report(
+                &key("gas_mass"),
+                schema(
+                    "must be given at the times of liquid_mass with discretize = false \
+                     (RocketPy 1.13 adds the two tables point by point)",
+                ),
+            );
+        }
+    }
+}
+
 /// One `[[motor.tanks]]` entry: the keys its kind needs and uses, its geometry, fluids, flux
 /// time and curves (the contents are checked against the volume when the tank is built).
 fn tank_checks(c: &mut Checker<'_, '_>, index: usize, t: &TankSpec) {
@@ -764,12 +827,7 @@ fn tank_checks(c: &mut Checker<'_, '_>, index: usize, t: &TankSpec) {
             n >= 2,
             "needs at least 2 grid nodes",
         ),
-        Some(Discretize::Flag(false)) => c.report(
-            &key("discretize"),
-            ProblemKind::Unsupported {
-                what: "a tank without resampling (discretize = false)".to_owned(),
-            },
-        ),
+        Some(Discretize::Flag(false)) => own_points_checks(c, index, t),
         None | Some(Discretize::Flag(true)) => {}
     }
     let curves = [

@@ -180,3 +180,139 @@ proptest! {
         }
     }
 }
+
+#[test]
+fn tanks_without_resampling_keep_their_points_or_are_located_errors() {
+    let path = fixture("liquid.toml");
+    // The ullage tank keeps its two points.
+    let text = liquid_text().replacen("ullage = [[0", "discretize = false\nullage = [[0", 1);
+    let mission = parse(&text, &path, &[]).expect("loads");
+    let motor = build_motor(&mission).expect("builds");
+    assert_eq!(motor.tanks()[1].tank.mass().xs(), [0.0, 4.5]);
+    // A mass-flow-rate tank, and a mass tank with a constant mass: RocketPy 1.13 builds
+    // neither without resampling.
+    for (anchor, key) in [
+        ("initial_liquid_mass = 2.5", "motor.tanks.0.discretize"),
+        ("liquid_mass = 0", "motor.tanks.3.liquid_mass"),
+    ] {
+        let text = liquid_text().replacen(anchor, &format!("discretize = false\n{anchor}"), 1);
+        let Err(MissionError::Invalid { problems, .. }) = parse(&text, &path, &[]) else {
+            panic!("accepted discretize = false before {anchor}");
+        };
+        assert_eq!(problems[0].key, key);
+        assert!(matches!(problems[0].location, Location::File { .. }));
+    }
+}
+
+/// RocketPy 1.13.0's rocket of `fixtures/parity/liquid_docs` with its fuel tank on another
+/// grid (`discretize=60`, `flux_time=5.5`): the motor's sums are then pointwise `Function`s.
+/// Measured with RocketPy 1.13.0 (`/work/venv-h22`, the mission rebuilt by
+/// `fixtures/parity/make_references.py` with those two arguments changed): `rocket.total_mass(t)`,
+/// `rocket.com_to_cdm_function(t)` and its `differentiate_complex_step(t)`, `rocket.I_11(t)`
+/// and its `differentiate_complex_step(t)`, at the times of `TIMES`.
+mod pointwise {
+    pub const TIMES: [f64; 10] = [0.013, 0.37, 1.234, 2.5, 3.333, 4.05, 4.999, 5.2, 5.6, 7.0];
+    pub const TOTAL_MASS: [f64; 10] = [
+        69.38646771264476,
+        63.37102256210018,
+        50.85460774212517,
+        36.770290764467305,
+        29.658635386610097,
+        24.617833322765836,
+        19.239201486727897,
+        19.21545868008571,
+        19.21478302251894,
+        19.21478302251894,
+    ];
+    pub const COM_TO_CDM: [f64; 10] = [
+        0.8274489454017675,
+        0.8379347785021258,
+        0.8315262445196181,
+        0.7383730674931693,
+        0.6174550782031785,
+        0.4697255932972982,
+        0.2019728587305637,
+        0.20111688928316976,
+        0.2010979258091878,
+        0.2010979258091878,
+    ];
+    pub const COM_TO_CDM_RATE: [f64; 10] = [
+        0.039213734773088,
+        0.01857759908764062,
+        -0.03358947690320813,
+        -0.11520799411720191,
+        -0.17646531011649136,
+        -0.23705582339071066,
+        -0.30091467068749445,
+        -0.0010202453162490195,
+        0.0,
+        0.0,
+    ];
+    pub const I11: [f64; 10] = [
+        114.06045993606425,
+        108.83626821058772,
+        95.04140088237536,
+        73.7765151872827,
+        60.303828869054755,
+        49.50829105991515,
+        36.6806000524412,
+        36.65760151855136,
+        36.65723024640934,
+        36.65723024640934,
+    ];
+    pub const I11_RATE: [f64; 10] = [
+        -14.151916103284945,
+        -15.139692757488868,
+        -16.59063456068377,
+        -16.619978828453725,
+        -15.638889429723273,
+        -14.437827128988346,
+        -12.024913515758934,
+        -0.01997627738840408,
+        0.0,
+        0.0,
+    ];
+}
+
+#[test]
+fn tanks_on_different_grids_are_summed_pointwise_as_rocketpy() {
+    let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("../../fixtures/parity/liquid_docs/mission.toml");
+    let set = overrides(&["motor.tanks.1.discretize=60", "motor.tanks.1.flux_time=5.5"]);
+    let mission = load(&path, &set).expect("loads");
+    let motor = build_motor(&mission).expect("builds");
+    assert_eq!(motor.propellant_parts().len(), 2);
+    let rocket = karman_mission::build::rocket::build_rocket(&mission, &motor).expect("rocket");
+    let close = |got: f64, want: f64, scale: f64, what: &str, t: f64| {
+        assert!(
+            (got - want).abs() <= 1e-9 * scale,
+            "{what} at {t} s: {got} vs RocketPy {want}"
+        );
+    };
+    for (k, &t) in pointwise::TIMES.iter().enumerate() {
+        let p = rocket.mass_properties(t);
+        close(
+            p.total_mass,
+            pointwise::TOTAL_MASS[k],
+            70.0,
+            "total mass",
+            t,
+        );
+        close(p.com_to_cdm, pointwise::COM_TO_CDM[k], 1.0, "com_to_cdm", t);
+        close(
+            p.com_to_cdm_rate,
+            pointwise::COM_TO_CDM_RATE[k],
+            1.0,
+            "com_to_cdm rate",
+            t,
+        );
+        close(p.inertia[0], pointwise::I11[k], 115.0, "I11", t);
+        close(
+            p.inertia_rate[0],
+            pointwise::I11_RATE[k],
+            17.0,
+            "I11 rate",
+            t,
+        );
+    }
+}

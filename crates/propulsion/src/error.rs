@@ -120,6 +120,23 @@ pub enum PropulsionError {
         /// The computed impulse, N·s.
         impulse: f64,
     },
+    /// The average exhaust velocity `v̄_e = I_tot / m_p0` is zero or not a number, or the mass
+    /// flow `−T/v̄_e` it gives overflows (an impulse tiny against the propellant mass).
+    #[error(
+        "exhaust velocity {exhaust_velocity} m/s (total impulse {impulse} N·s / initial \
+         propellant mass {initial_mass} kg) gives no finite mass flow at the peak thrust \
+         {peak_thrust} N"
+    )]
+    ExhaustVelocity {
+        /// The total impulse, N·s.
+        impulse: f64,
+        /// The initial propellant mass, kg.
+        initial_mass: f64,
+        /// Their ratio, m/s.
+        exhaust_velocity: f64,
+        /// The largest thrust magnitude of the curve, N.
+        peak_thrust: f64,
+    },
     /// A tank's fluids over- or underfill it at a node of its time grid (RocketPy's
     /// consistency checks of `Tank`).
     #[error("tank '{tank}': {quantity} {value} at t = {time} s {reason} {limit}")]

@@ -92,6 +92,7 @@ impl PropellantModel for CylindricalChamber {
             center_of_mass,
             i11,
             i33,
+            parts: Vec::new(),
         })
     }
 }

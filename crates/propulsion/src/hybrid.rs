@@ -162,6 +162,7 @@ impl PropellantModel for HybridPropellant<'_> {
             i11: like(i11, "propellant I11")?,
             i33: like(i33, "propellant I33")?,
             mass,
+            parts: Vec::new(),
         })
     }
 }

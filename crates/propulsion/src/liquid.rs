@@ -11,11 +11,14 @@
 //! ```
 //!
 //! RocketPy forms these with `Function` arithmetic: tanks on one time grid (same flux time
-//! and `discretize`) give node-wise sums with the first tank's interpolation (its mass tables'
-//! for the mass and the centre of mass, linear for the inertia), reproduced exactly here; on
-//! different grids RocketPy evaluates the formulas pointwise, which is tabulated here on the
-//! union of the grids, linear between its nodes (the tanks' own tables are smooth on their
-//! grid spacing, so the difference is of second order in it).
+//! and `discretize`, or the same points without resampling) give node-wise sums with the
+//! first tank's interpolation and extrapolation (its mass table's for the mass and the centre
+//! of mass, its inertia table's interpolation, held constant, for the inertia), reproduced
+//! exactly here. On different grids RocketPy evaluates the sums pointwise — except that each
+//! tank's moment `m_i (position_i + c_i)` is first its own node-wise table — and so does the
+//! rocket, from the tanks' own tables ([`crate::Motor::propellant_parts`]); the motor's
+//! propellant tables then tabulate the same sums on the union of the grids, linear between
+//! its nodes, for reports.
 //!
 //! The motor's mass flow in the equations of motion is still `−T/v̄_e` with
 //! `v̄_e = I_tot/m_p(burn start)` ([`crate::Motor::mass_flow_rate`]), not the tanks' flow.
@@ -23,7 +26,9 @@
 use karman_math::{Extrapolation, Interpolation, PhysicalConstants, Table1};
 
 use crate::propellant::finite;
-use crate::{PropellantModel, PropellantTables, PropulsionError, Tank, ThrustCurve};
+use crate::{
+    PropellantModel, PropellantPart, PropellantTables, PropulsionError, Tank, ThrustCurve,
+};
 
 /// A tank placed in the motor (RocketPy `add_tank(tank, position)`).
 #[derive(Debug, Clone, PartialEq)]
@@ -32,6 +37,30 @@ pub struct PositionedTank {
     pub tank: Tank,
     /// Motor coordinate of the tank's height origin, m.
     pub position: f64,
+}
+
+impl PositionedTank {
+    /// The tank's centre of mass in motor coordinates, `position + c(t)`: RocketPy's
+    /// `tank_position + tank.center_of_mass`, the node values shifted on the tank's grid with
+    /// its interpolation.
+    ///
+    /// # Errors
+    /// [`PropulsionError::Table`] when the shift overflows.
+    pub fn center_of_mass_in_motor(&self) -> Result<Table1, PropulsionError> {
+        let c = self.tank.center_of_mass();
+        let ys = c.ys().iter().map(|&z| self.position + z).collect();
+        Table1::on_same_abscissae(c, ys, c.interpolation(), c.extrapolation())
+            .map_err(PropulsionError::table("tank centre of mass"))
+    }
+}
+
+/// Whether the tanks' tables share one time grid (RocketPy's node-wise `Function`
+/// arithmetic), rather than being summed pointwise.
+pub(crate) fn on_one_grid(tanks: &[PositionedTank]) -> bool {
+    tanks.first().is_none_or(|first| {
+        let xs = first.tank.mass().xs();
+        tanks.iter().all(|p| p.tank.mass().xs() == xs)
+    })
 }
 
 /// The tanks' combined mass, centre of mass and inertia at one instant, pointwise.
@@ -100,15 +129,52 @@ impl PropellantModel for LiquidPropellant<'_> {
         _constants: &PhysicalConstants,
     ) -> Result<PropellantTables, PropulsionError> {
         let first = self.tanks[0].tank.mass();
-        let one_grid = self.tanks.iter().all(|p| p.tank.mass().xs() == first.xs());
-        let (times, interpolation) = if one_grid {
-            (first.xs().to_vec(), first.interpolation())
+        let hold = Extrapolation::Constant;
+        let one_grid = on_one_grid(self.tanks);
+        let mut parts = Vec::new();
+        if !one_grid {
+            for p in self.tanks {
+                let mass = p.tank.mass();
+                let center_of_mass = p.center_of_mass_in_motor()?;
+                let products = mass
+                    .ys()
+                    .iter()
+                    .zip(center_of_mass.ys())
+                    .map(|(m, z)| m * z)
+                    .collect();
+                let moment = Table1::on_same_abscissae(
+                    mass,
+                    products,
+                    mass.interpolation(),
+                    mass.extrapolation(),
+                )
+                .map_err(PropulsionError::table("tank mass moment"))?;
+                parts.push(PropellantPart {
+                    mass: mass.clone(),
+                    center_of_mass,
+                    moment,
+                    i11: p.tank.inertia().clone(),
+                });
+            }
+        }
+        let (times, interpolation, extrapolation, inertia_interpolation) = if one_grid {
+            (
+                first.xs().to_vec(),
+                first.interpolation(),
+                first.extrapolation(),
+                self.tanks[0].tank.inertia().interpolation(),
+            )
         } else {
             let all = self
                 .tanks
                 .iter()
                 .flat_map(|p| p.tank.mass().xs().iter().copied());
-            (union_grid(all), Interpolation::Linear)
+            (
+                union_grid(all),
+                Interpolation::Linear,
+                hold,
+                Interpolation::Linear,
+            )
         };
         // On one grid the tank tables' ordinates are the node values; elsewhere the tables are
         // evaluated.
@@ -123,22 +189,28 @@ impl PropellantModel for LiquidPropellant<'_> {
             center.push(c);
             inertia.push(i);
         }
-        let hold = Extrapolation::Constant;
-        let mass = Table1::new(times, mass, interpolation, hold)
+        let mass = Table1::new(times, mass, interpolation, extrapolation)
             .map_err(PropulsionError::table("propellant mass"))?;
-        let like = |ys, interpolation, what| {
-            Table1::on_same_abscissae(&mass, ys, interpolation, hold)
+        let like = |ys, interpolation, extrapolation, what| {
+            Table1::on_same_abscissae(&mass, ys, interpolation, extrapolation)
                 .map_err(PropulsionError::table(what))
         };
         Ok(PropellantTables {
-            center_of_mass: like(center, interpolation, "propellant centre of mass")?,
-            i11: like(inertia, Interpolation::Linear, "propellant I11")?,
+            center_of_mass: like(
+                center,
+                interpolation,
+                extrapolation,
+                "propellant centre of mass",
+            )?,
+            i11: like(inertia, inertia_interpolation, hold, "propellant I11")?,
             i33: like(
                 vec![0.0; mass.xs().len()],
                 Interpolation::Linear,
+                hold,
                 "propellant I33",
             )?,
             mass,
+            parts,
         })
     }
 }

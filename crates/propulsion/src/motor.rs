@@ -15,8 +15,8 @@ use crate::hybrid::HybridPropellant;
 use crate::liquid::LiquidPropellant;
 use crate::propellant::{finite, non_negative};
 use crate::{
-    BatesGrains, CylindricalChamber, PositionedTank, PropellantModel, PropellantTables,
-    PropulsionError, ThrustCurve,
+    BatesGrains, CylindricalChamber, PositionedTank, PropellantModel, PropellantPart,
+    PropellantTables, PropulsionError, ThrustCurve,
 };
 
 /// Orientation of the motor's axial coordinate.
@@ -114,7 +114,8 @@ impl Motor {
     ///
     /// # Errors
     /// [`PropulsionError::InvalidParameter`] for a parameter out of range,
-    /// [`PropulsionError::NoImpulse`] for a curve without positive impulse.
+    /// [`PropulsionError::NoImpulse`] for a curve without positive impulse,
+    /// [`PropulsionError::ExhaustVelocity`] when `I_tot / m_p0` gives no finite mass flow.
     pub fn solid(
         thrust: ThrustCurve,
         structure: MotorStructure,
@@ -258,6 +259,7 @@ impl Motor {
                 center_of_mass: zero(),
                 i11: zero(),
                 i33: zero(),
+                parts: Vec::new(),
             },
         }
     }
@@ -277,6 +279,21 @@ impl Motor {
         }
         let initial_mass = model.initial_mass();
         let exhaust_velocity = impulse / initial_mass;
+        // `ṁ = −T/v̄_e` must be finite wherever the thrust is: v̄_e positive (+∞ for a motor
+        // without propellant) and the peak flow representable.
+        let peak_thrust = thrust
+            .table()
+            .ys()
+            .iter()
+            .fold(0.0_f64, |a, t| a.max(t.abs()));
+        if !(exhaust_velocity > 0.0 && (peak_thrust / exhaust_velocity).is_finite()) {
+            return Err(PropulsionError::ExhaustVelocity {
+                impulse,
+                initial_mass,
+                exhaust_velocity,
+                peak_thrust,
+            });
+        }
         Ok((
             initial_mass,
             exhaust_velocity,
@@ -412,6 +429,14 @@ impl Motor {
             MotorKind::Liquid(tanks) | MotorKind::Hybrid(_, tanks) => tanks,
             _ => &[],
         }
+    }
+    /// The parts whose pointwise sum the propellant is (physics.md §15.3): the tanks of a
+    /// liquid motor whose tanks are on different time grids, for which RocketPy evaluates the
+    /// sums pointwise; empty for every other motor, whose propellant tables are exact. The
+    /// propellant tables then tabulate those sums on the union of the grids, for reports.
+    #[must_use]
+    pub fn propellant_parts(&self) -> &[PropellantPart] {
+        &self.propellant.parts
     }
     /// Nozzle throat radius, m (solid and hybrid motors only).
     #[must_use]

@@ -22,6 +22,26 @@ pub struct PropellantTables {
     pub i11: Table1,
     /// `I33_p(t)` about the propellant centre of mass, kg·m².
     pub i33: Table1,
+    /// The parts whose pointwise sum the propellant is, when RocketPy sums them pointwise (a
+    /// liquid motor's tanks on different time grids, physics.md §15.3); the tables above then
+    /// tabulate that sum for reports. Empty when the tables are the propellant exactly.
+    pub parts: Vec<PropellantPart>,
+}
+
+/// One part of a propellant summed pointwise: a tank's tables of time (s).
+#[derive(Debug, Clone, PartialEq)]
+pub struct PropellantPart {
+    /// Mass `m_i(t)`, kg.
+    pub mass: Table1,
+    /// Centre of mass `z_i(t)`, m, motor coordinates (the tank's position plus its fluids'
+    /// centre of mass).
+    pub center_of_mass: Table1,
+    /// Mass moment `m_i z_i`, kg·m: the node-wise products on the part's grid, interpolated
+    /// and extrapolated as its mass (RocketPy multiplies the two tables node by node before
+    /// summing the parts pointwise).
+    pub moment: Table1,
+    /// `I11_i(t)` about `z_i`, kg·m² (no axial inertia).
+    pub i11: Table1,
 }
 
 /// A motor type's propellant bookkeeping.

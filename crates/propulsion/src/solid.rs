@@ -300,6 +300,7 @@ impl PropellantModel for BatesGrains {
             i11: table("propellant I11", i11)?,
             i33: table("propellant I33", i33)?,
             mass,
+            parts: Vec::new(),
         })
     }
 }

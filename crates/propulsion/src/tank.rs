@@ -5,12 +5,22 @@
 //! `flux_time` (`N = discretize`, RocketPy's default 100). The input curves are first
 //! functions of time — linear between their points; outside them a flow rate is 0 and every
 //! other curve holds its end value — and are then resampled at the grid nodes (linear, constant
-//! outside), as RocketPy's `set_discrete` does. Per kind, at the nodes:
+//! outside), as RocketPy's `set_discrete` does.
+//!
+//! Without resampling (`discretize = None`, RocketPy's `discretize=None`) the grid is the
+//! points of the curve that defines the contents — the ullage, the liquid height, or the
+//! liquid and gas masses, which RocketPy's `Function` arithmetic then requires on the same
+//! times — and its values are taken as given; RocketPy 1.13 builds no mass-flow-rate tank so
+//! (its mass integral needs a number of points), nor one from a constant curve (its densities
+//! are resampled on the curve's points). The densities are `ρ(T, p)` when the temperature and
+//! pressure are constant, else `ρ` tabulated linearly on their points and sampled at the
+//! nodes; RocketPy's inertia is then a spline in the first case, linear in the second (linear
+//! whenever the tank is resampled). Per kind, at the nodes:
 //!
 //! - mass flow rate: `m_l(t_k) = m_l0 + ∫_{t_s}^{t_k} (ṁ_l,in − ṁ_l,out)` exactly (the net flow
 //!   is linear between the nodes), likewise the gas; masses are splines;
 //! - ullage: `V_g` = the ullage, `V_l = V_total − V_g`; level: `V_l = V(h_l)`,
-//!   `V_g = V_total − V_l`; mass: `V = m/ρ`; masses `m = Vρ` linear;
+//!   `V_g = V_total − V_l`; mass: `V = m/ρ`; masses `m = Vρ` (interpolated as below);
 //! - liquid height `h_l = h(V_l)` and gas height `h_g = h(V_l + V_g)` (the geometry's inverse
 //!   volume; `h_g = top` for ullage and level tanks).
 //!
@@ -23,8 +33,13 @@
 //! ```
 //!
 //! (`c_l = bottom` where `V_l < 1e-4 V_total`, `c_g = h_l` where `V_g < 1e-4 V_total`,
-//! `c = bottom` where `m < 1e-3 V_total ρ_g`); `c` is a spline, `I` linear, both constant
-//! outside the grid. The fluids have no axial inertia. RocketPy's consistency checks are
+//! `c = bottom` where `m < 1e-3 V_total ρ_g`); `c` is a spline, `I` linear (see above), both
+//! constant outside the grid. The masses are splines for a mass-flow tank, linear for ullage
+//! and mass tanks; a level tank's liquid volume is the geometry's volume spline (zero outside
+//! the tank) composed with the level, so its liquid and total masses are splines that are
+//! **zero outside the grid** (RocketPy 1.13), its gas mass a spline held constant, and its
+//! liquid height the input, linear. A tank given by its contents has the net mass flow of the
+//! derivative of its mass table at the nodes, interpolated and extrapolated as that table. The fluids have no axial inertia. RocketPy's consistency checks are
 //! errors: a negative liquid mass, a gas mass below −1e-6 kg, a fluid volume outside
 //! `[−1e-6, V_total + 1e-6]` m³ or a height more than 1e-4 m outside the tank.
 
@@ -63,6 +78,33 @@ pub enum TankCurve {
 }
 
 impl TankCurve {
+    /// The curve's own points `(times, values)`; `None` for a constant.
+    fn points(&self) -> Option<(&[f64], &[f64])> {
+        match self {
+            TankCurve::Constant(_) => None,
+            TankCurve::Points { times, values } => Some((times, values)),
+        }
+    }
+
+    /// The curve's value at each node of `grid`: on its own points (a tank without
+    /// resampling) its values as given, elsewhere [`TankCurve::sample`].
+    fn on(
+        &self,
+        grid: &Grid,
+        is_flow: bool,
+        what: &'static str,
+    ) -> Result<Vec<f64>, PropulsionError> {
+        match self {
+            TankCurve::Points { values, .. } if grid.own => {
+                for &v in values {
+                    finite(what, v)?;
+                }
+                Ok(values.clone())
+            }
+            _ => self.sample(&grid.times, is_flow, what),
+        }
+    }
+
     /// The curve's value at each of `times`: a flow rate is 0 outside its points, any other
     /// curve holds its end values.
     fn sample(
@@ -154,8 +196,11 @@ pub struct TankSpec {
     pub liquid: Fluid,
     /// The gas.
     pub gas: Fluid,
-    /// Number of grid nodes `N` (at least 2).
-    pub discretize: usize,
+    /// Number of grid nodes `N` (at least 2) on `flux_time`, or `None` (RocketPy's
+    /// `discretize=None`): the tank's curves keep their own points, which must be tables — the
+    /// ullage, the liquid height, or the liquid and gas masses on the same times; RocketPy
+    /// 1.13 builds no mass-flow-rate tank so.
+    pub discretize: Option<usize>,
     /// Temperature, K (feeds tabulated densities).
     pub temperature: TankCurve,
     /// Pressure, Pa (feeds tabulated densities).
@@ -176,6 +221,156 @@ pub struct Tank {
     inertia: Table1,
 }
 
+/// The time nodes of a tank's tables.
+struct Grid {
+    times: Vec<f64>,
+    /// Whether they are the points of the tank's own curves (no resampling).
+    own: bool,
+}
+
+impl Grid {
+    /// `linspace(flux_time, N)`, or the points of the curve(s) that define the kind's contents
+    /// when `discretize` is `None`: RocketPy 1.13 then resamples nothing, and builds the tank
+    /// only from tables (its densities are resampled on those points, which a constant has
+    /// not), the two masses of a mass-based tank on the same times.
+    fn of(spec: &TankSpec) -> Result<Grid, PropulsionError> {
+        let n = match spec.discretize {
+            Some(n) => n,
+            None => return Self::own(&spec.kind),
+        };
+        if n < 2 {
+            return Err(PropulsionError::InvalidParameter {
+                name: "discretize",
+                value: n as f64,
+                reason: "needs at least 2 grid nodes",
+            });
+        }
+        let (ts, te) = spec.flux_time;
+        Ok(Grid {
+            times: linspace(ts, te, n),
+            own: false,
+        })
+    }
+
+    fn own(kind: &TankKind) -> Result<Grid, PropulsionError> {
+        let unsupported = |name, reason| PropulsionError::InvalidParameter {
+            name,
+            value: f64::NAN,
+            reason,
+        };
+        let table = |curve: &TankCurve, name| {
+            curve.points().map(|(t, _)| t.to_vec()).ok_or(unsupported(
+                name,
+                "must be a table of time without resampling (discretize = false)",
+            ))
+        };
+        let times = match kind {
+            TankKind::MassFlowRate { .. } => {
+                return Err(unsupported(
+                    "discretize",
+                    "RocketPy 1.13 builds no mass-flow-rate tank without resampling",
+                ));
+            }
+            TankKind::Ullage(ullage) => table(ullage, "ullage")?,
+            TankKind::Level(level) => table(level, "liquid_height")?,
+            TankKind::Mass { liquid, gas } => {
+                let times = table(liquid, "liquid_mass")?;
+                if table(gas, "gas_mass")? != times {
+                    return Err(unsupported(
+                        "gas_mass",
+                        "must be given at the times of liquid_mass without resampling \
+                         (discretize = false)",
+                    ));
+                }
+                times
+            }
+        };
+        Ok(Grid { times, own: true })
+    }
+}
+
+/// Densities of the liquid and the gas at the grid nodes, and the interpolation RocketPy
+/// gives the tank's inertia through them.
+struct Densities {
+    liquid: Vec<f64>,
+    gas: Vec<f64>,
+    inertia_interpolation: Interpolation,
+}
+
+impl Densities {
+    /// `ρ(T(t), p(t))` at the nodes. Resampled (`discretize = N`), the temperature and
+    /// pressure are taken at the nodes; the inertia is linear. Without resampling, RocketPy
+    /// tabulates `ρ` linearly on the points of the temperature and pressure tables (both
+    /// joined; `ρ(T, p)` itself if both are constant) and samples that at the nodes; its
+    /// inertia is then linear, or a spline when both are constant.
+    fn at(spec: &TankSpec, grid: &Grid) -> Result<Densities, PropulsionError> {
+        spec.liquid.validate("liquid density")?;
+        spec.gas.validate("gas density")?;
+        let (temperature, pressure) = (&spec.temperature, &spec.pressure);
+        let source: Vec<f64> = match (grid.own, temperature.points(), pressure.points()) {
+            (false, _, _) => grid.times.clone(),
+            (true, None, None) => Vec::new(),
+            (true, a, b) => {
+                let mut times: Vec<f64> = a
+                    .into_iter()
+                    .chain(b)
+                    .flat_map(|(t, _)| t)
+                    .copied()
+                    .collect();
+                times.sort_by(f64::total_cmp);
+                times.dedup();
+                times
+            }
+        };
+        let constant_state = grid.own && source.is_empty();
+        let state = |times: &[f64]| -> Result<(Vec<f64>, Vec<f64>), PropulsionError> {
+            Ok((
+                temperature.sample(times, false, "tank temperature")?,
+                pressure.sample(times, false, "tank pressure")?,
+            ))
+        };
+        let (t, p) = state(if constant_state { &grid.times } else { &source })?;
+        let mut out = Vec::with_capacity(2);
+        for (fluid, name) in [(&spec.liquid, "liquid density"), (&spec.gas, "gas density")] {
+            let rho: Vec<f64> = t
+                .iter()
+                .zip(&p)
+                .map(|(&t, &p)| fluid.density_at(t, p))
+                .collect();
+            if let Some(&bad) = rho.iter().find(|r| !(r.is_finite() && **r > 0.0)) {
+                return Err(PropulsionError::InvalidParameter {
+                    name,
+                    value: bad,
+                    reason: "must be a positive number at the tank's temperature and pressure",
+                });
+            }
+            out.push(if grid.own && !constant_state {
+                let table = Table1::new(
+                    source.clone(),
+                    rho,
+                    Interpolation::Linear,
+                    Extrapolation::Constant,
+                )
+                .map_err(PropulsionError::table(name))?;
+                grid.times.iter().map(|&t| table.eval(t)).collect()
+            } else {
+                rho
+            });
+        }
+        let gas = out.pop().unwrap_or_default();
+        let liquid = out.pop().unwrap_or_default();
+        Ok(Densities {
+            liquid,
+            gas,
+            inertia_interpolation: if constant_state {
+                Interpolation::Spline
+            } else {
+                Interpolation::Linear
+            },
+        })
+    }
+}
+
 /// Node values of one tank, before tabulation.
 struct Nodes {
     liquid_mass: Vec<f64>,
@@ -186,12 +381,26 @@ struct Nodes {
     gas_height: Vec<f64>,
 }
 
+/// How RocketPy interpolates and extrapolates a kind's tables of time, as its `Function`
+/// arithmetic hands them on.
+struct KindTables {
+    /// Liquid, gas and total mass: interpolation, and the extrapolations of the liquid, the
+    /// gas and the total.
+    mass: (Interpolation, [Extrapolation; 3]),
+    /// The liquid height (the input of a level tank, else through the inverse volume).
+    liquid_height: (Interpolation, Extrapolation),
+    /// The net mass flow at the nodes and its extrapolation (the flows of a mass-flow tank,
+    /// else the derivative of its mass table, extrapolated as the mass).
+    net_mass_flow: (Vec<f64>, Interpolation, Extrapolation),
+}
+
 impl Tank {
     /// Builds the tank's tables (physics.md §15.2), inputs in the unit system of `constants`
     /// (which holds the slacks of RocketPy's checks).
     ///
     /// # Errors
-    /// [`PropulsionError::InvalidParameter`] for a bad flux time, grid size or initial mass;
+    /// [`PropulsionError::InvalidParameter`] for a bad flux time, grid size or initial mass, or
+    /// a tank without resampling whose curves are not tables on one set of times;
     /// [`PropulsionError::TankContents`] when the fluids over- or underfill the tank (naming
     /// the tank, the quantity, the time and the limit); [`PropulsionError::Table`] for curves
     /// that do not form tables.
@@ -205,40 +414,14 @@ impl Tank {
                 reason: "must end after it starts",
             });
         }
-        if spec.discretize < 2 {
-            return Err(PropulsionError::InvalidParameter {
-                name: "discretize",
-                value: spec.discretize as f64,
-                reason: "needs at least 2 grid nodes",
-            });
-        }
-        spec.liquid.validate("liquid density")?;
-        spec.gas.validate("gas density")?;
-        let times = linspace(ts, te, spec.discretize);
-        let temperature = spec.temperature.sample(&times, false, "tank temperature")?;
-        let pressure = spec.pressure.sample(&times, false, "tank pressure")?;
-        let density = |fluid: &Fluid| -> Vec<f64> {
-            temperature
-                .iter()
-                .zip(&pressure)
-                .map(|(&t, &p)| fluid.density_at(t, p))
-                .collect()
-        };
-        let (rho_l, rho_g) = (density(&spec.liquid), density(&spec.gas));
-        for (rho, name) in [(&rho_l, "liquid density"), (&rho_g, "gas density")] {
-            if let Some(&bad) = rho.iter().find(|r| !(r.is_finite() && **r > 0.0)) {
-                return Err(PropulsionError::InvalidParameter {
-                    name,
-                    value: bad,
-                    reason: "must be a positive number at the tank's temperature and pressure",
-                });
-            }
-        }
+        let grid = Grid::of(&spec)?;
+        let densities = Densities::at(&spec, &grid)?;
+        let (rho_l, rho_g) = (&densities.liquid, &densities.gas);
+        let times = &grid.times;
         let g = &spec.geometry;
         let total = g.total_volume();
-        let (nodes, mass_interpolation, net_flow) =
-            Self::nodes(&spec, &times, &rho_l, &rho_g, total)?;
-        check(&spec, &times, &nodes, total, constants)?;
+        let (nodes, kind_tables) = Self::nodes(&spec, &grid, rho_l, rho_g, total)?;
+        check(&spec, times, &nodes, total, constants)?;
         let n = times.len();
         let bottom = g.bottom();
         let max = |v: &[f64]| v.iter().copied().fold(f64::NEG_INFINITY, f64::max);
@@ -283,25 +466,33 @@ impl Tank {
         let masses: Vec<f64> = (0..n)
             .map(|k| nodes.liquid_mass[k] + nodes.gas_mass[k])
             .collect();
+        let (mass_interpolation, [liquid_extrapolation, gas_extrapolation, mass_extrapolation]) =
+            kind_tables.mass;
+        let (flow, flow_interpolation, flow_extrapolation) = kind_tables.net_mass_flow;
         Ok(Tank {
             liquid_mass: table(
                 nodes.liquid_mass,
                 mass_interpolation,
-                hold,
+                liquid_extrapolation,
                 "tank liquid mass",
             )?,
-            gas_mass: table(nodes.gas_mass, mass_interpolation, hold, "tank gas mass")?,
-            mass: table(masses, mass_interpolation, hold, "tank mass")?,
+            gas_mass: table(
+                nodes.gas_mass,
+                mass_interpolation,
+                gas_extrapolation,
+                "tank gas mass",
+            )?,
+            mass: table(masses, mass_interpolation, mass_extrapolation, "tank mass")?,
             net_mass_flow: table(
-                net_flow,
-                Interpolation::Linear,
-                Extrapolation::Zero,
+                flow,
+                flow_interpolation,
+                flow_extrapolation,
                 "tank net mass flow",
             )?,
             liquid_height: table(
                 nodes.liquid_height,
-                Interpolation::Spline,
-                Extrapolation::Natural,
+                kind_tables.liquid_height.0,
+                kind_tables.liquid_height.1,
                 "tank liquid height",
             )?,
             gas_height: table(
@@ -311,21 +502,26 @@ impl Tank {
                 "tank gas height",
             )?,
             center_of_mass: table(centers, Interpolation::Spline, hold, "tank centre of mass")?,
-            inertia: table(inertias, Interpolation::Linear, hold, "tank inertia")?,
+            inertia: table(
+                inertias,
+                densities.inertia_interpolation,
+                hold,
+                "tank inertia",
+            )?,
             spec,
         })
     }
 
-    /// Node values of the kind, the interpolation of its mass tables and its net mass flow at
-    /// the nodes.
+    /// Node values of the kind and the interpolations of its tables.
     fn nodes(
         spec: &TankSpec,
-        times: &[f64],
+        grid: &Grid,
         rho_l: &[f64],
         rho_g: &[f64],
         total: f64,
-    ) -> Result<(Nodes, Interpolation, Vec<f64>), PropulsionError> {
+    ) -> Result<(Nodes, KindTables), PropulsionError> {
         let g = &spec.geometry;
+        let times = &grid.times;
         let n = times.len();
         let top = vec![g.top(); n];
         let heights_of =
@@ -333,7 +529,9 @@ impl Tank {
         let by_node = |a: &[f64], b: &[f64], f: &dyn Fn(f64, f64) -> f64| -> Vec<f64> {
             a.iter().zip(b).map(|(&x, &y)| f(x, y)).collect()
         };
-        let nodes = match &spec.kind {
+        let hold = Extrapolation::Constant;
+        let through_volume = (Interpolation::Spline, Extrapolation::Natural);
+        let (nodes, mass) = match &spec.kind {
             TankKind::MassFlowRate {
                 initial_liquid_mass,
                 initial_gas_mass,
@@ -345,10 +543,10 @@ impl Tank {
                 non_negative("initial_liquid_mass", *initial_liquid_mass)?;
                 non_negative("initial_gas_mass", *initial_gas_mass)?;
                 let net = |flow_in: &TankCurve, flow_out: &TankCurve, what| {
-                    let i = flow_in.sample(times, true, what)?;
-                    let o = flow_out.sample(times, true, what)?;
+                    let i = flow_in.on(grid, true, what)?;
+                    let o = flow_out.on(grid, true, what)?;
                     Table1::new(
-                        times.to_vec(),
+                        times.clone(),
                         by_node(&i, &o, &|a, b| a - b),
                         Interpolation::Linear,
                         Extrapolation::Zero,
@@ -378,62 +576,84 @@ impl Tank {
                     liquid_volume,
                     gas_volume,
                 };
-                return Ok((nodes, Interpolation::Spline, net_flow));
+                let tables = KindTables {
+                    mass: (Interpolation::Spline, [hold; 3]),
+                    liquid_height: through_volume,
+                    net_mass_flow: (net_flow, Interpolation::Linear, Extrapolation::Zero),
+                };
+                return Ok((nodes, tables));
             }
             TankKind::Ullage(ullage) => {
-                let gas_volume = ullage.sample(times, false, "ullage")?;
+                let gas_volume = ullage.on(grid, false, "ullage")?;
                 let liquid_volume: Vec<f64> = gas_volume.iter().map(|v| total - v).collect();
-                Nodes {
+                let nodes = Nodes {
                     liquid_mass: by_node(&liquid_volume, rho_l, &|v, r| v * r),
                     gas_mass: by_node(&gas_volume, rho_g, &|v, r| v * r),
                     liquid_height: heights_of(&liquid_volume),
                     gas_height: top,
                     liquid_volume,
                     gas_volume,
-                }
+                };
+                (nodes, (Interpolation::Linear, [hold; 3], through_volume))
             }
             TankKind::Level(level) => {
-                let liquid_height = level.sample(times, false, "liquid_height")?;
+                let liquid_height = level.on(grid, false, "liquid_height")?;
                 let liquid_volume: Vec<f64> = liquid_height.iter().map(|&h| g.volume(h)).collect();
                 let gas_volume: Vec<f64> = liquid_volume.iter().map(|v| total - v).collect();
-                Nodes {
+                let nodes = Nodes {
                     liquid_mass: by_node(&liquid_volume, rho_l, &|v, r| v * r),
                     gas_mass: by_node(&gas_volume, rho_g, &|v, r| v * r),
                     liquid_height,
                     gas_height: top,
                     liquid_volume,
                     gas_volume,
-                }
+                };
+                // The liquid volume is the geometry's volume spline (zero outside the tank)
+                // composed with the level: RocketPy's liquid and total masses inherit its
+                // spline and its zero extrapolation, the gas mass (the tank volume less the
+                // liquid) a spline held constant; the level is the input, linear.
+                let zero = Extrapolation::Zero;
+                (
+                    nodes,
+                    (
+                        Interpolation::Spline,
+                        [zero, hold, zero],
+                        (Interpolation::Linear, hold),
+                    ),
+                )
             }
             TankKind::Mass { liquid, gas } => {
-                let liquid_mass = liquid.sample(times, false, "liquid_mass")?;
-                let gas_mass = gas.sample(times, false, "gas_mass")?;
+                let liquid_mass = liquid.on(grid, false, "liquid_mass")?;
+                let gas_mass = gas.on(grid, false, "gas_mass")?;
                 let liquid_volume = by_node(&liquid_mass, rho_l, &|m, r| m / r);
                 let gas_volume = by_node(&gas_mass, rho_g, &|m, r| m / r);
                 let fluid_volume = by_node(&liquid_volume, &gas_volume, &|a, b| a + b);
-                Nodes {
+                let nodes = Nodes {
                     liquid_height: heights_of(&liquid_volume),
                     gas_height: heights_of(&fluid_volume),
                     liquid_mass,
                     gas_mass,
                     liquid_volume,
                     gas_volume,
-                }
+                };
+                (nodes, (Interpolation::Linear, [hold; 3], through_volume))
             }
         };
-        // The net flow of a tank given by its contents: the slope of its (linear) mass table
-        // at each node, that of the interval to the left (the first node's: the first
-        // interval's).
+        let (interpolation, extrapolations, liquid_height) = mass;
+        // The net flow of a tank given by its contents: the derivative of its mass table at
+        // each node (RocketPy's `derivative_function`; for a linear table the slope of the
+        // interval to the left, the first node's that of the first interval), tabulated with
+        // the mass table's interpolation and extrapolation.
         let mass: Vec<f64> = by_node(&nodes.liquid_mass, &nodes.gas_mass, &|a, b| a + b);
-        let mass_table = Table1::new(
-            times.to_vec(),
-            mass,
-            Interpolation::Linear,
-            Extrapolation::Constant,
-        )
-        .map_err(PropulsionError::table("tank mass"))?;
+        let mass_table = Table1::new(times.clone(), mass, interpolation, extrapolations[2])
+            .map_err(PropulsionError::table("tank mass"))?;
         let net_flow = times.iter().map(|&t| mass_table.derivative(t)).collect();
-        Ok((nodes, Interpolation::Linear, net_flow))
+        let tables = KindTables {
+            mass: (interpolation, extrapolations),
+            liquid_height,
+            net_mass_flow: (net_flow, interpolation, extrapolations[2]),
+        };
+        Ok((nodes, tables))
     }
 
     /// The inputs.
@@ -578,7 +798,7 @@ mod tests {
             flux_time: (0.0, 5.0),
             liquid: Fluid::constant("N2O_l", 960.0),
             gas: Fluid::constant("N2O_g", 1.9277),
-            discretize: DEFAULT_DISCRETIZE,
+            discretize: Some(DEFAULT_DISCRETIZE),
             temperature: TankCurve::Constant(DEFAULT_TEMPERATURE),
             pressure: TankCurve::Constant(DEFAULT_PRESSURE),
         }

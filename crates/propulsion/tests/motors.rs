@@ -67,3 +67,71 @@ proptest! {
         }
     }
 }
+
+/// Regression (found by `motors_never_panic`): an impulse of 3.5e-290 N·s over a grain of
+/// density 2.3e167 kg/m³ gives an exhaust velocity `I/m_p0` that underflows to 0, and so a
+/// mass flow `−T/v̄_e` of −∞ (NaN outside the burn). The motor is refused instead.
+#[test]
+fn an_exhaust_velocity_that_underflows_is_refused() {
+    let data = ThrustData::from_points("inline", &[[0.0, 0.0], [1.0, 100.0], [2.0, 0.0]]).unwrap();
+    let options = ThrustOptions {
+        burn_time: None,
+        reshape: Some((BurnTime::End(2.0), 3.5e-290)),
+        interpolation: Interpolation::Linear,
+    };
+    let curve = ThrustCurve::new(&ThrustSource::Data(Box::new(data)), &options).unwrap();
+    let grains = BatesGrains {
+        number: 1,
+        density: 2.3e167,
+        outer_radius: 0.05,
+        initial_inner_radius: 0.02,
+        initial_height: 0.1,
+        separation: 0.0,
+        center_of_mass_position: 0.4,
+        throat_radius: 0.01,
+        only_radial_burn: false,
+    };
+    let err = Motor::solid(curve, structure(), grains).unwrap_err();
+    assert!(err.to_string().contains("exhaust velocity"), "{err}");
+}
+
+/// Regression (found by `motors_never_panic`): a thrust curve with points 2.8e-222 s apart.
+/// The generic motor's spline tables on those nodes had overflowing coefficients, so its
+/// inertia was NaN; the table is refused instead, and the solid motor stays finite.
+#[test]
+fn thrust_points_too_close_for_a_spline_are_refused() {
+    let points = [
+        [0.0, 0.0],
+        [2.053885379143911e222, 0.0],
+        [5.5918093247383425, 3.21327674432492],
+    ];
+    let data = ThrustData::from_points("inline", &points).unwrap();
+    let options = ThrustOptions {
+        burn_time: None,
+        reshape: Some((BurnTime::End(1.0211669085730481), 0.8209120123052602)),
+        interpolation: Interpolation::Linear,
+    };
+    let curve = ThrustCurve::new(&ThrustSource::Data(Box::new(data)), &options).unwrap();
+    let grains = BatesGrains {
+        number: 1,
+        density: 6_714.327_510_560_222,
+        outer_radius: 2.99942151836678e64,
+        initial_inner_radius: 0.0,
+        initial_height: 0.27183020695253095,
+        separation: 0.0,
+        center_of_mass_position: 0.4,
+        throat_radius: 0.01,
+        only_radial_burn: false,
+    };
+    let solid = Motor::solid(curve.clone(), structure(), grains).unwrap();
+    let (i11, i33) = solid.inertia(0.0);
+    assert!(i11.is_finite() && i33.is_finite());
+    let chamber = CylindricalChamber {
+        radius: 2.99942151836678e64,
+        height: 0.27183020695253095,
+        position: 0.2,
+        propellant_initial_mass: 6.7143275105602225,
+    };
+    let err = Motor::generic(curve, structure(), chamber).unwrap_err();
+    assert!(err.to_string().contains("not finite"), "{err}");
+}

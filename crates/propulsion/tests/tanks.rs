@@ -87,7 +87,7 @@ fn tank(
         flux_time: (0.0, u.scale(5.0, Dimension::TIME)),
         liquid: Fluid::constant("liquid", u.scale(960.0, Dimension::DENSITY)),
         gas: Fluid::constant("gas", u.scale(300.0, Dimension::DENSITY)),
-        discretize: 100,
+        discretize: Some(100),
         temperature: TankCurve::Constant(u.scale(273.15, Dimension::TEMPERATURE)),
         pressure: TankCurve::Constant(u.scale(101_325.0, Dimension::PRESSURE)),
     };
@@ -307,4 +307,295 @@ fn tanks_and_fluid_motors_scale_with_their_units() {
             check.worst().1
         );
     }
+}
+
+/// RocketPy 1.13.0's tanks of three kinds on their own points (`discretize=None`) and a
+/// resampled level tank (`discretize=100`): fluid mass (kg), centre of mass (m), inertia
+/// (kg·m²) and liquid height (m) at t = 0.3, 1.7, 3.2, 4.6 and 6 s (between the points and
+/// after them). Measured with RocketPy 1.13.0 (`/work/venv-h22`): `CylindricalTank(0.07,
+/// 0.32)`, `flux_time=4`, liquid `Fluid("l", 960)`, gas `Fluid("g", 1.9277)`;
+/// `UllageBasedTank(ullage=[[0, .1V], [1, .3V], [3, .7V], [5, .9V]])` (V the tank volume),
+/// `LevelBasedTank(liquid_height=[[0, .1], [1, .05], [3, -.05], [5, -.1]])`,
+/// `MassBasedTank(liquid_mass=[[0, 3], [1, 2.5], [3, 1], [5, .2]], gas_mass=[[0, .001], [1,
+/// .002], [3, .003], [5, .004]])`; `ullage_Tc` is the ullage tank with
+/// `temperature=[[0, 260], [2, 280], [5, 300]]`, `pressure=1.5e5` (its inertia then linear,
+/// not a spline); each `tank.fluid_mass(t)` etc.
+#[allow(clippy::type_complexity)]
+const ROCKETPY_TANKS: [(&str, [[f64; 5]; 4]); 5] = [
+    (
+        "ullage_own",
+        [
+            [
+                3.973859676622311,
+                2.6524050789189593,
+                1.3309504812156066,
+                0.6702231823639304,
+                0.48144395412059404,
+            ],
+            [
+                -0.025336029386006893,
+                -0.07175547096086489,
+                -0.11579977655924535,
+                -0.1369249449442138,
+                -0.14115977900629817,
+            ],
+            [
+                0.02927491768627217,
+                0.010108975805719327,
+                0.0025087224900797924,
+                0.000980437384331883,
+                0.0009041202466206127,
+            ],
+            [
+                0.10919709090909101,
+                0.01602327272727294,
+                -0.07338472727272702,
+                -0.11855127272727262,
+                -0.15345454545454548,
+            ],
+        ],
+    ),
+    (
+        "level_own",
+        [
+            [
+                3.6274236479452857,
+                2.55385910394818,
+                1.5236849560734116,
+                1.0032683549182222,
+                0.0,
+            ],
+            [
+                -0.03724687780837629,
+                -0.0734616508950542,
+                -0.10798922723395196,
+                -0.12509535043883083,
+                -0.1286197820829937,
+            ],
+            [
+                0.022860441154228753,
+                0.009655923835886652,
+                0.0033330428596214778,
+                0.0017471875013060087,
+                0.001600941171583118,
+            ],
+            [
+                0.085,
+                0.015000000000000006,
+                -0.05500000000000001,
+                -0.09,
+                -0.1,
+            ],
+        ],
+    ),
+    (
+        "mass_own",
+        [
+            [
+                2.8512999999999997,
+                1.97735,
+                0.9230999999999998,
+                0.3638000000000001,
+                0.20400000000000001,
+            ],
+            [
+                -0.06294515345495484,
+                -0.09242386266693427,
+                -0.12991564100281794,
+                -0.1481952122740787,
+                -0.1517789995245622,
+            ],
+            [
+                0.012488626535046388,
+                0.0058907613778046665,
+                0.001253903690945113,
+                0.0002763625125170844,
+                0.000280603148114354,
+            ],
+            [
+                0.03398715766346517,
+                -0.02503333866730858,
+                -0.10048052966947572,
+                -0.1387104426773179,
+                -0.16753574541154811,
+            ],
+        ],
+    ),
+    (
+        "ullage_Tc_own",
+        [
+            [
+                3.973859676622311,
+                2.6524050789189593,
+                1.3309504812156066,
+                0.6702231823639304,
+                0.48144395412059404,
+            ],
+            [
+                -0.025336029386006893,
+                -0.07175547096086489,
+                -0.11579977655924535,
+                -0.1369249449442138,
+                -0.14115977900629817,
+            ],
+            [
+                0.029652619834005557,
+                0.012745267502645926,
+                0.0028199215465916213,
+                0.001329853868836393,
+                0.0009041202466206127,
+            ],
+            [
+                0.10919709090909101,
+                0.01602327272727294,
+                -0.07338472727272702,
+                -0.11855127272727262,
+                -0.15345454545454548,
+            ],
+        ],
+    ),
+    (
+        "level_n100",
+        [
+            [
+                3.622848299107357,
+                2.5904618946516105,
+                1.5580752330427678,
+                0.0,
+                0.0,
+            ],
+            [
+                -0.0374017098783356,
+                -0.07223423598474187,
+                -0.10684483652699168,
+                -0.11661665007241445,
+                -0.11661665007241445,
+            ],
+            [
+                0.02260755523224747,
+                0.009891124289345554,
+                0.0035215870324515858,
+                0.0025132586919497653,
+                0.0025132586919497653,
+            ],
+            [
+                0.085,
+                0.015000000000000005,
+                -0.05500000000000001,
+                -0.07500000000000001,
+                -0.07500000000000001,
+            ],
+        ],
+    ),
+];
+
+fn points(p: &[[f64; 2]]) -> TankCurve {
+    TankCurve::Points {
+        times: p.iter().map(|x| x[0]).collect(),
+        values: p.iter().map(|x| x[1]).collect(),
+    }
+}
+
+/// The tank of [`ROCKETPY_TANKS`] named `name`.
+fn rocketpy_tank(name: &str) -> Result<Tank, karman_propulsion::PropulsionError> {
+    let si = PhysicalConstants::SI;
+    let shape = TankShape::Cylindrical {
+        radius: 0.07,
+        height: 0.32,
+        spherical_caps: false,
+    };
+    let geometry = TankGeometry::new(shape, &si).expect("valid geometry");
+    let v = geometry.total_volume();
+    let ullage = points(&[
+        [0.0, 0.1 * v],
+        [1.0, 0.3 * v],
+        [3.0, 0.7 * v],
+        [5.0, 0.9 * v],
+    ]);
+    let level = points(&[[0.0, 0.1], [1.0, 0.05], [3.0, -0.05], [5.0, -0.1]]);
+    let (kind, temperature, pressure) = match name {
+        "ullage_own" => (TankKind::Ullage(ullage), 273.15, 101_325.0),
+        "ullage_Tc_own" => (TankKind::Ullage(ullage), f64::NAN, 1.5e5),
+        "level_own" | "level_n100" => (TankKind::Level(level), 273.15, 101_325.0),
+        _ => (
+            TankKind::Mass {
+                liquid: points(&[[0.0, 3.0], [1.0, 2.5], [3.0, 1.0], [5.0, 0.2]]),
+                gas: points(&[[0.0, 0.001], [1.0, 0.002], [3.0, 0.003], [5.0, 0.004]]),
+            },
+            273.15,
+            101_325.0,
+        ),
+    };
+    let temperature = if temperature.is_nan() {
+        points(&[[0.0, 260.0], [2.0, 280.0], [5.0, 300.0]])
+    } else {
+        TankCurve::Constant(temperature)
+    };
+    let spec = TankSpec {
+        name: name.into(),
+        kind,
+        geometry,
+        flux_time: (0.0, 4.0),
+        liquid: Fluid::constant("l", 960.0),
+        gas: Fluid::constant("g", 1.9277),
+        discretize: if name.ends_with("own") {
+            None
+        } else {
+            Some(100)
+        },
+        temperature,
+        pressure: TankCurve::Constant(pressure),
+    };
+    Tank::new(spec, &si)
+}
+
+#[test]
+fn tanks_on_their_own_points_match_rocketpy() {
+    let times = [0.3, 1.7, 3.2, 4.6, 6.0];
+    for (name, expected) in ROCKETPY_TANKS {
+        let tank = rocketpy_tank(name).expect("valid tank");
+        let tables = [
+            tank.mass(),
+            tank.center_of_mass(),
+            tank.inertia(),
+            tank.liquid_height(),
+        ];
+        for (table, values) in tables.into_iter().zip(expected) {
+            let scale = values.iter().fold(0.0_f64, |a, v| a.max(v.abs()));
+            for (&t, want) in times.iter().zip(values) {
+                let got = table.eval(t);
+                assert!(
+                    (got - want).abs() <= 1e-12 * scale,
+                    "{name} at {t} s: {got} vs RocketPy {want}"
+                );
+            }
+        }
+    }
+}
+
+#[test]
+fn tanks_without_resampling_need_tables_on_one_set_of_times() {
+    let mut spec = rocketpy_tank("mass_own").expect("valid").spec().clone();
+    spec.kind = TankKind::Mass {
+        liquid: points(&[[0.0, 3.0], [5.0, 0.2]]),
+        gas: TankCurve::Constant(0.001),
+    };
+    let err = Tank::new(spec.clone(), &PhysicalConstants::SI).expect_err("constant gas");
+    assert!(err.to_string().contains("gas_mass"), "{err}");
+    spec.kind = TankKind::Mass {
+        liquid: points(&[[0.0, 3.0], [5.0, 0.2]]),
+        gas: points(&[[0.0, 0.001], [4.0, 0.002]]),
+    };
+    let err = Tank::new(spec.clone(), &PhysicalConstants::SI).expect_err("other times");
+    assert!(err.to_string().contains("times of liquid_mass"), "{err}");
+    spec.kind = TankKind::MassFlowRate {
+        initial_liquid_mass: 1.0,
+        initial_gas_mass: 0.0,
+        liquid_in: TankCurve::Constant(0.0),
+        liquid_out: points(&[[0.0, 0.1], [4.0, 0.1]]),
+        gas_in: TankCurve::Constant(0.0),
+        gas_out: TankCurve::Constant(0.0),
+    };
+    let err = Tank::new(spec, &PhysicalConstants::SI).expect_err("mass flow rate");
+    assert!(err.to_string().contains("mass-flow-rate"), "{err}");
 }

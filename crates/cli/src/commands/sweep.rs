@@ -5,6 +5,11 @@
 //! Prints a table of the main summary values per variant and writes into DIR `summary.csv`
 //! (the variant's value and every scalar summary key) and one SVG per chosen trajectory
 //! series with the variants overlaid (`altitude_agl.svg`, `attitude_angle.svg`, ...).
+//!
+//! A multi-stage mission flies each variant as a staged flight: the table shows the top
+//! stage, `summary.csv` adds each lower stage's columns as a Monte Carlo study's
+//! `samples.csv` does (`booster.separation_time_s`, `booster.impact_x_m`, ...), and every
+//! body of every variant is a curve of the charts (`PATH=VALUE (booster)`).
 
 use std::fmt::Write as _;
 use std::io::Write;
@@ -14,7 +19,8 @@ use anyhow::{Context, Result, bail};
 use clap::Args;
 use karman_mission::Override;
 use karman_mission::build::flight::simulate_with_seed;
-use karman_mission::montecarlo::OUTPUTS;
+use karman_mission::build::stages::simulate_staged;
+use karman_mission::montecarlo::{OUTPUTS, stage_outputs, staged_outputs};
 use karman_mission::report::trajectory::{self, SERIES};
 
 use super::MissionArgs;
@@ -106,41 +112,83 @@ pub fn run(args: &SweepArgs) -> Result<()> {
         })
         .collect::<Result<_>>()?;
 
-    let mut csv = format!("{path},{}\n", OUTPUTS.join(","));
+    let missions = values
+        .iter()
+        .map(|value| {
+            let mut overrides = args.mission.overrides.clone();
+            overrides.push(Override::new(path, value)?);
+            Ok(karman_mission::load(&args.mission.mission, &overrides)?)
+        })
+        .collect::<Result<Vec<_>>>()?;
+    // Every variant has the stages of the first (their columns).
+    let staged = missions.first().is_some_and(|m| !m.spec.stages.is_empty());
+    let mut columns: Vec<String> = OUTPUTS.iter().map(|s| (*s).to_owned()).collect();
+    if let Some(first) = missions.first() {
+        columns.extend(stage_outputs(&first.spec));
+    }
+    let mut csv = format!("{path},{}\n", columns.join(","));
     let mut table = format!("{:<24}", path.rsplit('.').next().unwrap_or(path));
     for (_, title) in SHOWN {
         let _ = write!(table, "{title:>18}");
     }
     table.push('\n');
     let mut curves: Vec<Vec<Curve>> = vec![Vec::new(); series.len()];
-    for value in &values {
-        let item = Override::new(path, value)?;
-        let mut overrides = args.mission.overrides.clone();
-        overrides.push(item);
-        let mission = karman_mission::load(&args.mission.mission, &overrides)?;
-        let run = simulate_with_seed(&mission, args.seed)
-            .with_context(|| format!("the variant {path}={value}"))?;
-        let summary = serde_json::to_value(run.summary())?;
-        let number = |key: &str| summary.get(key).and_then(serde_json::Value::as_f64);
-        let cells: Vec<String> = OUTPUTS
+    for (value, mission) in values.iter().zip(&missions) {
+        let variant = || format!("the variant {path}={value}");
+        if mission.spec.stages.is_empty() == staged {
+            bail!("{}: it changes whether the mission has stages", variant());
+        }
+        let label = format!("{path}={value}");
+        let cells: Vec<Option<f64>> = if staged {
+            let run = simulate_staged(mission, args.seed).with_context(variant)?;
+            let (cells, _) = staged_outputs(&run, &mission.spec).map_err(anyhow::Error::msg)?;
+            for (body, info) in run.bodies.iter().enumerate() {
+                let samples = run.samples(body);
+                let track = run.track(body);
+                for (chosen, curve) in series.iter().zip(&mut curves) {
+                    let points = samples
+                        .iter()
+                        .map(|s| (s.t, chosen.value(&track, s)))
+                        .collect();
+                    curve.push((format!("{label} ({})", info.name), points));
+                }
+            }
+            cells
+        } else {
+            let run = simulate_with_seed(mission, args.seed).with_context(variant)?;
+            let summary = serde_json::to_value(run.summary())?;
+            let samples = run.samples();
+            for (chosen, curve) in series.iter().zip(&mut curves) {
+                let points = samples
+                    .iter()
+                    .map(|s| (s.t, chosen.value(&run, s)))
+                    .collect();
+                curve.push((label.clone(), points));
+            }
+            OUTPUTS
+                .iter()
+                .map(|key| summary.get(key).and_then(serde_json::Value::as_f64))
+                .collect()
+        };
+        if cells.len() != columns.len() {
+            bail!(
+                "{}: it changes the stages' names or masses (the columns)",
+                variant()
+            );
+        }
+        let text: Vec<String> = cells
             .iter()
-            .map(|key| number(key).map_or_else(String::new, |v| v.to_string()))
+            .map(|v| v.map_or_else(String::new, |v| v.to_string()))
             .collect();
-        let _ = writeln!(csv, "{},{}", csv_field(value), cells.join(","));
+        let _ = writeln!(csv, "{},{}", csv_field(value), text.join(","));
         let _ = write!(table, "{value:<24}");
         for (key, _) in SHOWN {
-            let cell = number(key).map_or_else(|| "—".to_owned(), |v| format!("{v:.3}"));
+            let at = OUTPUTS.iter().position(|o| *o == key);
+            let number = at.and_then(|i| cells[i]);
+            let cell = number.map_or_else(|| "—".to_owned(), |v| format!("{v:.3}"));
             let _ = write!(table, "{cell:>18}");
         }
         table.push('\n');
-        let samples = run.samples();
-        for (chosen, curve) in series.iter().zip(&mut curves) {
-            let points = samples
-                .iter()
-                .map(|s| (s.t, chosen.value(&run, s)))
-                .collect();
-            curve.push((format!("{path}={value}"), points));
-        }
     }
 
     std::fs::create_dir_all(&args.out)

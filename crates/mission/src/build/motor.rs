@@ -257,10 +257,10 @@ fn build_tank(mission: &Mission, index: usize, spec: &TankSpec) -> Result<Tank, 
         },
     };
     let discretize = match spec.discretize {
-        None | Some(Discretize::Flag(true)) => DEFAULT_DISCRETIZE,
-        Some(Discretize::Nodes(n)) => n as usize,
-        // Validation rejects `false` (no resampling is not modelled).
-        Some(Discretize::Flag(false)) => 0,
+        None | Some(Discretize::Flag(true)) => Some(DEFAULT_DISCRETIZE),
+        Some(Discretize::Nodes(n)) => Some(n as usize),
+        // No resampling: the curves keep their own points (RocketPy's `discretize=None`).
+        Some(Discretize::Flag(false)) => None,
     };
     let constants = PhysicalConstants::SI;
     Tank::new(

@@ -98,8 +98,8 @@ pub fn prepare(mission: &Mission, seed: u64) -> Result<Models, MissionError> {
         return Err(fail(
             mission,
             "stages",
-            "a multi-stage rocket is one vehicle per stack: `karman check` and `karman simulate` \
-             take it (`build::stages`), the other commands do not yet"
+            "a multi-stage rocket is one vehicle per stack: `karman check`, `simulate`, \
+             `montecarlo` and `sweep` take it (`build::stages`), the others do not yet"
                 .to_owned(),
         ));
     }

@@ -7,8 +7,8 @@ use std::sync::Arc;
 
 use karman_airframe::{
     self as airframe, AirBrakes, AirBrakesSpec, Airfoil, AirframeError, CoordinateSystem,
-    DragEstimate, DragGeometry, MotorProperties, NoseKind, Parachute, RailButtons, Rocket,
-    RocketInputs, SurfaceInput, Trigger,
+    DragEstimate, DragGeometry, MotorProperties, NoseKind, Parachute, PropellantPart, RailButtons,
+    Rocket, RocketInputs, SurfaceInput, Trigger,
 };
 use karman_script::Expression;
 
@@ -21,9 +21,23 @@ use crate::{Mission, MissionError};
 
 /// The motor's tables and constants as the airframe needs them
 /// ([`karman_airframe::MotorProperties`]).
+///
+/// A propellant in parts (a liquid motor whose tanks are on different time grids) is handed
+/// over with them ([`MotorProperties::propellant_parts`]), which the rocket sums pointwise as
+/// RocketPy does (physics.md §15.3).
 #[must_use]
 pub fn motor_properties(motor: &Motor) -> MotorProperties {
     let (i11, i33) = motor.propellant_inertia();
+    let propellant_parts = motor
+        .propellant_parts()
+        .iter()
+        .map(|p| PropellantPart {
+            mass: p.mass.clone(),
+            center_of_mass: p.center_of_mass.clone(),
+            moment: p.moment.clone(),
+            i11: p.i11.clone(),
+        })
+        .collect();
     MotorProperties {
         thrust: motor.thrust_table().clone(),
         burn_start: motor.burn_start(),
@@ -34,6 +48,7 @@ pub fn motor_properties(motor: &Motor) -> MotorProperties {
         propellant_center_of_mass: motor.propellant_center_of_mass().clone(),
         propellant_i11: i11.clone(),
         propellant_i33: i33.clone(),
+        propellant_parts,
         dry_mass: motor.dry_mass(),
         center_of_dry_mass: motor.center_of_dry_mass(),
         dry_inertia: motor.dry_inertia(),
@@ -65,6 +80,18 @@ pub fn delayed(
         propellant_center_of_mass: motor.propellant_center_of_mass.shifted(ignition)?,
         propellant_i11: motor.propellant_i11.shifted(ignition)?,
         propellant_i33: motor.propellant_i33.shifted(ignition)?,
+        propellant_parts: motor
+            .propellant_parts
+            .iter()
+            .map(|p| {
+                Ok(PropellantPart {
+                    mass: p.mass.shifted(ignition)?,
+                    center_of_mass: p.center_of_mass.shifted(ignition)?,
+                    moment: p.moment.shifted(ignition)?,
+                    i11: p.i11.shifted(ignition)?,
+                })
+            })
+            .collect::<Result<_, karman_math::MathError>>()?,
         ..motor
     })
 }
