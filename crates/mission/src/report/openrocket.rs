@@ -165,12 +165,13 @@ fn column(ascent: &Value, name: &str) -> Vec<f64> {
         .unwrap_or_default()
 }
 
-/// Imports `design_dir/design.ork` for each stored simulation without extensions, flies it
-/// and compares it with `design_dir/reference.json`.
-///
-/// # Errors
-/// The import's or the flight's error, as text.
-pub fn compare_design(design_dir: &Path) -> Result<Vec<OpenRocketComparison>, String> {
+/// Reads `design_dir/reference.json` and, for each stored simulation that flies no simulation
+/// extension, imports `design_dir/design.ork` for it and hands `compare` the stored record,
+/// the simulation's name and the imported mission's text.
+fn each_imported_simulation<T>(
+    design_dir: &Path,
+    mut compare: impl FnMut(&Value, String, String) -> Result<T, String>,
+) -> Result<Vec<T>, String> {
     let text = std::fs::read_to_string(design_dir.join("reference.json"))
         .map_err(|e| format!("{}: {e}", design_dir.display()))?;
     let reference: Value = serde_json::from_str(&text).map_err(|e| e.to_string())?;
@@ -187,7 +188,19 @@ pub fn compare_design(design_dir: &Path) -> Result<Vec<OpenRocketComparison>, St
             output_dir: Some(design_dir.to_owned()),
         };
         let imported = import(&design, &options).map_err(|e| e.to_string())?;
-        let mission = crate::parse(&imported.mission, &design_dir.join("imported.toml"), &[])
+        out.push(compare(sim, name, imported.mission)?);
+    }
+    Ok(out)
+}
+
+/// Imports `design_dir/design.ork` for each stored simulation without extensions, flies it
+/// and compares it with `design_dir/reference.json`.
+///
+/// # Errors
+/// The import's or the flight's error, as text.
+pub fn compare_design(design_dir: &Path) -> Result<Vec<OpenRocketComparison>, String> {
+    each_imported_simulation(design_dir, |sim, name, imported| {
+        let mission = crate::parse(&imported, &design_dir.join("imported.toml"), &[])
             .map_err(|e| format!("{name}: {e}"))?;
         let run = simulate(&mission).map_err(|e| format!("{name}: {e}"))?;
         let summary = run.summary();
@@ -244,7 +257,7 @@ pub fn compare_design(design_dir: &Path) -> Result<Vec<OpenRocketComparison>, St
             .as_ref()
             .and_then(|d| d.body_length)
             .unwrap_or(f64::NAN);
-        out.push(OpenRocketComparison {
+        Ok(OpenRocketComparison {
             simulation: name,
             apogee: (
                 summary.apogee_agl_m.unwrap_or(f64::NAN),
@@ -266,9 +279,8 @@ pub fn compare_design(design_dir: &Path) -> Result<Vec<OpenRocketComparison>, St
             margin: ((ours_cp - cg) / caliber, at("stability_cal")),
             cp_time,
             cp_alpha,
-        });
-    }
-    Ok(out)
+        })
+    })
 }
 
 /// The multi-stage designs of `fixtures/openrocket` (issue 21), each with the simulations
@@ -425,24 +437,9 @@ impl std::fmt::Display for StagedComparison {
 /// # Errors
 /// The import's or the flight's error, as text.
 pub fn compare_staged_design(design_dir: &Path) -> Result<Vec<StagedComparison>, String> {
-    let text = std::fs::read_to_string(design_dir.join("reference.json"))
-        .map_err(|e| format!("{}: {e}", design_dir.display()))?;
-    let reference: Value = serde_json::from_str(&text).map_err(|e| e.to_string())?;
-    let design = design_dir.join("design.ork");
-    let mut out = Vec::new();
-    for sim in reference["simulations"].as_array().into_iter().flatten() {
-        if sim["extensions"].as_array().is_some_and(|e| !e.is_empty()) {
-            continue;
-        }
-        let name = sim["name"].as_str().unwrap_or("").to_owned();
-        let options = ImportOptions {
-            simulation: Some(name.clone()),
-            motors: Vec::new(),
-            output_dir: Some(design_dir.to_owned()),
-        };
-        let imported = import(&design, &options).map_err(|e| e.to_string())?;
+    each_imported_simulation(design_dir, |sim, name, imported| {
         // The ascent is compared: every body's flight ends at its apogee.
-        let text = imported.mission.replacen(
+        let text = imported.replacen(
             "\n[flight]\n",
             "\n[flight]\nterminate_on_apogee = true\n",
             1,
@@ -517,7 +514,7 @@ pub fn compare_staged_design(design_dir: &Path) -> Result<Vec<StagedComparison>,
             .into_iter()
             .filter(|t| one_body || *t <= apogee_time)
             .collect();
-        out.push(StagedComparison {
+        Ok(StagedComparison {
             simulation: name,
             apogee: (
                 summary.apogee_agl_m.unwrap_or(f64::NAN),
@@ -531,7 +528,6 @@ pub fn compare_staged_design(design_dir: &Path) -> Result<Vec<StagedComparison>,
             reference_separations,
             one_body,
             cd: cd_errors,
-        });
-    }
-    Ok(out)
+        })
+    })
 }
