@@ -238,14 +238,26 @@ impl ScatteredTable {
             self.dimensions,
             "ScatteredTable::eval: wrong point dimension"
         );
-        let half_power = -0.5 * self.power;
+        if self.power.to_bits() == 3.0_f64.to_bits() {
+            // RocketPy's power: `d⁻³ = 1 / (d² · d)`, without a general power.
+            self.weighted(point, |d2| 1.0 / (d2 * d2.sqrt()))
+        } else {
+            let half_power = -0.5 * self.power;
+            self.weighted(point, |d2| d2.powf(half_power))
+        }
+    }
+
+    /// `Σ w(d_i²) y_i / Σ w(d_i²)` over the nodes in their order, or the value of the first
+    /// node at distance zero.
+    #[inline]
+    fn weighted(&self, point: &[f64], weight: impl Fn(f64) -> f64) -> f64 {
         let (mut numerator, mut denominator) = (0.0, 0.0);
         for (node, &value) in self.nodes.chunks_exact(self.dimensions).zip(&self.values) {
             let d2: f64 = node.iter().zip(point).map(|(a, b)| (a - b) * (a - b)).sum();
             if d2 <= 0.0 {
                 return value;
             }
-            let w = d2.powf(half_power);
+            let w = weight(d2);
             numerator += w * value;
             denominator += w;
         }
@@ -305,5 +317,30 @@ mod tests {
         assert!(v > 1.0 && v < 4.0);
         // (0.5, 0.5) is equidistant from the three nodes: the plain mean.
         assert!((t.eval(&[0.5, 0.5]) - 7.0 / 3.0).abs() < 1e-14);
+    }
+
+    #[test]
+    fn shepard_weights_follow_the_power() {
+        let nodes: Vec<f64> = vec![0.0, 0.0, 1.0, 0.0, 0.0, 2.0, 1.5, 1.5];
+        let values = vec![1.0, 2.0, 4.0, -3.0];
+        let point = [0.3, 0.7];
+        // Σ y d⁻ᵖ / Σ d⁻ᵖ with the distances themselves.
+        let idw = |p: f64| {
+            let (mut n, mut d) = (0.0, 0.0);
+            for (node, y) in nodes.chunks_exact(2).zip(&values) {
+                let w = (node[0] - point[0]).hypot(node[1] - point[1]).powf(-p);
+                n += w * y;
+                d += w;
+            }
+            n / d
+        };
+        for p in [3.0, 2.0, 3.5] {
+            let t = ScatteredTable::new(2, nodes.clone(), values.clone(), p).unwrap();
+            let (got, want) = (t.eval(&point), idw(p));
+            assert!(
+                (got - want).abs() < 1e-14 * want.abs(),
+                "p = {p}: {got} {want}"
+            );
+        }
     }
 }
