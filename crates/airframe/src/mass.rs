@@ -161,19 +161,13 @@ impl MassModel {
                         source,
                     })
             };
-            let each = |f: &dyn Fn(f64, f64) -> f64| -> Vec<f64> {
-                masses
-                    .iter()
-                    .zip(&positions)
-                    .map(|(&mp, &zp)| f(mp, zp))
-                    .collect()
-            };
-            let offset = nodal(each(&|mp, zp| model.offset_of(mp, zp)), cpm, "com_to_cdm")?;
-            let center = nodal(
-                each(&|mp, zp| model.center_of_mass_of(mp, zp)),
-                cpm,
-                "center_of_mass",
-            )?;
+            let nodes = || masses.iter().copied().zip(positions.iter().copied());
+            let offsets = nodes().map(|(mp, zp)| model.offset_of(mp, zp)).collect();
+            let offset = nodal(offsets, cpm, "com_to_cdm")?;
+            let centers = nodes()
+                .map(|(mp, zp)| model.center_of_mass_of(mp, zp))
+                .collect();
+            let center = nodal(centers, cpm, "center_of_mass")?;
             let i11 = if same_grid(&m.propellant_i11, &m.propellant_mass) {
                 let i = &m.propellant_i11;
                 let ys = masses
@@ -281,6 +275,18 @@ impl MassModel {
     #[inline]
     pub(crate) fn total_mass(&self, t: f64) -> f64 {
         self.dry_mass + self.propellant_mass(t)
+    }
+
+    /// [`MassModel::total_mass`] with the time located from `cursor` (propellant times;
+    /// updated).
+    #[inline]
+    pub(crate) fn total_mass_near(&self, t: f64, cursor: &mut Cursor) -> f64 {
+        let m = &self.motor;
+        if m.propellant_parts.is_empty() {
+            self.dry_mass + m.propellant_mass.eval_with(t, cursor)
+        } else {
+            self.total_mass(t)
+        }
     }
 
     /// Signed ṁ(t) = −T(t)/v̄_e.

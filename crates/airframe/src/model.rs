@@ -13,12 +13,12 @@ use crate::air_brakes::AIR_BRAKES_CONTROL;
 use crate::{Rocket, Surface, Trigger};
 
 impl SurfaceModel for Surface {
-    #[inline]
+    #[inline(always)]
     fn cp_body(&self) -> [f64; 3] {
         self.cp_body
     }
 
-    #[inline]
+    #[inline(always)]
     fn loads(&self, flow: &LocalFlow) -> Loads {
         let [cn_alpha, forcing, damping] = self.coefficients(flow.mach);
         let area = self.reference_area;
@@ -103,6 +103,11 @@ impl VehicleModel for Rocket {
             inertia: p.inertia,
             inertia_rate: p.inertia_rate,
         }
+    }
+
+    #[inline]
+    fn total_mass(&self, t: f64, cursor: &mut Cursor) -> f64 {
+        self.total_mass_near(t, cursor)
     }
 
     #[inline]

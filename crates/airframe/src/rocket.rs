@@ -353,6 +353,14 @@ impl Rocket {
         self.mass.total_mass(t)
     }
 
+    /// [`Rocket::total_mass`] with the time located from `cursor` (on the propellant tables'
+    /// times; updated): the same value, found faster when successive times are close.
+    #[inline]
+    #[must_use]
+    pub fn total_mass_near(&self, t: f64, cursor: &mut Cursor) -> f64 {
+        self.mass.total_mass_near(t, cursor)
+    }
+
     /// Signed total mass flow rate ṁ(t) = −T(t)/v̄_e (kg/s), physics.md §6.2.
     #[inline]
     #[must_use]

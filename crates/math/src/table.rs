@@ -280,9 +280,15 @@ fn pieces(xs: &[f64], ys: &[f64], interpolation: Interpolation) -> Result<Pieces
             }
         }
     };
+    let finite = |c: &[f64]| c.iter().all(|v| v.is_finite());
     let bad = match &pieces {
-        Pieces::Cubic(coeffs) => coeffs.iter().position(|c| !c.iter().all(|v| v.is_finite())),
-        Pieces::Polynomial(p) => p.coeffs.iter().position(|v| !v.is_finite()).map(|_| 0),
+        // A linear piece is a (finite) sample, its slope and zeros: only the slope can
+        // overflow.
+        Pieces::Cubic(coeffs) if interpolation == Interpolation::Linear => {
+            coeffs.iter().position(|c| !c[1].is_finite())
+        }
+        Pieces::Cubic(coeffs) => coeffs.iter().position(|c| !finite(c)),
+        Pieces::Polynomial(p) => (!finite(&p.coeffs)).then_some(0),
     };
     match bad {
         Some(interval) => Err(MathError::InterpolantNotFinite { interval }),
