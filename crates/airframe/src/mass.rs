@@ -21,31 +21,10 @@
 //! so that it follows the unit of time.
 
 use karman_math::{Cursor, Table1};
+use karman_model::MassSample;
 
 use crate::error::AirframeError;
 use crate::motor::MotorProperties;
-
-/// Every time-dependent mass quantity at one instant ([`crate::Rocket::mass_properties`]),
-/// each equal to the rocket's method of the same name.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct MassProperties {
-    /// Total mass m(t) (kg).
-    pub total_mass: f64,
-    /// Signed mass flow rate ṁ(t) = −T(t)/v̄_e (kg/s).
-    pub mass_flow_rate: f64,
-    /// m̈(t) (kg/s²).
-    pub mass_flow_rate_derivative: f64,
-    /// CM→CDM offset c(t) (m).
-    pub com_to_cdm: f64,
-    /// ċ(t) (m/s).
-    pub com_to_cdm_rate: f64,
-    /// c̈(t) (m/s²).
-    pub com_to_cdm_accel: f64,
-    /// Inertia about the CDM, `(I11, I22, I33, I12, I13, I23)` (kg·m²).
-    pub inertia: [f64; 6],
-    /// İ(t), same layout (kg·m²/s).
-    pub inertia_rate: [f64; 6],
-}
 
 /// Mass properties of rocket + motor as functions of time, allocation-free to evaluate.
 #[derive(Debug, Clone, PartialEq)]
@@ -477,7 +456,7 @@ impl MassModel {
     /// searched once for the mass, the offset and the inertia with their derivatives. The
     /// searches start from `cursors` (thrust times, propellant times; updated).
     #[inline]
-    pub(crate) fn properties_near(&self, t: f64, cursors: &mut [Cursor; 2]) -> MassProperties {
+    pub(crate) fn properties_near(&self, t: f64, cursors: &mut [Cursor; 2]) -> MassSample {
         let m = &self.motor;
         let [on_thrust_cursor, on_grid_cursor] = cursors;
         let on_thrust = m.thrust.locate_with(t, on_thrust_cursor);
@@ -490,7 +469,7 @@ impl MassModel {
                 let i = i11.eval_at(at, t);
                 let i_rate = i11.derivative_at(at, t);
                 let d = &self.dry_inertia;
-                MassProperties {
+                MassSample {
                     total_mass: self.dry_mass + m.propellant_mass.eval_at(at, t),
                     mass_flow_rate,
                     mass_flow_rate_derivative,
@@ -515,7 +494,7 @@ impl MassModel {
                     ],
                 }
             }
-            _ => MassProperties {
+            _ => MassSample {
                 total_mass: self.total_mass(t),
                 mass_flow_rate,
                 mass_flow_rate_derivative,
