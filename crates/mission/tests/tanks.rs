@@ -44,13 +44,14 @@ fn the_liquid_fixture_builds_its_four_tanks() {
     }
     assert!((motor.propellant_initial_mass() - motor.propellant_mass().eval(0.0)).abs() < 1e-15);
     // The mass tank holds no liquid; the level tank's gas density is read from its (T, p)
-    // table at 290 K.
+    // table at 290 K and 101 325 Pa: on the edge between its first two rows, 1.2210 kg/m³.
     assert!(tanks[3].tank.liquid_mass().eval(2.0).abs() < 1e-15);
     let gas = tanks[2].tank.gas_mass().eval(0.0);
     let volume =
         tanks[2].tank.spec().geometry.total_volume() - tanks[2].tank.spec().geometry.volume(0.08);
     let rho = gas / volume;
-    assert!(rho > 1.18 && rho < 1.29, "{rho}");
+    let edge = 1.29 + (290.0 - 273.15) / (300.0 - 273.15) * (1.18 - 1.29);
+    assert!((rho - edge).abs() < 1e-9, "{rho}");
     let run = karman_mission::build::flight::simulate(&mission).expect("flies");
     let summary = karman_mission::report::flight::flight_summary(&run);
     assert!(summary.apogee_agl_m.is_some_and(|a| a > 100.0));
@@ -96,6 +97,36 @@ fn bad_tank_inputs_name_their_key_and_line() {
         panic!("{error:?}");
     };
     assert!(location.is_some(), "{error:?}");
+    // Density tables RocketPy refuses (two rows; rows on one line of the (T, p) plane): model
+    // errors located at the density key.
+    let table = "[[273.15, 101325, 1.29], [300, 101325, 1.18], [290, 200000, 2.40]]";
+    for (bad, reason) in [
+        (
+            "[[273.15, 101325, 1.29], [300, 101325, 1.18]]",
+            "at least 3 point",
+        ),
+        (
+            "[[273.15, 101325, 1.29], [300, 101325, 1.18], [320, 101325, 1.1]]",
+            "on one line",
+        ),
+    ] {
+        let text = liquid_text().replacen(table, bad, 1);
+        let mission = parse(&text, &path, &[]).expect("parses");
+        let error = build_motor(&mission).expect_err("refused");
+        let source = std::error::Error::source(&error).map(ToString::to_string);
+        let message = format!("{error}: {}", source.unwrap_or_default());
+        assert!(
+            message.contains("motor.tanks.2.gas.density") && message.contains(reason),
+            "{message}"
+        );
+        let MissionError::Model { location, .. } = &error else {
+            panic!("{error:?}");
+        };
+        assert!(
+            matches!(location, Some(Location::File { line: 56, .. })),
+            "{error:?}"
+        );
+    }
     // A missing tank list, and a tank list on a solid motor.
     let text = liquid_text();
     let cut = text.find("[[motor.tanks]]").expect("tanks");
