@@ -744,6 +744,7 @@ fn surface_slot<'a>(surface: &'a mut SurfaceSpec, key: &str) -> Option<Slot<'a>>
             "tip_chord" => Float(&mut s.tip_chord),
             "position" => Float(&mut s.position),
             "cant_angle" => Float(&mut s.cant_angle_deg),
+            "angular_position" => Float(&mut s.angular_position_deg),
             "radius" => Float(s.radius.as_mut()?),
             "sweep_angle" => match s.sweep.as_mut()? {
                 Sweep::AngleDeg(angle) => Float(angle),
@@ -761,6 +762,7 @@ fn surface_slot<'a>(surface: &'a mut SurfaceSpec, key: &str) -> Option<Slot<'a>>
             "root_chord" => Float(&mut s.root_chord),
             "position" => Float(&mut s.position),
             "cant_angle" => Float(&mut s.cant_angle_deg),
+            "angular_position" => Float(&mut s.angular_position_deg),
             "radius" => Float(s.radius.as_mut()?),
             _ => return None,
         },
@@ -768,6 +770,7 @@ fn surface_slot<'a>(surface: &'a mut SurfaceSpec, key: &str) -> Option<Slot<'a>>
             "n" => Integer(&mut s.n),
             "position" => Float(&mut s.position),
             "cant_angle" => Float(&mut s.cant_angle_deg),
+            "angular_position" => Float(&mut s.angular_position_deg),
             "radius" => Float(s.radius.as_mut()?),
             _ => return None,
         },

@@ -706,11 +706,14 @@ fn body_text(
                     let name = key(&c.name, used);
                     let count = c.num_or("fincount", 1.0)?;
                     let cant = c.num_or("cant", 0.0)?;
+                    // OpenRocket's fin-set rotation: the first fin's roll position.
+                    let rotation = c.num_or("rotation", 0.0)?;
                     let common = format!(
-                        "n = {}\nposition = {}\ncant_angle = {}\nradius = {}\n",
+                        "n = {}\nposition = {}\ncant_angle = {}\nangular_position = {}\nradius = {}\n",
                         count as u32,
                         n(c.x),
                         n(cant),
+                        n(rotation),
                         n(tube_radius)
                     );
                     let table = format!("{rocket_key}.surfaces.{name}");
