@@ -550,6 +550,17 @@ fn body_text(
         n(motor_length),
         n(0.5 * motor_length)
     );
+    let (cluster_count, cluster_radius) = mount.cluster()?;
+    if cluster_count > 1 {
+        let _ = writeln!(
+            m,
+            "# OpenRocket's {} cluster: {cluster_count} motors lit together, their axes {} m from\n\
+             # the rocket's axis (root mean square).\ncluster_count = {cluster_count}\ncluster_radius = {}",
+            mount.text("clusterconfiguration").unwrap_or(""),
+            (cluster_radius * 1e4).round() / 1e4,
+            n(cluster_radius)
+        );
+    }
     let _ = writeln!(m, "coordinate_system = \"nozzle_to_combustion_chamber\"\n");
 
     let mut t = String::new();

@@ -18,12 +18,14 @@ use crate::report::rocket::AngleStability;
 /// of two, whose normal force OpenRocket takes at the flow's roll angle θ
 /// (`2 C_Nα1 sin²(θ − φ)`, [`karman_airframe::FinAerodynamics::roll_factor`]) where the
 /// flight model averages it to `C_Nα1`: the compared CP is taken at OpenRocket's roll angle
-/// at rod exit ([`rod_exit_roll`]), flow normal to the canards. Clusters and pods
-/// (`clustered_motors`, `pods_airframes_and_winglets`) are refused.
-pub const DESIGNS: [(&str, bool); 6] = [
+/// at rod exit ([`rod_exit_roll`]), flow normal to the canards. `clustered_motors` flies
+/// its four motors as one cluster (`[motor] cluster_count`); pods
+/// (`pods_airframes_and_winglets`) are refused.
+pub const DESIGNS: [(&str, bool); 7] = [
     ("a_simple_model_rocket", true),
     ("base_drag_hack_short_wide", true),
     ("chute_release", true),
+    ("clustered_motors", true),
     ("dual_parachute_deployment", true),
     ("simulation_scripting", true),
     ("tube_fin_rocket", true),
