@@ -563,3 +563,32 @@ pub fn compare_staged_design(design_dir: &Path) -> Result<Vec<StagedComparison>,
         })
     })
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use std::f64::consts::FRAC_PI_2;
+
+    fn conditions(into_wind: bool, rod_deg: [f64; 2], wind: [f64; 2]) -> Value {
+        serde_json::json!({
+            "launch_into_wind": into_wind,
+            "launch_rod_angle_deg": rod_deg[0],
+            "launch_rod_direction_deg": rod_deg[1],
+            "wind": {"average_speed_m_s": wind[0], "direction_rad": wind[1]},
+        })
+    }
+
+    #[test]
+    fn the_rod_exit_roll_angle_follows_openrockets_initial_orientation() {
+        let worst = 0.3;
+        // Into the wind on a vertical rod: the flow comes from the worst roll angle.
+        let into = conditions(true, [0.0, 0.0], [2.0, FRAC_PI_2]);
+        assert!((rod_exit_roll(&into, worst) - worst).abs() < 1e-15);
+        // A vertical rod rolls the rocket by −θ_w whatever its direction: a north wind on a
+        // rod pointing east comes at θ_w + 90° in the body frame.
+        let north = conditions(false, [0.0, 90.0], [2.0, 0.0]);
+        assert!((rod_exit_roll(&north, worst) - (worst + FRAC_PI_2)).abs() < 1e-15);
+        // No wind: OpenRocket's 0.
+        assert!(rod_exit_roll(&conditions(true, [5.0, 0.0], [0.0, 1.0]), worst) == 0.0);
+    }
+}
