@@ -850,6 +850,30 @@ impl Table1 {
         if reversed { -total } else { total }
     }
 
+    /// The table times `k`: `scaled(k)(x) = k · self(x)`. Every interpolant and extrapolation
+    /// here is linear in the samples, so scaling the samples and the coefficients gives the
+    /// interpolant of the scaled samples exactly (a cluster of `k` identical motors).
+    #[must_use]
+    pub fn scaled(&self, k: f64) -> Table1 {
+        let pieces = match &self.pieces {
+            Pieces::Cubic(c) => Pieces::Cubic(c.iter().map(|p| p.map(|a| k * a)).collect()),
+            Pieces::Polynomial(p) => Pieces::Polynomial(Polynomial {
+                center: p.center,
+                half_width: p.half_width,
+                coeffs: p.coeffs.iter().map(|a| k * a).collect(),
+            }),
+        };
+        Table1 {
+            xs: Arc::clone(&self.xs),
+            ys: self.ys.iter().map(|y| k * y).collect(),
+            pieces,
+            guide: self.guide.clone(),
+            increasing: self.increasing,
+            interpolation: self.interpolation,
+            extrapolation: self.extrapolation,
+        }
+    }
+
     /// The table moved by `dx` along its abscissa: `shifted(dx)(x) = self(x − dx)` (a motor
     /// ignited `dx` s late). Piecewise tables keep their coefficients, which are written in
     /// the offset from each sample; a single polynomial is fitted again.
@@ -1171,6 +1195,40 @@ fn polynomial(xs: &[f64], ys: &[f64]) -> Result<Polynomial, MathError> {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn a_scaled_table_is_the_table_of_the_scaled_samples() {
+        let xs = vec![0.0, 0.4, 1.1, 1.5, 2.6];
+        let ys = vec![0.0, 3.0, -1.0, 2.5, 0.5];
+        for interpolation in [
+            Interpolation::Linear,
+            Interpolation::Spline,
+            Interpolation::Akima,
+            Interpolation::Polynomial,
+        ] {
+            for extrapolation in [
+                Extrapolation::Constant,
+                Extrapolation::Natural,
+                Extrapolation::Zero,
+            ] {
+                let table = Table1::new(xs.clone(), ys.clone(), interpolation, extrapolation)
+                    .expect("valid");
+                let scaled_samples = Table1::new(
+                    xs.clone(),
+                    ys.iter().map(|y| 4.0 * y).collect(),
+                    interpolation,
+                    extrapolation,
+                )
+                .expect("valid");
+                let scaled = table.scaled(4.0);
+                for x in [-0.5, 0.0, 0.2, 0.4, 0.9, 1.3, 2.0, 2.6, 3.1] {
+                    let (a, b) = (scaled.eval(x), scaled_samples.eval(x));
+                    assert!((a - b).abs() <= 1e-12 * b.abs().max(1.0), "{x}: {a} vs {b}");
+                    assert!((a - 4.0 * table.eval(x)).abs() <= 1e-12 * a.abs().max(1.0));
+                }
+            }
+        }
+    }
 
     fn close(a: f64, b: f64, tol: f64) -> bool {
         (a - b).abs() <= tol * (1.0 + b.abs())

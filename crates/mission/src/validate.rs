@@ -477,6 +477,17 @@ fn motor(c: &mut Checker<'_, '_>, spec: &MissionSpec) {
     }
     c.non_negative("motor.dry_mass", m.dry_mass);
     c.positive("motor.nozzle_radius", m.nozzle_radius);
+    if let Some(n) = m.cluster_count {
+        c.range(
+            "motor.cluster_count",
+            f64::from(n),
+            n >= 1,
+            "needs at least 1 motor",
+        );
+    }
+    if let Some(r) = m.cluster_radius {
+        c.non_negative("motor.cluster_radius", r);
+    }
     if let Some(p) = m.reference_pressure {
         c.positive("motor.reference_pressure", p);
     }
