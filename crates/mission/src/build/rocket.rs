@@ -22,9 +22,9 @@ use crate::{Mission, MissionError};
 /// The motor's tables and constants as the airframe needs them
 /// ([`karman_airframe::MotorProperties`]).
 ///
-/// A propellant in parts (a liquid motor whose tanks are on different time grids) is handed
-/// over with them ([`MotorProperties::propellant_parts`]), which the rocket sums pointwise as
-/// RocketPy does (physics.md §15.3).
+/// A propellant in parts (a liquid motor whose tanks are on different time grids, a hybrid
+/// motor's grain and tanks) is handed over with them ([`MotorProperties::propellant_parts`]),
+/// which the rocket sums pointwise as RocketPy does (physics.md §15.3–15.4).
 #[must_use]
 pub fn motor_properties(motor: &Motor) -> MotorProperties {
     let (i11, i33) = motor.propellant_inertia();
