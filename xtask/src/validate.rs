@@ -485,7 +485,8 @@ fn openrocket_report(root: &Path) -> Result<(String, Vec<String>)> {
     };
     let mut s = String::from(
         "\n## OpenRocket designs imported and flown (fixtures/openrocket)\n\n\
-         karman / OpenRocket; CP and margin at rod exit, at the angle of attack OpenRocket stored there.\n\n```\n",
+         karman / OpenRocket; CP and margin at rod exit, at the angle of attack OpenRocket stored \
+         there and its roll angle of the flow.\n\n```\n",
     );
     let mut failures = Vec::new();
     for (design, cp_holds) in DESIGNS {

@@ -40,7 +40,7 @@
 //! };
 //! let fins = TrapezoidalFinsSpec {
 //!     n: 3, root_chord: 0.1, tip_chord: 0.05, span: 0.06, sweep: Sweep::Default,
-//!     cant_angle_deg: 0.0, radius: None, airfoil: None,
+//!     cant_angle_deg: 0.0, angular_position_deg: 0.0, radius: None, airfoil: None,
 //! };
 //! let nose = NoseConeSpec { length: 0.25, kind: NoseKind::Ogive, base_radius: None, bluffness: 0.0 };
 //! let rocket = Rocket::new(
@@ -85,7 +85,6 @@ pub use drag::{
     FinSetDrag, FlowReference, LaunchLug, Profile, RailButtonDrag, TubeFinSetDrag,
 };
 pub use error::AirframeError;
-pub use mass::MassProperties;
 pub use motor::{MotorProperties, PropellantPart};
 pub use recovery::{
     DEFAULT_CANOPY_DRAG_COEFFICIENT, DEFAULT_POROSITY, DEFAULT_SAMPLING_RATE, Parachute,

@@ -21,31 +21,10 @@
 //! so that it follows the unit of time.
 
 use karman_math::{Cursor, Table1};
+use karman_model::MassSample;
 
 use crate::error::AirframeError;
 use crate::motor::MotorProperties;
-
-/// Every time-dependent mass quantity at one instant ([`crate::Rocket::mass_properties`]),
-/// each equal to the rocket's method of the same name.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct MassProperties {
-    /// Total mass m(t) (kg).
-    pub total_mass: f64,
-    /// Signed mass flow rate ṁ(t) = −T(t)/v̄_e (kg/s).
-    pub mass_flow_rate: f64,
-    /// m̈(t) (kg/s²).
-    pub mass_flow_rate_derivative: f64,
-    /// CM→CDM offset c(t) (m).
-    pub com_to_cdm: f64,
-    /// ċ(t) (m/s).
-    pub com_to_cdm_rate: f64,
-    /// c̈(t) (m/s²).
-    pub com_to_cdm_accel: f64,
-    /// Inertia about the CDM, `(I11, I22, I33, I12, I13, I23)` (kg·m²).
-    pub inertia: [f64; 6],
-    /// İ(t), same layout (kg·m²/s).
-    pub inertia_rate: [f64; 6],
-}
 
 /// Mass properties of rocket + motor as functions of time, allocation-free to evaluate.
 #[derive(Debug, Clone, PartialEq)]
@@ -161,19 +140,13 @@ impl MassModel {
                         source,
                     })
             };
-            let each = |f: &dyn Fn(f64, f64) -> f64| -> Vec<f64> {
-                masses
-                    .iter()
-                    .zip(&positions)
-                    .map(|(&mp, &zp)| f(mp, zp))
-                    .collect()
-            };
-            let offset = nodal(each(&|mp, zp| model.offset_of(mp, zp)), cpm, "com_to_cdm")?;
-            let center = nodal(
-                each(&|mp, zp| model.center_of_mass_of(mp, zp)),
-                cpm,
-                "center_of_mass",
-            )?;
+            let nodes = || masses.iter().copied().zip(positions.iter().copied());
+            let offsets = nodes().map(|(mp, zp)| model.offset_of(mp, zp)).collect();
+            let offset = nodal(offsets, cpm, "com_to_cdm")?;
+            let centers = nodes()
+                .map(|(mp, zp)| model.center_of_mass_of(mp, zp))
+                .collect();
+            let center = nodal(centers, cpm, "center_of_mass")?;
             let i11 = if same_grid(&m.propellant_i11, &m.propellant_mass) {
                 let i = &m.propellant_i11;
                 let ys = masses
@@ -281,6 +254,18 @@ impl MassModel {
     #[inline]
     pub(crate) fn total_mass(&self, t: f64) -> f64 {
         self.dry_mass + self.propellant_mass(t)
+    }
+
+    /// [`MassModel::total_mass`] with the time located from `cursor` (propellant times;
+    /// updated).
+    #[inline]
+    pub(crate) fn total_mass_near(&self, t: f64, cursor: &mut Cursor) -> f64 {
+        let m = &self.motor;
+        if m.propellant_parts.is_empty() {
+            self.dry_mass + m.propellant_mass.eval_with(t, cursor)
+        } else {
+            self.total_mass(t)
+        }
     }
 
     /// Signed ṁ(t) = −T(t)/v̄_e.
@@ -408,18 +393,53 @@ impl MassModel {
 
     /// c̈(t), RocketPy's `differentiate(t, order=2)` of c: the table's second derivative
     /// (0 for a linear table), or a central difference of the formula with the step
-    /// `difference_step` (RocketPy's 1e-6 s).
+    /// `difference_step` (RocketPy's 1e-6 s) — for a propellant in parts, the exact second
+    /// derivative of the pointwise formula ([`MassModel::parts_offset_accel`]), which that
+    /// difference equals away from the parts' nodes.
     #[inline]
     pub(crate) fn com_to_cdm_accel(&self, t: f64) -> f64 {
         let h = self.difference_step;
         match &self.nodal_offset {
             Some(table) => table.second_derivative(t),
+            None if !self.motor.propellant_parts.is_empty() => self.parts_offset_accel(t),
             None => {
                 (self.offset_pointwise(t + h) - 2.0 * self.offset_pointwise(t)
                     + self.offset_pointwise(t - h))
                     / (h * h)
             }
         }
+    }
+
+    /// c̈ of a propellant in parts, differentiating `c = −σ N/(m_d + m_p)` with
+    /// `N = (z_motor − z_cdm) m_p + s Σ (m_i z_i)` (σ the coordinate-system sign, `s` the
+    /// motor's orientation, `z_motor` its position; each table's own slopes, right-hand at a
+    /// node): `c̈ = −σ [N''/D − (2 N' ṁ_p + N m̈_p)/D² + 2 N ṁ_p²/D³]`, `D = m_d + m_p`.
+    ///
+    /// RocketPy takes a central difference of step 1e-6 s, which this equals except within
+    /// that step of a node. There the difference straddles a kink of the linear tables and
+    /// returns a spike of the jump in slope over the step; RocketPy's own grids (its grain's
+    /// solver output times) rarely meet its integrator's evaluation times, whereas a hybrid's
+    /// grain grid here holds the thrust nodes, where the integrator ends its steps.
+    fn parts_offset_accel(&self, t: f64) -> f64 {
+        let lever = self.motor_position - self.cdm;
+        let (mut n, mut n1, mut n2) = (0.0, 0.0, 0.0);
+        let (mut mp, mut mp1, mut mp2) = (0.0, 0.0, 0.0);
+        for p in &self.motor.propellant_parts {
+            let (m, m1, m2) = (
+                p.mass.eval(t),
+                p.mass.derivative(t),
+                p.mass.second_derivative(t),
+            );
+            mp += m;
+            mp1 += m1;
+            mp2 += m2;
+            n += lever * m + self.s * p.moment.eval(t);
+            n1 += lever * m1 + self.s * p.moment.derivative(t);
+            n2 += lever * m2 + self.s * p.moment.second_derivative(t);
+        }
+        let d = self.dry_mass + mp;
+        -self.csys
+            * (n2 / d - (2.0 * n1 * mp1 + n * mp2) / (d * d) + 2.0 * n * mp1 * mp1 / (d * d * d))
     }
 
     /// Centre of mass z_CM(t), user coordinates.
@@ -471,7 +491,7 @@ impl MassModel {
     /// searched once for the mass, the offset and the inertia with their derivatives. The
     /// searches start from `cursors` (thrust times, propellant times; updated).
     #[inline]
-    pub(crate) fn properties_near(&self, t: f64, cursors: &mut [Cursor; 2]) -> MassProperties {
+    pub(crate) fn properties_near(&self, t: f64, cursors: &mut [Cursor; 2]) -> MassSample {
         let m = &self.motor;
         let [on_thrust_cursor, on_grid_cursor] = cursors;
         let on_thrust = m.thrust.locate_with(t, on_thrust_cursor);
@@ -484,7 +504,7 @@ impl MassModel {
                 let i = i11.eval_at(at, t);
                 let i_rate = i11.derivative_at(at, t);
                 let d = &self.dry_inertia;
-                MassProperties {
+                MassSample {
                     total_mass: self.dry_mass + m.propellant_mass.eval_at(at, t),
                     mass_flow_rate,
                     mass_flow_rate_derivative,
@@ -509,7 +529,7 @@ impl MassModel {
                     ],
                 }
             }
-            _ => MassProperties {
+            _ => MassSample {
                 total_mass: self.total_mass(t),
                 mass_flow_rate,
                 mass_flow_rate_derivative,

@@ -9,9 +9,9 @@ use karman_math::Table1;
 
 use crate::error::{AirframeError, finite, non_negative, positive};
 
-/// A part of a motor's propellant on a time grid of its own (a tank of a liquid motor), as
-/// [`MotorProperties::propellant_parts`] sums them. It has no axial inertia (RocketPy's
-/// tanks have none).
+/// A part of a motor's propellant on a time grid of its own (a tank of a liquid motor, the
+/// grain or the tanks of a hybrid), as [`MotorProperties::propellant_parts`] sums them. Its
+/// axial inertia is in the motor's propellant I33 table.
 #[derive(Debug, Clone, PartialEq)]
 pub struct PropellantPart {
     /// Mass m_i(t) (kg).
@@ -54,9 +54,10 @@ pub struct MotorProperties {
     /// Propellant I33 about the propellant centre of mass (kg·m²).
     pub propellant_i33: Table1,
     /// The propellant as parts on time grids of their own, summed pointwise (a liquid motor
-    /// whose tanks are on different time grids, for which RocketPy evaluates the motor's sums
-    /// pointwise, physics.md §15.3); the propellant tables above then only tabulate the sums
-    /// (for reports) and the I33. Empty for a motor whose propellant is those tables.
+    /// whose tanks are on different time grids, a hybrid motor's grain and tanks: RocketPy
+    /// evaluates those motors' sums pointwise, physics.md §15.3–15.4); the propellant tables
+    /// above then only tabulate the sums (for reports) and the I33. Empty for a motor whose
+    /// propellant is those tables.
     pub propellant_parts: Vec<PropellantPart>,
     /// Motor dry mass (kg).
     pub dry_mass: f64,

@@ -187,6 +187,7 @@ pub fn calisto_inputs(dir: &std::path::Path, airfoil: Option<Airfoil>) -> Rocket
                     span: 0.11,
                     sweep: Sweep::Default,
                     cant_angle_deg: 0.5,
+                    angular_position_deg: 0.0,
                     radius: None,
                     airfoil,
                 }),

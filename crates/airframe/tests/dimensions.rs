@@ -158,6 +158,7 @@ fn inputs(u: &Units, coordinate_system: CoordinateSystem) -> RocketInputs {
                     span: l(0.11),
                     sweep: Sweep::Length(l(0.03)),
                     cant_angle_deg: 0.5,
+                    angular_position_deg: 0.0,
                     radius: None,
                     airfoil: Some(airfoil.clone()),
                 }),
@@ -170,6 +171,7 @@ fn inputs(u: &Units, coordinate_system: CoordinateSystem) -> RocketInputs {
                     root_chord: l(0.08),
                     span: l(0.05),
                     cant_angle_deg: -0.3,
+                    angular_position_deg: 0.0,
                     radius: Some(l(0.0635)),
                     airfoil: None,
                 }),
@@ -183,6 +185,7 @@ fn inputs(u: &Units, coordinate_system: CoordinateSystem) -> RocketInputs {
                         .map(|[x, y]| [l(x), l(y)])
                         .to_vec(),
                     cant_angle_deg: 0.2,
+                    angular_position_deg: 0.0,
                     radius: None,
                     airfoil: None,
                 }),

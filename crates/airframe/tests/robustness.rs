@@ -33,6 +33,7 @@ fn fins(position: f64, span: f64, tip: f64) -> SurfaceInput {
             span,
             sweep: Sweep::Default,
             cant_angle_deg: 0.0,
+            angular_position_deg: 0.0,
             radius: None,
             airfoil: None,
         }),
@@ -185,6 +186,7 @@ fn impossible_geometry_is_an_error() {
             root_chord: 0.0,
             span: 0.05,
             cant_angle_deg: 0.0,
+            angular_position_deg: 0.0,
             radius: None,
             airfoil: None,
         }),
@@ -197,6 +199,7 @@ fn impossible_geometry_is_an_error() {
             n: 3,
             shape_points: vec![[0.0, 0.0], [0.1, 0.0]],
             cant_angle_deg: 0.0,
+            angular_position_deg: 0.0,
             radius: None,
             airfoil: None,
         }),
@@ -261,7 +264,7 @@ proptest! {
             position,
             spec: SurfaceSpec::TrapezoidalFins(TrapezoidalFinsSpec {
                 n, root_chord: root, tip_chord: tip, span,
-                sweep: Sweep::AngleDeg(sweep), cant_angle_deg: cant,
+                sweep: Sweep::AngleDeg(sweep), cant_angle_deg: cant, angular_position_deg: 0.0,
                 radius: Some(radius), airfoil: None,
             }),
         };
@@ -281,7 +284,7 @@ proptest! {
             name: "fins".to_owned(),
             position: 0.2,
             spec: SurfaceSpec::FreeFormFins(FreeFormFinsSpec {
-                n: 4, shape_points: shape, cant_angle_deg: 1.0, radius: None, airfoil: None,
+                n: 4, shape_points: shape, cant_angle_deg: 1.0, angular_position_deg: 0.0, radius: None, airfoil: None,
             }),
         };
         if let Ok(r) = Rocket::new(inputs(vec![nose(1.0), f]), small_motor()) {

@@ -1,6 +1,7 @@
 //! `karman import` of a multi-stage OpenRocket design: the written mission reads as a
 //! commented `[[stages]]` mission, `karman check` accepts it and `karman simulate` flies both
-//! bodies.
+//! bodies; of a design with a pair of canards: `karman inspect` gives OpenRocket's CP and
+//! margin at rail exit.
 
 use std::path::{Path, PathBuf};
 
@@ -74,4 +75,37 @@ fn a_two_stage_design_imports_checks_and_flies() {
     let separation = json["separations"][0]["time_s"].as_f64().expect("time");
     // OpenRocket separates the booster at its burn-out, 1.515 s.
     assert!((separation - 1.515).abs() < 0.03, "{separation}");
+}
+
+#[test]
+fn inspect_reports_openrocket_stability_at_rail_exit() {
+    // `simulation_scripting`'s two canards sit at 90° and 270°: OpenRocket rolls the rocket
+    // so that the wind comes normal to them (its least stable roll angle, 0°), and its CP
+    // at rod exit (1.760 m, margin 0.876 cal at α 7.7°) counts them at twice the average.
+    let dir = Path::new(env!("CARGO_TARGET_TMPDIR")).join("karman-cli/import");
+    std::fs::create_dir_all(&dir).expect("scratch folder");
+    let mission = dir.join("simulation_scripting.toml");
+    let ork = design("simulation_scripting");
+    let output = karman(&[
+        "import",
+        ork.to_str().expect("utf-8"),
+        "--simulation",
+        "No controlling",
+        "-o",
+        mission.to_str().expect("utf-8"),
+    ]);
+    assert!(output.status.success(), "{}", stderr(&output));
+    let output = karman(&["inspect", mission.to_str().expect("utf-8"), "--json"]);
+    assert!(output.status.success(), "{}", stderr(&output));
+    let json: serde_json::Value = serde_json::from_slice(&output.stdout).expect("json");
+    let stability = &json["stability_at_rail_exit"];
+    let get = |key: &str| stability[key].as_f64().expect(key);
+    assert!(get("roll_rad").abs() < 1e-12, "{stability}");
+    // Within 1 % of the body length (2.705 m) and 0.1 cal, the comparison's tolerances.
+    assert!((get("cp_m") - 1.760).abs() < 0.01 * 2.705, "{stability}");
+    assert!((get("margin_cal") - 0.876).abs() < 0.1, "{stability}");
+    assert!(get("alpha_rad").to_degrees() > 5.0, "{stability}");
+    let output = karman(&["inspect", mission.to_str().expect("utf-8")]);
+    let text = String::from_utf8_lossy(&output.stdout);
+    assert!(text.contains("At rail exit: CP 1.76"), "{text}");
 }

@@ -105,6 +105,17 @@ pub enum MathError {
         /// What is wrong with it.
         reason: &'static str,
     },
+    /// A point of a scattered table repeats an earlier one.
+    #[error("point {index} repeats point {first}")]
+    RepeatedPoint {
+        /// Zero-based index of the repeat.
+        index: usize,
+        /// Zero-based index of the point it repeats.
+        first: usize,
+    },
+    /// The points of a scattered table of two variables all lie on one line.
+    #[error("the points all lie on one line")]
+    Collinear,
     /// The number of values does not match the grid or the point dimension.
     #[error("expected {expected} values, got {got}")]
     WrongSize {

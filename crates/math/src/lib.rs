@@ -20,11 +20,14 @@
 //! - [`quadrature`]: adaptive Gauss–Kronrod (21-point) quadrature, QUADPACK style.
 //! - [`RegularGrid`] and [`ScatteredTable`] (module `grid`): functions of several variables
 //!   (multilinear on a grid; inverse-distance weighting on scattered points).
+//! - [`TriangulatedTable`] (module `triangulated`): scattered data of two variables, linear on
+//!   the Delaunay triangulation and a thin-plate spline outside the hull (RocketPy's linear
+//!   two-variable `Function`, used for fluid densities).
 //! - [`geodesy`]: latitude/longitude of an east/north offset (great-circle destination).
 //! - [`csv`]: numeric columns and `[x, y]` curves from text files, with errors that name the
 //!   file, line, column and text ([`CsvError`]).
 //!
-//! Linear algebra (the Vandermonde solve of polynomial interpolation) uses `nalgebra`'s LU
+//! Linear algebra (the Vandermonde solve of polynomial interpolation, the thin-plate spline) uses `nalgebra`'s LU
 //! decomposition with partial pivoting. All quantities are SI `f64`.
 //!
 //! ```
@@ -59,6 +62,7 @@ pub mod geodesy;
 mod grid;
 pub mod quadrature;
 mod table;
+mod triangulated;
 
 pub use constants::{PhysicalConstants, Units};
 pub use csv::{CurveRows, read_columns, read_curve, read_data_file, read_rows};
@@ -69,3 +73,4 @@ pub use quadrature::{Quadrature, QuadratureOptions, integrate};
 pub use table::{
     Cursor, Extrapolation, Interpolation, Location, Piece, PointOrder, Table1, linspace,
 };
+pub use triangulated::TriangulatedTable;

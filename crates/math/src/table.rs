@@ -268,8 +268,13 @@ pub struct Table1 {
 /// The interpolant of validated, strictly increasing samples; finite samples can still give
 /// coefficients that overflow (a spline through samples 1e-222 apart), which is an error.
 fn pieces(xs: &[f64], ys: &[f64], interpolation: Interpolation) -> Result<Pieces, MathError> {
+    let mut finite_slopes = true;
     let pieces = match interpolation {
-        Interpolation::Linear => Pieces::Cubic(linear_coeffs(xs, ys)),
+        Interpolation::Linear => {
+            let (coeffs, finite) = linear_coeffs_checked(xs, ys);
+            finite_slopes = finite;
+            Pieces::Cubic(coeffs)
+        }
         Interpolation::Spline => Pieces::Cubic(natural_spline_coeffs(xs, ys)),
         Interpolation::Akima => Pieces::Cubic(hermite_coeffs(xs, ys, &akima_slopes(xs, ys))),
         Interpolation::Polynomial => {
@@ -280,9 +285,15 @@ fn pieces(xs: &[f64], ys: &[f64], interpolation: Interpolation) -> Result<Pieces
             }
         }
     };
+    let finite = |c: &[f64]| c.iter().all(|v| v.is_finite());
     let bad = match &pieces {
-        Pieces::Cubic(coeffs) => coeffs.iter().position(|c| !c.iter().all(|v| v.is_finite())),
-        Pieces::Polynomial(p) => p.coeffs.iter().position(|v| !v.is_finite()).map(|_| 0),
+        // Linear pieces: only a slope can overflow, and that was noted as they were made.
+        Pieces::Cubic(_) if interpolation == Interpolation::Linear && finite_slopes => None,
+        Pieces::Cubic(coeffs) if interpolation == Interpolation::Linear => {
+            coeffs.iter().position(|c| !c[1].is_finite())
+        }
+        Pieces::Cubic(coeffs) => coeffs.iter().position(|c| !finite(c)),
+        Pieces::Polynomial(p) => (!finite(&p.coeffs)).then_some(0),
     };
     match bad {
         Some(interval) => Err(MathError::InterpolantNotFinite { interval }),
@@ -850,6 +861,30 @@ impl Table1 {
         if reversed { -total } else { total }
     }
 
+    /// The table times `k`: `scaled(k)(x) = k · self(x)`. Every interpolant and extrapolation
+    /// here is linear in the samples, so scaling the samples and the coefficients gives the
+    /// interpolant of the scaled samples exactly (a cluster of `k` identical motors).
+    #[must_use]
+    pub fn scaled(&self, k: f64) -> Table1 {
+        let pieces = match &self.pieces {
+            Pieces::Cubic(c) => Pieces::Cubic(c.iter().map(|p| p.map(|a| k * a)).collect()),
+            Pieces::Polynomial(p) => Pieces::Polynomial(Polynomial {
+                center: p.center,
+                half_width: p.half_width,
+                coeffs: p.coeffs.iter().map(|a| k * a).collect(),
+            }),
+        };
+        Table1 {
+            xs: Arc::clone(&self.xs),
+            ys: self.ys.iter().map(|y| k * y).collect(),
+            pieces,
+            guide: self.guide.clone(),
+            increasing: self.increasing,
+            interpolation: self.interpolation,
+            extrapolation: self.extrapolation,
+        }
+    }
+
     /// The table moved by `dx` along its abscissa: `shifted(dx)(x) = self(x − dx)` (a motor
     /// ignited `dx` s late). Piecewise tables keep their coefficients, which are written in
     /// the offset from each sample; a single polynomial is fitted again.
@@ -1028,21 +1063,32 @@ pub fn linspace(a: f64, b: f64, n: usize) -> Vec<f64> {
 /// its left value, except the last interval, whose value is the last sample so that natural
 /// extrapolation to the right continues from it.
 fn linear_coeffs(xs: &[f64], ys: &[f64]) -> Arc<[[f64; 4]]> {
+    linear_coeffs_checked(xs, ys).0
+}
+
+/// [`linear_coeffs`] and whether every slope is finite (finite samples can still give a slope
+/// that overflows; the other coefficients are samples and zeros).
+fn linear_coeffs_checked(xs: &[f64], ys: &[f64]) -> (Arc<[[f64; 4]]>, bool) {
     let last = xs.len().saturating_sub(2);
-    xs.windows(2)
+    let mut finite = true;
+    let coeffs = xs
+        .windows(2)
         .zip(ys.windows(2))
         .enumerate()
         .map(|(i, (x, y))| {
             let h = x[1] - x[0];
             if h > 0.0 {
-                [y[0], (y[1] - y[0]) / h, 0.0, 0.0]
+                let slope = (y[1] - y[0]) / h;
+                finite &= slope.is_finite();
+                [y[0], slope, 0.0, 0.0]
             } else if i == last {
                 [y[1], 0.0, 0.0, 0.0]
             } else {
                 [y[0], 0.0, 0.0, 0.0]
             }
         })
-        .collect()
+        .collect();
+    (coeffs, finite)
 }
 
 /// Natural cubic spline: solve for the second derivatives `M_i` (M_0 = M_{n-1} = 0).
@@ -1171,6 +1217,40 @@ fn polynomial(xs: &[f64], ys: &[f64]) -> Result<Polynomial, MathError> {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn a_scaled_table_is_the_table_of_the_scaled_samples() {
+        let xs = vec![0.0, 0.4, 1.1, 1.5, 2.6];
+        let ys = vec![0.0, 3.0, -1.0, 2.5, 0.5];
+        for interpolation in [
+            Interpolation::Linear,
+            Interpolation::Spline,
+            Interpolation::Akima,
+            Interpolation::Polynomial,
+        ] {
+            for extrapolation in [
+                Extrapolation::Constant,
+                Extrapolation::Natural,
+                Extrapolation::Zero,
+            ] {
+                let table = Table1::new(xs.clone(), ys.clone(), interpolation, extrapolation)
+                    .expect("valid");
+                let scaled_samples = Table1::new(
+                    xs.clone(),
+                    ys.iter().map(|y| 4.0 * y).collect(),
+                    interpolation,
+                    extrapolation,
+                )
+                .expect("valid");
+                let scaled = table.scaled(4.0);
+                for x in [-0.5, 0.0, 0.2, 0.4, 0.9, 1.3, 2.0, 2.6, 3.1] {
+                    let (a, b) = (scaled.eval(x), scaled_samples.eval(x));
+                    assert!((a - b).abs() <= 1e-12 * b.abs().max(1.0), "{x}: {a} vs {b}");
+                    assert!((a - 4.0 * table.eval(x)).abs() <= 1e-12 * a.abs().max(1.0));
+                }
+            }
+        }
+    }
 
     fn close(a: f64, b: f64, tol: f64) -> bool {
         (a - b).abs() <= tol * (1.0 + b.abs())

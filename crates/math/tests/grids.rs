@@ -1,6 +1,7 @@
-//! N-dimensional tables: node reproduction, multilinear exactness, clamping, Shepard bounds.
+//! N-dimensional tables: node reproduction, multilinear exactness, clamping, Shepard bounds;
+//! triangulated tables: node reproduction, bounds inside the hull, planes everywhere.
 
-use karman_math::{RegularGrid, ScatteredTable};
+use karman_math::{MathError, RegularGrid, ScatteredTable, TriangulatedTable};
 use proptest::prelude::*;
 
 /// A strictly increasing axis of 1–6 points.
@@ -68,5 +69,41 @@ proptest! {
         let (lo, hi) = values.iter().fold((f64::INFINITY, f64::NEG_INFINITY), |(l, h), v| (l.min(*v), h.max(*v)));
         let q = t.eval(&query);
         prop_assert!(q >= lo - 1e-12 && q <= hi + 1e-12, "{q} outside [{lo}, {hi}]");
+    }
+
+    #[test]
+    fn triangulated_tables_are_exact_at_nodes_bounded_inside_and_exact_for_planes(
+        nodes in prop::collection::vec((-10.0..10.0f64, -10.0..10.0f64), 3..25),
+        values in prop::collection::vec(-5.0..5.0f64, 25),
+        u in 0.0..1.0f64,
+        v in 0.0..1.0f64,
+        c in prop::collection::vec(-3.0..3.0f64, 3),
+        far in (-30.0..30.0f64, -30.0..30.0f64),
+    ) {
+        // Grid-snapped coordinates also make repeated, collinear and cocircular points.
+        let points: Vec<[f64; 2]> = nodes.iter().map(|&(x, y)| [x.round(), y.round()]).collect();
+        let values = &values[..points.len()];
+        let table = match TriangulatedTable::new(points.clone(), values.to_vec()) {
+            Ok(t) => t,
+            Err(MathError::RepeatedPoint { .. } | MathError::Collinear) => return Ok(()),
+            Err(e) => return Err(TestCaseError::fail(format!("{e}"))),
+        };
+        for (p, v) in points.iter().zip(values) {
+            prop_assert!((table.eval(p[0], p[1]) - v).abs() <= 1e-12, "node {p:?}");
+        }
+        // A point inside the triangle of three nodes is inside the hull: a convex combination.
+        let [a, b, d] = [points[0], points[1], points[2]];
+        let (s, t) = if u + v > 1.0 { (1.0 - u, 1.0 - v) } else { (u, v) };
+        let q = [a[0] + s * (b[0] - a[0]) + t * (d[0] - a[0]), a[1] + s * (b[1] - a[1]) + t * (d[1] - a[1])];
+        let (lo, hi) = values.iter().fold((f64::INFINITY, f64::NEG_INFINITY), |(l, h), v| (l.min(*v), h.max(*v)));
+        let inside = table.eval(q[0], q[1]);
+        prop_assert!(inside >= lo - 1e-9 && inside <= hi + 1e-9, "{inside} outside [{lo}, {hi}]");
+        // A plane is reproduced inside the hull and, by the spline's linear part, outside.
+        let plane = |p: [f64; 2]| c[0] + c[1] * p[0] + c[2] * p[1];
+        let flat = TriangulatedTable::new(points.clone(), points.iter().map(|&p| plane(p)).collect()).unwrap();
+        for p in [q, [far.0, far.1]] {
+            let got = flat.eval(p[0], p[1]);
+            prop_assert!((got - plane(p)).abs() <= 1e-7 * (1.0 + plane(p).abs()), "{p:?}: {got}");
+        }
     }
 }

@@ -561,6 +561,7 @@ fn motor_slot<'a>(m: &'a mut MotorSpec, key: &str) -> Option<Slot<'a>> {
         "nozzle_position" => Float(&mut m.nozzle_position),
         "nozzle_radius" => Float(&mut m.nozzle_radius),
         "grain_number" => Integer(m.grain_number.as_mut()?),
+        "cluster_count" => Integer(m.cluster_count.as_mut()?),
         other => Float(
             match other {
                 "center_of_dry_mass_position" => &mut m.center_of_dry_mass_position,
@@ -576,6 +577,7 @@ fn motor_slot<'a>(m: &'a mut MotorSpec, key: &str) -> Option<Slot<'a>> {
                 "chamber_radius" => &mut m.chamber_radius,
                 "chamber_height" => &mut m.chamber_height,
                 "chamber_position" => &mut m.chamber_position,
+                "cluster_radius" => &mut m.cluster_radius,
                 _ => return None,
             }
             .as_mut()?,
@@ -744,6 +746,7 @@ fn surface_slot<'a>(surface: &'a mut SurfaceSpec, key: &str) -> Option<Slot<'a>>
             "tip_chord" => Float(&mut s.tip_chord),
             "position" => Float(&mut s.position),
             "cant_angle" => Float(&mut s.cant_angle_deg),
+            "angular_position" => Float(&mut s.angular_position_deg),
             "radius" => Float(s.radius.as_mut()?),
             "sweep_angle" => match s.sweep.as_mut()? {
                 Sweep::AngleDeg(angle) => Float(angle),
@@ -761,6 +764,7 @@ fn surface_slot<'a>(surface: &'a mut SurfaceSpec, key: &str) -> Option<Slot<'a>>
             "root_chord" => Float(&mut s.root_chord),
             "position" => Float(&mut s.position),
             "cant_angle" => Float(&mut s.cant_angle_deg),
+            "angular_position" => Float(&mut s.angular_position_deg),
             "radius" => Float(s.radius.as_mut()?),
             _ => return None,
         },
@@ -768,6 +772,7 @@ fn surface_slot<'a>(surface: &'a mut SurfaceSpec, key: &str) -> Option<Slot<'a>>
             "n" => Integer(&mut s.n),
             "position" => Float(&mut s.position),
             "cant_angle" => Float(&mut s.cant_angle_deg),
+            "angular_position" => Float(&mut s.angular_position_deg),
             "radius" => Float(s.radius.as_mut()?),
             _ => return None,
         },

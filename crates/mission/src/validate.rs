@@ -282,6 +282,9 @@ fn stages(c: &mut Checker<'_, '_>, spec: &MissionSpec) {
             "must be in (0, 10000] Hz",
         );
         c.non_negative(&at("ignition_delay"), stage.ignition_delay);
+        if let Some(area) = stage.tumble_drag_area {
+            c.positive(&at("tumble_drag_area"), area);
+        }
         let (interpolation, extrapolation) = (
             stage.rocket.interpolation.into(),
             stage.rocket.extrapolation.into(),
@@ -474,6 +477,17 @@ fn motor(c: &mut Checker<'_, '_>, spec: &MissionSpec) {
     }
     c.non_negative("motor.dry_mass", m.dry_mass);
     c.positive("motor.nozzle_radius", m.nozzle_radius);
+    if let Some(n) = m.cluster_count {
+        c.range(
+            "motor.cluster_count",
+            f64::from(n),
+            n >= 1,
+            "needs at least 1 motor",
+        );
+    }
+    if let Some(r) = m.cluster_radius {
+        c.non_negative("motor.cluster_radius", r);
+    }
     if let Some(p) = m.reference_pressure {
         c.positive("motor.reference_pressure", p);
     }

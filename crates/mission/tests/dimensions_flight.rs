@@ -174,6 +174,7 @@ fn rocket(u: &Units, c: &PhysicalConstants) -> Rocket {
                     span: l(0.11),
                     sweep: Sweep::Default,
                     cant_angle_deg: 0.5,
+                    angular_position_deg: 0.0,
                     radius: None,
                     airfoil: Some(Airfoil {
                         lift_curve: Table1::linear(vec![-0.25, 0.0, 0.25], vec![-1.4, 0.0, 1.4])

@@ -1,5 +1,6 @@
 //! The `.ork` reader on bad input: every error names the file and, where there is one, the
-//! component; arbitrary bytes never panic. And the refusals of what karman cannot fly yet.
+//! component; arbitrary bytes never panic. The refusals of what karman cannot fly yet, and a
+//! motor cluster mapped onto `[motor] cluster_count`.
 
 use std::path::{Path, PathBuf};
 
@@ -83,15 +84,61 @@ fn unknown_simulation_lists_the_names() {
 }
 
 #[test]
-fn clusters_and_pods_are_refused_by_name() {
-    for (name, component) in [
-        ("clustered_motors", "Clustered Inner Tube"),
-        ("pods_airframes_and_winglets", "Wing pods"),
-    ] {
-        let e = import(&design(name), &ImportOptions::default()).expect_err(name);
-        assert!(matches!(e, OrkError::Unsupported { .. }), "{e}");
-        assert!(e.to_string().contains(component), "{e}");
+fn pods_are_refused_by_name() {
+    let e = import(
+        &design("pods_airframes_and_winglets"),
+        &ImportOptions::default(),
+    )
+    .expect_err("pods");
+    assert!(matches!(e, OrkError::Unsupported { .. }), "{e}");
+    assert!(e.to_string().contains("Wing pods"), "{e}");
+}
+
+#[test]
+fn a_cluster_flies_its_motors_together_at_their_offsets() {
+    use karman_mission::build::{motor::build_motor, rocket::build_rocket};
+    let options = ImportOptions {
+        simulation: Some("Simulation 1".into()),
+        output_dir: Some(design("clustered_motors").parent().expect("dir").to_owned()),
+        ..ImportOptions::default()
+    };
+    let imported = import(&design("clustered_motors"), &options).expect("imports");
+    // OpenRocket's 4-ring: four tubes of radius 9.5 mm, 1.1 diameters apart (closest pair),
+    // on a ring of radius 1.1 · 19 mm / √2.
+    let radius = 1.1 * 0.019 / 2f64.sqrt();
+    assert!(
+        imported.mission.contains("cluster_count = 4\n"),
+        "{}",
+        imported.mission
+    );
+    let path = design("clustered_motors").with_file_name("imported.toml");
+    let cluster = karman_mission::parse(&imported.mission, &path, &[]).expect("loads");
+    assert_eq!(cluster.spec.motor.cluster_count, Some(4));
+    let r = cluster.spec.motor.cluster_radius.expect("radius");
+    assert!((r - radius).abs() < 1e-12, "{r} vs {radius}");
+    let mut single = cluster.clone();
+    single.spec.motor.cluster_count = None;
+    single.spec.motor.cluster_radius = None;
+    let motor = build_motor(&cluster).expect("motor");
+    let (four, one) = (
+        build_rocket(&cluster, &motor).expect("rocket"),
+        build_rocket(&single, &motor).expect("rocket"),
+    );
+    let (m1, m4) = (one.motor(), four.motor());
+    for t in [0.1, 0.3, 0.5] {
+        assert!((m4.thrust.eval(t) - 4.0 * m1.thrust.eval(t)).abs() < 1e-12);
+        assert!((m4.propellant_mass.eval(t) - 4.0 * m1.propellant_mass.eval(t)).abs() < 1e-15);
+        let expected = 4.0 * (m1.propellant_i33.eval(t) + m1.propellant_mass.eval(t) * r * r);
+        let roll = m4.propellant_i33.eval(t) - expected;
+        assert!(roll.abs() <= 1e-12 * expected, "{roll} of {expected}");
     }
+    assert!((m4.dry_mass - 4.0 * m1.dry_mass).abs() < 1e-15);
+    let lateral = m4.dry_inertia[0] - 4.0 * (m1.dry_inertia[0] + 0.5 * m1.dry_mass * r * r);
+    assert!(lateral.abs() < 1e-15, "{lateral}");
+    assert!((m4.nozzle_radius - 2.0 * m1.nozzle_radius).abs() < 1e-15);
+    // OpenRocket's mass at launch: 0.235 kg, of which 0.065 kg motors.
+    let mass = four.total_mass(0.0);
+    assert!((mass - 0.235).abs() < 0.01 * 0.235, "{mass}");
 }
 
 #[test]

@@ -1,6 +1,7 @@
 //! Hybrid and liquid motors through the mission: the liquid fixture (one tank of each kind and
 //! geometry) loads, builds and flies; bad tank inputs are located at their key; tank inputs are
-//! reachable by `--set`; and arbitrary tank numbers never panic the build.
+//! reachable by `--set`; arbitrary tank numbers never panic the build; and the pointwise sums
+//! of liquid motors on different grids and of hybrids match RocketPy 1.13.
 
 use crate::common::fixture;
 use karman_mission::build::motor::build_motor;
@@ -44,13 +45,14 @@ fn the_liquid_fixture_builds_its_four_tanks() {
     }
     assert!((motor.propellant_initial_mass() - motor.propellant_mass().eval(0.0)).abs() < 1e-15);
     // The mass tank holds no liquid; the level tank's gas density is read from its (T, p)
-    // table at 290 K.
+    // table at 290 K and 101 325 Pa: on the edge between its first two rows, 1.2210 kg/m³.
     assert!(tanks[3].tank.liquid_mass().eval(2.0).abs() < 1e-15);
     let gas = tanks[2].tank.gas_mass().eval(0.0);
     let volume =
         tanks[2].tank.spec().geometry.total_volume() - tanks[2].tank.spec().geometry.volume(0.08);
     let rho = gas / volume;
-    assert!(rho > 1.18 && rho < 1.29, "{rho}");
+    let edge = 1.29 + (290.0 - 273.15) / (300.0 - 273.15) * (1.18 - 1.29);
+    assert!((rho - edge).abs() < 1e-9, "{rho}");
     let run = karman_mission::build::flight::simulate(&mission).expect("flies");
     let summary = karman_mission::report::flight::flight_summary(&run);
     assert!(summary.apogee_agl_m.is_some_and(|a| a > 100.0));
@@ -96,6 +98,36 @@ fn bad_tank_inputs_name_their_key_and_line() {
         panic!("{error:?}");
     };
     assert!(location.is_some(), "{error:?}");
+    // Density tables RocketPy refuses (two rows; rows on one line of the (T, p) plane): model
+    // errors located at the density key.
+    let table = "[[273.15, 101325, 1.29], [300, 101325, 1.18], [290, 200000, 2.40]]";
+    for (bad, reason) in [
+        (
+            "[[273.15, 101325, 1.29], [300, 101325, 1.18]]",
+            "at least 3 point",
+        ),
+        (
+            "[[273.15, 101325, 1.29], [300, 101325, 1.18], [320, 101325, 1.1]]",
+            "on one line",
+        ),
+    ] {
+        let text = liquid_text().replacen(table, bad, 1);
+        let mission = parse(&text, &path, &[]).expect("parses");
+        let error = build_motor(&mission).expect_err("refused");
+        let source = std::error::Error::source(&error).map(ToString::to_string);
+        let message = format!("{error}: {}", source.unwrap_or_default());
+        assert!(
+            message.contains("motor.tanks.2.gas.density") && message.contains(reason),
+            "{message}"
+        );
+        let MissionError::Model { location, .. } = &error else {
+            panic!("{error:?}");
+        };
+        assert!(
+            matches!(location, Some(Location::File { line: 56, .. })),
+            "{error:?}"
+        );
+    }
     // A missing tank list, and a tank list on a solid motor.
     let text = liquid_text();
     let cut = text.find("[[motor.tanks]]").expect("tanks");
@@ -314,5 +346,102 @@ fn tanks_on_different_grids_are_summed_pointwise_as_rocketpy() {
             "I11 rate",
             t,
         );
+    }
+}
+
+/// RocketPy 1.13.0's hybrid_docs rocket (built by `fixtures/parity/make_references.py`'s
+/// `motor` with `Rocket(radius, mass, inertia, drag 0.5, center_of_mass_without_motor,
+/// coordinate_system_orientation).add_motor(motor, motor_position)`, rocketpy==1.13.0): at
+/// `t`, `total_mass`, `com_to_cdm_function` with its `differentiate_complex_step` and
+/// `differentiate(order=2)`, and the inertia tensor's and its derivative's `xx`.
+mod hybrid_pointwise {
+    pub const TIMES: [f64; 6] = [0.25, 1.0, 1.7, 2.6, 3.3, 3.85];
+    pub const FIGURES: [[f64; 6]; 6] = [
+        [
+            24.240659943852528,
+            0.16467826922196713,
+            -0.02661255031142055,
+            -0.005523359547510154,
+            10.728612467958106,
+            -0.6931124000905484,
+        ],
+        [
+            22.88642607596033,
+            0.14387321513183132,
+            -0.028888588760412014,
+            -0.006050715484207103,
+            10.224424080115002,
+            -0.6515444091583762,
+        ],
+        [
+            21.677348510157984,
+            0.12280996690808214,
+            -0.03125787556670814,
+            -0.006675215935558754,
+            9.78010510857243,
+            -0.6167825393014185,
+        ],
+        [
+            20.20052909236822,
+            0.09319565488606513,
+            -0.03470718675606761,
+            -0.0073968609015651055,
+            9.243710403888798,
+            -0.5776222466343985,
+        ],
+        [
+            19.11245152292065,
+            0.06804677371035955,
+            -0.037124769616582044,
+            -0.007868705687030797,
+            8.851962161028606,
+            -0.5414392842485786,
+        ],
+        [
+            18.294756199092763,
+            0.04690707548147542,
+            -0.03978464410865514,
+            -0.008396061623727746,
+            8.558806249718652,
+            -0.5249311990297493,
+        ],
+    ];
+}
+
+#[test]
+fn hybrid_grain_and_tanks_are_summed_pointwise_as_rocketpy() {
+    let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("../../fixtures/parity/hybrid_docs/mission.toml");
+    let mission = load(&path, &[]).expect("loads");
+    let motor = build_motor(&mission).expect("builds");
+    // The grain and the tank (one grid) as two parts.
+    assert_eq!(motor.propellant_parts().len(), 2);
+    let rocket = karman_mission::build::rocket::build_rocket(&mission, &motor).expect("rocket");
+    for (&t, want) in hybrid_pointwise::TIMES
+        .iter()
+        .zip(&hybrid_pointwise::FIGURES)
+    {
+        let p = rocket.mass_properties(t);
+        let got = [
+            p.total_mass,
+            p.com_to_cdm,
+            p.com_to_cdm_rate,
+            p.com_to_cdm_accel,
+            p.inertia[0],
+            p.inertia_rate[0],
+        ];
+        // The grain regresses exactly here and by LSODA in RocketPy (on its own output times,
+        // linear between them): measured, the mass, c and I11 agree to 4e-6, 2e-5 and 5e-6 of
+        // their scale, the rates to 0.5 % and c̈ to 1.2 % (a node-wise sum would give c̈ = 0).
+        let scales = [25.0, 0.2, 0.04, 0.008, 11.0, 0.7];
+        let tolerances = [1e-5, 5e-5, 1e-2, 3e-2, 2e-5, 1e-2];
+        for k in 0..6 {
+            assert!(
+                (got[k] - want[k]).abs() <= tolerances[k] * scales[k],
+                "figure {k} at {t} s: {} vs RocketPy {}",
+                got[k],
+                want[k]
+            );
+        }
     }
 }

@@ -16,17 +16,26 @@
 //! 4. `m_p = m_g + m_tanks`, `z_pc = (m_g z_g + m_tanks z_tanks)/m_p`, `I11_p` is each part's
 //!    inertia moved to `z_pc`, `I33_p` the grain's `½ m_g (R_o² + r²)`.
 //!
-//! The parts live on different grids, so RocketPy evaluates these pointwise; here they are
-//! tabulated on the union of the grain's grid (the thrust nodes, each interval split into
-//! pieces of at most [`PhysicalConstants::propellant_grid_step`]) and the tanks' grids, linear
-//! between the nodes.
+//! The grain and the tanks live on different grids, so RocketPy evaluates these pointwise
+//! (`Function` arithmetic of tables on different grids): each part's moment `m z` is its own
+//! node-wise table, and the sums are formed at each instant. The motor hands the two over as
+//! propellant parts ([`crate::Motor::propellant_parts`]): the grain on its grid (the thrust
+//! nodes, each interval split into pieces of at most
+//! [`PhysicalConstants::propellant_grid_step`], and the tanks' nodes within the burn; mass and
+//! `I11` linear, the centre of mass constant) and the tanks as the liquid motor's tables —
+//! or, when the tanks are themselves on different grids, the tanks one by one (RocketPy nests
+//! that sum inside the liquid motor; the two differ between nodes only by the tanks' moment
+//! tables departing from the products of their mass and centre-of-mass tables). The
+//! propellant tables tabulate the same sums on the union of the grids, linear between the
+//! nodes, for reports, and hold the I33.
 
 use karman_math::{Cursor, Extrapolation, Interpolation, PhysicalConstants, Table1};
 
 use crate::liquid::{LiquidPropellant, tanks_at, union_grid};
 use crate::solid::{grain_grid, regress};
 use crate::{
-    BatesGrains, GrainState, PropellantModel, PropellantTables, PropulsionError, ThrustCurve,
+    BatesGrains, GrainState, PropellantModel, PropellantPart, PropellantTables, PropulsionError,
+    ThrustCurve,
 };
 
 /// Bisection steps that locate the grain's burn-out to the resolution of an `f64`.
@@ -131,7 +140,8 @@ impl PropellantModel for HybridPropellant<'_> {
         times.extend(tail);
         let grain_center = grains.center_of_mass_position;
         let n = times.len();
-        let (mut mass, mut center, mut i11, mut i33) = (
+        let (mut mass, mut center, mut i11, mut i33, mut grain_i11s) = (
+            Vec::with_capacity(n),
             Vec::with_capacity(n),
             Vec::with_capacity(n),
             Vec::with_capacity(n),
@@ -139,6 +149,7 @@ impl PropellantModel for HybridPropellant<'_> {
         );
         for (&t, &mg) in times.iter().zip(&grain_mass) {
             let (grain_i11, grain_i33) = grains.inertia(grain_state(grains, mg), mg);
+            grain_i11s.push(grain_i11);
             let (ml, zl, il) = tanks_at(tanks, t);
             let m = mg + ml;
             let z = if m > 0.0 {
@@ -157,12 +168,28 @@ impl PropellantModel for HybridPropellant<'_> {
         let like = |ys, what| {
             Table1::on_same_abscissae(&mass, ys, lin, hold).map_err(PropulsionError::table(what))
         };
+        let grain = PropellantPart::new(
+            like(grain_mass, "grain mass")?,
+            like(vec![grain_center; n], "grain centre of mass")?,
+            like(grain_i11s, "grain I11")?,
+        )?;
+        let liquid = self.tanks.tables(thrust, exhaust_velocity, constants)?;
+        let mut parts = vec![grain];
+        if liquid.parts.is_empty() {
+            parts.push(PropellantPart::new(
+                liquid.mass,
+                liquid.center_of_mass,
+                liquid.i11,
+            )?);
+        } else {
+            parts.extend(liquid.parts);
+        }
         Ok(PropellantTables {
             center_of_mass: like(center, "propellant centre of mass")?,
             i11: like(i11, "propellant I11")?,
             i33: like(i33, "propellant I33")?,
             mass,
-            parts: Vec::new(),
+            parts,
         })
     }
 }

@@ -134,27 +134,11 @@ impl PropellantModel for LiquidPropellant<'_> {
         let mut parts = Vec::new();
         if !one_grid {
             for p in self.tanks {
-                let mass = p.tank.mass();
-                let center_of_mass = p.center_of_mass_in_motor()?;
-                let products = mass
-                    .ys()
-                    .iter()
-                    .zip(center_of_mass.ys())
-                    .map(|(m, z)| m * z)
-                    .collect();
-                let moment = Table1::on_same_abscissae(
-                    mass,
-                    products,
-                    mass.interpolation(),
-                    mass.extrapolation(),
-                )
-                .map_err(PropulsionError::table("tank mass moment"))?;
-                parts.push(PropellantPart {
-                    mass: mass.clone(),
-                    center_of_mass,
-                    moment,
-                    i11: p.tank.inertia().clone(),
-                });
+                parts.push(PropellantPart::new(
+                    p.tank.mass().clone(),
+                    p.center_of_mass_in_motor()?,
+                    p.tank.inertia().clone(),
+                )?);
             }
         }
         let (times, interpolation, extrapolation, inertia_interpolation) = if one_grid {

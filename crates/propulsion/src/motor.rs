@@ -430,10 +430,11 @@ impl Motor {
             _ => &[],
         }
     }
-    /// The parts whose pointwise sum the propellant is (physics.md §15.3): the tanks of a
-    /// liquid motor whose tanks are on different time grids, for which RocketPy evaluates the
-    /// sums pointwise; empty for every other motor, whose propellant tables are exact. The
-    /// propellant tables then tabulate those sums on the union of the grids, for reports.
+    /// The parts whose pointwise sum the propellant is (physics.md §15.3–15.4): the tanks of a
+    /// liquid motor whose tanks are on different time grids, the grain and the tanks of a
+    /// hybrid motor, for which RocketPy evaluates the sums pointwise; empty for every other
+    /// motor, whose propellant tables are exact. The propellant tables then tabulate those
+    /// sums on the union of the grids, for reports.
     #[must_use]
     pub fn propellant_parts(&self) -> &[PropellantPart] {
         &self.propellant.parts

@@ -23,25 +23,57 @@ pub struct PropellantTables {
     /// `I33_p(t)` about the propellant centre of mass, kg·m².
     pub i33: Table1,
     /// The parts whose pointwise sum the propellant is, when RocketPy sums them pointwise (a
-    /// liquid motor's tanks on different time grids, physics.md §15.3); the tables above then
-    /// tabulate that sum for reports. Empty when the tables are the propellant exactly.
+    /// liquid motor's tanks on different time grids, physics.md §15.3; a hybrid motor's grain
+    /// and tanks, §15.4); the tables above then tabulate that sum for reports (and hold the
+    /// I33). Empty when the tables are the propellant exactly.
     pub parts: Vec<PropellantPart>,
 }
 
-/// One part of a propellant summed pointwise: a tank's tables of time (s).
+/// One part of a propellant summed pointwise (a tank, a hybrid's grain or its tanks
+/// together): tables of time (s).
 #[derive(Debug, Clone, PartialEq)]
 pub struct PropellantPart {
     /// Mass `m_i(t)`, kg.
     pub mass: Table1,
-    /// Centre of mass `z_i(t)`, m, motor coordinates (the tank's position plus its fluids'
-    /// centre of mass).
+    /// Centre of mass `z_i(t)`, m, motor coordinates (for a tank, its position plus its
+    /// fluids' centre of mass).
     pub center_of_mass: Table1,
     /// Mass moment `m_i z_i`, kg·m: the node-wise products on the part's grid, interpolated
     /// and extrapolated as its mass (RocketPy multiplies the two tables node by node before
     /// summing the parts pointwise).
     pub moment: Table1,
-    /// `I11_i(t)` about `z_i`, kg·m² (no axial inertia).
+    /// `I11_i(t)` about `z_i`, kg·m² (the axial inertia is the propellant tables' I33).
     pub i11: Table1,
+}
+
+impl PropellantPart {
+    /// The part whose mass, centre of mass (motor coordinates) and `I11` are these tables,
+    /// its moment the node-wise products of the first two (on the mass's grid, with its
+    /// interpolation; the centre of mass must share that grid).
+    ///
+    /// # Errors
+    /// [`PropulsionError::Table`] when the grids differ or a product overflows.
+    pub(crate) fn new(
+        mass: Table1,
+        center_of_mass: Table1,
+        i11: Table1,
+    ) -> Result<PropellantPart, PropulsionError> {
+        let products = mass
+            .ys()
+            .iter()
+            .zip(center_of_mass.ys())
+            .map(|(m, z)| m * z)
+            .collect();
+        let moment =
+            Table1::on_same_abscissae(&mass, products, mass.interpolation(), mass.extrapolation())
+                .map_err(PropulsionError::table("propellant mass moment"))?;
+        Ok(PropellantPart {
+            mass,
+            center_of_mass,
+            moment,
+            i11,
+        })
+    }
 }
 
 /// A motor type's propellant bookkeeping.

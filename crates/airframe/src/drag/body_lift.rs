@@ -81,24 +81,53 @@ impl BodyLift {
     }
 
     /// OpenRocket's CP of `rocket` at angle of attack `alpha` (rad) and `mach`, aft of the
-    /// nose tip (m), the tip being at `tip` in the rocket's user coordinates: the surfaces'
-    /// Barrowman terms (nose cones and tails times `sin α / α`) with the body lift, all on
-    /// the rocket's reference area (the geometry's reference radius is the rocket's).
+    /// nose tip (m), the tip being at `tip` in the rocket's user coordinates, with the flow's
+    /// lateral component at roll angle `roll` (rad, in the fins' angular positions): the
+    /// surfaces' Barrowman terms (nose cones and tails times `sin α / α`, fin sets of one or
+    /// two fins times their [`FinAerodynamics::roll_factor`]) with the body lift, all on the
+    /// rocket's reference area (the geometry's reference radius is the rocket's).
+    ///
+    /// [`FinAerodynamics::roll_factor`]: crate::FinAerodynamics::roll_factor
     #[must_use]
-    pub fn cp_at_angle(&self, rocket: &Rocket, tip: f64, alpha: f64, mach: f64) -> f64 {
+    pub fn cp_at_angle(&self, rocket: &Rocket, tip: f64, alpha: f64, mach: f64, roll: f64) -> f64 {
         let csys = rocket.csys();
         let area = rocket.reference_area();
         let [mut weight, mut moment] = self.weights(alpha, mach);
         for s in rocket.surfaces() {
             let body = matches!(s.geometry, Geometry::Nose { .. } | Geometry::Tail { .. });
             let k = s.reference_area / area * if body { sinc(alpha) } else { 1.0 };
-            let w = k * s.cn_alpha(mach);
+            let roll_factor = s.fin_aerodynamics().map_or(1.0, |f| f.roll_factor(roll));
+            let w = k * roll_factor * s.cn_alpha(mach);
             weight += w;
             moment += w * csys * (tip - s.cp_user(csys));
         }
         moment / weight
     }
+
+    /// The flow's roll angle (rad) at which `rocket`'s CP lies furthest forward, OpenRocket's
+    /// "worst" CP (its `getWorstCP`: Barrowman's CP at α = 0 and Mach 0.3 over the roll angles
+    /// `2π k / 360`, the first of the most forward). OpenRocket rolls the rocket on the launch
+    /// rod so that the wind comes from this angle; it differs from 0 only when a set of one
+    /// or two fins makes the CP depend on the roll angle.
+    #[must_use]
+    pub fn worst_roll_angle(&self, rocket: &Rocket, tip: f64) -> f64 {
+        let mut worst = (f64::INFINITY, 0.0);
+        for k in 0..WORST_ROLL_DIVISIONS {
+            let roll = 2.0 * PI * f64::from(k) / f64::from(WORST_ROLL_DIVISIONS);
+            let cp = self.cp_at_angle(rocket, tip, 0.0, WORST_ROLL_MACH, roll);
+            if cp < worst.0 {
+                worst = (cp, roll);
+            }
+        }
+        worst.1
+    }
 }
+
+/// Roll angles OpenRocket tries for its worst CP.
+const WORST_ROLL_DIVISIONS: u32 = 360;
+
+/// Mach number of OpenRocket's default flight conditions, at which it looks for the worst CP.
+const WORST_ROLL_MACH: f64 = 0.3;
 
 /// `sin x / x`, 1 at 0.
 fn sinc(x: f64) -> f64 {

@@ -4,6 +4,9 @@
 //!   (1967) and Niskanen (2009, §3.2.2), with RocketPy's piecewise Prandtl–Glauert factor β(M)
 //!   (physics.md §7.5).
 //! - Fin-set slope: Niskanen's fin-count factor × the body interference `1 + r_t/(s + r_t)`.
+//!   The factor N/2 is the average over the flow's roll angle θ of Niskanen's (2009, §3.2.2)
+//!   `Σᵢ sin²(θ − φᵢ)` over the fins at roll positions φᵢ; for N ≥ 3 evenly spaced fins the
+//!   sum is N/2 at every θ, for one or two fins it is not ([`FinAerodynamics::roll_factor`]).
 //! - Roll: Barrowman (1967, ch. 3) forcing and damping interference factors `K_f`, `K_d` and the
 //!   roll integral `G = ∫ c(ξ) ξ² dξ` (physics.md §7.6), with RocketPy's `cos δ` on damping.
 //! - Free-form fins: OpenRocket's 40-station span discretisation (Niskanen 2009, §3.2.2) as in
@@ -59,6 +62,10 @@ pub struct TrapezoidalFinsSpec {
     pub sweep: Sweep,
     /// Cant angle δ (deg).
     pub cant_angle_deg: f64,
+    /// Roll position φ₀ of the first fin about the rocket axis (deg), the others at
+    /// `φ₀ + 360° i / N` (OpenRocket's fin-set rotation); it matters only for sets of one or
+    /// two fins ([`FinAerodynamics::roll_factor`]).
+    pub angular_position_deg: f64,
     /// Body radius at the fins r_t (m); `None` = the rocket radius.
     pub radius: Option<f64>,
     /// Optional airfoil lift curve (flat plate `2π` otherwise).
@@ -76,6 +83,10 @@ pub struct EllipticalFinsSpec {
     pub span: f64,
     /// Cant angle δ (deg).
     pub cant_angle_deg: f64,
+    /// Roll position φ₀ of the first fin about the rocket axis (deg), the others at
+    /// `φ₀ + 360° i / N` (OpenRocket's fin-set rotation); it matters only for sets of one or
+    /// two fins ([`FinAerodynamics::roll_factor`]).
+    pub angular_position_deg: f64,
     /// Body radius at the fins r_t (m); `None` = the rocket radius.
     pub radius: Option<f64>,
     /// Optional airfoil lift curve.
@@ -92,6 +103,10 @@ pub struct FreeFormFinsSpec {
     pub shape_points: Vec<[f64; 2]>,
     /// Cant angle δ (deg).
     pub cant_angle_deg: f64,
+    /// Roll position φ₀ of the first fin about the rocket axis (deg), the others at
+    /// `φ₀ + 360° i / N` (OpenRocket's fin-set rotation); it matters only for sets of one or
+    /// two fins ([`FinAerodynamics::roll_factor`]).
+    pub angular_position_deg: f64,
     /// Body radius at the fins r_t (m); `None` = the rocket radius.
     pub radius: Option<f64>,
     /// Optional airfoil lift curve.
@@ -130,6 +145,8 @@ pub struct FinAerodynamics {
     pub roll_integral: f64,
     /// Cant angle δ (rad).
     pub cant_angle: f64,
+    /// Roll position φ₀ of the first fin about the rocket axis (rad).
+    pub angular_position: f64,
     /// `2π AR A_f/A`, the numerator of CNα₁ (see [`FinAerodynamics::single_fin_cn_alpha`]).
     lift_numerator: f64,
     /// `(2π AR / (cl_α0 cos Γ_c))²`, so that `f_d² = ` this `· β²`.
@@ -195,6 +212,26 @@ impl FinAerodynamics {
     #[must_use]
     pub fn cn_alpha(&self, mach: f64) -> f64 {
         self.lift_interference * self.fin_count_factor * self.single_fin_cn_alpha(mach)
+    }
+
+    /// The factor that turns [`FinAerodynamics::cn_alpha`] into the slope of the set when
+    /// the flow's lateral component comes at roll angle `theta` (rad, measured as the fins'
+    /// [`FinAerodynamics::angular_position`]): Niskanen's (2009, §3.2.2) `Σᵢ sin²(θ − φᵢ)`,
+    /// φᵢ = φ₀ + 2π i / N, over its average N/2. Exactly 1 for N ≥ 3, where the sum is N/2
+    /// at every θ; for one fin `2 sin²(θ − φ₀)`, for two `2 sin²(θ − φ₀)` as well (the
+    /// second fin, opposite, adds the same term).
+    #[must_use]
+    pub fn roll_factor(&self, theta: f64) -> f64 {
+        if self.n >= 3 {
+            return 1.0;
+        }
+        let sum: f64 = (0..self.n)
+            .map(|i| {
+                let phi = self.angular_position + 2.0 * PI * f64::from(i) / f64::from(self.n);
+                (theta - phi).sin().powi(2)
+            })
+            .sum();
+        sum / (0.5 * f64::from(self.n))
     }
 
     /// Roll forcing coefficient derivative C_lf,δ(M) = K_f N (Y_ma + r_t) CNα₁ / d.
@@ -282,6 +319,7 @@ fn finish(
     n: u32,
     body_radius: f64,
     cant_angle_deg: f64,
+    angular_position_deg: f64,
     root_chord: f64,
     airfoil: Option<&Airfoil>,
     p: Planform,
@@ -298,6 +336,7 @@ fn finish(
         });
     }
     let cant = cant_angle_deg.to_radians();
+    let angular_position = finite(name, "angular_position", angular_position_deg)?.to_radians();
     let tau = (p.span + body_radius) / body_radius;
     let reference_area = PI * body_radius * body_radius;
     let d = 2.0 * body_radius;
@@ -321,6 +360,7 @@ fn finish(
         roll_damping_interference: p.roll_damping_interference,
         roll_integral: p.roll_integral,
         cant_angle: cant,
+        angular_position,
         lift_numerator: 2.0 * PI * aspect_ratio * p.fin_area / reference_area,
         diederich_factor_squared: diederich_factor * diederich_factor,
         diederich_sign: diederich_factor.signum(),
@@ -408,6 +448,7 @@ pub(crate) fn trapezoidal(
         spec.n,
         r,
         spec.cant_angle_deg,
+        spec.angular_position_deg,
         cr,
         spec.airfoil.as_ref(),
         p,
@@ -470,6 +511,7 @@ pub(crate) fn elliptical(
         spec.n,
         r,
         spec.cant_angle_deg,
+        spec.angular_position_deg,
         cr,
         spec.airfoil.as_ref(),
         p,
@@ -642,6 +684,7 @@ pub(crate) fn free_form(
         spec.n,
         r,
         spec.cant_angle_deg,
+        spec.angular_position_deg,
         root_chord,
         spec.airfoil.as_ref(),
         p,
@@ -652,6 +695,7 @@ pub(crate) fn free_form(
 #[cfg(test)]
 mod tests {
     use super::*;
+    use std::f64::consts::FRAC_PI_2;
 
     /// physics.md §7.5: the Calisto fin set WITHOUT airfoil, 0.5° cant.
     fn calisto() -> FinSet {
@@ -662,6 +706,7 @@ mod tests {
             span: 0.11,
             sweep: Sweep::Default,
             cant_angle_deg: 0.5,
+            angular_position_deg: 0.0,
             radius: None,
             airfoil: None,
         };
@@ -762,6 +807,33 @@ mod tests {
     }
 
     #[test]
+    fn roll_factor_is_one_for_three_or_more_fins_and_sin_squared_below() {
+        let mut a = calisto().aero;
+        for n in [3, 4, 5, 8] {
+            a.n = n;
+            a.angular_position = 0.3;
+            for theta in [0.0, 0.4, 1.0, 2.5] {
+                assert!(a.roll_factor(theta).to_bits() == 1.0f64.to_bits());
+            }
+        }
+        // A pair at 90°: flow along 0° is normal to both fins (twice the average), along
+        // 90° in their plane (none); a single fin likewise. Either averages to 1 over θ.
+        for n in [1, 2] {
+            a.n = n;
+            a.angular_position = 90f64.to_radians();
+            assert!(close(a.roll_factor(0.0), 2.0, 1e-15));
+            assert!(a.roll_factor(FRAC_PI_2).abs() < 1e-15);
+            assert!(close(a.roll_factor(PI / 6.0), 1.5, 1e-14));
+            let k = 360;
+            let mean = (0..k)
+                .map(|i| a.roll_factor(2.0 * PI * f64::from(i) / f64::from(k)))
+                .sum::<f64>()
+                / f64::from(k);
+            assert!(close(mean, 1.0, 1e-12), "{mean}");
+        }
+    }
+
+    #[test]
     fn free_form_of_a_trapezoid_approaches_trapezoidal() {
         // The same Calisto planform as a polygon; the 40-station discretisation reproduces
         // area and Y_ma closely (OpenRocket's method is a discretisation, not exact).
@@ -769,6 +841,7 @@ mod tests {
             n: 4,
             shape_points: vec![[0.0, 0.0], [0.06, 0.11], [0.12, 0.11], [0.12, 0.0]],
             cant_angle_deg: 0.0,
+            angular_position_deg: 0.0,
             radius: Some(0.0635),
             airfoil: None,
         };
@@ -792,6 +865,7 @@ mod tests {
                 root_chord: 0.1,
                 span: s,
                 cant_angle_deg: 0.0,
+                angular_position_deg: 0.0,
                 radius: Some(0.05),
                 airfoil: None,
             };
@@ -815,6 +889,7 @@ mod tests {
             span: 0.11,
             sweep: Sweep::Default,
             cant_angle_deg: 0.0,
+            angular_position_deg: 0.0,
             radius: None,
             airfoil: None,
         };
@@ -843,6 +918,7 @@ mod tests {
             n: 3,
             shape_points: vec![[0.0, 0.0], [0.1, 0.0], [0.2, 0.0]],
             cant_angle_deg: 0.0,
+            angular_position_deg: 0.0,
             radius: None,
             airfoil: None,
         };

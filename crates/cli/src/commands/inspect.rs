@@ -3,17 +3,22 @@
 //! shaped like the validation `reference.json` files, plus `tanks` (one object per tank) for
 //! hybrid and liquid motors. `--plot DIR` writes SVG profiles and curves (per tank: liquid and
 //! gas mass, level and centre of mass), `--draw FILE.svg` a to-scale drawing of the rocket
-//! with its CG and CP.
+//! with its CG and CP. A rocket whose drag is estimated from its geometry is also flown to
+//! rail exit's state: its CP and stability margin there as OpenRocket computes them (body
+//! lift at the angle of attack, the flow's roll angle OpenRocket rolls the rocket to) are
+//! printed, and under `stability_at_rail_exit` in the JSON.
 
 use std::io::Write;
 use std::path::{Path, PathBuf};
 
 use anyhow::{Context, Result};
 use clap::Args;
+use karman_mission::Mission;
 use karman_mission::airframe::{DragComponents, DragEstimate, Rocket};
 use karman_mission::atmos::Environment;
 use karman_mission::build::{
     environment::build_environment,
+    flight::simulate,
     motor::build_motor,
     rocket::{build_rocket, estimated_drag},
 };
@@ -21,7 +26,7 @@ use karman_mission::math::linspace;
 use karman_mission::propulsion::Motor;
 use karman_mission::report::environment::{default_heights, environment_report};
 use karman_mission::report::motor::{MotorReport, TankReport};
-use karman_mission::report::rocket::{RocketReport, draw_rocket_svg};
+use karman_mission::report::rocket::{AngleStability, RocketReport, draw_rocket_svg};
 
 use super::MissionArgs;
 use crate::plot::{Series, line_chart};
@@ -78,6 +83,7 @@ pub fn run(args: &InspectArgs) -> Result<()> {
     };
     let tanks = TankReport::for_motor(&motor, &motor_report.times_s);
     let rocket_report = RocketReport::new(&rocket);
+    let rail_exit = stability_at_rail_exit(&mission)?;
     let mut out = std::io::stdout().lock();
     if args.json {
         let mut value = serde_json::json!({
@@ -88,6 +94,9 @@ pub fn run(args: &InspectArgs) -> Result<()> {
         if !tanks.is_empty() {
             value["tanks"] = serde_json::to_value(&tanks)?;
         }
+        if let Some(stability) = &rail_exit {
+            value["stability_at_rail_exit"] = serde_json::to_value(stability)?;
+        }
         writeln!(out, "{}", serde_json::to_string_pretty(&value)?)?;
     } else {
         writeln!(out, "Environment\n{env_report}\n{motor_report}")?;
@@ -95,6 +104,9 @@ pub fn run(args: &InspectArgs) -> Result<()> {
             writeln!(out, "{tank}")?;
         }
         writeln!(out, "{rocket_report}")?;
+        if let Some(stability) = &rail_exit {
+            writeln!(out, "At rail exit: {stability}")?;
+        }
     }
     for warning in rocket.warnings() {
         eprintln!("warning: {warning}");
@@ -114,6 +126,31 @@ pub fn run(args: &InspectArgs) -> Result<()> {
             .with_context(|| format!("cannot write {}", file.display()))?;
     }
     Ok(())
+}
+
+/// OpenRocket's CP and margin at the rail exit of `mission`'s flight, for a single-stage
+/// rocket whose drag is estimated from its geometry (`None` otherwise or if the flight
+/// never leaves the rail): at the angle of attack and Mach karman's flight has there.
+fn stability_at_rail_exit(mission: &Mission) -> Result<Option<AngleStability>> {
+    if mission.spec.rocket.drag_estimate.is_none() || !mission.spec.stages.is_empty() {
+        return Ok(None);
+    }
+    let run = simulate(mission)?;
+    let Some(exit) = run.summary().out_of_rail_time_s else {
+        return Ok(None);
+    };
+    let Some(sample) = run.samples().into_iter().find(|s| s.t >= exit) else {
+        return Ok(None);
+    };
+    let stability = AngleStability::new(
+        mission,
+        &run.rocket,
+        sample.t,
+        sample.angle_of_attack_deg.to_radians(),
+        sample.mach,
+        |worst| worst,
+    )?;
+    Ok(Some(stability))
 }
 
 /// Profiles of pressure, temperature, density, speed of sound and wind from the launch

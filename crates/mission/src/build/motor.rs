@@ -158,7 +158,8 @@ fn build_tanks(mission: &Mission) -> Result<Vec<PositionedTank>, MissionError> {
 /// names one, else the tank.
 fn tank_key(index: usize, e: &PropulsionError) -> String {
     let key = match e {
-        PropulsionError::InvalidParameter { name, .. } => match *name {
+        PropulsionError::InvalidParameter { name, .. }
+        | PropulsionError::Table { what: name, .. } => match *name {
             "tank radius" => "geometry.radius",
             "tank height" => "geometry.height",
             "liquid density" => "liquid.density",
@@ -188,10 +189,15 @@ fn tank_curve(mission: &Mission, curve: &Curve) -> Result<TankCurve, PropulsionE
     })
 }
 
-fn fluid(mission: &Mission, spec: &FluidSpec) -> Result<Fluid, PropulsionError> {
+/// A tank's fluid; `what` (`"liquid density"` or `"gas density"`) names its table in errors.
+fn fluid(
+    mission: &Mission,
+    spec: &FluidSpec,
+    what: &'static str,
+) -> Result<Fluid, PropulsionError> {
     match &spec.density {
         DensitySpec::Constant(rho) => Ok(Fluid::constant(&spec.name, *rho)),
-        DensitySpec::Rows(rows) => Fluid::tabulated(&spec.name, rows),
+        DensitySpec::Rows(rows) => Fluid::tabulated(&spec.name, rows, what),
         DensitySpec::File(path) => {
             let rows = karman_math::read_columns(mission.resolve(path))?;
             let rows: Vec<[f64; 3]> = rows
@@ -199,13 +205,13 @@ fn fluid(mission: &Mission, spec: &FluidSpec) -> Result<Fluid, PropulsionError> 
                 .map(|r| match r.as_slice() {
                     &[t, p, rho] => Ok([t, p, rho]),
                     _ => Err(PropulsionError::InvalidParameter {
-                        name: "density",
+                        name: what,
                         value: r.len() as f64,
                         reason: "a density file needs three columns: temperature, pressure, density",
                     }),
                 })
                 .collect::<Result<_, _>>()?;
-            Fluid::tabulated(&spec.name, &rows)
+            Fluid::tabulated(&spec.name, &rows, what)
         }
     }
 }
@@ -269,8 +275,8 @@ fn build_tank(mission: &Mission, index: usize, spec: &TankSpec) -> Result<Tank, 
             kind,
             geometry: TankGeometry::new(shape, &constants)?,
             flux_time: (spec.flux_time.start, spec.flux_time.end),
-            liquid: fluid(mission, &spec.liquid)?,
-            gas: fluid(mission, &spec.gas)?,
+            liquid: fluid(mission, &spec.liquid, "liquid density")?,
+            gas: fluid(mission, &spec.gas, "gas density")?,
             discretize,
             temperature: curve(&spec.temperature, DEFAULT_TEMPERATURE)?,
             pressure: curve(&spec.pressure, DEFAULT_PRESSURE)?,

@@ -22,9 +22,9 @@ use crate::{Mission, MissionError};
 /// The motor's tables and constants as the airframe needs them
 /// ([`karman_airframe::MotorProperties`]).
 ///
-/// A propellant in parts (a liquid motor whose tanks are on different time grids) is handed
-/// over with them ([`MotorProperties::propellant_parts`]), which the rocket sums pointwise as
-/// RocketPy does (physics.md §15.3).
+/// A propellant in parts (a liquid motor whose tanks are on different time grids, a hybrid
+/// motor's grain and tanks) is handed over with them ([`MotorProperties::propellant_parts`]),
+/// which the rocket sums pointwise as RocketPy does (physics.md §15.3–15.4).
 #[must_use]
 pub fn motor_properties(motor: &Motor) -> MotorProperties {
     let (i11, i33) = motor.propellant_inertia();
@@ -94,6 +94,84 @@ pub fn delayed(
             .collect::<Result<_, karman_math::MathError>>()?,
         ..motor
     })
+}
+
+/// A cluster of `count` copies of `motor`, lit together, their axes at `radius` from the
+/// rocket's axis (the `[motor]` keys `cluster_count`, `cluster_radius`): thrust, mass flow,
+/// masses and mass moments times `count`, the centres of mass and the exhaust velocity
+/// unchanged. Each inertia is the sum over the copies with the parallel-axis theorem: about
+/// the roll axis `+ m r²` per copy, about each lateral axis `+ m r²/2` (the mean over the two
+/// lateral axes of `m y²` and `m z²`, exact for three or more motors evenly on a ring;
+/// karman's rocket is axisymmetric). The propellant's terms are tabulated on the union of the
+/// nodes of its inertia and mass tables. The nozzle exit radius becomes `r_n √count`: the copies' total exit area
+/// (pressure thrust, power-on base drag). One motor on the axis is returned unchanged.
+///
+/// # Errors
+/// [`karman_math::MathError`] for a propellant table that cannot be rebuilt.
+pub fn clustered(
+    motor: MotorProperties,
+    count: u32,
+    radius: f64,
+) -> Result<MotorProperties, karman_math::MathError> {
+    if count == 1 && radius == 0.0 {
+        return Ok(motor);
+    }
+    let n = f64::from(count);
+    let arm2 = radius * radius;
+    // n (I(t) + k m(t)) on the union of the two tables' nodes, with I's interpolation and
+    // extrapolation: exact for two linear tables.
+    let with_mass = |inertia: &Table1, mass: &Table1, k: f64| {
+        let mut xs: Vec<f64> = inertia.xs().iter().chain(mass.xs()).copied().collect();
+        xs.sort_by(f64::total_cmp);
+        xs.dedup();
+        let ys = xs
+            .iter()
+            .map(|&t| n * (inertia.eval(t) + k * mass.eval(t)))
+            .collect();
+        Table1::new(xs, ys, inertia.interpolation(), inertia.extrapolation())
+    };
+    let d = motor.dry_inertia;
+    let dry = motor.dry_mass;
+    Ok(MotorProperties {
+        thrust: motor.thrust.scaled(n),
+        propellant_mass: motor.propellant_mass.scaled(n),
+        mass_flow: motor.mass_flow.as_ref().map(|t| t.scaled(n)),
+        propellant_i11: with_mass(&motor.propellant_i11, &motor.propellant_mass, 0.5 * arm2)?,
+        propellant_i33: with_mass(&motor.propellant_i33, &motor.propellant_mass, arm2)?,
+        propellant_parts: motor
+            .propellant_parts
+            .iter()
+            .map(|p| {
+                Ok(PropellantPart {
+                    mass: p.mass.scaled(n),
+                    center_of_mass: p.center_of_mass.clone(),
+                    moment: p.moment.scaled(n),
+                    i11: with_mass(&p.i11, &p.mass, 0.5 * arm2)?,
+                })
+            })
+            .collect::<Result<_, karman_math::MathError>>()?,
+        dry_mass: n * dry,
+        dry_inertia: [
+            n * (d[0] + 0.5 * dry * arm2),
+            n * (d[1] + 0.5 * dry * arm2),
+            n * (d[2] + dry * arm2),
+            n * d[3],
+            n * d[4],
+            n * d[5],
+        ],
+        nozzle_radius: motor.nozzle_radius * n.sqrt(),
+        ..motor
+    })
+}
+
+/// The `[motor]` cluster of `mission`: `(cluster_count, cluster_radius)`, `(1, 0)` by default.
+#[must_use]
+pub fn cluster_of(mission: &Mission) -> (u32, f64) {
+    let m = &mission.spec.motor;
+    (
+        m.cluster_count.unwrap_or(1),
+        m.cluster_radius.unwrap_or(0.0),
+    )
 }
 
 /// Builds the rocket of `mission` with `motor` at `rocket.motor_position`.
@@ -261,10 +339,13 @@ fn build(
         parachutes,
         rail_buttons,
     };
+    let (count, radius) = cluster_of(mission);
+    let single = clustered(motor_properties(motor), count, radius)
+        .map_err(|e| mission.model_error("motor", e))?;
     let properties = if ignition == 0.0 {
-        motor_properties(motor)
+        single
     } else {
-        delayed(motor_properties(motor), ignition).map_err(|e| mission.model_error("motor", e))?
+        delayed(single, ignition).map_err(|e| mission.model_error("motor", e))?
     };
     let rocket = Rocket::new(inputs, properties).map_err(|e| {
         let section = match &e {
@@ -330,7 +411,10 @@ pub fn estimated_drag(
         .iter()
         .map(|(name, s)| surface_input(name, s, None))
         .collect();
-    super::drag::estimate(mission, &surfaces, motor.nozzle_radius()).map(Some)
+    // A cluster's nozzles: their total exit area (see [`clustered`]).
+    let (count, _) = cluster_of(mission);
+    let nozzle_radius = motor.nozzle_radius() * f64::from(count).sqrt();
+    super::drag::estimate(mission, &surfaces, nozzle_radius).map(Some)
 }
 
 /// The body and fins the drag estimate implies for `mission`'s rocket (no nozzle): the
@@ -387,6 +471,7 @@ fn surface_input(name: &str, surface: &SurfaceSpec, airfoil: Option<Airfoil>) ->
                     Some(schema::Sweep::AngleDeg(a)) => airframe::Sweep::AngleDeg(a),
                 },
                 cant_angle_deg: s.cant_angle_deg,
+                angular_position_deg: s.angular_position_deg,
                 radius: s.radius,
                 airfoil,
             }),
@@ -398,6 +483,7 @@ fn surface_input(name: &str, surface: &SurfaceSpec, airfoil: Option<Airfoil>) ->
                 root_chord: s.root_chord,
                 span: s.span,
                 cant_angle_deg: s.cant_angle_deg,
+                angular_position_deg: s.angular_position_deg,
                 radius: s.radius,
                 airfoil,
             }),
@@ -408,6 +494,7 @@ fn surface_input(name: &str, surface: &SurfaceSpec, airfoil: Option<Airfoil>) ->
                 n: s.n,
                 shape_points: s.shape_points.clone(),
                 cant_angle_deg: s.cant_angle_deg,
+                angular_position_deg: s.angular_position_deg,
                 radius: s.radius,
                 airfoil,
             }),

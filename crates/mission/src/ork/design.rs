@@ -219,6 +219,42 @@ impl Component {
         }
     }
 
+    /// The motor cluster of an inner tube: `(count, radius)`, the number of tubes (and
+    /// motors) and the root mean square distance of their axes from the tube's position
+    /// (m). OpenRocket places the tubes of a cluster configuration at unit points scaled
+    /// by the separation `2 r_o · clusterscale` (the closest two tubes that far apart):
+    /// rows, rings and rings around a centre tube, and a 3 × 3 grid, listed here by their
+    /// count and `Σ |p|²` over the unit points (the rotation leaves it alone).
+    ///
+    /// # Errors
+    /// [`OrkError::Unsupported`] for a configuration OpenRocket 24.12 does not have;
+    /// [`OrkError::Value`] for a malformed radius or scale.
+    pub fn cluster(&self) -> Result<(u32, f64), OrkError> {
+        let ring5 = 1.0 / (2.0 * (std::f64::consts::PI / 5.0).sin());
+        let (count, sum_squares) = match self.text("clusterconfiguration").unwrap_or("single") {
+            "single" => (1, 0.0),
+            "double" => (2, 0.5),
+            "3-row" => (3, 2.0),
+            "4-row" => (4, 5.0),
+            "3-ring" => (3, 1.0),
+            "4-ring" => (4, 2.0),
+            "5-ring" => (5, 5.0 * ring5 * ring5),
+            "6-ring" => (6, 6.0),
+            "3-star" => (4, 3.0),
+            "4-star" => (5, 4.0),
+            "5-star" => (6, 5.0),
+            "6-star" => (7, 6.0),
+            "9-grid" => (9, 12.0 * 1.4 * 1.4),
+            "9-star" => (9, 8.0 * 1.4 * 1.4),
+            other => return Err(self.unsupported(&format!("a motor cluster ({other})"))),
+        };
+        if count == 1 {
+            return Ok((1, 0.0));
+        }
+        let separation = 2.0 * self.num("outerradius")? * self.num_or("clusterscale", 1.0)?;
+        Ok((count, separation * (sum_squares / f64::from(count)).sqrt()))
+    }
+
     /// Outer and inner radius of a tube fin set of `fincount` tubes on a body of radius
     /// `body_radius` (m). OpenRocket's automatic radius makes three or more tubes touch
     /// each other around the body, `r = R sin(π/n) / (1 − sin(π/n))` (fewer: the body radius);
@@ -575,11 +611,7 @@ fn component(
         c.separations.insert(String::new(), separation_of(node));
     }
     if kind == Kind::InnerTube {
-        if let Some(cluster) = c.text("clusterconfiguration") {
-            if cluster != "single" {
-                return Err(unsupported(format!("a motor cluster ({cluster})")));
-            }
-        }
+        c.cluster()?;
     }
     c.length = positioning_length(kind, &c)?;
     let (parent_top, parent_length) = parent.unwrap_or((0.0, 0.0));

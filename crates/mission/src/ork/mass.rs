@@ -349,6 +349,17 @@ pub fn subtree(c: &Component, parent_inner: f64, body_radius: f64) -> Result<Mas
     for k in &c.children {
         p = p.add(subtree(k, inner, radius)?);
     }
+    if c.kind == Kind::InnerTube {
+        // A cluster repeats the tube with what it holds: `n` copies at the root mean square
+        // distance `r` from the axis add `M r²` to the roll inertia and `M r² / 2` to the
+        // transverse one (the mean over the two lateral axes).
+        let (n, r) = c.cluster()?;
+        if n > 1 {
+            p = p.scaled(p.mass * f64::from(n));
+            p.i_long += 0.5 * p.mass * r * r;
+            p.i_rot += p.mass * r * r;
+        }
+    }
     if subs_override {
         if let Some(m) = c
             .fields

@@ -20,7 +20,10 @@
 //!   separation and ignition events (with their delays) as `separation = "burnout + X"` and
 //!   `ignition_delay` (module `write`); a stage without a motor rides on the stage below.
 //!
-//! Pods, motor clusters and staging events the format cannot express are refused,
+//! - a clustered inner tube onto `[motor] cluster_count` and `cluster_radius`, its copies'
+//!   masses with their offsets (`Component::cluster`).
+//!
+//! Pods and staging events the format cannot express are refused,
 //! naming the component; what is mapped approximately is listed in [`Imported::warnings`].
 
 mod design;

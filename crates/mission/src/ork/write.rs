@@ -550,6 +550,17 @@ fn body_text(
         n(motor_length),
         n(0.5 * motor_length)
     );
+    let (cluster_count, cluster_radius) = mount.cluster()?;
+    if cluster_count > 1 {
+        let _ = writeln!(
+            m,
+            "# OpenRocket's {} cluster: {cluster_count} motors lit together, their axes {} m from\n\
+             # the rocket's axis (root mean square).\ncluster_count = {cluster_count}\ncluster_radius = {}",
+            mount.text("clusterconfiguration").unwrap_or(""),
+            (cluster_radius * 1e4).round() / 1e4,
+            n(cluster_radius)
+        );
+    }
     let _ = writeln!(m, "coordinate_system = \"nozzle_to_combustion_chamber\"\n");
 
     let mut t = String::new();
@@ -706,11 +717,14 @@ fn body_text(
                     let name = key(&c.name, used);
                     let count = c.num_or("fincount", 1.0)?;
                     let cant = c.num_or("cant", 0.0)?;
+                    // OpenRocket's fin-set rotation: the first fin's roll position.
+                    let rotation = c.num_or("rotation", 0.0)?;
                     let common = format!(
-                        "n = {}\nposition = {}\ncant_angle = {}\nradius = {}\n",
+                        "n = {}\nposition = {}\ncant_angle = {}\nangular_position = {}\nradius = {}\n",
                         count as u32,
                         n(c.x),
                         n(cant),
+                        n(rotation),
                         n(tube_radius)
                     );
                     let table = format!("{rocket_key}.surfaces.{name}");

@@ -8,27 +8,26 @@ use std::path::Path;
 
 use serde_json::Value;
 
-use karman_airframe::{BodyLift, Geometry};
-
 use crate::build::flight::simulate;
-use crate::build::rocket::estimate_geometry;
 use crate::build::stages::simulate_staged;
 use crate::ork::{ImportOptions, import};
+use crate::report::rocket::AngleStability;
 
 /// The single-stage designs of `fixtures/openrocket` that karman imports, and whether the CP
-/// criterion holds for them. `simulation_scripting` (CP 3.2 % of the body length aft of
-/// OpenRocket's at rod exit: its two canards form a fin set of two, whose normal force
-/// OpenRocket takes as `2 C_Nα1 sin²(θ − φ)` at the flow's roll angle θ, where karman's
-/// Barrowman fin sets, like RocketPy's, average it to `C_Nα1`; with the pair at `2 C_Nα1`,
-/// flow normal to the canards, the rod-exit CP comes out at OpenRocket's 1.760 m) is held to
-/// the other criteria only. Clusters and pods (`clustered_motors`,
-/// `pods_airframes_and_winglets`) are refused.
-pub const DESIGNS: [(&str, bool); 6] = [
+/// criterion holds for them (all do). `simulation_scripting`'s two canards form a fin set
+/// of two, whose normal force OpenRocket takes at the flow's roll angle θ
+/// (`2 C_Nα1 sin²(θ − φ)`, [`karman_airframe::FinAerodynamics::roll_factor`]) where the
+/// flight model averages it to `C_Nα1`: the compared CP is taken at OpenRocket's roll angle
+/// at rod exit ([`rod_exit_roll`]), flow normal to the canards. `clustered_motors` flies
+/// its four motors as one cluster (`[motor] cluster_count`); pods
+/// (`pods_airframes_and_winglets`) are refused.
+pub const DESIGNS: [(&str, bool); 7] = [
     ("a_simple_model_rocket", true),
     ("base_drag_hack_short_wide", true),
     ("chute_release", true),
+    ("clustered_motors", true),
     ("dual_parachute_deployment", true),
-    ("simulation_scripting", false),
+    ("simulation_scripting", true),
     ("tube_fin_rocket", true),
 ];
 
@@ -65,7 +64,7 @@ pub struct OpenRocketComparison {
     /// Worst relative error of the total Cd at or above Mach 0.8 (`NaN` without such rows).
     pub cd_transonic: f64,
     /// Centre of pressure from the nose tip (m) at the compared row: karman's estimate at
-    /// OpenRocket's angle of attack and Mach there ([`BodyLift::cp_at_angle`]), and
+    /// OpenRocket's angle of attack and Mach there ([`AngleStability`]), and
     /// OpenRocket's.
     pub cp: (f64, f64),
     /// Body length (m), the scale of the CP error.
@@ -76,6 +75,8 @@ pub struct OpenRocketComparison {
     pub cp_time: f64,
     /// OpenRocket's angle of attack at that row (rad), at which both CPs are taken.
     pub cp_alpha: f64,
+    /// The flow's roll angle there (rad), OpenRocket's ([`rod_exit_roll`]).
+    pub cp_roll: f64,
 }
 
 impl OpenRocketComparison {
@@ -134,7 +135,7 @@ impl std::fmt::Display for OpenRocketComparison {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
         write!(
             f,
-            "{:<28} apogee {:8.1} / {:8.1} m ({:5.2} %)  vmax {:6.1} / {:6.1} m/s ({:5.2} %)  Cd <M0.8 {:5.1} %  ≥M0.8 {:5.1} %  CP {:.4} / {:.4} m ({:.2} % of L)  margin {:.2} / {:.2} cal (rod exit, α {:.1}°)  landing {:6.1} / {:6.1} s, {:4.2} / {:4.2} m/s",
+            "{:<28} apogee {:8.1} / {:8.1} m ({:5.2} %)  vmax {:6.1} / {:6.1} m/s ({:5.2} %)  Cd <M0.8 {:5.1} %  ≥M0.8 {:5.1} %  CP {:.4} / {:.4} m ({:.2} % of L)  margin {:.2} / {:.2} cal (rod exit, α {:.1}°, roll {:.0}°)  landing {:6.1} / {:6.1} s, {:4.2} / {:4.2} m/s",
             self.simulation,
             self.apogee.0,
             self.apogee.1,
@@ -150,6 +151,7 @@ impl std::fmt::Display for OpenRocketComparison {
             self.margin.0,
             self.margin.1,
             self.cp_alpha.to_degrees(),
+            self.cp_roll.to_degrees(),
             self.flight_time.0,
             self.flight_time.1,
             self.landing_speed.0,
@@ -163,6 +165,40 @@ fn column(ascent: &Value, name: &str) -> Vec<f64> {
         .as_array()
         .map(|a| a.iter().map(|v| v.as_f64().unwrap_or(f64::NAN)).collect())
         .unwrap_or_default()
+}
+
+/// The roll angle of the flow in the body frame (rad) at rod exit of OpenRocket's flight
+/// with the simulation `conditions` (`reference.json`), the rocket rolled to `worst`
+/// ([`karman_airframe::BodyLift::worst_roll_angle`]). OpenRocket starts the rocket at the orientation
+/// `R_z(π/2 − d) R_y(a) R_z(−θ_w − (π/2 − d))` (rod angle `a`, rod direction `d`, the
+/// wind's direction when launched into the wind; worst angle `θ_w`) and takes the flow's
+/// roll angle as the azimuth of the air velocity in the body frame. On the rod the rocket's
+/// own velocity is along its axis, so the lateral flow is the wind's, from direction `d_w`:
+/// with `γ = d − d_w`, the angle is `θ_w + π/2 − d + atan2(sin γ, cos a cos γ)`; with no
+/// wind OpenRocket takes 0. The fins' `sin²` makes the sign of the flow irrelevant.
+fn rod_exit_roll(conditions: &Value, worst: f64) -> f64 {
+    let wind = &conditions["wind"];
+    let speed = wind["average_speed_m_s"].as_f64().unwrap_or(0.0);
+    let wind_direction = wind["direction_rad"].as_f64().unwrap_or(0.0);
+    if speed <= 0.0 {
+        return 0.0;
+    }
+    let into_wind = conditions["launch_into_wind"].as_bool().unwrap_or(false);
+    let rod_direction = if into_wind {
+        wind_direction
+    } else {
+        conditions["launch_rod_direction_deg"]
+            .as_f64()
+            .unwrap_or(0.0)
+            .to_radians()
+    };
+    let rod_angle = conditions["launch_rod_angle_deg"]
+        .as_f64()
+        .unwrap_or(0.0)
+        .to_radians();
+    let gamma = rod_direction - wind_direction;
+    let lateral = gamma.sin().atan2(rod_angle.cos() * gamma.cos());
+    worst + std::f64::consts::FRAC_PI_2 - rod_direction + lateral
 }
 
 /// Reads `design_dir/reference.json` and, for each stored simulation that flies no simulation
@@ -240,16 +276,11 @@ pub fn compare_design(design_dir: &Path) -> Result<Vec<OpenRocketComparison>, St
         if !(cp_time.is_finite() && cp_alpha.is_finite() && cp_mach.is_finite()) {
             return Err(format!("{name}: no rod-exit CP row"));
         }
-        let lift = BodyLift::new(&estimate_geometry(&mission).map_err(|e| e.to_string())?);
-        let tip = rocket
-            .surfaces()
-            .iter()
-            .find(|s| matches!(s.geometry, Geometry::Nose { .. }))
-            .map_or(0.0, |s| s.position);
-        let ours_cp = lift.cp_at_angle(rocket, tip, cp_alpha, cp_mach);
-        let csys = rocket.csys();
-        let cg = csys * (tip - rocket.center_of_mass(cp_time));
-        let caliber = 2.0 * rocket.radius();
+        let stability =
+            AngleStability::new(&mission, rocket, cp_time, cp_alpha, cp_mach, |worst| {
+                rod_exit_roll(&sim["conditions"], worst)
+            })
+            .map_err(|e| e.to_string())?;
         let body_length = mission
             .spec
             .rocket
@@ -274,11 +305,12 @@ pub fn compare_design(design_dir: &Path) -> Result<Vec<OpenRocketComparison>, St
             max_speed: (summary.max_speed_mps, stored("maxvelocity")),
             cd_subsonic: sub,
             cd_transonic: sup,
-            cp: (ours_cp, at("cp_m")),
+            cp: (stability.cp_m, at("cp_m")),
             body_length,
-            margin: ((ours_cp - cg) / caliber, at("stability_cal")),
+            margin: (stability.margin_cal, at("stability_cal")),
             cp_time,
             cp_alpha,
+            cp_roll: stability.roll_rad,
         })
     })
 }
@@ -530,4 +562,33 @@ pub fn compare_staged_design(design_dir: &Path) -> Result<Vec<StagedComparison>,
             cd: cd_errors,
         })
     })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use std::f64::consts::FRAC_PI_2;
+
+    fn conditions(into_wind: bool, rod_deg: [f64; 2], wind: [f64; 2]) -> Value {
+        serde_json::json!({
+            "launch_into_wind": into_wind,
+            "launch_rod_angle_deg": rod_deg[0],
+            "launch_rod_direction_deg": rod_deg[1],
+            "wind": {"average_speed_m_s": wind[0], "direction_rad": wind[1]},
+        })
+    }
+
+    #[test]
+    fn the_rod_exit_roll_angle_follows_openrockets_initial_orientation() {
+        let worst = 0.3;
+        // Into the wind on a vertical rod: the flow comes from the worst roll angle.
+        let into = conditions(true, [0.0, 0.0], [2.0, FRAC_PI_2]);
+        assert!((rod_exit_roll(&into, worst) - worst).abs() < 1e-15);
+        // A vertical rod rolls the rocket by −θ_w whatever its direction: a north wind on a
+        // rod pointing east comes at θ_w + 90° in the body frame.
+        let north = conditions(false, [0.0, 90.0], [2.0, 0.0]);
+        assert!((rod_exit_roll(&north, worst) - (worst + FRAC_PI_2)).abs() < 1e-15);
+        // No wind: OpenRocket's 0.
+        assert!(rod_exit_roll(&conditions(true, [5.0, 0.0], [0.0, 1.0]), worst) == 0.0);
+    }
 }

@@ -1,13 +1,89 @@
-//! Rocket reports: the `rocket` figures of `reference.json` ([`RocketReport`]) and a profile
-//! drawing of the rocket to scale with its CG and CP ([`draw_rocket_svg`], like RocketPy's
+//! Rocket reports: the `rocket` figures of `reference.json` ([`RocketReport`]), OpenRocket's
+//! CP and stability margin at an angle of attack ([`AngleStability`]) and a profile drawing
+//! of the rocket to scale with its CG and CP ([`draw_rocket_svg`], like RocketPy's
 //! `Rocket.draw()`).
 
 use std::fmt::{self, Write as _};
 
-use karman_airframe::{Geometry, Rocket};
+use karman_airframe::{BodyLift, Geometry, Rocket};
 use serde::Serialize;
 
-use crate::Mission;
+use crate::build::rocket::estimate_geometry;
+use crate::{Mission, MissionError};
+
+/// OpenRocket's centre of pressure and stability margin of a rocket at an angle of attack:
+/// Barrowman's terms with Galejs' body lift ([`BodyLift::cp_at_angle`]), the sets of one or
+/// two fins at the flow's roll angle.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct AngleStability {
+    /// Time (s) of the centre of mass used.
+    pub time_s: f64,
+    /// Angle of attack (rad).
+    pub alpha_rad: f64,
+    /// Mach number.
+    pub mach: f64,
+    /// The flow's roll angle (rad) in the fins' angular positions.
+    pub roll_rad: f64,
+    /// CP aft of the nose tip (m).
+    pub cp_m: f64,
+    /// CG aft of the nose tip (m).
+    pub cg_m: f64,
+    /// `(CP − CG) / (2 r)`, calibers.
+    pub margin_cal: f64,
+}
+
+impl AngleStability {
+    /// The figures of `mission`'s `rocket` at time `time_s`, angle of attack `alpha` (rad) and
+    /// `mach`; the flow's roll angle is `roll` of OpenRocket's worst roll angle
+    /// ([`BodyLift::worst_roll_angle`], the one OpenRocket rolls the rocket to on the pad).
+    ///
+    /// # Errors
+    /// As [`estimate_geometry`].
+    pub fn new(
+        mission: &Mission,
+        rocket: &Rocket,
+        time_s: f64,
+        alpha: f64,
+        mach: f64,
+        roll: impl FnOnce(f64) -> f64,
+    ) -> Result<Self, MissionError> {
+        let lift = BodyLift::new(&estimate_geometry(mission)?);
+        let tip = rocket
+            .surfaces()
+            .iter()
+            .find(|s| matches!(s.geometry, Geometry::Nose { .. }))
+            .map_or(0.0, |s| s.position);
+        let roll_rad = roll(lift.worst_roll_angle(rocket, tip));
+        let cp_m = lift.cp_at_angle(rocket, tip, alpha, mach, roll_rad);
+        let cg_m = rocket.csys() * (tip - rocket.center_of_mass(time_s));
+        Ok(AngleStability {
+            time_s,
+            alpha_rad: alpha,
+            mach,
+            roll_rad,
+            cp_m,
+            cg_m,
+            margin_cal: (cp_m - cg_m) / (2.0 * rocket.radius()),
+        })
+    }
+}
+
+impl fmt::Display for AngleStability {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        write!(
+            f,
+            "CP {:.4} m, CG {:.4} m aft of the nose tip, margin {:.2} cal (OpenRocket's CP at t = {:.3} s, \
+             α {:.2}°, Mach {:.3}, flow roll angle {:.1}°)",
+            self.cp_m,
+            self.cg_m,
+            self.margin_cal,
+            self.time_s,
+            self.alpha_rad.to_degrees(),
+            self.mach,
+            self.roll_rad.to_degrees(),
+        )
+    }
+}
 
 /// One surface's normal-force slope and CP (`rocket.surfaces[]` of `reference.json`).
 #[derive(Debug, Clone, PartialEq, Serialize)]

@@ -153,6 +153,11 @@ pub struct StageSpec {
     pub stack_power_off_drag: Curve,
     /// Power-on drag coefficient of that stack.
     pub stack_power_on_drag: Curve,
+    /// Drag area `C_D·A` of the spent stage tumbling to the ground, m²; absent: Niskanen's
+    /// estimate from its fins and body ([`crate::build::stages`]). Used only by a stage
+    /// without parachutes.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub tumble_drag_area: Option<f64>,
     /// The stage's motor; absent: a stage without one, which must separate at launch.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub motor: Option<MotorSpec>,
@@ -355,6 +360,13 @@ pub struct MotorSpec {
     /// `[[motor.tanks]]` (hybrid and liquid), in `add_tank` order.
     #[serde(default, skip_serializing_if = "Vec::is_empty")]
     pub tanks: Vec<TankSpec>,
+    /// A cluster of this many identical motors, lit together; absent: 1.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub cluster_count: Option<u32>,
+    /// Distance of the clustered motors' axes from the rocket's axis, m (their root mean
+    /// square distance for a cluster not on one ring); absent: 0.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub cluster_radius: Option<f64>,
 }
 
 /// One `[[motor.tanks]]` entry (RocketPy's tank classes and `add_tank(tank, position)`).

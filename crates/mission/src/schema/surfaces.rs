@@ -132,6 +132,8 @@ pub struct TrapezoidalFinsSpec {
     pub sweep: Option<Sweep>,
     /// Cant angle, deg; default 0.
     pub cant_angle_deg: f64,
+    /// Roll position of the first fin about the rocket axis, deg; default 0.
+    pub angular_position_deg: f64,
     /// Body radius at the fins, m; absent: the rocket radius.
     pub radius: Option<f64>,
     /// Airfoil lift curve; absent: flat plate.
@@ -151,6 +153,8 @@ pub struct EllipticalFinsSpec {
     pub position: f64,
     /// Cant angle, deg; default 0.
     pub cant_angle_deg: f64,
+    /// Roll position of the first fin about the rocket axis, deg; default 0.
+    pub angular_position_deg: f64,
     /// Body radius at the fins, m; absent: the rocket radius.
     pub radius: Option<f64>,
     /// Airfoil lift curve; absent: flat plate.
@@ -168,6 +172,8 @@ pub struct FreeFormFinsSpec {
     pub position: f64,
     /// Cant angle, deg; default 0.
     pub cant_angle_deg: f64,
+    /// Roll position of the first fin about the rocket axis, deg; default 0.
+    pub angular_position_deg: f64,
     /// Body radius at the fins, m; absent: the rocket radius.
     pub radius: Option<f64>,
     /// Airfoil lift curve; absent: flat plate.
@@ -238,6 +244,12 @@ struct RawSurface {
         skip_serializing_if = "Option::is_none"
     )]
     cant_angle_deg: Option<f64>,
+    #[serde(
+        rename = "angular_position",
+        default,
+        skip_serializing_if = "Option::is_none"
+    )]
+    angular_position_deg: Option<f64>,
     #[serde(default, skip_serializing_if = "Option::is_none")]
     radius: Option<f64>,
     #[serde(default, skip_serializing_if = "Option::is_none")]
@@ -278,6 +290,7 @@ pub(crate) fn keys_of(surface_type: SurfaceType) -> (&'static [&'static str], us
                 "sweep_angle",
                 "sweep_length",
                 "cant_angle",
+                "angular_position",
                 "radius",
                 "airfoil",
             ],
@@ -290,6 +303,7 @@ pub(crate) fn keys_of(surface_type: SurfaceType) -> (&'static [&'static str], us
                 "root_chord",
                 "position",
                 "cant_angle",
+                "angular_position",
                 "radius",
                 "airfoil",
             ],
@@ -301,6 +315,7 @@ pub(crate) fn keys_of(surface_type: SurfaceType) -> (&'static [&'static str], us
                 "shape_points",
                 "position",
                 "cant_angle",
+                "angular_position",
                 "radius",
                 "airfoil",
             ],
@@ -338,6 +353,7 @@ impl RawSurface {
             ("sweep_angle", self.sweep_angle_deg.is_some()),
             ("sweep_length", self.sweep_length.is_some()),
             ("cant_angle", self.cant_angle_deg.is_some()),
+            ("angular_position", self.angular_position_deg.is_some()),
             ("radius", self.radius.is_some()),
             ("airfoil", self.airfoil.is_some()),
             ("shape_points", self.shape_points.is_some()),
@@ -443,6 +459,7 @@ impl TryFrom<RawSurface> for SurfaceSpec {
         })?;
         check_keys(&raw, surface_type)?;
         let cant_angle_deg = raw.cant_angle_deg.unwrap_or(0.0);
+        let angular_position_deg = raw.angular_position_deg.unwrap_or(0.0);
         Ok(match surface_type {
             SurfaceType::Nose => SurfaceSpec::Nose(NoseSpec {
                 length: take(raw.length, "length")?,
@@ -464,6 +481,7 @@ impl TryFrom<RawSurface> for SurfaceSpec {
                     (None, None) => None,
                 },
                 cant_angle_deg,
+                angular_position_deg,
                 radius: raw.radius,
                 airfoil: airfoil(raw.airfoil)?,
             }),
@@ -473,6 +491,7 @@ impl TryFrom<RawSurface> for SurfaceSpec {
                 root_chord: take(raw.root_chord, "root_chord")?,
                 position: take(raw.position, "position")?,
                 cant_angle_deg,
+                angular_position_deg,
                 radius: raw.radius,
                 airfoil: airfoil(raw.airfoil)?,
             }),
@@ -481,6 +500,7 @@ impl TryFrom<RawSurface> for SurfaceSpec {
                 shape_points: take(raw.shape_points, "shape_points")?,
                 position: take(raw.position, "position")?,
                 cant_angle_deg,
+                angular_position_deg,
                 radius: raw.radius,
                 airfoil: airfoil(raw.airfoil)?,
             }),
@@ -547,6 +567,7 @@ impl From<SurfaceSpec> for RawSurface {
                     _ => None,
                 },
                 cant_angle_deg: Some(s.cant_angle_deg),
+                angular_position_deg: Some(s.angular_position_deg),
                 radius: s.radius,
                 airfoil: raw_airfoil(s.airfoil),
                 ..RawSurface::default()
@@ -558,6 +579,7 @@ impl From<SurfaceSpec> for RawSurface {
                 root_chord: Some(s.root_chord),
                 position: Some(s.position),
                 cant_angle_deg: Some(s.cant_angle_deg),
+                angular_position_deg: Some(s.angular_position_deg),
                 radius: s.radius,
                 airfoil: raw_airfoil(s.airfoil),
                 ..RawSurface::default()
@@ -568,6 +590,7 @@ impl From<SurfaceSpec> for RawSurface {
                 shape_points: Some(s.shape_points),
                 position: Some(s.position),
                 cant_angle_deg: Some(s.cant_angle_deg),
+                angular_position_deg: Some(s.angular_position_deg),
                 radius: s.radius,
                 airfoil: raw_airfoil(s.airfoil),
                 ..RawSurface::default()
