@@ -85,7 +85,6 @@ pub use drag::{
     FinSetDrag, FlowReference, LaunchLug, Profile, RailButtonDrag, TubeFinSetDrag,
 };
 pub use error::AirframeError;
-pub use mass::MassProperties;
 pub use motor::{MotorProperties, PropellantPart};
 pub use recovery::{
     DEFAULT_CANOPY_DRAG_COEFFICIENT, DEFAULT_POROSITY, DEFAULT_SAMPLING_RATE, Parachute,

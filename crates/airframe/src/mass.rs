@@ -21,31 +21,10 @@
 //! so that it follows the unit of time.
 
 use karman_math::{Cursor, Extrapolation, Table1};
+use karman_model::MassSample;
 
 use crate::error::AirframeError;
 use crate::motor::MotorProperties;
-
-/// Every time-dependent mass quantity at one instant ([`crate::Rocket::mass_properties`]),
-/// each equal to the rocket's method of the same name.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct MassProperties {
-    /// Total mass m(t) (kg).
-    pub total_mass: f64,
-    /// Signed mass flow rate ṁ(t) = −T(t)/v̄_e (kg/s).
-    pub mass_flow_rate: f64,
-    /// m̈(t) (kg/s²).
-    pub mass_flow_rate_derivative: f64,
-    /// CM→CDM offset c(t) (m).
-    pub com_to_cdm: f64,
-    /// ċ(t) (m/s).
-    pub com_to_cdm_rate: f64,
-    /// c̈(t) (m/s²).
-    pub com_to_cdm_accel: f64,
-    /// Inertia about the CDM, `(I11, I22, I33, I12, I13, I23)` (kg·m²).
-    pub inertia: [f64; 6],
-    /// İ(t), same layout (kg·m²/s).
-    pub inertia_rate: [f64; 6],
-}
 
 /// Mass properties of rocket + motor as functions of time, allocation-free to evaluate.
 #[derive(Debug, Clone, PartialEq)]
@@ -79,7 +58,7 @@ pub(crate) struct MassModel {
     /// For a propellant in parts whose tables are all held constant outside their nodes:
     /// the last node of any of them, and the parts' figures beyond it (the mass-flow fields
     /// aside), which no longer change.
-    parts_settled: Option<(f64, MassProperties)>,
+    parts_settled: Option<(f64, MassSample)>,
     /// For each part, whether its centre-of-mass and I11 tables have its mass table's nodes
     /// (one search serves all of them).
     parts_one_grid: Vec<bool>,
@@ -176,19 +155,13 @@ impl MassModel {
                         source,
                     })
             };
-            let each = |f: &dyn Fn(f64, f64) -> f64| -> Vec<f64> {
-                masses
-                    .iter()
-                    .zip(&positions)
-                    .map(|(&mp, &zp)| f(mp, zp))
-                    .collect()
-            };
-            let offset = nodal(each(&|mp, zp| model.offset_of(mp, zp)), cpm, "com_to_cdm")?;
-            let center = nodal(
-                each(&|mp, zp| model.center_of_mass_of(mp, zp)),
-                cpm,
-                "center_of_mass",
-            )?;
+            let nodes = || masses.iter().copied().zip(positions.iter().copied());
+            let offsets = nodes().map(|(mp, zp)| model.offset_of(mp, zp)).collect();
+            let offset = nodal(offsets, cpm, "com_to_cdm")?;
+            let centers = nodes()
+                .map(|(mp, zp)| model.center_of_mass_of(mp, zp))
+                .collect();
+            let center = nodal(centers, cpm, "center_of_mass")?;
             let i11 = if same_grid(&m.propellant_i11, &m.propellant_mass) {
                 let i = &m.propellant_i11;
                 let ys = masses
@@ -296,6 +269,18 @@ impl MassModel {
     #[inline]
     pub(crate) fn total_mass(&self, t: f64) -> f64 {
         self.dry_mass + self.propellant_mass(t)
+    }
+
+    /// [`MassModel::total_mass`] with the time located from `cursor` (propellant times;
+    /// updated).
+    #[inline]
+    pub(crate) fn total_mass_near(&self, t: f64, cursor: &mut Cursor) -> f64 {
+        let m = &self.motor;
+        if m.propellant_parts.is_empty() {
+            self.dry_mass + m.propellant_mass.eval_with(t, cursor)
+        } else {
+            self.total_mass(t)
+        }
     }
 
     /// Signed ṁ(t) = −T(t)/v̄_e.
@@ -521,7 +506,7 @@ impl MassModel {
     /// searched once for the mass, the offset and the inertia with their derivatives. The
     /// searches start from `cursors` (thrust times, propellant times; updated).
     #[inline]
-    pub(crate) fn properties_near(&self, t: f64, cursors: &mut [Cursor; 2]) -> MassProperties {
+    pub(crate) fn properties_near(&self, t: f64, cursors: &mut [Cursor; 2]) -> MassSample {
         let m = &self.motor;
         let [on_thrust_cursor, on_grid_cursor] = cursors;
         let on_thrust = m.thrust.locate_with(t, on_thrust_cursor);
@@ -534,7 +519,7 @@ impl MassModel {
                 let i = i11.eval_at(at, t);
                 let i_rate = i11.derivative_at(at, t);
                 let d = &self.dry_inertia;
-                MassProperties {
+                MassSample {
                     total_mass: self.dry_mass + m.propellant_mass.eval_at(at, t),
                     mass_flow_rate,
                     mass_flow_rate_derivative,
@@ -560,14 +545,14 @@ impl MassModel {
                 }
             }
             _ if !m.propellant_parts.is_empty() => match &self.parts_settled {
-                Some((end, settled)) if t > *end => MassProperties {
+                Some((end, settled)) if t > *end => MassSample {
                     mass_flow_rate,
                     mass_flow_rate_derivative,
                     ..*settled
                 },
                 _ => self.parts_properties(t, mass_flow_rate, mass_flow_rate_derivative),
             },
-            _ => MassProperties {
+            _ => MassSample {
                 total_mass: self.total_mass(t),
                 mass_flow_rate,
                 mass_flow_rate_derivative,
@@ -582,7 +567,7 @@ impl MassModel {
 
     /// The parts' settled figures ([`MassModel::parts_settled`]): their tables searched
     /// beyond the last node of any of them, when every table is held constant there.
-    fn settled_parts(&self) -> Option<(f64, MassProperties)> {
+    fn settled_parts(&self) -> Option<(f64, MassSample)> {
         let m = &self.motor;
         let mut tables = m
             .propellant_parts
@@ -614,7 +599,7 @@ impl MassModel {
         t: f64,
         mass_flow_rate: f64,
         mass_flow_rate_derivative: f64,
-    ) -> MassProperties {
+    ) -> MassSample {
         let parts = &self.motor.propellant_parts;
         let lever = self.motor_position - self.cdm;
         let (mut mp, mut mp1, mut mp2) = (0.0, 0.0, 0.0);
@@ -679,7 +664,7 @@ impl MassModel {
         let dry = &self.dry_inertia;
         let i33 = &self.motor.propellant_i33;
         let at = i33.locate(t);
-        MassProperties {
+        MassSample {
             total_mass: total,
             mass_flow_rate,
             mass_flow_rate_derivative,

@@ -13,12 +13,12 @@ use crate::air_brakes::AIR_BRAKES_CONTROL;
 use crate::{Rocket, Surface, Trigger};
 
 impl SurfaceModel for Surface {
-    #[inline]
+    #[inline(always)]
     fn cp_body(&self) -> [f64; 3] {
         self.cp_body
     }
 
-    #[inline]
+    #[inline(always)]
     fn loads(&self, flow: &LocalFlow) -> Loads {
         let [cn_alpha, forcing, damping] = self.coefficients(flow.mach);
         let area = self.reference_area;
@@ -87,22 +87,23 @@ impl VehicleModel for Rocket {
     #[inline]
     fn mass(&self, t: f64, law: MassFlowLaw, cursors: &mut [Cursor; 2]) -> MassSample {
         let p = self.mass_properties_near(t, cursors);
-        let (mass_flow_rate, mass_flow_rate_derivative) = match law {
-            MassFlowLaw::ThrustOverExhaustVelocity => {
-                (p.mass_flow_rate, p.mass_flow_rate_derivative)
+        match law {
+            MassFlowLaw::ThrustOverExhaustVelocity => p,
+            MassFlowLaw::MassDerivative => {
+                let (mass_flow_rate, mass_flow_rate_derivative) =
+                    self.mass_rate_near(t, &mut cursors[1]);
+                MassSample {
+                    mass_flow_rate,
+                    mass_flow_rate_derivative,
+                    ..p
+                }
             }
-            MassFlowLaw::MassDerivative => self.mass_rate_near(t, &mut cursors[1]),
-        };
-        MassSample {
-            total_mass: p.total_mass,
-            mass_flow_rate,
-            mass_flow_rate_derivative,
-            com_to_cdm: p.com_to_cdm,
-            com_to_cdm_rate: p.com_to_cdm_rate,
-            com_to_cdm_accel: p.com_to_cdm_accel,
-            inertia: p.inertia,
-            inertia_rate: p.inertia_rate,
         }
+    }
+
+    #[inline]
+    fn total_mass(&self, t: f64, cursor: &mut Cursor) -> f64 {
+        self.total_mass_near(t, cursor)
     }
 
     #[inline]

@@ -7,10 +7,11 @@ use karman_math::{Cursor, Extrapolation, Interpolation, PhysicalConstants, Table
 
 use crate::air_brakes::AirBrakes;
 use crate::error::{AirframeError, finite, non_negative, positive};
-use crate::mass::{MassModel, MassProperties};
+use crate::mass::MassModel;
 use crate::motor::{INERTIA_NAMES, MotorProperties};
 use crate::recovery::{Parachute, RailButtons};
 use crate::surfaces::{Geometry, Surface, SurfaceInput};
+use karman_model::MassSample;
 
 /// Orientation of the rocket's user axis (RocketPy `coordinate_system_orientation`).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
@@ -353,6 +354,14 @@ impl Rocket {
         self.mass.total_mass(t)
     }
 
+    /// [`Rocket::total_mass`] with the time located from `cursor` (on the propellant tables'
+    /// times; updated): the same value, found faster when successive times are close.
+    #[inline]
+    #[must_use]
+    pub fn total_mass_near(&self, t: f64, cursor: &mut Cursor) -> f64 {
+        self.mass.total_mass_near(t, cursor)
+    }
+
     /// Signed total mass flow rate ṁ(t) = −T(t)/v̄_e (kg/s), physics.md §6.2.
     #[inline]
     #[must_use]
@@ -405,11 +414,12 @@ impl Rocket {
     }
 
     /// Every time-dependent mass quantity at `t` at once (what the equations of motion
-    /// evaluate per step), each equal to the method of the same name; the tables that share
-    /// a time grid are searched once.
+    /// evaluate per step), each equal to the method of the same name (the mass flow is
+    /// `−T/v̄_e`, [`karman_model::MassFlowLaw::ThrustOverExhaustVelocity`]); the tables that
+    /// share a time grid are searched once.
     #[inline]
     #[must_use]
-    pub fn mass_properties(&self, t: f64) -> MassProperties {
+    pub fn mass_properties(&self, t: f64) -> MassSample {
         self.mass.properties_near(t, &mut [Cursor::default(); 2])
     }
 
@@ -418,7 +428,7 @@ impl Rocket {
     /// when successive times are close, as along an integration.
     #[inline]
     #[must_use]
-    pub fn mass_properties_near(&self, t: f64, cursors: &mut [Cursor; 2]) -> MassProperties {
+    pub fn mass_properties_near(&self, t: f64, cursors: &mut [Cursor; 2]) -> MassSample {
         self.mass.properties_near(t, cursors)
     }
 

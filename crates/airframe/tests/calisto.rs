@@ -255,6 +255,8 @@ fn mass_properties_equal_the_individual_methods() {
                 r.mass_properties_near(t, &mut on_times),
                 r.mass_properties(t)
             );
+            let m = r.total_mass_near(t, &mut on_times[1]);
+            assert!(same(m, r.mass_properties(t).total_mass), "m({t}) near");
             let thrust = r.net_thrust_near(t, 80_000.0, &mut on_times[0]);
             assert!(same(thrust, r.net_thrust(t, 80_000.0)), "T({t})");
             let mach = t / 4.0;

@@ -256,7 +256,7 @@ impl<'a, A: AtmosphereModel, V: VehicleModel> Equations<'a, A, V> {
         };
         let r3 = veh.axial_load(&flow, &on_rail, &mut cursors.mach);
         let net_thrust = veh.thrust(t, air.pressure, &mut cursors.time[0]);
-        let mass = veh.mass(t, self.law, &mut cursors.time).total_mass;
+        let mass = veh.total_mass(t, &mut cursors.time[1]);
         let a3 = (r3 + net_thrust) / mass - (e0 * e0 - e1 * e1 - e2 * e2 + e3 * e3) * air.gravity;
         let (ax, ay, az) = if a3 > 0.0 {
             (
@@ -283,7 +283,7 @@ impl<'a, A: AtmosphereModel, V: VehicleModel> Equations<'a, A, V> {
     /// Aerodynamic force and moment in body axes about the CDM, plus the net thrust
     /// (physics.md §7.1, §7.2, §7.6, §8.3 steps 1–5); `power_on_drag` picks the drag curve
     /// (the 6-DOF equations: while the motor burns; the 3-DOF ones: before burn-out).
-    #[inline]
+    #[inline(always)]
     #[allow(clippy::too_many_arguments)]
     fn loads(
         &self,

@@ -304,6 +304,12 @@ impl Flight {
                 time_s: p.trigger_time,
             });
         }
+        if let Some(t) = self.tumble {
+            events.push(EventRecord {
+                name: "tumble".into(),
+                time_s: t,
+            });
+        }
         if let Some((t, _)) = self.impact {
             events.push(EventRecord {
                 name: "impact".into(),

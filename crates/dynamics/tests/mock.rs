@@ -200,6 +200,9 @@ impl VehicleModel for MockRocket {
             inertia_rate: [md * 0.25, md * 0.25, md * 0.0025, 0.0, 0.0, 0.0],
         }
     }
+    fn total_mass(&self, t: f64, _cursor: &mut Cursor) -> f64 {
+        MockRocket::total_mass(self, t)
+    }
     fn thrust(&self, t: f64, _ambient_pressure: f64, _cursor: &mut Cursor) -> f64 {
         if self.burning(t) { self.thrust } else { 0.0 }
     }

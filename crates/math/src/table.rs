@@ -268,8 +268,13 @@ pub struct Table1 {
 /// The interpolant of validated, strictly increasing samples; finite samples can still give
 /// coefficients that overflow (a spline through samples 1e-222 apart), which is an error.
 fn pieces(xs: &[f64], ys: &[f64], interpolation: Interpolation) -> Result<Pieces, MathError> {
+    let mut finite_slopes = true;
     let pieces = match interpolation {
-        Interpolation::Linear => Pieces::Cubic(linear_coeffs(xs, ys)),
+        Interpolation::Linear => {
+            let (coeffs, finite) = linear_coeffs_checked(xs, ys);
+            finite_slopes = finite;
+            Pieces::Cubic(coeffs)
+        }
         Interpolation::Spline => Pieces::Cubic(natural_spline_coeffs(xs, ys)),
         Interpolation::Akima => Pieces::Cubic(hermite_coeffs(xs, ys, &akima_slopes(xs, ys))),
         Interpolation::Polynomial => {
@@ -280,9 +285,15 @@ fn pieces(xs: &[f64], ys: &[f64], interpolation: Interpolation) -> Result<Pieces
             }
         }
     };
+    let finite = |c: &[f64]| c.iter().all(|v| v.is_finite());
     let bad = match &pieces {
-        Pieces::Cubic(coeffs) => coeffs.iter().position(|c| !c.iter().all(|v| v.is_finite())),
-        Pieces::Polynomial(p) => p.coeffs.iter().position(|v| !v.is_finite()).map(|_| 0),
+        // Linear pieces: only a slope can overflow, and that was noted as they were made.
+        Pieces::Cubic(_) if interpolation == Interpolation::Linear && finite_slopes => None,
+        Pieces::Cubic(coeffs) if interpolation == Interpolation::Linear => {
+            coeffs.iter().position(|c| !c[1].is_finite())
+        }
+        Pieces::Cubic(coeffs) => coeffs.iter().position(|c| !finite(c)),
+        Pieces::Polynomial(p) => (!finite(&p.coeffs)).then_some(0),
     };
     match bad {
         Some(interval) => Err(MathError::InterpolantNotFinite { interval }),
@@ -1052,21 +1063,32 @@ pub fn linspace(a: f64, b: f64, n: usize) -> Vec<f64> {
 /// its left value, except the last interval, whose value is the last sample so that natural
 /// extrapolation to the right continues from it.
 fn linear_coeffs(xs: &[f64], ys: &[f64]) -> Arc<[[f64; 4]]> {
+    linear_coeffs_checked(xs, ys).0
+}
+
+/// [`linear_coeffs`] and whether every slope is finite (finite samples can still give a slope
+/// that overflows; the other coefficients are samples and zeros).
+fn linear_coeffs_checked(xs: &[f64], ys: &[f64]) -> (Arc<[[f64; 4]]>, bool) {
     let last = xs.len().saturating_sub(2);
-    xs.windows(2)
+    let mut finite = true;
+    let coeffs = xs
+        .windows(2)
         .zip(ys.windows(2))
         .enumerate()
         .map(|(i, (x, y))| {
             let h = x[1] - x[0];
             if h > 0.0 {
-                [y[0], (y[1] - y[0]) / h, 0.0, 0.0]
+                let slope = (y[1] - y[0]) / h;
+                finite &= slope.is_finite();
+                [y[0], slope, 0.0, 0.0]
             } else if i == last {
                 [y[1], 0.0, 0.0, 0.0]
             } else {
                 [y[0], 0.0, 0.0, 0.0]
             }
         })
-        .collect()
+        .collect();
+    (coeffs, finite)
 }
 
 /// Natural cubic spline: solve for the second derivatives `M_i` (M_0 = M_{n-1} = 0).

@@ -24,7 +24,8 @@
 //! no varied input reaches is built once from the nominal mission and shared: the
 //! environment unless a stored `environment.*` input varies, the motor unless a `motor.*`
 //! input or knob varies, the rocket unless the motor or a `rocket.*` input varies; thrust and
-//! rocket curve files are read once. Parachute trigger noise of sample `i` is seeded from the
+//! rocket curve files are read once (those of every stage of a multi-stage mission too:
+//! [`crate::build::stages::StageThrusts`]). Parachute trigger noise of sample `i` is seeded from the
 //! sample's reserved stream ([`karman_dispersion::sampling::flight_seed`]), so it replays with
 //! the sample.
 //!
@@ -212,6 +213,8 @@ pub struct MonteCarlo {
     stage_reshapes: Vec<Option<[f64; 2]>>,
     /// The lower stages of a multi-stage mission (each sample flies the staged flight).
     lower: Vec<LowerStage>,
+    /// The thrust data of every motor of a multi-stage mission, read once.
+    stage_thrusts: Option<stages::StageThrusts>,
 }
 
 /// `--samples` / `--seed` overrides of the `[dispersion]` table.
@@ -290,14 +293,19 @@ impl MonteCarlo {
         let motor = build_motor_with(mission, &thrust)?;
         let rocket = build_rocket(mission, &motor)?;
         let environment = build_environment(mission)?;
+        let stage_thrusts = if spec.stages.is_empty() {
+            None
+        } else {
+            Some(stages::StageThrusts::read(mission)?)
+        };
         let mut stage_reshapes = Vec::with_capacity(spec.stages.len());
         for (index, stage) in spec.stages.iter().enumerate() {
-            stage_reshapes.push(match stage.motor {
-                Some(_) => {
-                    let motor = stages::stage_motor(mission, index)?;
+            stage_reshapes.push(match (&stage.motor, &stage_thrusts) {
+                (Some(_), Some(thrusts)) => {
+                    let motor = stages::stage_motor(mission, thrusts, index)?;
                     Some([motor.burn_out(), motor.total_impulse()])
                 }
-                None => None,
+                _ => None,
             });
         }
         let mut inputs = Vec::new();
@@ -435,6 +443,7 @@ impl MonteCarlo {
             nominal_reshape: [motor.burn_out(), motor.total_impulse()],
             stage_reshapes,
             lower,
+            stage_thrusts,
             motor,
             rocket,
         })
@@ -620,8 +629,13 @@ impl MonteCarlo {
         wind: [f64; 2],
     ) -> Result<Outcome, String> {
         let noise_seed = flight_seed(self.study.seed, index);
-        let run = stages::simulate_staged_in(mission, environment.clone(), wind, noise_seed)
-            .map_err(|e| chain(&e))?;
+        let thrusts = self
+            .stage_thrusts
+            .as_ref()
+            .ok_or("a multi-stage study without its thrust data")?;
+        let run =
+            stages::simulate_staged_in(mission, thrusts, environment.clone(), wind, noise_seed)
+                .map_err(|e| chain(&e))?;
         let (values, ended) = staged_values(&run, &self.lower)?;
         Ok(match ended {
             None => Outcome::new(values),
@@ -739,12 +753,14 @@ pub fn data_fingerprint(mission: &Mission) -> Result<Vec<DataFile>, MissionError
     Ok(data)
 }
 
-/// Reads the rocket's curve files (drag, airfoil lift) into inline points, so that samples
-/// rebuilding the rocket do not read them again (the same points, so the same tables).
+/// Reads the curve files (drag, airfoil lift) of the rocket and of every lower stage (its own
+/// and its stack's drag) into inline points, so that samples rebuilding the rocket do not
+/// read them again (the same points, so the same tables).
 fn inline_rocket_curves(mission: &mut Mission) -> Result<(), MissionError> {
     let dir = mission.dir.clone();
     let path = mission.path.clone();
-    let rocket = &mut mission.spec.rocket;
+    let spec = &mut mission.spec;
+    let rocket = &mut spec.rocket;
     if let Some(ab) = rocket.air_brakes.as_mut()
         && matches!(ab.drag_coefficient_curve, AirBrakesCurve::File(_))
     {
@@ -768,6 +784,20 @@ fn inline_rocket_curves(mission: &mut Mission) -> Result<(), MissionError> {
     for (name, surface) in &mut rocket.surfaces {
         if let Some(airfoil) = surface.airfoil_mut() {
             curves.push((format!("rocket.surfaces.{name}.airfoil"), &mut airfoil.lift));
+        }
+    }
+    for (index, stage) in spec.stages.iter_mut().enumerate() {
+        let at = |key: &str| format!("stages.{index}.{key}");
+        curves.push((at("stack_power_off_drag"), &mut stage.stack_power_off_drag));
+        curves.push((at("stack_power_on_drag"), &mut stage.stack_power_on_drag));
+        let own = &mut stage.rocket;
+        curves.push((at("rocket.power_off_drag"), &mut own.power_off_drag));
+        curves.push((at("rocket.power_on_drag"), &mut own.power_on_drag));
+        for (name, surface) in &mut own.surfaces {
+            if let Some(airfoil) = surface.airfoil_mut() {
+                let key = at(&format!("rocket.surfaces.{name}.airfoil"));
+                curves.push((key, &mut airfoil.lift));
+            }
         }
     }
     for (key, curve) in curves {
@@ -1110,6 +1140,52 @@ mod tests {
             .expect("the fixture has a study");
         let text = format!("{}[dispersion.vary]\n{vary}", &text[..end]);
         crate::parse(&text, &path, &[]).expect("valid mission")
+    }
+
+    #[test]
+    fn a_staged_study_reads_its_data_files_once() {
+        // The two-stage fixture in a folder of its own, the stack's drag from a file too: once
+        // the study is built its data files go, and a sample flies the same bits without them.
+        let fixtures = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../../fixtures");
+        let dir = std::env::temp_dir().join(format!("karman-staged-once-{}", std::process::id()));
+        std::fs::create_dir_all(&dir).expect("folder");
+        let files = [
+            "example_K1960.eng",
+            "power_off_drag.csv",
+            "power_on_drag.csv",
+        ];
+        for file in files {
+            std::fs::copy(fixtures.join(file), dir.join(file)).expect("copy");
+        }
+        let text = std::fs::read_to_string(fixtures.join("two_stage.toml")).expect("fixture");
+        let stack = text
+            .lines()
+            .find(|l| l.starts_with("stack_power_off_drag = "))
+            .expect("the stack's drag");
+        let text = text.replace(stack, "stack_power_off_drag = \"power_off_drag.csv\"");
+        let end = text.find("[dispersion.vary]").expect("a study");
+        let text = format!(
+            "{}[dispersion.vary]\n\"stages.0.rocket.mass\" = {{ std = 0.05 }}\n\
+             \"stages.0.motor.total_impulse\" = {{ factor = {{ normal = [1, 0.03] }} }}\n",
+            &text[..end]
+        );
+        let mission = crate::parse(&text, &dir.join("two_stage.toml"), &[]).expect("mission");
+        let mc = MonteCarlo::new(&mission, StudyOverrides::default()).expect("study");
+        let values = [1.13, 1.02];
+        let with_files = mc.fly(2, &values).expect("flight");
+        for file in files {
+            std::fs::remove_file(dir.join(file)).expect("remove");
+        }
+        let without = mc.fly(2, &values).expect("flight without the files");
+        std::fs::remove_dir_all(&dir).expect("clean up");
+        assert_eq!(without.status(), &karman_dispersion::Status::Completed);
+        let bits = |o: &Outcome| {
+            o.values()
+                .iter()
+                .map(|x| x.map(f64::to_bits))
+                .collect::<Vec<_>>()
+        };
+        assert_eq!(bits(&without), bits(&with_files));
     }
 
     #[test]

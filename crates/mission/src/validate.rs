@@ -282,6 +282,9 @@ fn stages(c: &mut Checker<'_, '_>, spec: &MissionSpec) {
             "must be in (0, 10000] Hz",
         );
         c.non_negative(&at("ignition_delay"), stage.ignition_delay);
+        if let Some(area) = stage.tumble_drag_area {
+            c.positive(&at("tumble_drag_area"), area);
+        }
         let (interpolation, extrapolation) = (
             stage.rocket.interpolation.into(),
             stage.rocket.extrapolation.into(),

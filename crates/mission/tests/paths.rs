@@ -341,6 +341,7 @@ fn every_key_stage_mission() -> karman_mission::schema::MissionSpec {
         ignition_delay: 0.5,
         stack_power_off_drag: Curve::Constant(0.6),
         stack_power_on_drag: Curve::Points(vec![[0.0, 0.5], [1.0, 0.7]]),
+        tumble_drag_area: None,
         motor: Some(spec.motor.clone()),
         rocket: spec.rocket.clone(),
     });

@@ -282,3 +282,194 @@ motor_position = 2.5
     let error = simulate(&mission).expect_err("a stack").to_string();
     assert!(error.contains("stages"), "{error}");
 }
+
+/// `fixtures/openrocket/<design>` imported for its first stored simulation.
+fn imported(design: &str) -> Mission {
+    use karman_mission::ork::{ImportOptions, import};
+    let dir = repository_fixture("openrocket").join(design);
+    let options = ImportOptions {
+        simulation: None,
+        motors: Vec::new(),
+        output_dir: Some(dir.clone()),
+    };
+    let mission = import(&dir.join("design.ork"), &options)
+        .unwrap_or_else(|e| panic!("{design}: {e}"))
+        .mission;
+    parse(&mission, &dir.join("imported.toml"), &[]).unwrap_or_else(|e| panic!("{design}: {e}"))
+}
+
+#[test]
+fn the_imported_staged_designs_fly_every_body_to_the_ground() {
+    for (design, bodies) in [
+        ("two_stage_high_power_rocket", 2),
+        ("three_stage_low_power_rocket", 3),
+    ] {
+        let run = simulate_staged(&imported(design), 0).unwrap_or_else(|e| panic!("{e}"));
+        assert_eq!(run.bodies.len(), bodies, "{design}");
+        for (i, body) in run.bodies.iter().enumerate() {
+            let summary = run.summary(i);
+            assert_eq!(
+                summary.termination,
+                Termination::Impact,
+                "{design} {}",
+                body.name
+            );
+            let last = run.samples(i).last().copied().expect("samples");
+            assert!(
+                last.altitude_agl.abs() < 1e-3,
+                "{design} {}: {} m",
+                body.name,
+                last.altitude_agl
+            );
+        }
+        // Every flight of the tree in a bounded number of steps.
+        for segment in &run.segments {
+            let steps = segment.flight.stats.steps;
+            assert!(steps < 5_000, "{design} {}: {steps} steps", segment.vehicle);
+        }
+    }
+}
+
+#[test]
+fn an_unstable_spent_stage_tumbles_after_its_separation_at_niskanens_terminal_speed() {
+    let mission = imported("three_stage_low_power_rocket");
+    let run = simulate_staged(&mission, 0).expect("flies");
+    // The bottom stage: three trapezoidal fins (root 0.08 m, tip 0.03 m, span 0.04 m) on a
+    // body 0.56 − 0.48 m long, 0.025 m across (Niskanen's eq. 3.99, η(3) = 1.50).
+    let fins = 1.42 * 1.50 * (0.08 + 0.03) / 2.0 * 0.04;
+    let body = 0.56 * (0.56 - 0.48) * 0.025;
+    let drag_area = fins + body;
+    let index = run
+        .bodies
+        .iter()
+        .position(|b| b.name == "Booster stage 2")
+        .expect("the bottom stage flies");
+    let summary = run.summary(index);
+    let event = |name: &str| {
+        summary
+            .events
+            .iter()
+            .find(|e| e.name == name)
+            .map(|e| e.time_s)
+            .unwrap_or_else(|| panic!("no {name}: {:?}", summary.events))
+    };
+    // Statically unstable alone, it turns over right after its separation and tumbles
+    // there (OpenRocket's stored flight: 0.32 s after the separation).
+    let separation = event("separation:Booster stage 2");
+    let tumble = event("tumble");
+    assert!(
+        tumble > separation && tumble < separation + 0.5 && tumble < event("apogee"),
+        "{separation} {tumble}"
+    );
+    // It lands at the terminal speed of its drag area, m g = ½ ρ v² C_D·A; a given
+    // `tumble_drag_area` replaces the estimate.
+    let landing_speed = |run: &karman_mission::build::stages::StagedRun, drag_area: f64| {
+        let index = run
+            .bodies
+            .iter()
+            .position(|b| b.name == "Booster stage 2")
+            .expect("the bottom stage flies");
+        let segment = &run.segments[*run.bodies[index].segments.last().expect("segments")];
+        let last = run.samples(index).last().copied().expect("samples");
+        let mass = segment.rocket.total_mass(last.t);
+        let (rho, g) = (
+            run.environment.density(last.z),
+            run.environment.gravity(last.z),
+        );
+        (-last.vz, (2.0 * mass * g / (rho * drag_area)).sqrt())
+    };
+    let (ours, terminal) = landing_speed(&run, drag_area);
+    assert!(
+        (ours - terminal).abs() < 0.01 * terminal,
+        "{ours} vs {terminal}"
+    );
+    let mut given = mission.clone();
+    given.spec.stages[1].tumble_drag_area = Some(4.0 * drag_area);
+    let run = simulate_staged(&given, 0).expect("flies");
+    let (ours, terminal) = landing_speed(&run, 4.0 * drag_area);
+    assert!(
+        (ours - terminal).abs() < 0.01 * terminal,
+        "{ours} vs {terminal}"
+    );
+}
+
+#[test]
+fn a_stage_without_parachutes_or_body_lengths_needs_its_tumble_drag_area() {
+    let mut mission = imported("three_stage_low_power_rocket");
+    mission.spec.stages[1].rocket.drag_estimate = None;
+    mission.spec.stages[1].stack_power_off_drag = karman_mission::schema::Curve::Constant(0.6);
+    mission.spec.stages[1].stack_power_on_drag = karman_mission::schema::Curve::Constant(0.6);
+    let error = simulate_staged(&mission, 0).expect_err("no estimate");
+    let mut error: &dyn std::error::Error = &error;
+    let mut text = error.to_string();
+    while let Some(source) = error.source() {
+        text = format!("{text}: {source}");
+        error = source;
+    }
+    let error = text;
+    assert!(
+        error.contains("stages.1") && error.contains("tumble_drag_area"),
+        "{error}"
+    );
+    mission.spec.stages[1].tumble_drag_area = Some(0.005);
+    simulate_staged(&mission, 0).expect("flies");
+}
+
+#[test]
+fn a_stable_spent_stage_without_parachutes_tumbles_past_its_apogee() {
+    let path = repository_fixture("two_stage.toml");
+    let text = std::fs::read_to_string(&path).expect("fixture");
+    let start = text
+        .find("[stages.rocket.parachutes.booster_chute]")
+        .expect("the booster's chute");
+    let end = text.find("[dispersion]").expect("a study");
+    let text = format!(
+        "{}{}",
+        &text[..start],
+        &text[end..].replace(
+            "\"stages.0.rocket.parachutes.booster_chute.cd_s\" = { std = 0.1 }\n",
+            ""
+        )
+    )
+    .replace(
+        "ignition_delay = 1.0\n",
+        "ignition_delay = 1.0\ntumble_drag_area = 0.05\n",
+    );
+    let mission = parse(&text, &path, &[]).expect("mission");
+    let run = simulate_staged(&mission, 0).expect("flies");
+    let index = run
+        .bodies
+        .iter()
+        .position(|b| b.name == "booster")
+        .expect("booster");
+    let summary = run.summary(index);
+    assert_eq!(summary.termination, Termination::Impact);
+    let event = |name: &str| {
+        summary
+            .events
+            .iter()
+            .find(|e| e.name == name)
+            .map(|e| e.time_s)
+            .unwrap_or_else(|| panic!("no {name}: {:?}", summary.events))
+    };
+    // The first 100 Hz sampling instant past its apogee.
+    let (apogee, tumble) = (event("apogee"), event("tumble"));
+    assert!(
+        tumble > apogee && tumble <= apogee + 0.01 + 1e-9,
+        "{apogee} {tumble}"
+    );
+    // Lands at the terminal speed of the given drag area.
+    let segment = &run.segments[*run.bodies[index].segments.last().expect("segments")];
+    let last = run.samples(index).last().copied().expect("samples");
+    let mass = segment.rocket.total_mass(last.t);
+    let (rho, g) = (
+        run.environment.density(last.z),
+        run.environment.gravity(last.z),
+    );
+    let terminal = (2.0 * mass * g / (rho * 0.05)).sqrt();
+    assert!(
+        (-last.vz - terminal).abs() < 0.01 * terminal,
+        "{} vs {terminal}",
+        -last.vz
+    );
+}

@@ -6,9 +6,9 @@
 //!
 //! - [`AtmosphereModel`]: air, wind, gravity and Earth rotation at a height (physics.md §4).
 //! - [`VehicleModel`]: a [`VehicleSetup`] read once (burn window, thrust knots, rail buttons,
-//!   recovery devices, dry mass, nozzle), and the per-step quantities: mass properties,
-//!   thrust, the axial aerodynamic load given the flow and the [`Configuration`], and the
-//!   stability margin of post-processing (physics.md §5–§7).
+//!   recovery devices, dry mass, nozzle), and the per-step quantities: mass properties (or
+//!   the total mass alone), thrust, the axial aerodynamic load given the flow and the
+//!   [`Configuration`], and the stability margin of post-processing (physics.md §5–§7).
 //! - [`SurfaceModel`]: one aerodynamic surface whose force law lives in the surface:
 //!   [`SurfaceModel::loads`] turns the [`LocalFlow`] at its centre of pressure into
 //!   [`Loads`] (physics.md §7.2, §7.6), so a surface with its own coefficient tables is one

@@ -44,7 +44,7 @@ impl Loads {
     ///
     /// `α` is evaluated in the equal form `atan2(|s_⊥|, −s₃)`, better conditioned at small
     /// angles, written as a plain arctangent for the usual nose-first stream (`s₃ < 0`).
-    #[inline]
+    #[inline(always)]
     #[must_use]
     pub fn normal_force(flow: &LocalFlow, area: f64, cn_alpha: f64, cp_z: f64) -> Loads {
         let s = flow.stream;
@@ -73,7 +73,7 @@ impl Loads {
     /// RocketPy's roll moment of a fin set (physics.md §7.6): forcing
     /// `½ ρ |s|² A d C_lf,δ δ` minus damping `½ ρ |s| A d² C_ld,ω ω₃ / 2`, with the reference
     /// length `d`, `forcing = C_lf,δ·δ` and `damping = C_ld,ω` at the flow's Mach number.
-    #[inline]
+    #[inline(always)]
     #[must_use]
     pub fn roll_moment(flow: &LocalFlow, area: f64, d: f64, forcing: f64, damping: f64) -> f64 {
         let (rho, sp) = (flow.density, flow.speed);

@@ -166,6 +166,11 @@ pub trait VehicleModel {
     /// Every time-dependent mass quantity at `t`, the mass flow by `law`, with the time
     /// located from `cursors`.
     fn mass(&self, t: f64, law: MassFlowLaw, cursors: &mut [Cursor; 2]) -> MassSample;
+    /// The total mass `m(t)` alone, kg, equal to [`VehicleModel::mass`]'s
+    /// [`MassSample::total_mass`], with the time located from `cursor` (the second of
+    /// [`VehicleModel::mass`]'s): for the equations that need no other mass quantity (the
+    /// rail slide, the point-mass flight).
+    fn total_mass(&self, t: f64, cursor: &mut Cursor) -> f64;
     /// Net thrust at `t` with the nozzle-pressure correction for the ambient pressure,
     /// clamped at 0, N (physics.md §6.3); `cursor` is the first of [`VehicleModel::mass`]'s.
     fn thrust(&self, t: f64, ambient_pressure: f64, cursor: &mut Cursor) -> f64;

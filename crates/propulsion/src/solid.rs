@@ -95,6 +95,7 @@ impl BatesGrains {
 
     /// The grain state holding `propellant_mass` kg of propellant (inverse of the regression;
     /// masses above the initial one give the initial state, zero or less the burnt-out one).
+    #[inline]
     #[must_use]
     pub fn state_for_mass(&self, propellant_mass: f64) -> GrainState {
         let (ro, r0, h0) = (

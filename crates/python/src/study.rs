@@ -12,6 +12,8 @@ use pyo3::exceptions::{PyOSError, PyRuntimeError};
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 
+use karman_mission::build::stages::TOP_STAGE;
+
 use crate::convert::{from_json, plain};
 
 /// A finished Monte Carlo study.
@@ -176,14 +178,20 @@ impl Study {
 
     /// The apogee and landing ellipses by name (`"apogee"`, `"landing"`): centre,
     /// covariance, orientation and the 1/2/3-sigma contours in RocketPy's convention
-    /// (`k_sigma_rocketpy`) and probability-calibrated (`probability`).
+    /// (`k_sigma_rocketpy`) and probability-calibrated (`probability`). In a study of a
+    /// multi-stage rocket those of a lower stage are named after it as its output columns
+    /// (`"booster.landing"`); the top stage's keep the plain names.
     #[getter]
     fn ellipses<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyDict>> {
         let dict = PyDict::new(py);
         for ellipse in &self.summary.ellipses {
             let value = serde_json::to_value(ellipse)
                 .map_err(|e| PyRuntimeError::new_err(e.to_string()))?;
-            dict.set_item(&ellipse.name, from_json(py, &value)?)?;
+            let key = match ellipse.body.as_deref() {
+                Some(body) if body != TOP_STAGE => format!("{body}.{}", ellipse.name),
+                _ => ellipse.name.clone(),
+            };
+            dict.set_item(key, from_json(py, &value)?)?;
         }
         Ok(dict)
     }

@@ -12,6 +12,7 @@ import karman
 
 ROOT = Path(__file__).resolve().parents[3]
 EXAMPLE = ROOT / "fixtures" / "example.toml"
+TWO_STAGE = ROOT / "fixtures" / "two_stage.toml"
 
 
 def validation_dir() -> Path | None:

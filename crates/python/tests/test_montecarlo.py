@@ -14,7 +14,7 @@ import numpy as np
 import pytest
 
 import karman
-from conftest import EXAMPLE
+from conftest import EXAMPLE, TWO_STAGE
 
 
 def test_inputs_and_outputs_are_arrays(example):
@@ -30,6 +30,31 @@ def test_inputs_and_outputs_are_arrays(example):
     landing = study.ellipses["landing"]
     assert [c["sigma"] for c in landing["k_sigma_rocketpy"]] == [1, 2, 3]
     assert landing["center_m"][0] == pytest.approx(np.mean(study.outputs["impact_x_m"]))
+
+
+def test_a_multi_stage_study_has_each_bodys_results():
+    mission = karman.load(TWO_STAGE)
+    one = mission.montecarlo(samples=6, seed=5, threads=1, progress=False)
+    two = mission.montecarlo(samples=6, seed=5, threads=2, progress=False)
+    assert one.failures == []
+    # The sustainer's columns as in a single-stage study, then the booster's own.
+    assert set(karman.SUMMARY_KEYS) <= set(one.outputs)
+    for key in ("booster.separation_time_s", "booster.apogee_agl_m", "booster.impact_x_m",
+                "booster.impact_y_m", "booster.impact_time_s"):
+        assert one.outputs[key].shape == (6,) and np.isfinite(one.outputs[key]).all(), key
+    assert "stages.0.rocket.mass" in one.inputs
+    # Two bodies, two landings: the booster comes down first, elsewhere.
+    assert (one.outputs["booster.impact_time_s"] < one.outputs["impact_time_s"]).all()
+    assert not np.array_equal(one.outputs["booster.impact_x_m"], one.outputs["impact_x_m"])
+    # Each body's landing ellipse is centred on its own points.
+    for prefix in ("", "booster."):
+        landing = one.ellipses[f"{prefix}landing"]
+        assert landing["outputs"] == [f"{prefix}impact_x_m", f"{prefix}impact_y_m"]
+        assert landing["center_m"][0] == pytest.approx(np.mean(one.outputs[f"{prefix}impact_x_m"]))
+    # The thread count changes nothing.
+    for name in one.outputs:
+        assert np.array_equal(one.outputs[name], two.outputs[name], equal_nan=True), name
+    assert one.to_dict() == two.to_dict()
 
 
 def test_vary_replaces_the_mission_inputs(example):

@@ -64,7 +64,7 @@ impl<A: AtmosphereModel, V: VehicleModel> Equations<'_, A, V> {
         let k = rotation(e);
         let mass = match &self.coast {
             Some(coast) if t >= self.burn_out => coast.mass,
-            _ => self.vehicle.mass(t, self.law, &mut cursors.time).total_mass,
+            _ => self.vehicle.total_mass(t, &mut cursors.time[1]),
         };
         let air = self.atmosphere.air_near(z, &mut cursors.height);
         let (force, _, net_thrust) =

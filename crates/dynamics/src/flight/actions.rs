@@ -34,6 +34,13 @@ pub enum Action {
         /// New value.
         value: f64,
     },
+    /// The body tumbles from this instant on, to its end: a 3-DOF descent under the drag
+    /// area `drag_area` (m²), the equations of a canopy without added mass (physics.md §8.4);
+    /// the tumble drag of a spent stage without recovery (Niskanen 2009, §3.5).
+    Tumble {
+        /// Drag coefficient times its area, m².
+        drag_area: f64,
+    },
     /// Separate stage `stage`: the flight ends here with [`Termination::Separation`], and each
     /// part goes on with [`super::simulate_from`].
     SeparateStage(usize),
@@ -173,6 +180,7 @@ impl Run<'_> {
                     }
                 }
             }
+            Action::Tumble { drag_area } => self.tumble(drag_area, index, phase, t),
             Action::SeparateStage(stage) => {
                 self.separation = Some((t, stage));
                 self.end_flight(index, t, Termination::Separation);
@@ -190,6 +198,30 @@ impl Run<'_> {
                 later.configuration.controls[control] = value;
             }
         }
+    }
+
+    /// Starts the tumbling descent under `drag_area` at `t` (once: a later tumble is ignored).
+    fn tumble(&mut self, drag_area: f64, index: usize, phase: &Phase, t: f64) {
+        if self.tumble.is_some() {
+            return;
+        }
+        let canopy = CanopyState {
+            cd_s: drag_area,
+            radius: 0.0,
+            height: 0.0,
+            added_mass_coefficient: 0.0,
+        };
+        insert_phase(
+            &mut self.phases,
+            index + 1,
+            Phase {
+                t,
+                kind: Some(PhaseKind::Parachute(canopy)),
+                configuration: phase.configuration,
+                clear: true,
+            },
+        );
+        self.tumble = Some(t);
     }
 
     /// Schedules a triggered parachute: an optional lag phase with the current equations,

@@ -32,8 +32,8 @@
 //!   steps over, whose `sample` may return an [`Action`]. The parachute triggers
 //!   (`parachute`: apogee and noisy-barometer height triggers, §9.4) are the first
 //!   instances; controllers and sensors are more.
-//! - `actions` — [`Action`]: deploy a device, set a control input, separate a stage, record
-//!   a value, terminate.
+//! - `actions` — [`Action`]: deploy a device, set a control input, tumble, separate a stage,
+//!   record a value, terminate.
 //!
 //! Sampling (§9.4, RocketPy's `__process_overshootable_nodes`): the instants `j / f` of every
 //! active process inside a step are merged in time order on the fly (no node list, no sort),
@@ -98,7 +98,8 @@ pub enum PhaseKind {
         /// [`FlightSettings::weathercock_coefficient`].
         weathercock: f64,
     },
-    /// 3-DOF descent under the given canopy (§8.4).
+    /// 3-DOF descent under the given canopy (§8.4), or a tumbling body ([`Action::Tumble`]:
+    /// its drag area, no added mass).
     Parachute(CanopyState),
 }
 
@@ -213,6 +214,8 @@ pub struct Flight {
     pub records: Vec<Record>,
     /// Stage separation `(t, stage)` ([`Action::SeparateStage`]).
     pub separation: Option<(f64, usize)>,
+    /// Time the body started tumbling ([`Action::Tumble`]), s.
+    pub tumble: Option<f64>,
     /// How the flight ended.
     pub termination: Termination,
     /// Final time, s.

@@ -57,6 +57,7 @@ pub(super) struct Run<'a> {
     pub parachute_events: Vec<ParachuteEvent>,
     pub records: Vec<Record>,
     pub separation: Option<(f64, usize)>,
+    pub tumble: Option<f64>,
     pub termination: Termination,
     /// The vehicle's parachutes (what [`super::Action::DeployDevice`] deploys).
     pub parachutes: Vec<ParachuteSpec>,
@@ -230,6 +231,7 @@ pub(super) fn fly<'a, A: AtmosphereModel, V: VehicleModel>(
         parachute_events: Vec::new(),
         records: Vec::new(),
         separation: None,
+        tumble: None,
         termination: Termination::MaxTime,
         parachutes: setup.parachutes,
         processes,
@@ -389,6 +391,7 @@ pub(super) fn fly<'a, A: AtmosphereModel, V: VehicleModel>(
         parachute_events: run.parachute_events,
         records: run.records,
         separation: run.separation,
+        tumble: run.tumble,
         termination: run.termination,
         t_final: t,
         burn_out,

@@ -105,7 +105,30 @@ pub fn prepare(mission: &Mission, seed: u64) -> Result<Models, MissionError> {
     }
     let (environment, weather_warnings) = build_environment_checked(mission)?;
     let thrust = thrust_source(mission)?;
-    let motor = build_motor_with(mission, &thrust)?;
+    let (motor, rocket, settings, warnings) = checked_models(mission, &environment, &thrust, seed)?;
+    let mut all = weather_warnings;
+    all.extend(warnings);
+    Ok(Models {
+        environment,
+        motor,
+        rocket,
+        settings,
+        warnings: all,
+    })
+}
+
+/// The motor, rocket and settings of `mission` built from its `thrust` data and checked for
+/// the launch in `environment` (as [`prepare`], without the weather's warnings).
+///
+/// # Errors
+/// As [`prepare`].
+pub(crate) fn checked_models(
+    mission: &Mission,
+    environment: &Environment,
+    thrust: &ThrustSource,
+    seed: u64,
+) -> Result<(Motor, Rocket, FlightSettings, Vec<String>), MissionError> {
+    let motor = build_motor_with(mission, thrust)?;
     let rocket = build_rocket(mission, &motor)?;
     let mut settings = flight_settings(mission, seed);
     if rocket.motor().thrust.xs().len() > MAX_KNOT_STOPS {
@@ -118,22 +141,16 @@ pub fn prepare(mission: &Mission, seed: u64) -> Result<Models, MissionError> {
         };
         mission.model_error(&key, e)
     })?;
-    let mut warnings = weather_warnings;
-    if let ThrustSource::Data(data) = &thrust {
+    let mut warnings = Vec::new();
+    if let ThrustSource::Data(data) = thrust {
         warnings.extend(data.warnings.iter().map(|w| format!("`motor.thrust`: {w}")));
     }
     warnings.extend(rocket.warnings().iter().map(|w| format!("`rocket`: {w}")));
-    check_atmosphere(mission, &environment, &mut warnings)?;
+    check_atmosphere(mission, environment, &mut warnings)?;
     check_layout(mission, &rocket, &settings)?;
-    check_rail(mission, &environment, &rocket, &settings, &mut warnings)?;
+    check_rail(mission, environment, &rocket, &settings, &mut warnings)?;
     check_stability(&rocket, &mut warnings);
-    Ok(Models {
-        environment,
-        motor,
-        rocket,
-        settings,
-        warnings,
-    })
+    Ok((motor, rocket, settings, warnings))
 }
 
 /// A launch check that failed, as a plain message (the key goes to [`Mission::model_error`]).

@@ -14,34 +14,37 @@
 //! two bodies fly on from the separation state with [`karman_dynamics::simulate_from`]: the
 //! stack above, whose motor ignites `ignition_delay` s later (its time tables moved there,
 //! [`super::rocket::delayed`]), and the spent stage with its own airframe, motor, drag and
-//! parachutes, to its own impact. Each starts at its own centre of dry mass: the state's
+//! parachutes, to its own impact; one without parachutes tumbles past its apogee, or once it
+//! turns over when it is unstable ([`TumbleTrigger`]), a point mass under Niskanen's tumble
+//! drag (OpenRocket technical documentation §3.5, [`tumble_drag_area`]). Each starts at its own centre of dry mass: the state's
 //! position is moved along the rocket axis from the stack's, its velocity by `ω × r` of that
 //! offset (a rigid body). A separation at launch (`"launch + 0"`) happens on the pad: the
 //! stack above launches from the rail, and the stage stays there (it is not flown).
 
+use std::borrow::Cow;
 use std::sync::Arc;
 
 use karman_airframe::Rocket;
 use karman_atmos::Environment;
-use karman_dynamics::flight::{Action, Probe, SampledProcess};
+use karman_dynamics::flight::{Action, Probe, SampledProcess, StepBounds};
 use karman_dynamics::state::{State, rotation};
 use karman_dynamics::{
     AtmosphereModel, Configuration, EventRecord, Flight, FlightSettings, Sample, Summary,
     Termination,
 };
 use karman_model::TriggerCondition;
-use karman_propulsion::Motor;
+use karman_propulsion::{Motor, ThrustSource};
 use karman_script::Expression;
 
-use super::environment::build_environment;
+use super::environment::build_environment_checked;
 use super::flight::flight_settings;
 use super::motor::{build_motor_with, thrust_source};
-use super::preflight::{MAX_KNOT_STOPS, Models, prepare};
+use super::preflight::{MAX_KNOT_STOPS, checked_models, prepare};
 use super::rocket::build_rocket_ignited_at;
 use super::scripts::{AfterTime, ExpressionTrigger};
 use crate::montecarlo::WindAdjusted;
 use crate::report::trajectory::Track;
-use crate::schema::{DragEstimateSpec, Inertia, RocketSpec, StageSpec, Trigger};
+use crate::schema::{Curve, DragEstimateSpec, Inertia, RocketSpec, StageSpec, Trigger};
 use crate::{KeyLocations, Mission, MissionError};
 
 /// One integrated flight of a vehicle of the tree: a stack until a separation, or a body to
@@ -150,9 +153,14 @@ fn stage_mission(mission: &Mission, index: usize) -> Mission {
 ///
 /// # Errors
 /// The motor builder's errors, named by the stage's keys.
-pub(crate) fn stage_motor(mission: &Mission, index: usize) -> Result<Motor, MissionError> {
-    let alone = stage_mission(mission, index);
-    build_motor_with(&alone, &thrust_source(&alone)?).map_err(|e| in_stage(e, index))
+pub(crate) fn stage_motor(
+    mission: &Mission,
+    thrusts: &StageThrusts,
+    index: usize,
+) -> Result<Motor, MissionError> {
+    thrusts
+        .motor(&stage_mission(mission, index))
+        .map_err(|e| in_stage(e, index))
 }
 
 /// An error found while building stage `index` from its own mission, named by the stage's key.
@@ -178,6 +186,47 @@ fn top_mission(mission: &Mission) -> Mission {
     let mut top = mission.clone();
     top.spec.stages.clear();
     top
+}
+
+/// The thrust data of every motor of a multi-stage mission, read once (a Monte Carlo study
+/// reads them once for all its samples), each with the `thrust` key it was read from.
+#[derive(Debug, Clone)]
+pub struct StageThrusts(Vec<(Curve, ThrustSource)>);
+
+impl StageThrusts {
+    /// Reads the thrust of `[motor]` and of every `[stages.motor]`.
+    ///
+    /// # Errors
+    /// The thrust readers' errors, named by the motor's key.
+    pub fn read(mission: &Mission) -> Result<Self, MissionError> {
+        let mut thrusts = vec![(mission.spec.motor.thrust.clone(), thrust_source(mission)?)];
+        for (index, stage) in mission.spec.stages.iter().enumerate() {
+            if let Some(motor) = &stage.motor
+                && !thrusts.iter().any(|(curve, _)| *curve == motor.thrust)
+            {
+                let source = thrust_source(&stage_mission(mission, index))
+                    .map_err(|e| in_stage(e, index))?;
+                thrusts.push((motor.thrust.clone(), source));
+            }
+        }
+        Ok(Self(thrusts))
+    }
+
+    /// The motor of `vehicle` (one vehicle of the stack, in the mission's folder): from the
+    /// thrust read once when its `thrust` key is one of those read, else read now (a Monte
+    /// Carlo sample that varies the curve).
+    fn motor(&self, vehicle: &Mission) -> Result<Motor, MissionError> {
+        build_motor_with(vehicle, &*self.source(vehicle)?)
+    }
+
+    /// The thrust data of `vehicle`'s motor, as [`StageThrusts::motor`] takes it.
+    fn source(&self, vehicle: &Mission) -> Result<Cow<'_, ThrustSource>, MissionError> {
+        let thrust = &vehicle.spec.motor.thrust;
+        Ok(match self.0.iter().find(|(curve, _)| curve == thrust) {
+            Some((_, source)) => Cow::Borrowed(source),
+            None => Cow::Owned(thrust_source(vehicle)?),
+        })
+    }
 }
 
 /// Mass, centre of mass (rocket coordinates) and inertia about it of a rigid part.
@@ -294,19 +343,19 @@ fn stack_mission(mission: &Mission, count: usize, above: Lump) -> Mission {
 /// The vehicle of the stack with `count` lower stages, its motor ignited at `ignition`.
 fn build_stack(
     mission: &Mission,
+    thrusts: &StageThrusts,
     count: usize,
     ignition: f64,
 ) -> Result<(Mission, Rocket), MissionError> {
     if count == 0 {
         let top = top_mission(mission);
-        let motor = build_motor_with(&top, &thrust_source(&top)?)?;
+        let motor = thrusts.motor(&top)?;
         let rocket = build_rocket_ignited_at(&top, &motor, ignition)?;
         return Ok((top, rocket));
     }
-    let (_, above) = build_stack(mission, count - 1, 0.0)?;
+    let (_, above) = build_stack(mission, thrusts, count - 1, 0.0)?;
     let stack = stack_mission(mission, count, Lump::unburnt(&above));
-    let motor =
-        build_motor_with(&stack, &thrust_source(&stack)?).map_err(|e| in_stage(e, count - 1))?;
+    let motor = thrusts.motor(&stack).map_err(|e| in_stage(e, count - 1))?;
     let rocket =
         build_rocket_ignited_at(&stack, &motor, ignition).map_err(|e| in_stage(e, count - 1))?;
     Ok((stack, rocket))
@@ -356,6 +405,118 @@ impl<A: AtmosphereModel> SampledProcess for SeparationTrigger<'_, A> {
     }
     fn is_done(&self) -> bool {
         self.fired
+    }
+}
+
+/// The tumbling descent of a spent stage without parachutes: from the first instant of the
+/// stage's `sampling_rate` past its apogee (`v_z < 0`), or, for a stage that is statically
+/// unstable when it separates (negative static margin), at more than
+/// [`TUMBLE_ANGLE_OF_ATTACK`] (OpenRocket's condition), it falls as a point mass under its
+/// tumble drag area ([`Action::Tumble`]).
+struct TumbleTrigger<'a, A> {
+    atmosphere: &'a A,
+    rate: f64,
+    drag_area: f64,
+    unstable: bool,
+    fired: bool,
+}
+
+/// The angle of attack past which a statically unstable stage tumbles: OpenRocket's 20°.
+const TUMBLE_ANGLE_OF_ATTACK: f64 = 20.0 * std::f64::consts::PI / 180.0;
+
+impl<A: AtmosphereModel> SampledProcess for TumbleTrigger<'_, A> {
+    fn rate(&self) -> f64 {
+        self.rate
+    }
+    fn whole_step(&self) -> bool {
+        self.unstable
+    }
+    fn cannot_act(&self, bounds: &StepBounds) -> bool {
+        self.fired || (!self.unstable && bounds.vz[0] > 0.0)
+    }
+    fn sample(&mut self, probe: &mut Probe<'_>) -> Option<Action> {
+        self.fired = probe.vz() < 0.0
+            || (self.unstable && {
+                let u = probe.state();
+                let wind = self.atmosphere.wind(u[2]);
+                // The air speed and the rocket axis (third column of the attitude matrix).
+                let air = [u[3] - wind[0], u[4] - wind[1], u[5]];
+                let k = rotation([u[6], u[7], u[8], u[9]]);
+                let along = k[0][2] * air[0] + k[1][2] * air[1] + k[2][2] * air[2];
+                let speed = (air[0] * air[0] + air[1] * air[1] + air[2] * air[2]).sqrt();
+                along < speed * TUMBLE_ANGLE_OF_ATTACK.cos()
+            });
+        self.fired.then_some(Action::Tumble {
+            drag_area: self.drag_area,
+        })
+    }
+    fn is_done(&self) -> bool {
+        self.fired
+    }
+}
+
+/// Drag coefficients of a tumbling stage on the profile areas of its fins and of its body,
+/// fitted by Niskanen to drop tests of lower stages (OpenRocket technical documentation,
+/// §3.5, eq. 3.98–3.99).
+const TUMBLE_FIN_CD: f64 = 1.42;
+/// See [`TUMBLE_FIN_CD`]: half the broadside drag coefficient of a circular cylinder.
+const TUMBLE_BODY_CD: f64 = 0.56;
+/// The effective profile area of a set of `N = 1, …, 8` fins, in units of one fin's
+/// planform area (Niskanen, Table 3.4); more fins take the factor of eight.
+const TUMBLE_FIN_EFFICIENCY: [f64; 8] = [0.50, 1.00, 1.50, 1.41, 1.81, 1.73, 1.90, 1.85];
+
+/// The drag area `C_D·A` (m²) of lower stage `index` tumbling to the ground: its
+/// `tumble_drag_area`, or Niskanen's estimate `1.42 Σ η(N) A_fin + 0.56 L d` over the planar
+/// fin sets of the stage (`A_fin` one fin's planform area, `η` the efficiency factor of its
+/// `N` fins) and its body tube of diameter `d` and length `L`, from its fore end (the stage
+/// above's `drag_estimate.body_length`) to its aft end (its own).
+///
+/// # Errors
+/// A located error when the estimate lacks a body length, or gives no positive area.
+fn tumble_drag_area(mission: &Mission, index: usize, spent: &Rocket) -> Result<f64, MissionError> {
+    let spec = &mission.spec;
+    let stage = &spec.stages[index];
+    if let Some(area) = stage.tumble_drag_area {
+        return Ok(area);
+    }
+    let above = if index == 0 {
+        &spec.rocket
+    } else {
+        &spec.stages[index - 1].rocket
+    };
+    let length = |r: &RocketSpec| r.drag_estimate.as_ref().and_then(|d| d.body_length);
+    let missing = |reason: &str| {
+        mission.model_error(
+            &format!("stages.{index}"),
+            format!(
+                "the stage has no parachutes, so it tumbles to the ground: {reason}; give its \
+                 drag area as `tumble_drag_area` (m²)"
+            ),
+        )
+    };
+    let (Some(fore), Some(aft)) = (length(above), length(&stage.rocket)) else {
+        return Err(missing(
+            "its length for the tumble drag estimate is the difference of the \
+             `drag_estimate.body_length` of the stage above and its own, and one is missing",
+        ));
+    };
+    let fins: f64 = spent
+        .surfaces()
+        .iter()
+        .filter_map(|s| s.fin_aerodynamics())
+        .map(|f| {
+            let n = (f.n as usize).clamp(1, TUMBLE_FIN_EFFICIENCY.len());
+            TUMBLE_FIN_EFFICIENCY[n - 1] * f.fin_area
+        })
+        .sum();
+    let body = (aft - fore).max(0.0) * 2.0 * stage.rocket.radius;
+    let area = TUMBLE_FIN_CD * fins + TUMBLE_BODY_CD * body;
+    if area > 0.0 {
+        Ok(area)
+    } else {
+        Err(missing(
+            "it has neither fins nor a body length to estimate it from",
+        ))
     }
 }
 
@@ -412,6 +573,7 @@ fn vehicle_settings(mission: &Mission, rocket: &Rocket, seed: u64) -> FlightSett
 /// As [`simulate_staged`], without the flight's.
 pub fn prepare_staged(mission: &Mission, seed: u64) -> Result<Vec<String>, MissionError> {
     let stages = &mission.spec.stages;
+    let thrusts = StageThrusts::read(mission)?;
     let mut warnings = Vec::new();
     let pad = stages
         .iter()
@@ -419,7 +581,7 @@ pub fn prepare_staged(mission: &Mission, seed: u64) -> Result<Vec<String>, Missi
         .take_while(|s| matches!(s.separation, Trigger::Launch(d) if d <= 0.0))
         .count();
     for count in (0..=stages.len() - pad).rev() {
-        let (vehicle, rocket) = build_stack(mission, count, 0.0)?;
+        let (vehicle, rocket) = build_stack(mission, &thrusts, count, 0.0)?;
         if count == stages.len() - pad {
             let models = prepare(&vehicle, seed).map_err(|e| match count {
                 0 => e,
@@ -437,8 +599,7 @@ pub fn prepare_staged(mission: &Mission, seed: u64) -> Result<Vec<String>, Missi
             let stage = &stages[count - 1];
             if stage.rocket.mass > 0.0 && stage.motor.is_some() {
                 let alone = stage_mission(mission, count - 1);
-                let motor = build_motor_with(&alone, &thrust_source(&alone)?)
-                    .map_err(|e| in_stage(e, count - 1))?;
+                let motor = stage_motor(mission, &thrusts, count - 1)?;
                 let spent = build_rocket_ignited_at(&alone, &motor, 0.0)
                     .map_err(|e| in_stage(e, count - 1))?;
                 warnings.extend(
@@ -447,6 +608,9 @@ pub fn prepare_staged(mission: &Mission, seed: u64) -> Result<Vec<String>, Missi
                         .iter()
                         .map(|w| format!("`stages.{}.rocket`: {w}", count - 1)),
                 );
+                if stage.rocket.parachutes.is_empty() {
+                    tumble_drag_area(mission, count - 1, &spent)?;
+                }
             }
         }
     }
@@ -467,44 +631,65 @@ enum Start {
 /// checks of the launch stack, and [`MissionError::Model`] (section `flight`) when a flight
 /// cannot be integrated.
 pub fn simulate_staged(mission: &Mission, seed: u64) -> Result<StagedRun, MissionError> {
-    simulate_staged_in(mission, build_environment(mission)?, OWN_WIND, seed)
+    let thrusts = StageThrusts::read(mission)?;
+    let (environment, weather) = build_environment_checked(mission)?;
+    let tree = fly_tree(mission, &thrusts, &environment, &environment, weather, seed)?;
+    Ok(StagedRun::of(environment, tree, OWN_WIND))
 }
 
-/// [`simulate_staged`] in a built `environment` whose wind is multiplied by `wind[0]` and
-/// turned clockwise by `wind[1]` degrees ([`WindAdjusted`]), as a Monte Carlo sample flies.
+/// [`simulate_staged`] with the thrust data read before (`thrusts`, of the nominal mission),
+/// in a built `environment` whose wind is multiplied by `wind[0]` and turned clockwise by
+/// `wind[1]` degrees ([`WindAdjusted`]), as a Monte Carlo sample flies (without the weather's
+/// warnings).
 ///
 /// # Errors
 /// As [`simulate_staged`].
 pub fn simulate_staged_in(
     mission: &Mission,
+    thrusts: &StageThrusts,
     environment: Environment,
     wind: [f64; 2],
     seed: u64,
 ) -> Result<StagedRun, MissionError> {
     let tree = if wind == OWN_WIND {
-        fly_tree(mission, &environment, seed)?
-    } else {
         fly_tree(
             mission,
-            &WindAdjusted::new(&environment, wind[0], wind[1]),
+            thrusts,
+            &environment,
+            &environment,
+            Vec::new(),
             seed,
         )?
+    } else {
+        let adjusted = WindAdjusted::new(&environment, wind[0], wind[1]);
+        fly_tree(mission, thrusts, &environment, &adjusted, Vec::new(), seed)?
     };
-    Ok(StagedRun {
-        environment,
-        settings: tree.settings,
-        segments: tree.segments,
-        bodies: tree.bodies,
-        separations: tree.separations,
-        warnings: tree.warnings,
-        wind,
-    })
+    Ok(StagedRun::of(environment, tree, wind))
 }
 
-/// Flies the tree of bodies of a multi-stage mission in `environment`.
+impl StagedRun {
+    /// The run of a flown tree in `environment` with the wind adjustment `wind`.
+    fn of(environment: Environment, tree: Tree, wind: [f64; 2]) -> Self {
+        StagedRun {
+            environment,
+            settings: tree.settings,
+            segments: tree.segments,
+            bodies: tree.bodies,
+            separations: tree.separations,
+            warnings: tree.warnings,
+            wind,
+        }
+    }
+}
+
+/// Flies the tree of bodies of a multi-stage mission in `environment` (`base` as built, in
+/// which the launch is checked; `weather` its warnings, reported with the launch checks).
 fn fly_tree<A: AtmosphereModel>(
     mission: &Mission,
+    thrusts: &StageThrusts,
+    base: &Environment,
     environment: &A,
+    weather: Vec<String>,
     seed: u64,
 ) -> Result<Tree, MissionError> {
     let stages = &mission.spec.stages;
@@ -526,18 +711,17 @@ fn fly_tree<A: AtmosphereModel>(
     let launch = if count == 0 {
         top_mission(mission)
     } else {
-        let (_, above) = build_stack(mission, count - 1, 0.0)?;
+        let (_, above) = build_stack(mission, thrusts, count - 1, 0.0)?;
         stack_mission(mission, count, Lump::unburnt(&above))
     };
     let settings = if ignition == 0.0 {
-        let Models {
-            settings,
-            warnings: launch_warnings,
-            ..
-        } = prepare(&launch, seed).map_err(|e| match count {
-            0 => e,
-            n => in_stage(e, n - 1),
-        })?;
+        let thrust = thrusts.source(&launch)?;
+        let (_, _, settings, launch_warnings) = checked_models(&launch, base, &thrust, seed)
+            .map_err(|e| match count {
+                0 => e,
+                n => in_stage(e, n - 1),
+            })?;
+        warnings.extend(weather);
         warnings.extend(launch_warnings);
         settings
     } else {
@@ -551,7 +735,7 @@ fn fly_tree<A: AtmosphereModel>(
     let mut start = Start::Rail;
     let flight_error = |e| mission.model_error("flight", e);
     loop {
-        let (vehicle_mission, rocket) = build_stack(mission, count, ignition)?;
+        let (vehicle_mission, rocket) = build_stack(mission, thrusts, count, ignition)?;
         if !(segments.is_empty() && launch_checked) {
             warnings.extend(rocket.warnings().iter().map(|w| match count {
                 0 => format!("`rocket`: {w}"),
@@ -619,8 +803,7 @@ fn fly_tree<A: AtmosphereModel>(
         // The spent stage flies on alone (a massless one has nothing to fly).
         if stage.rocket.mass > 0.0 && stage.motor.is_some() {
             let alone = stage_mission(mission, index);
-            let motor = build_motor_with(&alone, &thrust_source(&alone)?)
-                .map_err(|e| in_stage(e, index))?;
+            let motor = stage_motor(mission, thrusts, index)?;
             let spent = build_rocket_ignited_at(&alone, &motor, ignition)
                 .map_err(|e| in_stage(e, index))?;
             warnings.extend(
@@ -630,6 +813,16 @@ fn fly_tree<A: AtmosphereModel>(
                     .map(|w| format!("`stages.{index}.rocket`: {w}")),
             );
             let spent_settings = vehicle_settings(&alone, &spent, seed);
+            let mut descent: Vec<Box<dyn SampledProcess + '_>> = Vec::new();
+            if stage.rocket.parachutes.is_empty() {
+                descent.push(Box::new(TumbleTrigger {
+                    atmosphere: environment,
+                    rate: stage.sampling_rate,
+                    drag_area: tumble_drag_area(mission, index, &spent)?,
+                    unstable: spent.static_margin(t) < 0.0,
+                    fired: false,
+                }));
+            }
             let flight = karman_dynamics::simulate_from(
                 environment,
                 &spent,
@@ -637,7 +830,7 @@ fn fly_tree<A: AtmosphereModel>(
                 t,
                 moved(&state, stack_cdm, spent.center_of_dry_mass(), csys),
                 Configuration::default(),
-                Vec::new(),
+                descent,
             )
             .map_err(|e| {
                 mission.model_error(

@@ -155,7 +155,8 @@ class Study:
         """Statistics of every input and output column."""
     @property
     def ellipses(self) -> dict[str, dict[str, Any]]:
-        """The ``apogee`` and ``landing`` ellipses with their 1/2/3-sigma contours."""
+        """The ``apogee`` and ``landing`` ellipses with their 1/2/3-sigma contours; a lower
+        stage's named after it (``"booster.landing"``) in a study of a multi-stage rocket."""
     @property
     def threads(self) -> int: ...
     @property
