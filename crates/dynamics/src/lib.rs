@@ -45,3 +45,8 @@ pub use karman_model::{
 };
 pub use output::{EventRecord, Sample, Summary};
 pub use settings::{DEFAULT_ATOL, EquationsForm, FlightSettings, SimulationMode};
+
+/// The README's example, compiled and run by `cargo test --doc`.
+#[cfg(doctest)]
+#[doc = include_str!("../README.md")]
+struct ReadmeExample;

@@ -61,3 +61,8 @@ pub use vehicle::{
     BodyFlow, MassFlowLaw, MassSample, ParachuteSpec, RailButtonGeometry, StabilityModel,
     TriggerCondition, TriggerKind, VehicleModel, VehicleSetup,
 };
+
+/// The README's example, compiled and run by `cargo test --doc`.
+#[cfg(doctest)]
+#[doc = include_str!("../README.md")]
+struct ReadmeExample;
