@@ -96,3 +96,8 @@ pub use surfaces::{
     NoseConeSpec, NoseKind, Surface, SurfaceInput, SurfaceSpec, Sweep, TailSpec,
     TrapezoidalFinsSpec, TubeFinsSpec,
 };
+
+/// The README's example, compiled and run by `cargo test --doc`.
+#[cfg(doctest)]
+#[doc = include_str!("../README.md")]
+struct ReadmeExample;

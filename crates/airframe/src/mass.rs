@@ -20,7 +20,7 @@
 //! pointwise formula; the step is [`karman_math::PhysicalConstants::time_difference_step`],
 //! so that it follows the unit of time.
 
-use karman_math::{Cursor, Table1};
+use karman_math::{Cursor, Extrapolation, Table1};
 use karman_model::MassSample;
 
 use crate::error::AirframeError;
@@ -55,6 +55,13 @@ pub(crate) struct MassModel {
     /// tables on one time grid (a solid motor's), so that [`MassModel::properties`] finds
     /// the time once for all of them.
     one_grid: bool,
+    /// For a propellant in parts whose tables are all held constant outside their nodes:
+    /// the last node of any of them, and the parts' figures beyond it (the mass-flow fields
+    /// aside), which no longer change.
+    parts_settled: Option<(f64, MassSample)>,
+    /// For each part, whether its centre-of-mass and I11 tables have its mass table's nodes
+    /// (one search serves all of them).
+    parts_one_grid: Vec<bool>,
     /// Step of the central second difference of a pointwise formula (time).
     difference_step: f64,
 }
@@ -106,6 +113,11 @@ impl MassModel {
             }
             0.0
         };
+        let parts_one_grid = motor
+            .propellant_parts
+            .iter()
+            .map(|p| same_grid(&p.mass, &p.center_of_mass) && same_grid(&p.mass, &p.i11))
+            .collect();
         let mut model = MassModel {
             csys,
             s,
@@ -121,8 +133,11 @@ impl MassModel {
             nodal_center_of_mass: None,
             nodal_i11: None,
             one_grid: false,
+            parts_settled: None,
+            parts_one_grid,
             difference_step,
         };
+        model.parts_settled = model.settled_parts();
         let m = &model.motor;
         if m.propellant_parts.is_empty()
             && same_grid(&m.propellant_center_of_mass, &m.propellant_mass)
@@ -529,6 +544,14 @@ impl MassModel {
                     ],
                 }
             }
+            _ if !m.propellant_parts.is_empty() => match &self.parts_settled {
+                Some((end, settled)) if t > *end => MassSample {
+                    mass_flow_rate,
+                    mass_flow_rate_derivative,
+                    ..*settled
+                },
+                _ => self.parts_properties(t, mass_flow_rate, mass_flow_rate_derivative),
+            },
             _ => MassSample {
                 total_mass: self.total_mass(t),
                 mass_flow_rate,
@@ -539,6 +562,124 @@ impl MassModel {
                 inertia: self.inertia(t),
                 inertia_rate: self.inertia_rate(t),
             },
+        }
+    }
+
+    /// The parts' settled figures ([`MassModel::parts_settled`]): their tables searched
+    /// beyond the last node of any of them, when every table is held constant there.
+    fn settled_parts(&self) -> Option<(f64, MassSample)> {
+        let m = &self.motor;
+        let mut tables = m
+            .propellant_parts
+            .iter()
+            .flat_map(|p| [&p.mass, &p.moment, &p.center_of_mass, &p.i11]);
+        if m.propellant_parts.is_empty()
+            || !tables
+                .clone()
+                .chain([&m.propellant_i33])
+                .all(|t| t.extrapolation() == Extrapolation::Constant)
+        {
+            return None;
+        }
+        let end = tables
+            .by_ref()
+            .chain([&m.propellant_i33])
+            .map(|t| t.xs()[t.xs().len() - 1])
+            .fold(f64::NEG_INFINITY, f64::max);
+        // Any time beyond the end gives the same figures: the constant extrapolations.
+        Some((end, self.parts_properties(end + 1.0, 0.0, 0.0)))
+    }
+
+    /// [`MassModel::properties_near`] for a propellant in parts: the formulas of
+    /// [`MassModel::propellant_sum`], [`MassModel::propellant_sum_rates`] and
+    /// [`MassModel::parts_offset_accel`] with each part's tables searched once (its mass and
+    /// moment share their nodes).
+    fn parts_properties(
+        &self,
+        t: f64,
+        mass_flow_rate: f64,
+        mass_flow_rate_derivative: f64,
+    ) -> MassSample {
+        let parts = &self.motor.propellant_parts;
+        let lever = self.motor_position - self.cdm;
+        let (mut mp, mut mp1, mut mp2) = (0.0, 0.0, 0.0);
+        let (mut q, mut q1) = (0.0, 0.0);
+        let (mut n, mut n1, mut n2) = (0.0, 0.0, 0.0);
+        for p in parts {
+            let at = p.mass.locate(t);
+            let (m, m1, m2) = (
+                p.mass.eval_at(at, t),
+                p.mass.derivative_at(at, t),
+                p.mass.second_derivative_at(at, t),
+            );
+            let (qi, qi1, qi2) = (
+                p.moment.eval_at(at, t),
+                p.moment.derivative_at(at, t),
+                p.moment.second_derivative_at(at, t),
+            );
+            mp += m;
+            mp1 += m1;
+            mp2 += m2;
+            q += qi;
+            q1 += qi1;
+            n += lever * m + self.s * qi;
+            n1 += lever * m1 + self.s * qi1;
+            n2 += lever * m2 + self.s * qi2;
+        }
+        let (z, z_dot) = if mp == 0.0 {
+            parts.first().map_or((0.0, 0.0), |p| {
+                (p.center_of_mass.eval(t), p.center_of_mass.derivative(t))
+            })
+        } else {
+            let z = q / mp;
+            (z, (q1 - z * mp1) / mp)
+        };
+        let (mut ip, mut ip_dot) = (0.0, 0.0);
+        for (p, &one_grid) in parts.iter().zip(&self.parts_one_grid) {
+            let at_mass = p.mass.locate(t);
+            let (at, at_i) = if one_grid {
+                (at_mass, at_mass)
+            } else {
+                (p.center_of_mass.locate(t), p.i11.locate(t))
+            };
+            let d = p.center_of_mass.eval_at(at, t) - z;
+            let d_dot = p.center_of_mass.derivative_at(at, t) - z_dot;
+            let mi = p.mass.eval_at(at_mass, t);
+            ip += p.i11.eval_at(at_i, t) + mi * (d * d);
+            ip_dot += p.i11.derivative_at(at_i, t)
+                + p.mass.derivative_at(at_mass, t) * d * d
+                + 2.0 * mi * d * d_dot;
+        }
+        let zp = self.motor_to_user(z);
+        let zp_dot = self.s * z_dot;
+        let total = self.dry_mass + mp;
+        let com_to_cdm_rate = -self.csys
+            * (zp_dot * mp / total + (zp - self.cdm) * mp1 * self.dry_mass / (total * total));
+        let com_to_cdm_accel = -self.csys
+            * (n2 / total - (2.0 * n1 * mp1 + n * mp2) / (total * total)
+                + 2.0 * n * mp1 * mp1 / (total * total * total));
+        let i11 = self.i11_of(mp, zp, ip);
+        let d = self.cdm - zp;
+        let i11_rate = ip_dot + mp1 * d * d + 2.0 * mp * d * (-zp_dot);
+        let dry = &self.dry_inertia;
+        let i33 = &self.motor.propellant_i33;
+        let at = i33.locate(t);
+        MassSample {
+            total_mass: total,
+            mass_flow_rate,
+            mass_flow_rate_derivative,
+            com_to_cdm: self.offset_of(mp, zp),
+            com_to_cdm_rate,
+            com_to_cdm_accel,
+            inertia: [
+                i11,
+                i11 - dry[0] + dry[1],
+                dry[2] + i33.eval_at(at, t),
+                dry[3],
+                dry[4],
+                dry[5],
+            ],
+            inertia_rate: [i11_rate, i11_rate, i33.derivative_at(at, t), 0.0, 0.0, 0.0],
         }
     }
 

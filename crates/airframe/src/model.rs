@@ -5,7 +5,8 @@
 use karman_math::Cursor;
 use karman_model::{
     BodyFlow, Configuration, Loads, LocalFlow, MAX_CONTROLS, MassFlowLaw, MassSample,
-    ParachuteSpec, RailButtonGeometry, SurfaceModel, TriggerKind, VehicleModel, VehicleSetup,
+    ParachuteSpec, RailButtonGeometry, StabilityModel, SurfaceModel, TriggerKind, VehicleModel,
+    VehicleSetup,
 };
 use std::sync::Arc;
 
@@ -134,7 +135,9 @@ impl VehicleModel for Rocket {
             None => rocket,
         }
     }
+}
 
+impl StabilityModel for Rocket {
     fn stability_margin(&self, mach: f64, t: f64) -> f64 {
         Rocket::stability_margin(self, mach, t)
     }

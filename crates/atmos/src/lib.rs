@@ -41,3 +41,8 @@ pub use grid::{GridDictionary, GridRequest, WeatherGrid};
 pub use open_meteo::OpenMeteo;
 pub use profile::{LevelProfile, Profiles};
 pub use sounding::{Sounding, SoundingFormat, SoundingLevel};
+
+/// The README's example, compiled and run by `cargo test --doc`.
+#[cfg(doctest)]
+#[doc = include_str!("../README.md")]
+struct ReadmeExample;

@@ -70,3 +70,8 @@ pub use stats::{
 };
 pub use study::{BodyPoints, DataFile, Points, Shard, Site, Study};
 pub use summary::{Column, Contour, EllipseSummary, Failure, Summary, summarize, summarize_rows};
+
+/// The README's example, compiled and run by `cargo test --doc`.
+#[cfg(doctest)]
+#[doc = include_str!("../README.md")]
+struct ReadmeExample;

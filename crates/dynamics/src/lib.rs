@@ -40,8 +40,13 @@ pub use flight::{
 };
 pub use karman_model::{
     Air, AtmosphereModel, BodyFlow, Configuration, Cursor, Loads, LocalFlow, MAX_CONTROLS,
-    MassFlowLaw, MassSample, ParachuteSpec, RailButtonGeometry, SurfaceModel, TriggerKind,
-    VehicleModel, VehicleSetup,
+    MassFlowLaw, MassSample, ParachuteSpec, RailButtonGeometry, StabilityModel, SurfaceModel,
+    TriggerKind, VehicleModel, VehicleSetup,
 };
 pub use output::{EventRecord, Sample, Summary};
 pub use settings::{DEFAULT_ATOL, EquationsForm, FlightSettings, SimulationMode};
+
+/// The README's example, compiled and run by `cargo test --doc`.
+#[cfg(doctest)]
+#[doc = include_str!("../README.md")]
+struct ReadmeExample;

@@ -9,7 +9,7 @@
 
 use serde::Serialize;
 
-use karman_model::{AtmosphereModel, Cursor, MassFlowLaw, VehicleModel};
+use karman_model::{AtmosphereModel, Cursor, MassFlowLaw, StabilityModel, VehicleModel};
 
 use crate::equations::{Cursors, Equations};
 use crate::flight::{Flight, PhaseKind, SolutionPoint, Termination, evaluate};
@@ -133,7 +133,7 @@ pub struct Sample {
 
 /// Derived quantities of one point; rail points report the loads of the free-flight
 /// equations `free` at their state (RocketPy's `udot_rail1(post_processing=True)`).
-fn sample<A: AtmosphereModel, V: VehicleModel>(
+fn sample<A: AtmosphereModel, V: VehicleModel + StabilityModel>(
     eq: &Equations<'_, A, V>,
     elevation: f64,
     point: &SolutionPoint,
@@ -219,7 +219,7 @@ fn sample<A: AtmosphereModel, V: VehicleModel>(
 impl Flight {
     /// Derived quantities at every stored point (physics.md §11).
     #[must_use]
-    pub fn samples<A: AtmosphereModel, V: VehicleModel>(
+    pub fn samples<A: AtmosphereModel, V: VehicleModel + StabilityModel>(
         &self,
         atmosphere: &A,
         vehicle: &V,
@@ -241,7 +241,7 @@ impl Flight {
 
     /// The flight summary of the mission contract.
     #[must_use]
-    pub fn summary<A: AtmosphereModel, V: VehicleModel>(
+    pub fn summary<A: AtmosphereModel, V: VehicleModel + StabilityModel>(
         &self,
         atmosphere: &A,
         vehicle: &V,

@@ -3,7 +3,8 @@
 
 use karman_dynamics::{
     AtmosphereModel, BodyFlow, Configuration, Cursor, Loads, LocalFlow, MassFlowLaw, MassSample,
-    ParachuteSpec, RailButtonGeometry, SurfaceModel, TriggerKind, VehicleModel, VehicleSetup,
+    ParachuteSpec, RailButtonGeometry, StabilityModel, SurfaceModel, TriggerKind, VehicleModel,
+    VehicleSetup,
 };
 
 /// Exponential atmosphere with constant speed of sound, gravity and wind.
@@ -210,6 +211,9 @@ impl VehicleModel for MockRocket {
         let area = std::f64::consts::PI * 0.05 * 0.05;
         -0.5 * flow.density * flow.speed * flow.speed * area * self.cd
     }
+}
+
+impl StabilityModel for MockRocket {
     fn stability_margin(&self, _mach: f64, _t: f64) -> f64 {
         0.0
     }

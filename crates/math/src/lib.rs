@@ -74,3 +74,8 @@ pub use table::{
     Cursor, Extrapolation, Interpolation, Location, Piece, PointOrder, Table1, linspace,
 };
 pub use triangulated::TriangulatedTable;
+
+/// The README's example, compiled and run by `cargo test --doc`.
+#[cfg(doctest)]
+#[doc = include_str!("../README.md")]
+struct ReadmeExample;

@@ -8,7 +8,9 @@
 //! - [`VehicleModel`]: a [`VehicleSetup`] read once (burn window, thrust knots, rail buttons,
 //!   recovery devices, dry mass, nozzle), and the per-step quantities: mass properties (or
 //!   the total mass alone), thrust, the axial aerodynamic load given the flow and the
-//!   [`Configuration`], and the stability margin of post-processing (physics.md §5–§7).
+//!   [`Configuration`] (physics.md §5–§7).
+//! - [`StabilityModel`]: the stability margin the flight's reports read (§7.7); the
+//!   equations never call it.
 //! - [`SurfaceModel`]: one aerodynamic surface whose force law lives in the surface:
 //!   [`SurfaceModel::loads`] turns the [`LocalFlow`] at its centre of pressure into
 //!   [`Loads`] (physics.md §7.2, §7.6), so a surface with its own coefficient tables is one
@@ -56,6 +58,11 @@ pub use configuration::{Configuration, MAX_CONTROLS};
 pub use karman_math::Cursor;
 pub use surface::{Loads, LocalFlow, SurfaceModel};
 pub use vehicle::{
-    BodyFlow, MassFlowLaw, MassSample, ParachuteSpec, RailButtonGeometry, TriggerCondition,
-    TriggerKind, VehicleModel, VehicleSetup,
+    BodyFlow, MassFlowLaw, MassSample, ParachuteSpec, RailButtonGeometry, StabilityModel,
+    TriggerCondition, TriggerKind, VehicleModel, VehicleSetup,
 };
+
+/// The README's example, compiled and run by `cargo test --doc`.
+#[cfg(doctest)]
+#[doc = include_str!("../README.md")]
+struct ReadmeExample;

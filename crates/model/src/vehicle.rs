@@ -183,6 +183,13 @@ pub trait VehicleModel {
         configuration: &Configuration,
         cursor: &mut Cursor,
     ) -> f64;
-    /// Stability margin at a Mach number and time, calibers (post-processing, §7.7).
+}
+
+/// The static stability a flight's report reads along the trajectory (physics.md §7.7). It
+/// is no force law and the equations of motion never call it, so it is a trait of its own
+/// beside [`VehicleModel`]: the reports ask for both, the engine's step loop for the vehicle
+/// alone.
+pub trait StabilityModel {
+    /// Stability margin at a Mach number and time, calibers.
     fn stability_margin(&self, mach: f64, t: f64) -> f64;
 }

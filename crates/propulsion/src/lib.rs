@@ -49,3 +49,8 @@ pub use tank::{
 };
 pub use tank_geometry::{TankGeometry, TankShape};
 pub use thrust::{BurnTime, ThrustCurve, ThrustOptions, ThrustSource};
+
+/// The README's example, compiled and run by `cargo test --doc`.
+#[cfg(doctest)]
+#[doc = include_str!("../README.md")]
+struct ReadmeExample;

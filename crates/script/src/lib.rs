@@ -39,3 +39,8 @@ pub use controller::{
     EnvironmentQuery, LevelRecord, ScriptError,
 };
 pub use expression::{Expression, ExpressionError, TriggerInputs};
+
+/// The README's example, compiled and run by `cargo test --doc`.
+#[cfg(doctest)]
+#[doc = include_str!("../README.md")]
+struct ReadmeExample;
