@@ -4,8 +4,8 @@
 use std::path::{Path, PathBuf};
 
 use karman_mission::build::flight::simulate;
-use karman_mission::build::stages::{TOP_STAGE, simulate_staged};
-use karman_mission::dynamics::Termination;
+use karman_mission::build::stages::{StagedRun, TOP_STAGE, simulate_staged};
+use karman_mission::dynamics::{Summary, Termination};
 use karman_mission::{Mission, MissionError, Override, load, parse};
 
 fn repository_fixture(name: &str) -> PathBuf {
@@ -298,6 +298,24 @@ fn imported(design: &str) -> Mission {
     parse(&mission, &dir.join("imported.toml"), &[]).unwrap_or_else(|e| panic!("{design}: {e}"))
 }
 
+/// The index of the body called `name` in a staged run.
+fn body_index(run: &StagedRun, name: &str) -> usize {
+    run.bodies
+        .iter()
+        .position(|b| b.name == name)
+        .unwrap_or_else(|| panic!("no body {name}"))
+}
+
+/// The time of the event called `name` in a body's summary, s.
+fn event_time(summary: &Summary, name: &str) -> f64 {
+    summary
+        .events
+        .iter()
+        .find(|e| e.name == name)
+        .map(|e| e.time_s)
+        .unwrap_or_else(|| panic!("no {name}: {:?}", summary.events))
+}
+
 #[test]
 fn the_imported_staged_designs_fly_every_body_to_the_ground() {
     for (design, bodies) in [
@@ -339,20 +357,8 @@ fn an_unstable_spent_stage_tumbles_after_its_separation_at_niskanens_terminal_sp
     let fins = 1.42 * 1.50 * (0.08 + 0.03) / 2.0 * 0.04;
     let body = 0.56 * (0.56 - 0.48) * 0.025;
     let drag_area = fins + body;
-    let index = run
-        .bodies
-        .iter()
-        .position(|b| b.name == "Booster stage 2")
-        .expect("the bottom stage flies");
-    let summary = run.summary(index);
-    let event = |name: &str| {
-        summary
-            .events
-            .iter()
-            .find(|e| e.name == name)
-            .map(|e| e.time_s)
-            .unwrap_or_else(|| panic!("no {name}: {:?}", summary.events))
-    };
+    let summary = run.summary(body_index(&run, "Booster stage 2"));
+    let event = |name: &str| event_time(&summary, name);
     // Statically unstable alone, it turns over right after its separation and tumbles
     // there (OpenRocket's stored flight: 0.32 s after the separation).
     let separation = event("separation:Booster stage 2");
@@ -363,12 +369,8 @@ fn an_unstable_spent_stage_tumbles_after_its_separation_at_niskanens_terminal_sp
     );
     // It lands at the terminal speed of its drag area, m g = ½ ρ v² C_D·A; a given
     // `tumble_drag_area` replaces the estimate.
-    let landing_speed = |run: &karman_mission::build::stages::StagedRun, drag_area: f64| {
-        let index = run
-            .bodies
-            .iter()
-            .position(|b| b.name == "Booster stage 2")
-            .expect("the bottom stage flies");
+    let landing_speed = |run: &StagedRun, drag_area: f64| {
+        let index = body_index(run, "Booster stage 2");
         let segment = &run.segments[*run.bodies[index].segments.last().expect("segments")];
         let last = run.samples(index).last().copied().expect("samples");
         let mass = segment.rocket.total_mass(last.t);
@@ -437,21 +439,10 @@ fn a_stable_spent_stage_without_parachutes_tumbles_past_its_apogee() {
     );
     let mission = parse(&text, &path, &[]).expect("mission");
     let run = simulate_staged(&mission, 0).expect("flies");
-    let index = run
-        .bodies
-        .iter()
-        .position(|b| b.name == "booster")
-        .expect("booster");
+    let index = body_index(&run, "booster");
     let summary = run.summary(index);
     assert_eq!(summary.termination, Termination::Impact);
-    let event = |name: &str| {
-        summary
-            .events
-            .iter()
-            .find(|e| e.name == name)
-            .map(|e| e.time_s)
-            .unwrap_or_else(|| panic!("no {name}: {:?}", summary.events))
-    };
+    let event = |name: &str| event_time(&summary, name);
     // The first 100 Hz sampling instant past its apogee.
     let (apogee, tumble) = (event("apogee"), event("tumble"));
     assert!(

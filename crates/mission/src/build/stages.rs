@@ -15,11 +15,12 @@
 //! stack above, whose motor ignites `ignition_delay` s later (its time tables moved there,
 //! [`super::rocket::delayed`]), and the spent stage with its own airframe, motor, drag and
 //! parachutes, to its own impact; one without parachutes tumbles past its apogee, or once it
-//! turns over when it is unstable ([`TumbleTrigger`]), a point mass under Niskanen's tumble
-//! drag (OpenRocket technical documentation §3.5, [`tumble_drag_area`]). Each starts at its own centre of dry mass: the state's
-//! position is moved along the rocket axis from the stack's, its velocity by `ω × r` of that
-//! offset (a rigid body). A separation at launch (`"launch + 0"`) happens on the pad: the
-//! stack above launches from the rail, and the stage stays there (it is not flown).
+//! turns over when it is unstable (`TumbleTrigger`), a point mass under Niskanen's tumble
+//! drag (OpenRocket technical documentation §3.5, `tumble_drag_area`). Each starts at its own
+//! centre of dry mass: the state's position is moved along the rocket axis from the stack's,
+//! its velocity by `ω × r` of that offset (a rigid body). A separation at launch
+//! (`"launch + 0"`) happens on the pad: the stack above launches from the rail, and the stage
+//! stays there (it is not flown).
 
 use std::borrow::Cow;
 use std::sync::Arc;

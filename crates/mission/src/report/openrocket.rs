@@ -18,7 +18,7 @@ use crate::report::rocket::AngleStability;
 /// of two, whose normal force OpenRocket takes at the flow's roll angle θ
 /// (`2 C_Nα1 sin²(θ − φ)`, [`karman_airframe::FinAerodynamics::roll_factor`]) where the
 /// flight model averages it to `C_Nα1`: the compared CP is taken at OpenRocket's roll angle
-/// at rod exit ([`rod_exit_roll`]), flow normal to the canards. `clustered_motors` flies
+/// at rod exit (`rod_exit_roll`), flow normal to the canards. `clustered_motors` flies
 /// its four motors as one cluster (`[motor] cluster_count`); pods
 /// (`pods_airframes_and_winglets`) are refused.
 pub const DESIGNS: [(&str, bool); 7] = [
@@ -75,7 +75,7 @@ pub struct OpenRocketComparison {
     pub cp_time: f64,
     /// OpenRocket's angle of attack at that row (rad), at which both CPs are taken.
     pub cp_alpha: f64,
-    /// The flow's roll angle there (rad), OpenRocket's ([`rod_exit_roll`]).
+    /// The flow's roll angle there (rad), OpenRocket's (`rod_exit_roll`).
     pub cp_roll: f64,
 }
 
