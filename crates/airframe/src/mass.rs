@@ -409,52 +409,22 @@ impl MassModel {
     /// c̈(t), RocketPy's `differentiate(t, order=2)` of c: the table's second derivative
     /// (0 for a linear table), or a central difference of the formula with the step
     /// `difference_step` (RocketPy's 1e-6 s) — for a propellant in parts, the exact second
-    /// derivative of the pointwise formula ([`MassModel::parts_offset_accel`]), which that
+    /// derivative of the pointwise formula ([`MassModel::parts_properties`]), which that
     /// difference equals away from the parts' nodes.
     #[inline]
     pub(crate) fn com_to_cdm_accel(&self, t: f64) -> f64 {
         let h = self.difference_step;
         match &self.nodal_offset {
             Some(table) => table.second_derivative(t),
-            None if !self.motor.propellant_parts.is_empty() => self.parts_offset_accel(t),
+            None if !self.motor.propellant_parts.is_empty() => {
+                self.parts_properties(t, 0.0, 0.0).com_to_cdm_accel
+            }
             None => {
                 (self.offset_pointwise(t + h) - 2.0 * self.offset_pointwise(t)
                     + self.offset_pointwise(t - h))
                     / (h * h)
             }
         }
-    }
-
-    /// c̈ of a propellant in parts, differentiating `c = −σ N/(m_d + m_p)` with
-    /// `N = (z_motor − z_cdm) m_p + s Σ (m_i z_i)` (σ the coordinate-system sign, `s` the
-    /// motor's orientation, `z_motor` its position; each table's own slopes, right-hand at a
-    /// node): `c̈ = −σ [N''/D − (2 N' ṁ_p + N m̈_p)/D² + 2 N ṁ_p²/D³]`, `D = m_d + m_p`.
-    ///
-    /// RocketPy takes a central difference of step 1e-6 s, which this equals except within
-    /// that step of a node. There the difference straddles a kink of the linear tables and
-    /// returns a spike of the jump in slope over the step; RocketPy's own grids (its grain's
-    /// solver output times) rarely meet its integrator's evaluation times, whereas a hybrid's
-    /// grain grid here holds the thrust nodes, where the integrator ends its steps.
-    fn parts_offset_accel(&self, t: f64) -> f64 {
-        let lever = self.motor_position - self.cdm;
-        let (mut n, mut n1, mut n2) = (0.0, 0.0, 0.0);
-        let (mut mp, mut mp1, mut mp2) = (0.0, 0.0, 0.0);
-        for p in &self.motor.propellant_parts {
-            let (m, m1, m2) = (
-                p.mass.eval(t),
-                p.mass.derivative(t),
-                p.mass.second_derivative(t),
-            );
-            mp += m;
-            mp1 += m1;
-            mp2 += m2;
-            n += lever * m + self.s * p.moment.eval(t);
-            n1 += lever * m1 + self.s * p.moment.derivative(t);
-            n2 += lever * m2 + self.s * p.moment.second_derivative(t);
-        }
-        let d = self.dry_mass + mp;
-        -self.csys
-            * (n2 / d - (2.0 * n1 * mp1 + n * mp2) / (d * d) + 2.0 * n * mp1 * mp1 / (d * d * d))
     }
 
     /// Centre of mass z_CM(t), user coordinates.
@@ -591,9 +561,17 @@ impl MassModel {
     }
 
     /// [`MassModel::properties_near`] for a propellant in parts: the formulas of
-    /// [`MassModel::propellant_sum`], [`MassModel::propellant_sum_rates`] and
-    /// [`MassModel::parts_offset_accel`] with each part's tables searched once (its mass and
-    /// moment share their nodes).
+    /// [`MassModel::propellant_sum`] and [`MassModel::propellant_sum_rates`] with each part's
+    /// tables searched once (its mass and moment share their nodes), and c̈ differentiated
+    /// exactly: with `c = −σ N/D`, `N = (z_motor − z_cdm) m_p + s Σ (m_i z_i)`, `D = m_d + m_p`
+    /// (σ the coordinate-system sign, `s` the motor's orientation, each table's own slopes,
+    /// right-hand at a node), `c̈ = −σ [N''/D − (2 N' ṁ_p + N m̈_p)/D² + 2 N ṁ_p²/D³]`.
+    ///
+    /// RocketPy takes a central difference of step 1e-6 s, which this equals except within
+    /// that step of a node. There the difference straddles a kink of the linear tables and
+    /// returns a spike of the jump in slope over the step; RocketPy's own grids (its grain's
+    /// solver output times) rarely meet its integrator's evaluation times, whereas a hybrid's
+    /// grain grid here holds the thrust nodes, where the integrator ends its steps.
     fn parts_properties(
         &self,
         t: f64,

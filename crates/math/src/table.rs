@@ -268,32 +268,28 @@ pub struct Table1 {
 /// The interpolant of validated, strictly increasing samples; finite samples can still give
 /// coefficients that overflow (a spline through samples 1e-222 apart), which is an error.
 fn pieces(xs: &[f64], ys: &[f64], interpolation: Interpolation) -> Result<Pieces, MathError> {
-    let mut finite_slopes = true;
-    let pieces = match interpolation {
+    let finite = |c: &[f64]| c.iter().all(|v| v.is_finite());
+    let cubic = |coeffs: Arc<[[f64; 4]]>| {
+        let bad = coeffs.iter().position(|c| !finite(c));
+        (Pieces::Cubic(coeffs), bad)
+    };
+    let (pieces, bad) = match interpolation {
+        // Linear pieces: only a slope can overflow, and it is checked as the pieces are made.
         Interpolation::Linear => {
-            let (coeffs, finite) = linear_coeffs_checked(xs, ys);
-            finite_slopes = finite;
-            Pieces::Cubic(coeffs)
+            let (coeffs, bad) = linear_coeffs_checked(xs, ys);
+            (Pieces::Cubic(coeffs), bad)
         }
-        Interpolation::Spline => Pieces::Cubic(natural_spline_coeffs(xs, ys)),
-        Interpolation::Akima => Pieces::Cubic(hermite_coeffs(xs, ys, &akima_slopes(xs, ys))),
+        Interpolation::Spline => cubic(natural_spline_coeffs(xs, ys)),
+        Interpolation::Akima => cubic(hermite_coeffs(xs, ys, &akima_slopes(xs, ys))),
         Interpolation::Polynomial => {
             if xs.len() == 1 {
-                Pieces::Cubic(Arc::from([]))
+                (Pieces::Cubic(Arc::from([])), None)
             } else {
-                Pieces::Polynomial(polynomial(xs, ys)?)
+                let p = polynomial(xs, ys)?;
+                let bad = (!finite(&p.coeffs)).then_some(0);
+                (Pieces::Polynomial(p), bad)
             }
         }
-    };
-    let finite = |c: &[f64]| c.iter().all(|v| v.is_finite());
-    let bad = match &pieces {
-        // Linear pieces: only a slope can overflow, and that was noted as they were made.
-        Pieces::Cubic(_) if interpolation == Interpolation::Linear && finite_slopes => None,
-        Pieces::Cubic(coeffs) if interpolation == Interpolation::Linear => {
-            coeffs.iter().position(|c| !c[1].is_finite())
-        }
-        Pieces::Cubic(coeffs) => coeffs.iter().position(|c| !finite(c)),
-        Pieces::Polynomial(p) => (!finite(&p.coeffs)).then_some(0),
     };
     match bad {
         Some(interval) => Err(MathError::InterpolantNotFinite { interval }),
@@ -1066,11 +1062,12 @@ fn linear_coeffs(xs: &[f64], ys: &[f64]) -> Arc<[[f64; 4]]> {
     linear_coeffs_checked(xs, ys).0
 }
 
-/// [`linear_coeffs`] and whether every slope is finite (finite samples can still give a slope
-/// that overflows; the other coefficients are samples and zeros).
-fn linear_coeffs_checked(xs: &[f64], ys: &[f64]) -> (Arc<[[f64; 4]]>, bool) {
+/// [`linear_coeffs`] and the first interval whose slope is not finite, if any (finite
+/// samples can still give a slope that overflows; the other coefficients are samples and
+/// zeros).
+fn linear_coeffs_checked(xs: &[f64], ys: &[f64]) -> (Arc<[[f64; 4]]>, Option<usize>) {
     let last = xs.len().saturating_sub(2);
-    let mut finite = true;
+    let mut bad = None;
     let coeffs = xs
         .windows(2)
         .zip(ys.windows(2))
@@ -1079,7 +1076,9 @@ fn linear_coeffs_checked(xs: &[f64], ys: &[f64]) -> (Arc<[[f64; 4]]>, bool) {
             let h = x[1] - x[0];
             if h > 0.0 {
                 let slope = (y[1] - y[0]) / h;
-                finite &= slope.is_finite();
+                if bad.is_none() && !slope.is_finite() {
+                    bad = Some(i);
+                }
                 [y[0], slope, 0.0, 0.0]
             } else if i == last {
                 [y[1], 0.0, 0.0, 0.0]
@@ -1088,7 +1087,7 @@ fn linear_coeffs_checked(xs: &[f64], ys: &[f64]) -> (Arc<[[f64; 4]]>, bool) {
             }
         })
         .collect();
-    (coeffs, finite)
+    (coeffs, bad)
 }
 
 /// Natural cubic spline: solve for the second derivatives `M_i` (M_0 = M_{n-1} = 0).

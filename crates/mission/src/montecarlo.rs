@@ -302,7 +302,8 @@ impl MonteCarlo {
         for (index, stage) in spec.stages.iter().enumerate() {
             stage_reshapes.push(match (&stage.motor, &stage_thrusts) {
                 (Some(_), Some(thrusts)) => {
-                    let motor = stages::stage_motor(mission, thrusts, index)?;
+                    let alone = stages::stage_mission(mission, index);
+                    let motor = stages::stage_motor(&alone, thrusts, index)?;
                     Some([motor.burn_out(), motor.total_impulse()])
                 }
                 _ => None,

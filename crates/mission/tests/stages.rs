@@ -316,6 +316,19 @@ fn event_time(summary: &Summary, name: &str) -> f64 {
         .unwrap_or_else(|| panic!("no {name}: {:?}", summary.events))
 }
 
+/// A body's speed at its impact (m/s, downwards) and the terminal speed `√(2 m g / (ρ C_D·A))`
+/// of `drag_area` there.
+fn landing_and_terminal_speeds(run: &StagedRun, index: usize, drag_area: f64) -> (f64, f64) {
+    let segment = &run.segments[*run.bodies[index].segments.last().expect("segments")];
+    let last = run.samples(index).last().copied().expect("samples");
+    let mass = segment.rocket.total_mass(last.t);
+    let (rho, g) = (
+        run.environment.density(last.z),
+        run.environment.gravity(last.z),
+    );
+    (-last.vz, (2.0 * mass * g / (rho * drag_area)).sqrt())
+}
+
 #[test]
 fn the_imported_staged_designs_fly_every_body_to_the_ground() {
     for (design, bodies) in [
@@ -370,15 +383,7 @@ fn an_unstable_spent_stage_tumbles_after_its_separation_at_niskanens_terminal_sp
     // It lands at the terminal speed of its drag area, m g = ½ ρ v² C_D·A; a given
     // `tumble_drag_area` replaces the estimate.
     let landing_speed = |run: &StagedRun, drag_area: f64| {
-        let index = body_index(run, "Booster stage 2");
-        let segment = &run.segments[*run.bodies[index].segments.last().expect("segments")];
-        let last = run.samples(index).last().copied().expect("samples");
-        let mass = segment.rocket.total_mass(last.t);
-        let (rho, g) = (
-            run.environment.density(last.z),
-            run.environment.gravity(last.z),
-        );
-        (-last.vz, (2.0 * mass * g / (rho * drag_area)).sqrt())
+        landing_and_terminal_speeds(run, body_index(run, "Booster stage 2"), drag_area)
     };
     let (ours, terminal) = landing_speed(&run, drag_area);
     assert!(
@@ -450,17 +455,9 @@ fn a_stable_spent_stage_without_parachutes_tumbles_past_its_apogee() {
         "{apogee} {tumble}"
     );
     // Lands at the terminal speed of the given drag area.
-    let segment = &run.segments[*run.bodies[index].segments.last().expect("segments")];
-    let last = run.samples(index).last().copied().expect("samples");
-    let mass = segment.rocket.total_mass(last.t);
-    let (rho, g) = (
-        run.environment.density(last.z),
-        run.environment.gravity(last.z),
-    );
-    let terminal = (2.0 * mass * g / (rho * 0.05)).sqrt();
+    let (ours, terminal) = landing_and_terminal_speeds(&run, index, 0.05);
     assert!(
-        (-last.vz - terminal).abs() < 0.01 * terminal,
-        "{} vs {terminal}",
-        -last.vz
+        (ours - terminal).abs() < 0.01 * terminal,
+        "{ours} vs {terminal}"
     );
 }

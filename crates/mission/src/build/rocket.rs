@@ -103,8 +103,8 @@ pub fn delayed(
 /// the roll axis `+ m r²` per copy, about each lateral axis `+ m r²/2` (the mean over the two
 /// lateral axes of `m y²` and `m z²`, exact for three or more motors evenly on a ring;
 /// karman's rocket is axisymmetric). The propellant's terms are tabulated on the union of the
-/// nodes of its inertia and mass tables. The nozzle exit radius becomes `r_n √count`: the copies' total exit area
-/// (pressure thrust, power-on base drag). One motor on the axis is returned unchanged.
+/// nodes of its inertia and mass tables. The nozzle exit radius becomes
+/// [`cluster_exit_radius`]. One motor on the axis is returned unchanged.
 ///
 /// # Errors
 /// [`karman_math::MathError`] for a propellant table that cannot be rebuilt.
@@ -159,9 +159,17 @@ pub fn clustered(
             n * d[4],
             n * d[5],
         ],
-        nozzle_radius: motor.nozzle_radius * n.sqrt(),
+        nozzle_radius: cluster_exit_radius(motor.nozzle_radius, count),
         ..motor
     })
+}
+
+/// The exit radius of one nozzle whose area is that of a cluster of `count` nozzles of
+/// `radius`, `radius √count` (the pressure thrust and the power-on base drag see the total
+/// exit area).
+#[must_use]
+pub fn cluster_exit_radius(radius: f64, count: u32) -> f64 {
+    radius * f64::from(count).sqrt()
 }
 
 /// The `[motor]` cluster of `mission`: `(cluster_count, cluster_radius)`, `(1, 0)` by default.
@@ -411,9 +419,8 @@ pub fn estimated_drag(
         .iter()
         .map(|(name, s)| surface_input(name, s, None))
         .collect();
-    // A cluster's nozzles: their total exit area (see [`clustered`]).
     let (count, _) = cluster_of(mission);
-    let nozzle_radius = motor.nozzle_radius() * f64::from(count).sqrt();
+    let nozzle_radius = cluster_exit_radius(motor.nozzle_radius(), count);
     super::drag::estimate(mission, &surfaces, nozzle_radius).map(Some)
 }
 

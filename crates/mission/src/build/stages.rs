@@ -125,7 +125,7 @@ pub const TOP_STAGE: &str = "sustainer";
 
 /// `mission` with lower stage `index` as its `[rocket]` and `[motor]` (the top stage's motor
 /// when the stage has none), its keys located at the stage's.
-fn stage_mission(mission: &Mission, index: usize) -> Mission {
+pub(crate) fn stage_mission(mission: &Mission, index: usize) -> Mission {
     let stage = &mission.spec.stages[index];
     let mut spec = mission.spec.clone();
     spec.rocket = stage.rocket.clone();
@@ -150,18 +150,17 @@ fn stage_mission(mission: &Mission, index: usize) -> Mission {
     }
 }
 
-/// The own motor of lower stage `index` (which has one), as it flies after separation.
+/// The own motor of lower stage `index` (which has one), as it flies after separation, from
+/// the stage's own mission `alone` ([`stage_mission`]).
 ///
 /// # Errors
 /// The motor builder's errors, named by the stage's keys.
 pub(crate) fn stage_motor(
-    mission: &Mission,
+    alone: &Mission,
     thrusts: &StageThrusts,
     index: usize,
 ) -> Result<Motor, MissionError> {
-    thrusts
-        .motor(&stage_mission(mission, index))
-        .map_err(|e| in_stage(e, index))
+    thrusts.motor(alone).map_err(|e| in_stage(e, index))
 }
 
 /// An error found while building stage `index` from its own mission, named by the stage's key.
@@ -600,7 +599,7 @@ pub fn prepare_staged(mission: &Mission, seed: u64) -> Result<Vec<String>, Missi
             let stage = &stages[count - 1];
             if stage.rocket.mass > 0.0 && stage.motor.is_some() {
                 let alone = stage_mission(mission, count - 1);
-                let motor = stage_motor(mission, &thrusts, count - 1)?;
+                let motor = stage_motor(&alone, &thrusts, count - 1)?;
                 let spent = build_rocket_ignited_at(&alone, &motor, 0.0)
                     .map_err(|e| in_stage(e, count - 1))?;
                 warnings.extend(
@@ -804,7 +803,7 @@ fn fly_tree<A: AtmosphereModel>(
         // The spent stage flies on alone (a massless one has nothing to fly).
         if stage.rocket.mass > 0.0 && stage.motor.is_some() {
             let alone = stage_mission(mission, index);
-            let motor = stage_motor(mission, thrusts, index)?;
+            let motor = stage_motor(&alone, thrusts, index)?;
             let spent = build_rocket_ignited_at(&alone, &motor, ignition)
                 .map_err(|e| in_stage(e, index))?;
             warnings.extend(
