@@ -342,3 +342,41 @@ fn simulation_mode_and_weathercock_are_checked() {
     );
     assert_eq!(flight.weathercock_coeff, Some(0.5));
 }
+
+#[test]
+fn cluster_mistakes_are_located() {
+    // No motor at all, and axes inside the rocket's axis: each named at its key and line.
+    let text = edited(&[(
+        "nozzle_radius = 0.02\n",
+        "nozzle_radius = 0.02\ncluster_count = 0\ncluster_radius = -0.01\n",
+    )]);
+    let found = problems(&text, &[]);
+    let keys: Vec<(&str, Location)> = found
+        .iter()
+        .map(|p| (p.key.as_str(), p.location.clone()))
+        .collect();
+    assert_eq!(
+        keys,
+        [
+            (
+                "motor.cluster_count",
+                Location::File {
+                    line: 20,
+                    column: 17
+                }
+            ),
+            (
+                "motor.cluster_radius",
+                Location::File {
+                    line: 21,
+                    column: 18
+                }
+            ),
+        ]
+    );
+    let text = error_text(&text, &[]);
+    assert!(
+        text.contains("cluster_count") && text.contains("at least 1 motor"),
+        "{text}"
+    );
+}
