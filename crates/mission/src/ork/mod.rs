@@ -23,7 +23,9 @@
 //! - a clustered inner tube onto `[motor] cluster_count` and `cluster_radius`, its copies'
 //!   masses with their offsets (`Component::cluster`).
 //!
-//! Pods and staging events the format cannot express are refused,
+//! - pod sets onto `[rocket.pods]` (their surfaces, and their masses at the pods' offset).
+//!
+//! Powered pods, parallel boosters and staging events the format cannot express are refused,
 //! naming the component; what is mapped approximately is listed in [`Imported::warnings`].
 
 mod design;

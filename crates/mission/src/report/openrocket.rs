@@ -18,15 +18,17 @@ use crate::report::rocket::AngleStability;
 /// of two, whose normal force OpenRocket takes at the flow's roll angle θ
 /// (`2 C_Nα1 sin²(θ − φ)`, [`karman_airframe::FinAerodynamics::roll_factor`]) where the
 /// flight model averages it to `C_Nα1`: the compared CP is taken at OpenRocket's roll angle
-/// at rod exit (`rod_exit_roll`), flow normal to the canards. `clustered_motors` flies
-/// its four motors as one cluster (`[motor] cluster_count`); pods
-/// (`pods_airframes_and_winglets`) are refused.
-pub const DESIGNS: [(&str, bool); 7] = [
+/// at rod exit (`rod_exit_roll`). `clustered_motors` flies its four motors as one cluster
+/// (`[motor] cluster_count`); `pods_airframes_and_winglets` has two pod sets
+/// (`[rocket.pods]`: wing pods, and a radius-0 "phantom" pod carrying the horizontal
+/// stabiliser), wings of two fins and single fins, whose CP depends on the roll angle.
+pub const DESIGNS: [(&str, bool); 8] = [
     ("a_simple_model_rocket", true),
     ("base_drag_hack_short_wide", true),
     ("chute_release", true),
     ("clustered_motors", true),
     ("dual_parachute_deployment", true),
+    ("pods_airframes_and_winglets", true),
     ("simulation_scripting", true),
     ("tube_fin_rocket", true),
 ];
@@ -168,15 +170,19 @@ fn column(ascent: &Value, name: &str) -> Vec<f64> {
 }
 
 /// The roll angle of the flow in the body frame (rad) at rod exit of OpenRocket's flight
-/// with the simulation `conditions` (`reference.json`), the rocket rolled to `worst`
-/// ([`karman_airframe::BodyLift::worst_roll_angle`]). OpenRocket starts the rocket at the orientation
-/// `R_z(π/2 − d) R_y(a) R_z(−θ_w − (π/2 − d))` (rod angle `a`, rod direction `d`, the
-/// wind's direction when launched into the wind; worst angle `θ_w`) and takes the flow's
-/// roll angle as the azimuth of the air velocity in the body frame. On the rod the rocket's
-/// own velocity is along its axis, so the lateral flow is the wind's, from direction `d_w`:
-/// with `γ = d − d_w`, the angle is `θ_w + π/2 − d + atan2(sin γ, cos a cos γ)`; with no
-/// wind OpenRocket takes 0. The fins' `sin²` makes the sign of the flow irrelevant.
-fn rod_exit_roll(conditions: &Value, worst: f64) -> f64 {
+/// with the simulation `conditions` (`reference.json`). OpenRocket starts the rocket at the
+/// orientation `R_z(π/2 − d) R_y(a) R_z(−θ₀ − (π/2 − d))` (rod angle `a`, rod direction `d`,
+/// the wind's direction when launched into the wind) and takes the flow's roll angle as the
+/// azimuth of the air velocity in the body frame. Its code means `θ₀` to be the worst roll
+/// angle, but OpenRocket 24.12 (`SimulationStatus`'s constructor) reads it from a new
+/// `FlightConditions`, whose roll angle is 0, and never runs the worst-CP search there: the
+/// rocket starts unrolled, `θ₀ = 0`, which is what the stored CPs show (a design whose CP
+/// depends on the roll angle, `pods_airframes_and_winglets` with its wings and single fins,
+/// has OpenRocket's rod-exit CP at `θ = 0`, not at the worst angle 90°). On the rod the
+/// rocket's own velocity is along its axis, so the lateral flow is the wind's, from
+/// direction `d_w`: with `γ = d − d_w`, the angle is `π/2 − d + atan2(sin γ, cos a cos γ)`;
+/// with no wind OpenRocket takes 0. The fins' `sin²` makes the sign of the flow irrelevant.
+fn rod_exit_roll(conditions: &Value) -> f64 {
     let wind = &conditions["wind"];
     let speed = wind["average_speed_m_s"].as_f64().unwrap_or(0.0);
     let wind_direction = wind["direction_rad"].as_f64().unwrap_or(0.0);
@@ -198,7 +204,7 @@ fn rod_exit_roll(conditions: &Value, worst: f64) -> f64 {
         .to_radians();
     let gamma = rod_direction - wind_direction;
     let lateral = gamma.sin().atan2(rod_angle.cos() * gamma.cos());
-    worst + std::f64::consts::FRAC_PI_2 - rod_direction + lateral
+    std::f64::consts::FRAC_PI_2 - rod_direction + lateral
 }
 
 /// Reads `design_dir/reference.json` and, for each stored simulation that flies no simulation
@@ -276,11 +282,10 @@ pub fn compare_design(design_dir: &Path) -> Result<Vec<OpenRocketComparison>, St
         if !(cp_time.is_finite() && cp_alpha.is_finite() && cp_mach.is_finite()) {
             return Err(format!("{name}: no rod-exit CP row"));
         }
-        let stability =
-            AngleStability::new(&mission, rocket, cp_time, cp_alpha, cp_mach, |worst| {
-                rod_exit_roll(&sim["conditions"], worst)
-            })
-            .map_err(|e| e.to_string())?;
+        let stability = AngleStability::new(&mission, rocket, cp_time, cp_alpha, cp_mach, |_| {
+            rod_exit_roll(&sim["conditions"])
+        })
+        .map_err(|e| e.to_string())?;
         let body_length = mission
             .spec
             .rocket
@@ -580,15 +585,13 @@ mod tests {
 
     #[test]
     fn the_rod_exit_roll_angle_follows_openrockets_initial_orientation() {
-        let worst = 0.3;
-        // Into the wind on a vertical rod: the flow comes from the worst roll angle.
+        // Into the wind on a vertical rod: the flow comes at roll angle 0.
         let into = conditions(true, [0.0, 0.0], [2.0, FRAC_PI_2]);
-        assert!((rod_exit_roll(&into, worst) - worst).abs() < 1e-15);
-        // A vertical rod rolls the rocket by −θ_w whatever its direction: a north wind on a
-        // rod pointing east comes at θ_w + 90° in the body frame.
+        assert!(rod_exit_roll(&into).abs() < 1e-15);
+        // A vertical rod pointing east with a north wind: the flow comes at 90°.
         let north = conditions(false, [0.0, 90.0], [2.0, 0.0]);
-        assert!((rod_exit_roll(&north, worst) - (worst + FRAC_PI_2)).abs() < 1e-15);
+        assert!((rod_exit_roll(&north) - FRAC_PI_2).abs() < 1e-15);
         // No wind: OpenRocket's 0.
-        assert!(rod_exit_roll(&conditions(true, [5.0, 0.0], [0.0, 1.0]), worst) == 0.0);
+        assert!(rod_exit_roll(&conditions(true, [5.0, 0.0], [0.0, 1.0])) == 0.0);
     }
 }
