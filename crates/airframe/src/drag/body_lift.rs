@@ -214,6 +214,19 @@ mod tests {
         assert!((m / w - exact_x).abs() < 1e-6);
         let [w0, m0] = lift.weights(0.0, 0.3);
         assert!(w0.abs() < 1e-15 && m0.abs() < 1e-15, "{w0} {m0}");
+        // Two pods, each a 0.2 m tube of radius 0.01 starting 0.5 m aft of the tip: twice
+        // its rectangle, centred at 0.6 m.
+        let mut podded = geometry.clone();
+        podded.pods.push(crate::drag::PodDrag {
+            name: "pods".into(),
+            count: 2,
+            position: 0.5,
+            body: vec![segment(0.2, 0.01, 0.01, Profile::Conical)],
+        });
+        let [pa, px] = BodyLift::new(&podded).planform();
+        let pod_area = 2.0 * 0.2 * 0.02;
+        assert!((pa - (exact_a + pod_area)).abs() < 1e-9, "{pa}");
+        assert!((px - (exact_a * exact_x + pod_area * 0.6) / (exact_a + pod_area)).abs() < 1e-6);
         // Turning slowly (M < 0.05, α > 45°) the lift is scaled by (M / 0.05)².
         let [slow, _] = lift.weights(1.0, 0.025);
         let [fast, _] = lift.weights(1.0, 0.05);
