@@ -210,6 +210,9 @@ struct Group<'a> {
     mount: &'a Component,
     /// Its motor in the configuration.
     motor: &'a MotorRef,
+    /// The further motor mounts of its lowest stage with a motor in the configuration, in
+    /// design order (`[[extra_motors]]`).
+    extra: Vec<(&'a Component, &'a MotorRef)>,
 }
 
 impl Group<'_> {
@@ -275,24 +278,17 @@ fn groups<'a>(
             .into_iter()
             .filter(|c| c.motors.contains_key(&sim.config))
             .collect();
-        match mounts.as_slice() {
-            [] => {}
-            [mount] => {
-                out.push(Group {
-                    stages: std::mem::take(&mut pending),
-                    number: first,
-                    mount,
-                    motor: &mount.motors[&sim.config],
-                });
-            }
-            several => {
-                let names: Vec<String> = several.iter().map(|m| m.name.clone()).collect();
-                return Err(unsupported(
-                    file,
-                    &names.join(", "),
-                    "several motors in one stage".to_owned(),
-                ));
-            }
+        if let [mount, others @ ..] = mounts.as_slice() {
+            out.push(Group {
+                stages: std::mem::take(&mut pending),
+                number: first,
+                mount,
+                motor: &mount.motors[&sim.config],
+                extra: others
+                    .iter()
+                    .map(|m| (*m, &m.motors[&sim.config]))
+                    .collect(),
+            });
         }
     }
     if out.is_empty() {
@@ -423,6 +419,113 @@ fn spent_stage_drag(front: f64, base: f64, radius: f64) -> String {
     format!("[{}]", points.join(", "))
 }
 
+/// The motor table `[motor_key]` of `motor` in `mount` (a generic motor from its RASP file,
+/// with the mount's cluster) and the rocket coordinate of its nozzle exit: the mount's aft end
+/// plus its overhang.
+fn motor_text(
+    file: &Path,
+    mount: &Component,
+    motor: &MotorRef,
+    motor_key: &str,
+    options: &ImportOptions,
+) -> Result<(String, f64), OrkError> {
+    let (eng_path, eng) = find_motor(file, motor, options)?;
+    let motor_length = if motor.length.is_finite() {
+        motor.length
+    } else {
+        eng.length
+    };
+    let motor_diameter = if motor.diameter.is_finite() {
+        motor.diameter
+    } else {
+        eng.diameter
+    };
+    let nozzle_at = mount.x + mount.length + mount.overhang;
+    let dry = (eng.total - eng.propellant).max(0.0);
+
+    let mut m = String::new();
+    let _ = writeln!(
+        m,
+        "# {} {} from {}: RASP masses {} kg propellant, {} kg total; the propellant is",
+        motor.manufacturer,
+        motor.designation,
+        eng_path.display(),
+        eng.propellant,
+        eng.total
+    );
+    let _ = writeln!(
+        m,
+        "# a cylinder filling the motor case, and leaves in proportion to the impulse."
+    );
+    let _ = writeln!(
+        m,
+        "[{motor_key}]\nkind = \"generic\"\nthrust = {}",
+        quoted(&relative(&eng_path, options.output_dir.as_deref()))
+    );
+    let _ = writeln!(
+        m,
+        "dry_mass = {}\ncenter_of_dry_mass_position = {}",
+        n(dry),
+        n(0.5 * motor_length)
+    );
+    let _ = writeln!(
+        m,
+        "nozzle_radius = {}\npropellant_initial_mass = {}",
+        n(0.25 * motor_diameter),
+        n(eng.propellant)
+    );
+    let _ = writeln!(
+        m,
+        "chamber_radius = {}\nchamber_height = {}\nchamber_position = {}",
+        n(0.5 * motor_diameter),
+        n(motor_length),
+        n(0.5 * motor_length)
+    );
+    let (cluster_count, cluster_radius) = mount.cluster()?;
+    if cluster_count > 1 {
+        let _ = writeln!(
+            m,
+            "# OpenRocket's {} cluster: {cluster_count} motors lit together, their axes {} m from\n\
+             # the rocket's axis (root mean square).\ncluster_count = {cluster_count}\ncluster_radius = {}",
+            mount.text("clusterconfiguration").unwrap_or(""),
+            (cluster_radius * 1e4).round() / 1e4,
+            n(cluster_radius)
+        );
+    }
+    let _ = writeln!(m, "coordinate_system = \"nozzle_to_combustion_chamber\"\n");
+    Ok((m, nozzle_at))
+}
+
+/// The time after launch of the first ejection charge among the motors of `group` (each
+/// fires its delay after its own burn-out, the end of its thrust curve, OpenRocket's
+/// `EJECTION_CHARGE` event); `None` when every motor is plugged.
+fn first_ejection(
+    file: &Path,
+    group: &Group,
+    options: &ImportOptions,
+) -> Result<Option<f64>, OrkError> {
+    let mut first: Option<f64> = None;
+    for (mount, motor) in
+        std::iter::once((group.mount, group.motor)).chain(group.extra.iter().copied())
+    {
+        let Some(charge) = motor.delay else { continue };
+        let (path, _) = find_motor(file, motor, options)?;
+        let end = karman_propulsion::ThrustData::load(&path)
+            .ok()
+            .and_then(|d| d.times.last().copied())
+            .ok_or_else(|| {
+                unsupported(
+                    file,
+                    &mount.name,
+                    format!("a thrust curve {} that cannot be read", path.display()),
+                )
+            })?;
+        let t = motor.ignition.1 + end + charge;
+        first = Some(first.map_or(t, |f| f.min(t)));
+    }
+    Ok(first)
+}
+
 #[allow(clippy::too_many_arguments)]
 fn body_text(
     file: &Path,
@@ -497,71 +600,7 @@ fn body_text(
     }
 
     // Motor of the simulation's configuration.
-    let (mount, motor) = (group.mount, group.motor);
-    let (eng_path, eng) = find_motor(file, motor, options)?;
-    let motor_length = if motor.length.is_finite() {
-        motor.length
-    } else {
-        eng.length
-    };
-    let motor_diameter = if motor.diameter.is_finite() {
-        motor.diameter
-    } else {
-        eng.diameter
-    };
-    let nozzle_at = mount.x + mount.length + mount.overhang;
-    let dry = (eng.total - eng.propellant).max(0.0);
-
-    let mut m = String::new();
-    let _ = writeln!(
-        m,
-        "# {} {} from {}: RASP masses {} kg propellant, {} kg total; the propellant is",
-        motor.manufacturer,
-        motor.designation,
-        eng_path.display(),
-        eng.propellant,
-        eng.total
-    );
-    let _ = writeln!(
-        m,
-        "# a cylinder filling the motor case, and leaves in proportion to the impulse."
-    );
-    let _ = writeln!(
-        m,
-        "[{motor_key}]\nkind = \"generic\"\nthrust = {}",
-        quoted(&relative(&eng_path, options.output_dir.as_deref()))
-    );
-    let _ = writeln!(
-        m,
-        "dry_mass = {}\ncenter_of_dry_mass_position = {}",
-        n(dry),
-        n(0.5 * motor_length)
-    );
-    let _ = writeln!(
-        m,
-        "nozzle_radius = {}\npropellant_initial_mass = {}",
-        n(0.25 * motor_diameter),
-        n(eng.propellant)
-    );
-    let _ = writeln!(
-        m,
-        "chamber_radius = {}\nchamber_height = {}\nchamber_position = {}",
-        n(0.5 * motor_diameter),
-        n(motor_length),
-        n(0.5 * motor_length)
-    );
-    let (cluster_count, cluster_radius) = mount.cluster()?;
-    if cluster_count > 1 {
-        let _ = writeln!(
-            m,
-            "# OpenRocket's {} cluster: {cluster_count} motors lit together, their axes {} m from\n\
-             # the rocket's axis (root mean square).\ncluster_count = {cluster_count}\ncluster_radius = {}",
-            mount.text("clusterconfiguration").unwrap_or(""),
-            (cluster_radius * 1e4).round() / 1e4,
-            n(cluster_radius)
-        );
-    }
-    let _ = writeln!(m, "coordinate_system = \"nozzle_to_combustion_chamber\"\n");
+    let (m, nozzle_at) = motor_text(file, group.mount, group.motor, motor_key, options)?;
 
     let mut t = String::new();
     let w = &mut t;
@@ -887,7 +926,20 @@ fn body_text(
                     "launch" => "\"launch + 0\"".to_owned(),
                     "never" => continue,
                     // The motor's ejection charge fires its delay after burn-out.
-                    "ejection" => match motor.delay {
+                    // Several motors: the first charge of any of them, a time after launch.
+                    "ejection" if !group.extra.is_empty() => {
+                        match first_ejection(file, group, options)? {
+                            Some(t) => format!("\"launch + {}\"", n(t)),
+                            None => {
+                                warnings.push(format!(
+                                    "`{}`: deployed by the ejection charges of plugged motors in OpenRocket, so never deployed; left out",
+                                    c.name
+                                ));
+                                continue;
+                            }
+                        }
+                    }
+                    "ejection" => match group.motor.delay {
                         Some(charge) => format!("\"burnout + {}\"", n(charge)),
                         None => {
                             warnings.push(format!(
@@ -923,6 +975,56 @@ fn body_text(
     })
 }
 
+/// Several motor mounts in one stage (an air start, two different motors): in a single-stage
+/// rocket the mount lit first becomes `[motor]` and the others `[[extra_motors]]`, each lit
+/// its delay after launch. OpenRocket's ignition events (`IgnitionEvent`): in the launch
+/// stage `automatic` is `launch`, and `burnout` and `ejection` wait for an event of the stage
+/// below it, which the launch stage does not have, so such a motor never ignites (as with
+/// `never`); karman refuses those, naming the mount and the event, and refuses several mounts
+/// in a stage of a multi-stage rocket.
+fn several_motors(file: &Path, groups: &mut [Group<'_>]) -> Result<(), OrkError> {
+    let staged = groups.len() > 1;
+    for group in groups.iter_mut() {
+        if group.extra.is_empty() {
+            continue;
+        }
+        if staged {
+            let names: Vec<&str> = std::iter::once(group.mount.name.as_str())
+                .chain(group.extra.iter().map(|(m, _)| m.name.as_str()))
+                .collect();
+            return Err(unsupported(
+                file,
+                &names.join(", "),
+                "several motors in one stage of a multi-stage rocket".to_owned(),
+            ));
+        }
+        let mut all: Vec<(&Component, &MotorRef)> = std::iter::once((group.mount, group.motor))
+            .chain(group.extra.iter().copied())
+            .collect();
+        for (mount, motor) in &all {
+            let (event, delay) = &motor.ignition;
+            if !matches!(event.as_str(), "automatic" | "launch") {
+                return Err(unsupported(
+                    file,
+                    &mount.name,
+                    format!(
+                        "a motor lit {} in the launch stage (OpenRocket waits for that event \
+                         from a stage below, which this rocket does not have: the motor never \
+                         ignites)",
+                        after(event, *delay)
+                    ),
+                ));
+            }
+        }
+        // The first lit is `[motor]` (the first in design order among equals).
+        all.sort_by(|a, b| a.1.ignition.1.total_cmp(&b.1.ignition.1));
+        group.mount = all[0].0;
+        group.motor = all[0].1;
+        group.extra = all[1..].to_vec();
+    }
+    Ok(())
+}
+
 /// Builds the mission text of `design` for the simulation chosen by `options`: the top body
 /// as `[rocket]` and `[motor]`, the bodies below it as `[[stages]]`, bottom last.
 pub(super) fn mission(
@@ -951,7 +1053,8 @@ pub(super) fn mission(
             },
         });
     };
-    let groups = groups(file, design, sim, &mut warnings)?;
+    let mut groups = groups(file, design, sim, &mut warnings)?;
+    several_motors(file, &mut groups)?;
     let bottom = &groups[groups.len() - 1];
     if !matches!(bottom.motor.ignition.0.as_str(), "automatic" | "launch")
         || bottom.motor.ignition.1 != 0.0
@@ -1007,7 +1110,8 @@ pub(super) fn mission(
     );
     let motors: Vec<String> = groups
         .iter()
-        .map(|g| format!("{} {}", g.motor.manufacturer, g.motor.designation))
+        .flat_map(|g| std::iter::once(g.motor).chain(g.extra.iter().map(|(_, m)| *m)))
+        .map(|m| format!("{} {}", m.manufacturer, m.designation))
         .collect();
     let _ = writeln!(
         w,
@@ -1071,6 +1175,27 @@ pub(super) fn mission(
         n(heading),
         n(max_time)
     );
+    // Further motor mounts of a single-stage rocket, each lit its delay after launch.
+    for (mount, motor) in &groups[0].extra {
+        let (text, nozzle_at) = motor_text(file, mount, motor, "extra_motors.motor", options)?;
+        let _ = writeln!(
+            w,
+            "\n# `{}`: {} {}, lit {} (OpenRocket: {}).",
+            mount.name,
+            motor.manufacturer,
+            motor.designation,
+            after("launch", motor.ignition.1),
+            after(&motor.ignition.0, motor.ignition.1)
+        );
+        let _ = writeln!(
+            w,
+            "[[extra_motors]]\nname = {}\nmotor_position = {}                # nozzle exit: the mount's aft end plus overhang\nignition_delay = {}\n",
+            quoted(&mount.name),
+            n(nozzle_at),
+            n(motor.ignition.1)
+        );
+        w.push_str(&text);
+    }
     // Stage names as reports show them, made unique by OpenRocket's stage number.
     let title = |g: &Group| {
         if groups.iter().filter(|o| o.name() == g.name()).count() > 1 {
