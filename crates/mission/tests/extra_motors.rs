@@ -453,3 +453,19 @@ fn openrocket_ignitions_karman_cannot_fly_are_refused_by_name() {
         "{e}"
     );
 }
+
+#[test]
+fn a_study_varying_only_an_extra_motor_rebuilds_the_rocket() {
+    // The extra motors ride on the rocket: a study that varies nothing else must still fly
+    // each sample's own motors.
+    let text = text_of("airstart.toml");
+    let start = text.find("[dispersion.vary]\n").expect("vary") + "[dispersion.vary]\n".len();
+    let text = format!(
+        "{}\"extra_motors.0.ignition_delay\" = {{ uniform = [2.8, 6.0] }}\n",
+        &text[..start]
+    );
+    let mission = load(&text, "airstart.toml");
+    let study = MonteCarlo::new(&mission, StudyOverrides::default()).expect("study");
+    let apogee_time = |delay: f64| study.fly(1, &[delay]).expect("flies").values()[2];
+    assert!(apogee_time(6.0) > apogee_time(3.0));
+}

@@ -28,15 +28,19 @@
 //!   impulse over the total propellant mass `Σ I_k / Σ m_p0,k`, so that the flow integrates
 //!   to the propellant burnt; exact when the motors share their exhaust velocity;
 //! - nozzle exit radius: `√(Σ r_k²)`, the radius of the total exit area (as a cluster's,
-//!   [`super::rocket::cluster_exit_radius`]), which the power-on base drag sees; the
-//!   pressure-thrust correction (`reference_pressure`), which needs the exit area of the
-//!   motors burning at each instant, is refused for a combination;
+//!   [`super::rocket::cluster_exit_radius`]), which the power-on base drag of the drag
+//!   estimate sees; the pressure-thrust correction (`reference_pressure`), which would need the
+//!   exit area of the motors burning at each instant, is refused for a combination;
 //! - nozzle position: the aftmost nozzle exit of the motors. The launch checks take the nozzle
 //!   as the rocket's aft end (the nozzle on the airframe, the rail length from the nozzle to
-//!   the upper button), and the jet-damping lever arm of the 6-DOF equations (Ceotto et al.
-//!   2021, eq. for `ṁ (r_n² /4 + d_n²)`) is then that of the aftmost exit: exact when the
-//!   nozzles end in one plane (the usual air start, motor tubes flush with the aft end),
-//!   otherwise a slightly larger jet damping than the mass-flow-weighted lever arms would give.
+//!   the upper button), so the aftmost exit is the one they need. The 6-DOF equations use the
+//!   nozzle in their variable-mass terms: the lever arm `d_n` from the centre of dry mass and
+//!   the jet-damping gyration `ṁ (r_n²/4 + d_n², r_n²/4 + d_n², r_n²/2)` (physics.md §5.6,
+//!   Ceotto et al. 2021). With one exit for all motors these are exact when the nozzles end in
+//!   one plane (the usual air start, motor tubes flush with the aft end) up to the `r_n²`
+//!   terms, which, as for a cluster, take the total exit area with the total mass flow rather
+//!   than each nozzle with its own flow; those are small beside `d_n²` (a few cm² against a
+//!   lever arm of a metre or so).
 
 use karman_airframe::{MotorProperties, PropellantPart};
 use karman_math::{Extrapolation, Interpolation, MathError, Table1};

@@ -34,7 +34,7 @@ pub use toml::value::Datetime;
 pub use values::{AirBrakesCurve, Atol, BurnTime, Curve, ESTIMATE, Inertia, STATE_SIZE, Trigger};
 
 /// A whole mission file.
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[derive(Clone, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct MissionSpec {
     /// Name shown in reports.
@@ -64,6 +64,26 @@ pub struct MissionSpec {
     /// `[dispersion]`: Monte Carlo settings, optional.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub dispersion: Option<DispersionSpec>,
+}
+
+/// The derived form, but without `extra_motors` when there is none: a Monte Carlo study's
+/// data fingerprint hashes this text, so a mission written before the key existed keeps its
+/// fingerprint (and its study directories stay resumable).
+impl std::fmt::Debug for MissionSpec {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        let mut s = f.debug_struct("MissionSpec");
+        s.field("name", &self.name)
+            .field("description", &self.description)
+            .field("environment", &self.environment)
+            .field("motor", &self.motor)
+            .field("rocket", &self.rocket)
+            .field("flight", &self.flight)
+            .field("stages", &self.stages);
+        if !self.extra_motors.is_empty() {
+            s.field("extra_motors", &self.extra_motors);
+        }
+        s.field("dispersion", &self.dispersion).finish()
+    }
 }
 
 impl MissionSpec {
