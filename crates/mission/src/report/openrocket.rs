@@ -18,8 +18,8 @@
 //! is a payload without a motor, ejected by the booster's ejection charge: the import flies it
 //! on the booster as one body, so its apogee and speed are compared and its separation is not
 //! flown (the booster's parachute, ejected with the payload, opens at that time on the one
-//! body). `simulation_extensions` stores only flights altered by simulation extensions, which
-//! are not compared.
+//! body). `simulation_extensions` and `simulation_scripting` store, beside a plain flight,
+//! flights altered by simulation extensions (roll control, air start): those are not compared.
 
 use std::path::{Path, PathBuf};
 
