@@ -3,6 +3,10 @@
 //! kg/m²) or length (line, kg/m), or a given mass; mass and CG overrides of a component or of
 //! its whole subtree (`overridesubcomponents*`).
 //!
+//! Where OpenRocket computes a dimension itself, so does the reader: a centering ring's
+//! automatic bore is the inner tube beside it; a fin's volume is its plate's times
+//! OpenRocket's factor for the cross-section, plus its fillets.
+//!
 //! Inertias are those of the solid each component approximates — thin or thick tubes, disks,
 //! shells of revolution integrated along the axis, fins as plates at their centroid — about
 //! the component's own centre of mass; the subtree sums them with the parallel-axis theorem.
@@ -111,6 +115,21 @@ fn shell(x0: f64, length: f64, fore: f64, aft: f64, p: Profile, t: f64, rho: f64
     total
 }
 
+/// The volume of a fin of cross-section `crosssection` relative to the flat plate of its
+/// outline and thickness, as OpenRocket counts it (`FinSet.CrossSection`, read for the
+/// values: square 1, rounded 0.99, airfoil 0.85); the tab is a flat plate.
+fn section_volume(c: &Component) -> Result<f64, OrkError> {
+    match c.text("crosssection").unwrap_or("square") {
+        "square" => Ok(1.0),
+        "rounded" => Ok(0.99),
+        "airfoil" => Ok(0.85),
+        other => Err(c.value_error(
+            "crosssection",
+            &format!("{other:?} is not square, rounded or airfoil"),
+        )),
+    }
+}
+
 fn fins(c: &Component, body_radius: f64) -> Result<MassProps, OrkError> {
     let n = c.num_or("fincount", 1.0)?;
     let t = c.dim("thickness")?;
@@ -152,25 +171,82 @@ fn fins(c: &Component, body_radius: f64) -> Result<MassProps, OrkError> {
         (0.0, 0.0)
     };
     let tab = c.num_or("tabheight", 0.0)? * c.num_or("tablength", 0.0)?;
-    let m_fin = rho * t * (area + tab);
+    let m_fin = rho * t * (area * section_volume(c)? + tab);
     let m = n * m_fin;
     let arm = body_radius + cy;
     let chord = c.length.max(1e-12);
-    Ok(MassProps {
+    let fins = MassProps {
         mass: m,
         cg: c.x + cx,
         i_long: m * (0.5 * arm * arm + chord * chord / 12.0),
         i_rot: m * arm * arm,
-    })
+    };
+    // Fillets along the root chord, their centroid a fifth of their radius off the body
+    // (OpenRocket's estimate).
+    let r = c.num_or("filletradius", 0.0)?;
+    if r <= 0.0 {
+        return Ok(fins);
+    }
+    let density = c
+        .fillet_material
+        .ok_or_else(|| c.value_error("filletmaterial", "is missing"))?;
+    let m = n * density * fillet_area(r, body_radius) * c.length;
+    let arm = body_radius + 0.2 * r;
+    Ok(fins.add(MassProps {
+        mass: m,
+        cg: c.x + 0.5 * c.length,
+        i_long: m * (0.5 * arm * arm + chord * chord / 12.0),
+        i_rot: m * arm * arm,
+    }))
+}
+
+/// The cross-section of the two concave fillets of radius `r` at the root of a fin on a body
+/// of radius `body` (OpenRocket's `FinSet.calculateFilletCrossSection`, read for the
+/// method): each is the triangle between the body's centre, the fillet's centre and its
+/// tangent point on the fin, less the sectors of the fillet's circle and of the body in it.
+fn fillet_area(r: f64, body: f64) -> f64 {
+    let h = r + body;
+    let (inner, outer) = ((r / h).asin(), (r / h).acos());
+    let one = 0.5 * outer.tan() * r * r - 0.5 * outer * r * r - 0.5 * inner * body * body;
+    if one.is_finite() { 2.0 * one } else { 0.0 }
+}
+
+/// The automatic inner radius of centering ring `ring` among its `siblings` (OpenRocket's
+/// `CenteringRing.getInnerRadius`, read for the method): the largest outer radius of the
+/// inner tubes beside it whose length reaches the ring's (touching counts), at most the
+/// ring's outer radius `outer`; 0 with no such tube.
+fn ring_inner_radius(
+    ring: &Component,
+    siblings: &[Component],
+    outer: f64,
+) -> Result<f64, OrkError> {
+    let mut inner: f64 = 0.0;
+    for tube in siblings.iter().filter(|k| k.kind == Kind::InnerTube) {
+        let overlaps = ring.x + ring.length >= tube.x && ring.x <= tube.x + tube.length;
+        if overlaps {
+            inner = inner.max(tube.dim("outerradius")?);
+        }
+    }
+    Ok(inner.min(outer))
+}
+
+/// A radius that OpenRocket may compute (`auto`, with or without the value it last
+/// resolved, which may be stale): `automatic` then, else the stored value.
+fn radius_or_auto(c: &Component, element: &str, automatic: f64) -> Result<f64, OrkError> {
+    match c.text(element) {
+        None => Ok(automatic),
+        Some(t) if t.trim_start().starts_with("auto") => Ok(automatic),
+        Some(_) => c.dim(element),
+    }
 }
 
 /// Mass properties of `c` alone (not its children); `parent_inner` is the inner radius of
-/// the tube it sits in, `mount_outer` the outer radius of a sibling inner tube.
+/// the tube it sits in, `siblings` the components beside it (its parent's children).
 fn own(
     c: &Component,
     parent_inner: f64,
     body_radius: f64,
-    mount_outer: f64,
+    siblings: &[Component],
 ) -> Result<MassProps, OrkError> {
     let x = c.x;
     Ok(match c.kind {
@@ -243,7 +319,10 @@ fn own(
         Kind::CenteringRing | Kind::Bulkhead | Kind::EngineBlock => {
             let ro = c.num_or("outerradius", parent_inner)?;
             let ri = match c.kind {
-                Kind::CenteringRing => c.num_or("innerradius", mount_outer)?,
+                Kind::CenteringRing => {
+                    let automatic = ring_inner_radius(c, siblings, ro)?;
+                    radius_or_auto(c, "innerradius", automatic)?
+                }
                 Kind::EngineBlock => ro - c.dim("thickness")?,
                 _ => 0.0,
             };
@@ -292,6 +371,26 @@ fn own(
     })
 }
 
+/// A motor carried unlit: a solid cylinder of `mass`, `length` and `radius` whose aft end
+/// is at `aft`, repeated by a cluster of `count` motors at the root mean square distance
+/// `offset` from the axis (as [`subtree`] repeats a clustered inner tube).
+pub fn unlit_motor(
+    aft: f64,
+    length: f64,
+    radius: f64,
+    mass: f64,
+    (count, offset): (u32, f64),
+) -> MassProps {
+    let n = f64::from(count);
+    let total = n * mass;
+    MassProps {
+        mass: total,
+        cg: aft - 0.5 * length,
+        i_long: total * ((3.0 * radius * radius + length * length) / 12.0 + 0.5 * offset * offset),
+        i_rot: total * (0.5 * radius * radius + offset * offset),
+    }
+}
+
 fn flag(c: &Component, element: &str) -> bool {
     c.text(element) == Some("true")
 }
@@ -302,12 +401,17 @@ fn flag(c: &Component, element: &str) -> bool {
 /// # Errors
 /// [`OrkError::Value`] for a missing or malformed dimension or material.
 pub fn subtree(c: &Component, parent_inner: f64, body_radius: f64) -> Result<MassProps, OrkError> {
-    let mount_outer = c
-        .children
-        .iter()
-        .find(|k| k.kind == Kind::InnerTube)
-        .map_or(Ok(0.0), |k| k.num_or("outerradius", 0.0))?;
-    let mut p = own(c, parent_inner, body_radius, mount_outer)?;
+    within(c, parent_inner, body_radius, &[])
+}
+
+/// [`subtree`] of `c` among `siblings` (its parent's children, `c` included).
+fn within(
+    c: &Component,
+    parent_inner: f64,
+    body_radius: f64,
+    siblings: &[Component],
+) -> Result<MassProps, OrkError> {
+    let mut p = own(c, parent_inner, body_radius, siblings)?;
     let subs_override = flag(c, "overridesubcomponentsmass");
     if let Some(m) = c
         .fields
@@ -347,7 +451,7 @@ pub fn subtree(c: &Component, parent_inner: f64, body_radius: f64) -> Result<Mas
         _ => (parent_inner, body_radius),
     };
     for k in &c.children {
-        p = p.add(subtree(k, inner, radius)?);
+        p = p.add(within(k, inner, radius, &c.children)?);
     }
     if c.kind == Kind::InnerTube {
         // A cluster repeats the tube with what it holds: `n` copies at the root mean square
@@ -379,4 +483,22 @@ pub fn subtree(c: &Component, parent_inner: f64, body_radius: f64) -> Result<Mas
         }
     }
     Ok(p)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn fillets_on_a_flat_wall_fill_a_square_less_a_quarter_circle() {
+        // On a body much larger than the fillet, each side's fillet is the square of its
+        // radius less the quarter disc: both together r² (2 − π/2).
+        let r = 0.005;
+        let area = fillet_area(r, 1e4 * r);
+        let flat = r * r * (2.0 - 0.5 * PI);
+        assert!((area - flat).abs() < 1e-3 * flat, "{area} vs {flat}");
+        // A body of twice the fillet's radius curves away under it: less fillet.
+        let round = fillet_area(r, 2.0 * r);
+        assert!(round > 0.0 && round < area, "{round} vs {area}");
+    }
 }

@@ -18,7 +18,9 @@
 //! - a design of several stages onto `[[stages]]`: the top stage as `[rocket]` and `[motor]`,
 //!   each stage below with its own airframe, motor and drag-estimate table, and OpenRocket's
 //!   separation and ignition events (with their delays) as `separation = "burnout + X"` and
-//!   `ignition_delay` (module `write`); a stage without a motor rides on the stage below.
+//!   `ignition_delay` (module `write`); a motor OpenRocket never lights is carried as mass, and
+//!   a stage without a lit motor rides on the stage below (at the bottom, on the stage above
+//!   while its separation never fires).
 //!
 //! - a clustered inner tube onto `[motor] cluster_count` and `cluster_radius`, its copies'
 //!   masses with their offsets (`Component::cluster`).

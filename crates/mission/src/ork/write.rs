@@ -117,8 +117,10 @@ fn find_motor(
     options: &ImportOptions,
 ) -> Result<(PathBuf, EngHeader), OrkError> {
     let mut places: Vec<PathBuf> = options.motors.clone();
+    // A bare file name's parent is the empty path: the current folder.
     let design_dir = file
         .parent()
+        .filter(|p| !p.as_os_str().is_empty())
         .map_or_else(|| PathBuf::from("."), Path::to_path_buf);
     places.push(design_dir);
     let mut candidates = Vec::new();
@@ -199,17 +201,23 @@ fn condition(sim: &Simulation, key: &str, default: f64) -> f64 {
 }
 
 /// One body of the imported flight: consecutive OpenRocket stages, top first, flown as one
-/// airframe with the motor of its lowest stage (a stage without a motor in the chosen
-/// configuration rides on the stage below it).
+/// airframe with the one motor among them that OpenRocket lights (a stage without a lit
+/// motor in the chosen configuration rides on the stage below it, or, at the bottom of the
+/// rocket, on the stage above it when its separation never fires).
 struct Group<'a> {
     /// The OpenRocket stages, top first.
     stages: Vec<&'a Component>,
     /// OpenRocket's number of the first (0: the top stage).
     number: usize,
-    /// The motor mount of the lowest one.
+    /// The motor mount of the stage with the lit motor.
     mount: &'a Component,
     /// Its motor in the configuration.
     motor: &'a MotorRef,
+    /// The index in `stages` of the stage with the lit motor.
+    powered: usize,
+    /// The motors of its stages that OpenRocket never lights in the configuration, with
+    /// their mounts: carried as mass.
+    unlit: Vec<(&'a Component, &'a MotorRef)>,
 }
 
 impl Group<'_> {
@@ -248,6 +256,57 @@ fn after(event: &str, delay: f64) -> String {
     }
 }
 
+/// Whether OpenRocket lights the motor `motor` of stage `number` (0: the top) of a rocket
+/// whose bottom stage is `bottom`, given `below`, whether the stage under it has a lit motor
+/// and that motor's ejection delay (`None`: plugged). OpenRocket's ignition events
+/// (`IgnitionEvent`, read for the method): `launch` at launch; `automatic` at launch in the
+/// bottom stage, elsewhere as `ejection`; `ejection` and `burnout` at the ejection charge or
+/// burn-out of a motor in the stage directly below; `never` never. An event this reader
+/// does not know counts as lit, for the staging to refuse it by name.
+fn lit(motor: &MotorRef, number: usize, bottom: usize, below: Option<Option<f64>>) -> bool {
+    match motor.ignition.0.as_str() {
+        "launch" => true,
+        "automatic" if number == bottom => true,
+        "automatic" | "ejection" => below.is_some_and(|delay| delay.is_some()),
+        "burnout" => below.is_some(),
+        "never" => false,
+        _ => true,
+    }
+}
+
+/// Why OpenRocket never lights `motor` (`bottom`: its stage is the bottom one; `below` as
+/// for [`lit`]), for the import's note.
+fn unlit_reason(motor: &MotorRef, bottom: bool, below: Option<Option<f64>>) -> String {
+    let (event, _) = &motor.ignition;
+    match event.as_str() {
+        "never" => "its ignition event is `never`".to_owned(),
+        _ if bottom => format!(
+            "its ignition event `{event}` waits for a stage below it, and it is the bottom stage"
+        ),
+        _ if below.is_none() => {
+            format!(
+                "its ignition event `{event}` waits for a motor of the stage below, which has none lit"
+            )
+        }
+        _ => format!(
+            "its ignition event `{event}` waits for the ejection charge of the stage below, \
+             whose motor is plugged"
+        ),
+    }
+}
+
+/// Whether the separation of stage `number` (a stage without a lit motor) from the stage
+/// above fires in the flight: OpenRocket's separation events at the ignition, burn-out or
+/// ejection of the stage's own motor never do; `upperignition` does when the stage above
+/// has a lit motor (`above_lit`); `launch`, `apogee` and the altitudes do.
+fn separation_fires(separation: &SeparationRef, above_lit: bool) -> bool {
+    match separation.event.as_str() {
+        "never" | "ignition" | "burnout" | "ejection" => false,
+        "upperignition" => above_lit,
+        _ => true,
+    }
+}
+
 /// The design's stages grouped into the bodies karman flies ([`Group`]) for `sim`.
 fn groups<'a>(
     file: &Path,
@@ -255,13 +314,9 @@ fn groups<'a>(
     sim: &Simulation,
     warnings: &mut Vec<String>,
 ) -> Result<Vec<Group<'a>>, OrkError> {
-    let mut out: Vec<Group<'a>> = Vec::new();
-    let mut pending: Vec<&Component> = Vec::new();
-    let mut first = 0;
+    // Each stage's motor mount in the configuration.
+    let mut mounts: Vec<Option<(&'a Component, &'a MotorRef)>> = Vec::new();
     for (number, stage) in design.stages.iter().enumerate() {
-        if pending.is_empty() {
-            first = number;
-        }
         if sim.inactive_stages.contains(&number) {
             return Err(unsupported(
                 file,
@@ -269,22 +324,14 @@ fn groups<'a>(
                 format!("a stage left inactive by simulation {:?}", sim.name),
             ));
         }
-        pending.push(stage);
-        let mounts: Vec<&Component> = stage
+        let found: Vec<&Component> = stage
             .walk()
             .into_iter()
             .filter(|c| c.motors.contains_key(&sim.config))
             .collect();
-        match mounts.as_slice() {
-            [] => {}
-            [mount] => {
-                out.push(Group {
-                    stages: std::mem::take(&mut pending),
-                    number: first,
-                    mount,
-                    motor: &mount.motors[&sim.config],
-                });
-            }
+        match found.as_slice() {
+            [] => mounts.push(None),
+            [mount] => mounts.push(Some((*mount, &mount.motors[&sim.config]))),
             several => {
                 let names: Vec<String> = several.iter().map(|m| m.name.clone()).collect();
                 return Err(unsupported(
@@ -295,25 +342,90 @@ fn groups<'a>(
             }
         }
     }
+    // Which of them OpenRocket lights, from the bottom stage up.
+    let bottom = design.stages.len() - 1;
+    let mut lit_motor: Vec<bool> = vec![false; mounts.len()];
+    for number in (0..mounts.len()).rev() {
+        if let Some((mount, motor)) = mounts[number] {
+            let below = (number < bottom && lit_motor[number + 1])
+                .then(|| mounts[number + 1].and_then(|(_, m)| m.delay));
+            lit_motor[number] = lit(motor, number, bottom, below);
+            if !lit_motor[number] {
+                warnings.push(format!(
+                    "`{}`: OpenRocket never lights its {} {} in this configuration ({}); it is \
+                     carried as mass (its full mass from the thrust curve)",
+                    mount.name,
+                    motor.manufacturer,
+                    motor.designation,
+                    unlit_reason(motor, number == bottom, below)
+                ));
+            }
+        }
+    }
+
+    let mut out: Vec<Group<'a>> = Vec::new();
+    let mut pending: Vec<&Component> = Vec::new();
+    let mut unlit = Vec::new();
+    let mut first = 0;
+    for (number, stage) in design.stages.iter().enumerate() {
+        if pending.is_empty() {
+            first = number;
+        }
+        pending.push(stage);
+        match mounts[number] {
+            Some((mount, motor)) if lit_motor[number] => {
+                out.push(Group {
+                    powered: pending.len() - 1,
+                    stages: std::mem::take(&mut pending),
+                    number: first,
+                    mount,
+                    motor,
+                    unlit: std::mem::take(&mut unlit),
+                });
+            }
+            Some(dead) => unlit.push(dead),
+            None => {}
+        }
+    }
     if out.is_empty() {
         return Err(unsupported(
             file,
             &sim.name,
-            "a simulation without a motor".to_owned(),
+            "a simulation without a motor lit".to_owned(),
         ));
     }
-    if let Some(stage) = pending.first() {
-        return Err(unsupported(
-            file,
-            &stage.name,
-            "a stage without a motor below the last stage with one".to_owned(),
-        ));
+    // Stages below the last lit motor ride on the body above while their separation never
+    // fires.
+    if let Some(last) = out.last_mut() {
+        for (k, stage) in pending.iter().enumerate() {
+            let number = first + k;
+            let separation = separation(&sim.config, stage);
+            if separation_fires(&separation, lit_motor[number - 1]) {
+                return Err(unsupported(
+                    file,
+                    &stage.name,
+                    format!(
+                        "a stage without a motor lit below the last stage with one, separated {}",
+                        after(&separation.event, separation.delay)
+                    ),
+                ));
+            }
+            warnings.push(format!(
+                "`{}` has no motor lit in this configuration and its separation (OpenRocket: \
+                 {}) never fires: it flies attached to `{}`",
+                stage.name,
+                after(&separation.event, separation.delay),
+                design.stages[number - 1].name
+            ));
+            last.stages.push(stage);
+        }
+        last.unlit.append(&mut unlit);
     }
     for group in &out {
-        for pair in group.stages.windows(2) {
+        for pair in group.stages[..=group.powered].windows(2) {
             let separation = separation(&sim.config, pair[1]);
             warnings.push(format!(
-                "`{}` has no motor in this configuration and flies on `{}` as one body: \
+                "`{}` has no motor lit in this configuration and flies on `{}` as one body: \
                  karman's stages each carry a motor, so its separation (OpenRocket: {}) is \
                  not flown",
                 pair[0].name,
@@ -357,8 +469,9 @@ fn staging(
     let ejection = lower.motor.delay;
     let (event, delay) = &upper.motor.ignition;
     let ignition = match event.as_str() {
-        "automatic" | "burnout" => *delay,
-        "ejection" => ejection.ok_or_else(|| plugged("an ignition"))? + delay,
+        "burnout" => *delay,
+        // OpenRocket's `automatic` above the bottom stage: the ejection charge below.
+        "automatic" | "ejection" => ejection.ok_or_else(|| plugged("an ignition"))? + delay,
         other => {
             return Err(unsupported(
                 file,
@@ -490,10 +603,30 @@ fn body_text(
         }
     }
 
-    // Mass without motor.
+    // Mass without motor, with the motors OpenRocket never lights carried whole.
     let mut props = MassProps::default();
     for stage in &group.stages {
         props = props.add(mass::subtree(stage, 0.0, radius)?);
+    }
+    for (mount, motor) in &group.unlit {
+        let (_, eng) = find_motor(file, motor, options)?;
+        let length = if motor.length.is_finite() {
+            motor.length
+        } else {
+            eng.length
+        };
+        let diameter = if motor.diameter.is_finite() {
+            motor.diameter
+        } else {
+            eng.diameter
+        };
+        props = props.add(mass::unlit_motor(
+            mount.x + mount.length + mount.overhang,
+            length,
+            0.5 * diameter,
+            eng.total,
+            mount.cluster()?,
+        ));
     }
 
     // Motor of the simulation's configuration.
@@ -684,6 +817,18 @@ fn body_text(
     }
     for b in &body {
         if b.kind == Kind::Transition {
+            // Equal radii (automatic ends between tubes of one radius): a piece of tube,
+            // which the drag estimate's body already has; no tail.
+            if (b.dim("foreradius")? - b.dim("aftradius")?).abs() <= 1e-9 {
+                if b.fields.contains_key("overridecd") {
+                    warnings.push(format!(
+                        "`{}`: a transition between equal radii is a piece of tube; its \
+                         drag-coefficient override is not modelled",
+                        b.name
+                    ));
+                }
+                continue;
+            }
             if b.text("shape") != Some("conical") {
                 warnings.push(format!(
                     "`{}`: a {} transition is flown (normal force, CP and drag) as a conical one",
