@@ -1,7 +1,8 @@
 //! Mass, centre of mass and inertia of the design without motor, component by component as
 //! OpenRocket builds them: material density times volume (bulk, kg/m³), area (surface,
 //! kg/m²) or length (line, kg/m), or a given mass; mass and CG overrides of a component or of
-//! its whole subtree (`overridesubcomponents*`).
+//! its whole subtree (`overridesubcomponents*`): an override mass sits at the component's own
+//! CG, a stage's (which has no mass of its own) at its children's.
 //!
 //! Where OpenRocket computes a dimension itself, so does the reader: a centering ring's
 //! automatic bore is the inner tube beside it; a fin's volume is its plate's times
@@ -411,14 +412,20 @@ fn within(
     body_radius: f64,
     siblings: &[Component],
 ) -> Result<MassProps, OrkError> {
+    // OpenRocket's overrides (`MassCalculation.calculateStructure`, read for the method): a
+    // component's override mass replaces its own mass at its own CG, and with
+    // `overridesubcomponentsmass` its children's too; a stage, which has no mass of its own,
+    // puts its override at its children's CG (beside them, or in their place).
     let mut p = own(c, parent_inner, body_radius, siblings)?;
+    let own_mass = p;
+    let massive = c.kind != Kind::Stage;
     let subs_override = flag(c, "overridesubcomponentsmass");
-    if let Some(m) = c
+    let override_mass = c
         .fields
         .get("overridemass")
-        .and_then(|t| super::design::number(t))
-    {
-        if !subs_override {
+        .and_then(|t| super::design::number(t));
+    if let Some(m) = override_mass {
+        if massive && !subs_override {
             p = p.scaled(m);
         }
     }
@@ -450,8 +457,23 @@ fn within(
         }
         _ => (parent_inner, body_radius),
     };
-    for k in &c.children {
-        p = p.add(within(k, inner, radius, &c.children)?);
+    let children = c
+        .children
+        .iter()
+        .map(|k| within(k, inner, radius, &c.children))
+        .collect::<Result<Vec<_>, _>>()?;
+    if let (Some(m), false, false) = (override_mass, massive, subs_override) {
+        let all = children.iter().fold(MassProps::default(), |a, &k| a.add(k));
+        p = MassProps {
+            mass: m,
+            cg: if all.mass > 0.0 { all.cg } else { c.x },
+            i_long: 0.0,
+            i_rot: 0.0,
+        };
+    }
+    // Summed in the order of the file, one child after the other.
+    for k in children {
+        p = p.add(k);
     }
     if c.kind == Kind::InnerTube {
         // A cluster repeats the tube with what it holds: `n` copies at the root mean square
@@ -464,14 +486,12 @@ fn within(
             p.i_rot += p.mass * r * r;
         }
     }
-    if subs_override {
-        if let Some(m) = c
-            .fields
-            .get("overridemass")
-            .and_then(|t| super::design::number(t))
-        {
-            p = p.scaled(m);
-        }
+    if let (Some(m), true) = (override_mass, subs_override) {
+        p = if massive {
+            own_mass.scaled(m)
+        } else {
+            p.scaled(m)
+        };
     }
     if flag(c, "overridesubcomponentscg") {
         if let Some(cg) = c
@@ -488,6 +508,48 @@ fn within(
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::ork::Design;
+
+    /// A stage (with `stage` extra elements) holding a 1 m paper tube (with `tube` extra
+    /// elements) and, in the tube, a 0.1 kg mass at its aft end.
+    fn stage(stage: &str, tube: &str) -> Component {
+        let text = format!(
+            r#"<openrocket version="1.10"><rocket><name>r</name><subcomponents>
+            <stage><name>S</name>{stage}<subcomponents>
+            <bodytube><name>T</name>{tube}<material type="bulk" density="800">paper</material>
+            <length>1.0</length><thickness>0.001</thickness><radius>0.05</radius>
+            <subcomponents><masscomponent><name>M</name><axialoffset method="bottom">0.0</axialoffset>
+            <packedlength>0.0</packedlength><mass>0.1</mass></masscomponent></subcomponents>
+            </bodytube></subcomponents></stage></subcomponents></rocket></openrocket>"#
+        );
+        let design = Design::parse(std::path::Path::new("t.ork"), &text).expect("a design");
+        design.stages[0].clone()
+    }
+
+    #[test]
+    fn overrides_replace_a_components_own_mass_as_openrocket_does() {
+        let plain = subtree(&stage("", ""), 0.0, 0.05).expect("mass");
+        // A stage's override comes beside its children, at their CG.
+        let s = "<overridemass>0.5</overridemass><overridesubcomponentsmass>false</overridesubcomponentsmass>";
+        let p = subtree(&stage(s, ""), 0.0, 0.05).expect("mass");
+        assert!((p.mass - (plain.mass + 0.5)).abs() < 1e-12, "{p:?}");
+        assert!((p.cg - plain.cg).abs() < 1e-12, "{p:?} vs {plain:?}");
+        // A tube's override with its subcomponents': the whole at the tube's own CG.
+        let t = "<overridemass>0.5</overridemass><overridesubcomponentsmass>true</overridesubcomponentsmass>";
+        let p = subtree(&stage("", t), 0.0, 0.05).expect("mass");
+        assert!(
+            (p.mass - 0.5).abs() < 1e-12 && (p.cg - 0.5).abs() < 1e-12,
+            "{p:?}"
+        );
+        // Without them: the tube's own mass replaced, the aft mass kept.
+        let t = "<overridemass>0.5</overridemass><overridesubcomponentsmass>false</overridesubcomponentsmass>";
+        let p = subtree(&stage("", t), 0.0, 0.05).expect("mass");
+        assert!((p.mass - 0.6).abs() < 1e-12, "{p:?}");
+        assert!(
+            (p.cg - (0.5 * 0.5 + 0.1 * 1.0) / 0.6).abs() < 1e-12,
+            "{p:?}"
+        );
+    }
 
     #[test]
     fn fillets_on_a_flat_wall_fill_a_square_less_a_quarter_circle() {
