@@ -433,16 +433,23 @@ fn openrocket_motor_mounts_of_one_stage_become_extra_motors() {
 }
 
 #[test]
-fn openrocket_ignitions_karman_cannot_fly_are_refused_by_name() {
-    // In the launch stage, `burnout` and `ejection` wait for a stage below: never lit.
+fn openrocket_motors_never_lit_ride_as_mass_and_a_late_first_motor_is_refused() {
+    // In the launch stage, `burnout` and `ejection` wait for a stage below: OpenRocket never
+    // lights the centre motor, which is carried as mass, with a note naming it and the event.
     for event in ["burnout", "ejection", "never"] {
-        let e = two_mounts("0.0", event, "0.0")
-            .expect_err("refused")
-            .to_string();
+        let imported = two_mounts("0.0", event, "0.0").expect("imports");
+        let note = imported
+            .warnings
+            .iter()
+            .find(|w| w.contains("Centre tube"))
+            .unwrap_or_else(|| panic!("no note: {:?}", imported.warnings));
         assert!(
-            e.contains("Centre tube") && e.contains(event) && e.contains("never ignites"),
-            "{e}"
+            note.contains("never lights") && note.contains(event),
+            "{note}"
         );
+        let mission = imported_mission(&imported.mission);
+        assert!(mission.spec.extra_motors.is_empty());
+        assert_eq!(mission.spec.motor.cluster_count, Some(4));
     }
     // Every motor lit after launch: karman lights `[motor]` at launch.
     let e = two_mounts("1.0", "launch", "2.0")

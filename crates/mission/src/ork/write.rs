@@ -117,8 +117,10 @@ fn find_motor(
     options: &ImportOptions,
 ) -> Result<(PathBuf, EngHeader), OrkError> {
     let mut places: Vec<PathBuf> = options.motors.clone();
+    // A bare file name's parent is the empty path: the current folder.
     let design_dir = file
         .parent()
+        .filter(|p| !p.as_os_str().is_empty())
         .map_or_else(|| PathBuf::from("."), Path::to_path_buf);
     places.push(design_dir);
     let mut candidates = Vec::new();
@@ -199,20 +201,26 @@ fn condition(sim: &Simulation, key: &str, default: f64) -> f64 {
 }
 
 /// One body of the imported flight: consecutive OpenRocket stages, top first, flown as one
-/// airframe with the motor of its lowest stage (a stage without a motor in the chosen
-/// configuration rides on the stage below it).
+/// airframe with the one motor among them that OpenRocket lights (a stage without a lit
+/// motor in the chosen configuration rides on the stage below it, or, at the bottom of the
+/// rocket, on the stage above it when its separation never fires).
 struct Group<'a> {
     /// The OpenRocket stages, top first.
     stages: Vec<&'a Component>,
     /// OpenRocket's number of the first (0: the top stage).
     number: usize,
-    /// The motor mount of the lowest one.
+    /// The motor mount of the stage with the lit motor.
     mount: &'a Component,
     /// Its motor in the configuration.
     motor: &'a MotorRef,
-    /// The further motor mounts of its lowest stage with a motor in the configuration, in
-    /// design order (`[[extra_motors]]`).
+    /// The index in `stages` of the stage with the lit motor.
+    powered: usize,
+    /// The further motors lit in a single-stage design's one stage, with their mounts, in
+    /// the order of their ignition (`[[extra_motors]]`).
     extra: Vec<(&'a Component, &'a MotorRef)>,
+    /// The motors of its stages that OpenRocket never lights in the configuration, with
+    /// their mounts: carried as mass.
+    unlit: Vec<(&'a Component, &'a MotorRef)>,
 }
 
 impl Group<'_> {
@@ -251,6 +259,57 @@ fn after(event: &str, delay: f64) -> String {
     }
 }
 
+/// Whether OpenRocket lights the motor `motor` of stage `number` (0: the top) of a rocket
+/// whose bottom stage is `bottom`, given `below`, whether the stage under it has a lit motor
+/// and that motor's ejection delay (`None`: plugged). OpenRocket's ignition events
+/// (`IgnitionEvent`, read for the method): `launch` at launch; `automatic` at launch in the
+/// bottom stage, elsewhere as `ejection`; `ejection` and `burnout` at the ejection charge or
+/// burn-out of a motor in the stage directly below; `never` never. An event this reader
+/// does not know counts as lit, for the staging to refuse it by name.
+fn lit(motor: &MotorRef, number: usize, bottom: usize, below: Option<Option<f64>>) -> bool {
+    match motor.ignition.0.as_str() {
+        "launch" => true,
+        "automatic" if number == bottom => true,
+        "automatic" | "ejection" => below.is_some_and(|delay| delay.is_some()),
+        "burnout" => below.is_some(),
+        "never" => false,
+        _ => true,
+    }
+}
+
+/// Why OpenRocket never lights `motor` (`bottom`: its stage is the bottom one; `below` as
+/// for [`lit`]), for the import's note.
+fn unlit_reason(motor: &MotorRef, bottom: bool, below: Option<Option<f64>>) -> String {
+    let (event, _) = &motor.ignition;
+    match event.as_str() {
+        "never" => "its ignition event is `never`".to_owned(),
+        _ if bottom => format!(
+            "its ignition event `{event}` waits for a stage below it, and it is the bottom stage"
+        ),
+        _ if below.is_none() => {
+            format!(
+                "its ignition event `{event}` waits for a motor of the stage below, which has none lit"
+            )
+        }
+        _ => format!(
+            "its ignition event `{event}` waits for the ejection charge of the stage below, \
+             whose motor is plugged"
+        ),
+    }
+}
+
+/// Whether the separation of stage `number` (a stage without a lit motor) from the stage
+/// above fires in the flight: OpenRocket's separation events at the ignition, burn-out or
+/// ejection of the stage's own motor never do; `upperignition` does when the stage above
+/// has a lit motor (`above_lit`); `launch`, `apogee` and the altitudes do.
+fn separation_fires(separation: &SeparationRef, above_lit: bool) -> bool {
+    match separation.event.as_str() {
+        "never" | "ignition" | "burnout" | "ejection" => false,
+        "upperignition" => above_lit,
+        _ => true,
+    }
+}
+
 /// The design's stages grouped into the bodies karman flies ([`Group`]) for `sim`.
 fn groups<'a>(
     file: &Path,
@@ -258,13 +317,11 @@ fn groups<'a>(
     sim: &Simulation,
     warnings: &mut Vec<String>,
 ) -> Result<Vec<Group<'a>>, OrkError> {
-    let mut out: Vec<Group<'a>> = Vec::new();
-    let mut pending: Vec<&Component> = Vec::new();
-    let mut first = 0;
+    // Each stage's motor mount in the configuration (the first lit of a single-stage design
+    // with several, `others` the rest).
+    let mut mounts: Vec<Option<(&'a Component, &'a MotorRef)>> = Vec::new();
+    let mut others: Vec<(&'a Component, &'a MotorRef)> = Vec::new();
     for (number, stage) in design.stages.iter().enumerate() {
-        if pending.is_empty() {
-            first = number;
-        }
         if sim.inactive_stages.contains(&number) {
             return Err(unsupported(
                 file,
@@ -272,44 +329,145 @@ fn groups<'a>(
                 format!("a stage left inactive by simulation {:?}", sim.name),
             ));
         }
-        pending.push(stage);
-        let mounts: Vec<&Component> = stage
+        let found: Vec<&Component> = stage
             .walk()
             .into_iter()
             .filter(|c| c.motors.contains_key(&sim.config))
             .collect();
-        if let [mount, others @ ..] = mounts.as_slice() {
-            out.push(Group {
-                stages: std::mem::take(&mut pending),
-                number: first,
-                mount,
-                motor: &mount.motors[&sim.config],
-                extra: others
+        match found.as_slice() {
+            [] => mounts.push(None),
+            [mount] => mounts.push(Some((*mount, &mount.motors[&sim.config]))),
+            several if design.stages.len() == 1 => {
+                // A single-stage design: the motors lit (at launch plus their delays) first,
+                // in the order of their ignition, then those never lit; the first is
+                // `[motor]`, the other lit ones `[[extra_motors]]`.
+                let mut all: Vec<(&'a Component, &'a MotorRef)> = several
                     .iter()
                     .map(|m| (*m, &m.motors[&sim.config]))
-                    .collect(),
-            });
+                    .collect();
+                all.sort_by(|a, b| {
+                    let key =
+                        |(_, m): &(&Component, &MotorRef)| (!lit(m, 0, 0, None), m.ignition.1);
+                    let (ka, kb) = (key(a), key(b));
+                    ka.0.cmp(&kb.0).then(ka.1.total_cmp(&kb.1))
+                });
+                mounts.push(Some(all[0]));
+                others = all[1..].to_vec();
+            }
+            several => {
+                let names: Vec<String> = several.iter().map(|m| m.name.clone()).collect();
+                return Err(unsupported(
+                    file,
+                    &names.join(", "),
+                    "several motors in one stage of a multi-stage rocket".to_owned(),
+                ));
+            }
+        }
+    }
+    // Which of them OpenRocket lights, from the bottom stage up.
+    let bottom = design.stages.len() - 1;
+    let mut lit_motor: Vec<bool> = vec![false; mounts.len()];
+    for number in (0..mounts.len()).rev() {
+        if let Some((mount, motor)) = mounts[number] {
+            let below = (number < bottom && lit_motor[number + 1])
+                .then(|| mounts[number + 1].and_then(|(_, m)| m.delay));
+            lit_motor[number] = lit(motor, number, bottom, below);
+            if !lit_motor[number] {
+                warnings.push(format!(
+                    "`{}`: OpenRocket never lights its {} {} in this configuration ({}); it is \
+                     carried as mass (its full mass from the thrust curve)",
+                    mount.name,
+                    motor.manufacturer,
+                    motor.designation,
+                    unlit_reason(motor, number == bottom, below)
+                ));
+            }
+        }
+    }
+
+    let mut out: Vec<Group<'a>> = Vec::new();
+    let mut pending: Vec<&Component> = Vec::new();
+    let mut unlit = Vec::new();
+    let mut first = 0;
+    for (number, stage) in design.stages.iter().enumerate() {
+        if pending.is_empty() {
+            first = number;
+        }
+        pending.push(stage);
+        match mounts[number] {
+            Some((mount, motor)) if lit_motor[number] => {
+                out.push(Group {
+                    powered: pending.len() - 1,
+                    stages: std::mem::take(&mut pending),
+                    number: first,
+                    mount,
+                    motor,
+                    extra: Vec::new(),
+                    unlit: std::mem::take(&mut unlit),
+                });
+            }
+            Some(dead) => unlit.push(dead),
+            None => {}
         }
     }
     if out.is_empty() {
         return Err(unsupported(
             file,
             &sim.name,
-            "a simulation without a motor".to_owned(),
+            "a simulation without a motor lit".to_owned(),
         ));
     }
-    if let Some(stage) = pending.first() {
-        return Err(unsupported(
-            file,
-            &stage.name,
-            "a stage without a motor below the last stage with one".to_owned(),
-        ));
+    // The other motors of a single-stage design: those OpenRocket lights fly as extra
+    // motors, the others are carried as mass.
+    if let Some(group) = out.first_mut() {
+        for (mount, motor) in others {
+            if lit(motor, 0, 0, None) {
+                group.extra.push((mount, motor));
+            } else {
+                warnings.push(format!(
+                    "`{}`: OpenRocket never lights its {} {} in this configuration ({}); it is \
+                     carried as mass (its full mass from the thrust curve)",
+                    mount.name,
+                    motor.manufacturer,
+                    motor.designation,
+                    unlit_reason(motor, true, None)
+                ));
+                group.unlit.push((mount, motor));
+            }
+        }
+    }
+    // Stages below the last lit motor ride on the body above while their separation never
+    // fires.
+    if let Some(last) = out.last_mut() {
+        for (k, stage) in pending.iter().enumerate() {
+            let number = first + k;
+            let separation = separation(&sim.config, stage);
+            if separation_fires(&separation, lit_motor[number - 1]) {
+                return Err(unsupported(
+                    file,
+                    &stage.name,
+                    format!(
+                        "a stage without a motor lit below the last stage with one, separated {}",
+                        after(&separation.event, separation.delay)
+                    ),
+                ));
+            }
+            warnings.push(format!(
+                "`{}` has no motor lit in this configuration and its separation (OpenRocket: \
+                 {}) never fires: it flies attached to `{}`",
+                stage.name,
+                after(&separation.event, separation.delay),
+                design.stages[number - 1].name
+            ));
+            last.stages.push(stage);
+        }
+        last.unlit.append(&mut unlit);
     }
     for group in &out {
-        for pair in group.stages.windows(2) {
+        for pair in group.stages[..=group.powered].windows(2) {
             let separation = separation(&sim.config, pair[1]);
             warnings.push(format!(
-                "`{}` has no motor in this configuration and flies on `{}` as one body: \
+                "`{}` has no motor lit in this configuration and flies on `{}` as one body: \
                  karman's stages each carry a motor, so its separation (OpenRocket: {}) is \
                  not flown",
                 pair[0].name,
@@ -353,8 +511,9 @@ fn staging(
     let ejection = lower.motor.delay;
     let (event, delay) = &upper.motor.ignition;
     let ignition = match event.as_str() {
-        "automatic" | "burnout" => *delay,
-        "ejection" => ejection.ok_or_else(|| plugged("an ignition"))? + delay,
+        "burnout" => *delay,
+        // OpenRocket's `automatic` above the bottom stage: the ejection charge below.
+        "automatic" | "ejection" => ejection.ok_or_else(|| plugged("an ignition"))? + delay,
         other => {
             return Err(unsupported(
                 file,
@@ -593,10 +752,30 @@ fn body_text(
         }
     }
 
-    // Mass without motor.
+    // Mass without motor, with the motors OpenRocket never lights carried whole.
     let mut props = MassProps::default();
     for stage in &group.stages {
         props = props.add(mass::subtree(stage, 0.0, radius)?);
+    }
+    for (mount, motor) in &group.unlit {
+        let (_, eng) = find_motor(file, motor, options)?;
+        let length = if motor.length.is_finite() {
+            motor.length
+        } else {
+            eng.length
+        };
+        let diameter = if motor.diameter.is_finite() {
+            motor.diameter
+        } else {
+            eng.diameter
+        };
+        props = props.add(mass::unlit_motor(
+            mount.x + mount.length + mount.overhang,
+            length,
+            0.5 * diameter,
+            eng.total,
+            mount.cluster()?,
+        ));
     }
 
     // Motor of the simulation's configuration.
@@ -723,6 +902,18 @@ fn body_text(
     }
     for b in &body {
         if b.kind == Kind::Transition {
+            // Equal radii (automatic ends between tubes of one radius): a piece of tube,
+            // which the drag estimate's body already has; no tail.
+            if (b.dim("foreradius")? - b.dim("aftradius")?).abs() <= 1e-9 {
+                if b.fields.contains_key("overridecd") {
+                    warnings.push(format!(
+                        "`{}`: a transition between equal radii is a piece of tube; its \
+                         drag-coefficient override is not modelled",
+                        b.name
+                    ));
+                }
+                continue;
+            }
             if b.text("shape") != Some("conical") {
                 warnings.push(format!(
                     "`{}`: a {} transition is flown (normal force, CP and drag) as a conical one",
@@ -975,56 +1166,6 @@ fn body_text(
     })
 }
 
-/// Several motor mounts in one stage (an air start, two different motors): in a single-stage
-/// rocket the mount lit first becomes `[motor]` and the others `[[extra_motors]]`, each lit
-/// its delay after launch. OpenRocket's ignition events (`IgnitionEvent`): in the launch
-/// stage `automatic` is `launch`, and `burnout` and `ejection` wait for an event of the stage
-/// below it, which the launch stage does not have, so such a motor never ignites (as with
-/// `never`); karman refuses those, naming the mount and the event, and refuses several mounts
-/// in a stage of a multi-stage rocket.
-fn several_motors(file: &Path, groups: &mut [Group<'_>]) -> Result<(), OrkError> {
-    let staged = groups.len() > 1;
-    for group in groups.iter_mut() {
-        if group.extra.is_empty() {
-            continue;
-        }
-        if staged {
-            let names: Vec<&str> = std::iter::once(group.mount.name.as_str())
-                .chain(group.extra.iter().map(|(m, _)| m.name.as_str()))
-                .collect();
-            return Err(unsupported(
-                file,
-                &names.join(", "),
-                "several motors in one stage of a multi-stage rocket".to_owned(),
-            ));
-        }
-        let mut all: Vec<(&Component, &MotorRef)> = std::iter::once((group.mount, group.motor))
-            .chain(group.extra.iter().copied())
-            .collect();
-        for (mount, motor) in &all {
-            let (event, delay) = &motor.ignition;
-            if !matches!(event.as_str(), "automatic" | "launch") {
-                return Err(unsupported(
-                    file,
-                    &mount.name,
-                    format!(
-                        "a motor lit {} in the launch stage (OpenRocket waits for that event \
-                         from a stage below, which this rocket does not have: the motor never \
-                         ignites)",
-                        after(event, *delay)
-                    ),
-                ));
-            }
-        }
-        // The first lit is `[motor]` (the first in design order among equals).
-        all.sort_by(|a, b| a.1.ignition.1.total_cmp(&b.1.ignition.1));
-        group.mount = all[0].0;
-        group.motor = all[0].1;
-        group.extra = all[1..].to_vec();
-    }
-    Ok(())
-}
-
 /// Builds the mission text of `design` for the simulation chosen by `options`: the top body
 /// as `[rocket]` and `[motor]`, the bodies below it as `[[stages]]`, bottom last.
 pub(super) fn mission(
@@ -1053,8 +1194,7 @@ pub(super) fn mission(
             },
         });
     };
-    let mut groups = groups(file, design, sim, &mut warnings)?;
-    several_motors(file, &mut groups)?;
+    let groups = groups(file, design, sim, &mut warnings)?;
     let bottom = &groups[groups.len() - 1];
     if !matches!(bottom.motor.ignition.0.as_str(), "automatic" | "launch")
         || bottom.motor.ignition.1 != 0.0
