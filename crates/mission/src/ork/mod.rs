@@ -25,6 +25,11 @@
 //! - a clustered inner tube onto `[motor] cluster_count` and `cluster_radius`, its copies'
 //!   masses with their offsets (`Component::cluster`).
 //!
+//! - several motor mounts in one stage of a single-stage design onto `[motor]` (the mount lit
+//!   first) and `[[extra_motors]]` (each with its ignition delay after launch, OpenRocket's
+//!   `automatic`/`launch` events; the launch stage's `burnout`/`ejection` never fire, and those
+//!   motors are carried as mass like any motor OpenRocket never lights).
+//!
 //! Pods and staging events the format cannot express are refused,
 //! naming the component; what is mapped approximately is listed in [`Imported::warnings`].
 

@@ -215,6 +215,9 @@ struct Group<'a> {
     motor: &'a MotorRef,
     /// The index in `stages` of the stage with the lit motor.
     powered: usize,
+    /// The further motors lit in a single-stage design's one stage, with their mounts, in
+    /// the order of their ignition (`[[extra_motors]]`).
+    extra: Vec<(&'a Component, &'a MotorRef)>,
     /// The motors of its stages that OpenRocket never lights in the configuration, with
     /// their mounts: carried as mass.
     unlit: Vec<(&'a Component, &'a MotorRef)>,
@@ -314,8 +317,10 @@ fn groups<'a>(
     sim: &Simulation,
     warnings: &mut Vec<String>,
 ) -> Result<Vec<Group<'a>>, OrkError> {
-    // Each stage's motor mount in the configuration.
+    // Each stage's motor mount in the configuration (the first lit of a single-stage design
+    // with several, `others` the rest).
     let mut mounts: Vec<Option<(&'a Component, &'a MotorRef)>> = Vec::new();
+    let mut others: Vec<(&'a Component, &'a MotorRef)> = Vec::new();
     for (number, stage) in design.stages.iter().enumerate() {
         if sim.inactive_stages.contains(&number) {
             return Err(unsupported(
@@ -332,12 +337,29 @@ fn groups<'a>(
         match found.as_slice() {
             [] => mounts.push(None),
             [mount] => mounts.push(Some((*mount, &mount.motors[&sim.config]))),
+            several if design.stages.len() == 1 => {
+                // A single-stage design: the motors lit (at launch plus their delays) first,
+                // in the order of their ignition, then those never lit; the first is
+                // `[motor]`, the other lit ones `[[extra_motors]]`.
+                let mut all: Vec<(&'a Component, &'a MotorRef)> = several
+                    .iter()
+                    .map(|m| (*m, &m.motors[&sim.config]))
+                    .collect();
+                all.sort_by(|a, b| {
+                    let key =
+                        |(_, m): &(&Component, &MotorRef)| (!lit(m, 0, 0, None), m.ignition.1);
+                    let (ka, kb) = (key(a), key(b));
+                    ka.0.cmp(&kb.0).then(ka.1.total_cmp(&kb.1))
+                });
+                mounts.push(Some(all[0]));
+                others = all[1..].to_vec();
+            }
             several => {
                 let names: Vec<String> = several.iter().map(|m| m.name.clone()).collect();
                 return Err(unsupported(
                     file,
                     &names.join(", "),
-                    "several motors in one stage".to_owned(),
+                    "several motors in one stage of a multi-stage rocket".to_owned(),
                 ));
             }
         }
@@ -380,6 +402,7 @@ fn groups<'a>(
                     number: first,
                     mount,
                     motor,
+                    extra: Vec::new(),
                     unlit: std::mem::take(&mut unlit),
                 });
             }
@@ -393,6 +416,25 @@ fn groups<'a>(
             &sim.name,
             "a simulation without a motor lit".to_owned(),
         ));
+    }
+    // The other motors of a single-stage design: those OpenRocket lights fly as extra
+    // motors, the others are carried as mass.
+    if let Some(group) = out.first_mut() {
+        for (mount, motor) in others {
+            if lit(motor, 0, 0, None) {
+                group.extra.push((mount, motor));
+            } else {
+                warnings.push(format!(
+                    "`{}`: OpenRocket never lights its {} {} in this configuration ({}); it is \
+                     carried as mass (its full mass from the thrust curve)",
+                    mount.name,
+                    motor.manufacturer,
+                    motor.designation,
+                    unlit_reason(motor, true, None)
+                ));
+                group.unlit.push((mount, motor));
+            }
+        }
     }
     // Stages below the last lit motor ride on the body above while their separation never
     // fires.
@@ -536,6 +578,113 @@ fn spent_stage_drag(front: f64, base: f64, radius: f64) -> String {
     format!("[{}]", points.join(", "))
 }
 
+/// The motor table `[motor_key]` of `motor` in `mount` (a generic motor from its RASP file,
+/// with the mount's cluster) and the rocket coordinate of its nozzle exit: the mount's aft end
+/// plus its overhang.
+fn motor_text(
+    file: &Path,
+    mount: &Component,
+    motor: &MotorRef,
+    motor_key: &str,
+    options: &ImportOptions,
+) -> Result<(String, f64), OrkError> {
+    let (eng_path, eng) = find_motor(file, motor, options)?;
+    let motor_length = if motor.length.is_finite() {
+        motor.length
+    } else {
+        eng.length
+    };
+    let motor_diameter = if motor.diameter.is_finite() {
+        motor.diameter
+    } else {
+        eng.diameter
+    };
+    let nozzle_at = mount.x + mount.length + mount.overhang;
+    let dry = (eng.total - eng.propellant).max(0.0);
+
+    let mut m = String::new();
+    let _ = writeln!(
+        m,
+        "# {} {} from {}: RASP masses {} kg propellant, {} kg total; the propellant is",
+        motor.manufacturer,
+        motor.designation,
+        eng_path.display(),
+        eng.propellant,
+        eng.total
+    );
+    let _ = writeln!(
+        m,
+        "# a cylinder filling the motor case, and leaves in proportion to the impulse."
+    );
+    let _ = writeln!(
+        m,
+        "[{motor_key}]\nkind = \"generic\"\nthrust = {}",
+        quoted(&relative(&eng_path, options.output_dir.as_deref()))
+    );
+    let _ = writeln!(
+        m,
+        "dry_mass = {}\ncenter_of_dry_mass_position = {}",
+        n(dry),
+        n(0.5 * motor_length)
+    );
+    let _ = writeln!(
+        m,
+        "nozzle_radius = {}\npropellant_initial_mass = {}",
+        n(0.25 * motor_diameter),
+        n(eng.propellant)
+    );
+    let _ = writeln!(
+        m,
+        "chamber_radius = {}\nchamber_height = {}\nchamber_position = {}",
+        n(0.5 * motor_diameter),
+        n(motor_length),
+        n(0.5 * motor_length)
+    );
+    let (cluster_count, cluster_radius) = mount.cluster()?;
+    if cluster_count > 1 {
+        let _ = writeln!(
+            m,
+            "# OpenRocket's {} cluster: {cluster_count} motors lit together, their axes {} m from\n\
+             # the rocket's axis (root mean square).\ncluster_count = {cluster_count}\ncluster_radius = {}",
+            mount.text("clusterconfiguration").unwrap_or(""),
+            (cluster_radius * 1e4).round() / 1e4,
+            n(cluster_radius)
+        );
+    }
+    let _ = writeln!(m, "coordinate_system = \"nozzle_to_combustion_chamber\"\n");
+    Ok((m, nozzle_at))
+}
+
+/// The time after launch of the first ejection charge among the motors of `group` (each
+/// fires its delay after its own burn-out, the end of its thrust curve, OpenRocket's
+/// `EJECTION_CHARGE` event); `None` when every motor is plugged.
+fn first_ejection(
+    file: &Path,
+    group: &Group,
+    options: &ImportOptions,
+) -> Result<Option<f64>, OrkError> {
+    let mut first: Option<f64> = None;
+    for (mount, motor) in
+        std::iter::once((group.mount, group.motor)).chain(group.extra.iter().copied())
+    {
+        let Some(charge) = motor.delay else { continue };
+        let (path, _) = find_motor(file, motor, options)?;
+        let end = karman_propulsion::ThrustData::load(&path)
+            .ok()
+            .and_then(|d| d.times.last().copied())
+            .ok_or_else(|| {
+                unsupported(
+                    file,
+                    &mount.name,
+                    format!("a thrust curve {} that cannot be read", path.display()),
+                )
+            })?;
+        let t = motor.ignition.1 + end + charge;
+        first = Some(first.map_or(t, |f| f.min(t)));
+    }
+    Ok(first)
+}
+
 #[allow(clippy::too_many_arguments)]
 fn body_text(
     file: &Path,
@@ -630,71 +779,7 @@ fn body_text(
     }
 
     // Motor of the simulation's configuration.
-    let (mount, motor) = (group.mount, group.motor);
-    let (eng_path, eng) = find_motor(file, motor, options)?;
-    let motor_length = if motor.length.is_finite() {
-        motor.length
-    } else {
-        eng.length
-    };
-    let motor_diameter = if motor.diameter.is_finite() {
-        motor.diameter
-    } else {
-        eng.diameter
-    };
-    let nozzle_at = mount.x + mount.length + mount.overhang;
-    let dry = (eng.total - eng.propellant).max(0.0);
-
-    let mut m = String::new();
-    let _ = writeln!(
-        m,
-        "# {} {} from {}: RASP masses {} kg propellant, {} kg total; the propellant is",
-        motor.manufacturer,
-        motor.designation,
-        eng_path.display(),
-        eng.propellant,
-        eng.total
-    );
-    let _ = writeln!(
-        m,
-        "# a cylinder filling the motor case, and leaves in proportion to the impulse."
-    );
-    let _ = writeln!(
-        m,
-        "[{motor_key}]\nkind = \"generic\"\nthrust = {}",
-        quoted(&relative(&eng_path, options.output_dir.as_deref()))
-    );
-    let _ = writeln!(
-        m,
-        "dry_mass = {}\ncenter_of_dry_mass_position = {}",
-        n(dry),
-        n(0.5 * motor_length)
-    );
-    let _ = writeln!(
-        m,
-        "nozzle_radius = {}\npropellant_initial_mass = {}",
-        n(0.25 * motor_diameter),
-        n(eng.propellant)
-    );
-    let _ = writeln!(
-        m,
-        "chamber_radius = {}\nchamber_height = {}\nchamber_position = {}",
-        n(0.5 * motor_diameter),
-        n(motor_length),
-        n(0.5 * motor_length)
-    );
-    let (cluster_count, cluster_radius) = mount.cluster()?;
-    if cluster_count > 1 {
-        let _ = writeln!(
-            m,
-            "# OpenRocket's {} cluster: {cluster_count} motors lit together, their axes {} m from\n\
-             # the rocket's axis (root mean square).\ncluster_count = {cluster_count}\ncluster_radius = {}",
-            mount.text("clusterconfiguration").unwrap_or(""),
-            (cluster_radius * 1e4).round() / 1e4,
-            n(cluster_radius)
-        );
-    }
-    let _ = writeln!(m, "coordinate_system = \"nozzle_to_combustion_chamber\"\n");
+    let (m, nozzle_at) = motor_text(file, group.mount, group.motor, motor_key, options)?;
 
     let mut t = String::new();
     let w = &mut t;
@@ -1032,7 +1117,20 @@ fn body_text(
                     "launch" => "\"launch + 0\"".to_owned(),
                     "never" => continue,
                     // The motor's ejection charge fires its delay after burn-out.
-                    "ejection" => match motor.delay {
+                    // Several motors: the first charge of any of them, a time after launch.
+                    "ejection" if !group.extra.is_empty() => {
+                        match first_ejection(file, group, options)? {
+                            Some(t) => format!("\"launch + {}\"", n(t)),
+                            None => {
+                                warnings.push(format!(
+                                    "`{}`: deployed by the ejection charges of plugged motors in OpenRocket, so never deployed; left out",
+                                    c.name
+                                ));
+                                continue;
+                            }
+                        }
+                    }
+                    "ejection" => match group.motor.delay {
                         Some(charge) => format!("\"burnout + {}\"", n(charge)),
                         None => {
                             warnings.push(format!(
@@ -1152,7 +1250,8 @@ pub(super) fn mission(
     );
     let motors: Vec<String> = groups
         .iter()
-        .map(|g| format!("{} {}", g.motor.manufacturer, g.motor.designation))
+        .flat_map(|g| std::iter::once(g.motor).chain(g.extra.iter().map(|(_, m)| *m)))
+        .map(|m| format!("{} {}", m.manufacturer, m.designation))
         .collect();
     let _ = writeln!(
         w,
@@ -1216,6 +1315,27 @@ pub(super) fn mission(
         n(heading),
         n(max_time)
     );
+    // Further motor mounts of a single-stage rocket, each lit its delay after launch.
+    for (mount, motor) in &groups[0].extra {
+        let (text, nozzle_at) = motor_text(file, mount, motor, "extra_motors.motor", options)?;
+        let _ = writeln!(
+            w,
+            "\n# `{}`: {} {}, lit {} (OpenRocket: {}).",
+            mount.name,
+            motor.manufacturer,
+            motor.designation,
+            after("launch", motor.ignition.1),
+            after(&motor.ignition.0, motor.ignition.1)
+        );
+        let _ = writeln!(
+            w,
+            "[[extra_motors]]\nname = {}\nmotor_position = {}                # nozzle exit: the mount's aft end plus overhang\nignition_delay = {}\n",
+            quoted(&mount.name),
+            n(nozzle_at),
+            n(motor.ignition.1)
+        );
+        w.push_str(&text);
+    }
     // Stage names as reports show them, made unique by OpenRocket's stage number.
     let title = |g: &Group| {
         if groups.iter().filter(|o| o.name() == g.name()).count() > 1 {
