@@ -6,7 +6,9 @@
 //!   (`python.rs`), and the validation run on the repository's `fixtures/validation` (a
 //!   missing or incomplete folder is skipped with a message, and fails when `CI` is set).
 //! - `validate [--data DIR]`: fly every validation mission in release and compare with
-//!   RocketPy 1.13 and the measured flights (see `validate.rs`).
+//!   RocketPy 1.13 and the measured flights, and the OpenRocket designs of
+//!   `fixtures/openrocket` with OpenRocket's stored flights; `validate --openrocket DIR`: the
+//!   OpenRocket comparison alone, on the designs of another folder (see `validate.rs`).
 //! - `bench [FILTER]`: run the criterion benchmarks and print their medians.
 //! - `tidy`: repository rules that are not compiler checks (the crate layering of
 //!   ARCHITECTURE.md, read from `cargo metadata`).
@@ -40,7 +42,9 @@ fn run() -> Result<()> {
         Some("validate") => validate::run(&root, &args[1..]),
         Some("bench") => bench::run(&root, &args[1..]),
         _ => {
-            eprintln!("usage: cargo xtask <ci|validate [--data DIR]|bench [FILTER]|tidy>");
+            eprintln!(
+                "usage: cargo xtask <ci|validate [--data DIR]|validate --openrocket DIR|bench [FILTER]|tidy>"
+            );
             bail!("unknown or missing command {:?}", args.first())
         }
     }

@@ -12,6 +12,12 @@
 //! Prints the tables, writes `target/validation/report.md`, `report.json` and SVG figures,
 //! and fails when a parity tolerance, a per-flight measured band or an OpenRocket acceptance
 //! tolerance is exceeded.
+//!
+//! `cargo xtask validate --openrocket DIR` runs the OpenRocket comparison alone on the design
+//! folders of `DIR` (each a subfolder holding `design.ork`, `reference.json` and the thrust
+//! curves, as `fixtures/openrocket`), with the same acceptance; it writes
+//! `target/validation/openrocket.md` and fails on a miss or a design karman refuses (other
+//! than the known refusals).
 
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
@@ -93,9 +99,32 @@ struct Flight {
     failures: Vec<String>,
 }
 
+/// Usage of `cargo xtask validate`.
+const USAGE: &str = "cargo xtask validate [--data DIR] | cargo xtask validate --openrocket DIR";
+
+/// What `validate` was asked for.
+#[derive(Debug, PartialEq)]
+enum Request {
+    /// Everything: the validation flights of the folder ([`karman_validation::data_dir`]
+    /// without `--data`) and the OpenRocket designs of `fixtures/openrocket`.
+    All(PathBuf),
+    /// `--openrocket DIR`: the OpenRocket comparison alone, on the design folders of `DIR`.
+    OpenRocket(PathBuf),
+}
+
+fn request(args: &[String]) -> Result<Request> {
+    match args {
+        [flag, dir] if flag == "--openrocket" => Ok(Request::OpenRocket(PathBuf::from(dir))),
+        _ => Ok(Request::All(data_dir(args)?)),
+    }
+}
+
 /// Runs the validation; `args` are the arguments after `validate`.
 pub fn run(root: &Path, args: &[String]) -> Result<()> {
-    let data = data_dir(args)?;
+    let data = match request(args)? {
+        Request::All(data) => data,
+        Request::OpenRocket(dir) => return run_openrocket(root, &dir),
+    };
     let folder = karman_validation::open(&data)?;
     crate::cargo(root, &["build", "--release", "--package", "karman"])?;
     let exe = root.join("target/release/karman");
@@ -117,7 +146,7 @@ pub fn run(root: &Path, args: &[String]) -> Result<()> {
     }
     let mut report = report_markdown(&flights);
     report += &estimated_drag_report(&data, &flights);
-    let (openrocket, openrocket_failures) = openrocket_report(root)?;
+    let (openrocket, openrocket_failures) = openrocket_report(&root.join("fixtures/openrocket"))?;
     report += &openrocket;
     print!("{report}");
     write_atomic(&out.join("report.md"), report.as_bytes())?;
@@ -141,13 +170,32 @@ pub fn run(root: &Path, args: &[String]) -> Result<()> {
     Ok(())
 }
 
+/// `--openrocket DIR`: the OpenRocket comparison on the design folders of `DIR` (the layout
+/// of `fixtures/openrocket`), written to `target/validation/openrocket.md`; fails on an
+/// acceptance miss.
+fn run_openrocket(root: &Path, dir: &Path) -> Result<()> {
+    let (report, failures) = openrocket_report(dir)?;
+    print!("{report}");
+    let out = root.join("target/validation");
+    std::fs::create_dir_all(&out)?;
+    write_atomic(&out.join("openrocket.md"), report.as_bytes())?;
+    eprintln!(
+        "xtask: report written to {}",
+        out.join("openrocket.md").display()
+    );
+    if !failures.is_empty() {
+        bail!("OpenRocket comparison failed:\n  {}", failures.join("\n  "));
+    }
+    Ok(())
+}
+
 /// `--data DIR`, else `$KARMAN_VALIDATION_DATA`, else the repository's `fixtures/validation`
 /// ([`karman_validation::data_dir`]).
 pub fn data_dir(args: &[String]) -> Result<PathBuf> {
     match args {
         [] => Ok(karman_validation::data_dir()),
         [flag, dir] if flag == "--data" => Ok(PathBuf::from(dir)),
-        _ => bail!("unexpected arguments {args:?} (usage: cargo xtask validate [--data DIR])"),
+        _ => bail!("unexpected arguments {args:?} (usage: {USAGE})"),
     }
 }
 
@@ -478,51 +526,31 @@ fn estimated_drag_report(data: &Path, flights: &[Flight]) -> String {
     s
 }
 
-/// The OpenRocket designs: one line per stored simulation, and the acceptance misses.
-fn openrocket_report(root: &Path) -> Result<(String, Vec<String>)> {
-    use karman_mission::report::openrocket::{
-        DESIGNS, STAGED_DESIGNS, compare_design, compare_staged_design,
-    };
-    let mut s = String::from(
-        "\n## OpenRocket designs imported and flown (fixtures/openrocket)\n\n\
-         karman / OpenRocket; CP and margin at rod exit, at the angle of attack OpenRocket stored \
-         there and its roll angle of the flow.\n\n```\n",
+/// The OpenRocket designs of `dir` (karman-mission's `report::openrocket::compare_folder`):
+/// one line per stored simulation, and the acceptance misses.
+fn openrocket_report(dir: &Path) -> Result<(String, Vec<String>)> {
+    use karman_mission::report::openrocket::compare_folder;
+    let results = compare_folder(dir).map_err(|e| anyhow::anyhow!("{e}"))?;
+    let mut s = format!(
+        "\n## OpenRocket designs imported and flown ({})\n\n\
+         karman / OpenRocket. Single-stage designs: CP and margin at rod exit, at the angle of \
+         attack OpenRocket stored there and its roll angle of the flow. Multi-stage designs: the \
+         top stage's apogee, maximum speed, worst Cd error per vehicle of its path (the stack \
+         first), and each stage separation.\n\n```\n",
+        dir.display()
     );
     let mut failures = Vec::new();
-    for (design, cp_holds) in DESIGNS {
-        let results = compare_design(&root.join("fixtures/openrocket").join(design))
-            .map_err(|e| anyhow::anyhow!("{design}: {e}"))?;
-        for r in results {
-            let _ = writeln!(s, "{design:<28} {r}");
-            failures.extend(
-                r.failures(cp_holds)
-                    .into_iter()
-                    .map(|m| format!("{design} {}: {m}", r.simulation)),
-            );
-        }
+    for r in &results {
+        let _ = write!(s, "{r}");
+        failures.extend(r.failures());
     }
     s.push_str("```\n");
-    s.push_str(
-        "\nMulti-stage designs: the top stage's apogee, maximum speed, worst Cd error per \
-         vehicle of its path (the stack first), and each stage separation, karman / OpenRocket.\n\n```\n",
+    let _ = writeln!(
+        s,
+        "\n{} designs, {} with an acceptance miss.",
+        results.len(),
+        results.iter().filter(|r| !r.failures().is_empty()).count()
     );
-    for (design, known) in STAGED_DESIGNS {
-        let results = compare_staged_design(&root.join("fixtures/openrocket").join(design))
-            .map_err(|e| anyhow::anyhow!("{design}: {e}"))?;
-        for r in results {
-            let _ = writeln!(s, "{design:<28} {r}");
-            let why = known.iter().find(|(sim, _)| *sim == r.simulation);
-            if let Some((_, why)) = why {
-                let _ = writeln!(s, "{:<28} (apogee not held to 3 %: {why})", "");
-            }
-            failures.extend(
-                r.failures(why.is_none())
-                    .into_iter()
-                    .map(|m| format!("{design} {}: {m}", r.simulation)),
-            );
-        }
-    }
-    s.push_str("```\n");
     Ok((s, failures))
 }
 
@@ -654,6 +682,21 @@ mod tests {
         assert!((s.eval(2.0) - 20.0).abs() < 1e-12);
         assert!((s.eval(9.0) - 30.0).abs() < 1e-12);
         assert!(series_table(&[]).is_none());
+    }
+
+    #[test]
+    fn the_openrocket_option_names_a_folder() {
+        let args = |a: &[&str]| a.iter().map(|s| (*s).to_owned()).collect::<Vec<_>>();
+        assert_eq!(
+            request(&args(&["--openrocket", "blind"])).expect("a request"),
+            Request::OpenRocket(PathBuf::from("blind"))
+        );
+        assert_eq!(
+            request(&args(&["--data", "v"])).expect("a request"),
+            Request::All(PathBuf::from("v"))
+        );
+        assert!(request(&args(&["--openrocket"])).is_err());
+        assert!(request(&args(&["--openrocket", "a", "b"])).is_err());
     }
 
     #[test]

@@ -174,7 +174,8 @@ struct Reach {
     thrust: bool,
     /// A `motor.*` input or knob: the motor is rebuilt per sample.
     motor: bool,
-    /// A `rocket.*` input, or the motor: the rocket is rebuilt per sample.
+    /// A `rocket.*` or `extra_motors.*` input, or the motor: the rocket (which carries the
+    /// extra motors) is rebuilt per sample.
     rocket: bool,
 }
 
@@ -185,7 +186,7 @@ impl Reach {
         self.environment |= section == "environment" && knob.is_none();
         self.thrust |= path == "motor.thrust";
         self.motor |= section == "motor";
-        self.rocket |= section == "motor" || section == "rocket";
+        self.rocket |= matches!(section, "motor" | "rocket" | "extra_motors");
     }
 }
 

@@ -17,8 +17,8 @@
 //! `"burnout + X"`.
 
 use crate::schema::{
-    AirBrakesCurve, Atol, Curve, DensitySpec, Discretize, Distribution, MissionSpec, MotorSpec,
-    RocketSpec, StageSpec, SurfaceSpec, Sweep, TankSpec, Trigger,
+    AirBrakesCurve, Atol, Curve, DensitySpec, Discretize, Distribution, ExtraMotorSpec,
+    MissionSpec, MotorSpec, RocketSpec, StageSpec, SurfaceSpec, Sweep, TankSpec, Trigger,
 };
 use thiserror::Error;
 
@@ -138,6 +138,14 @@ pub(crate) fn stage_path(path: &str) -> Option<(usize, &str)> {
     Some((index.parse().ok()?, key))
 }
 
+/// The `[[extra_motors]]` entry and the path within it of an `extra_motors.<index>.<path>`
+/// path.
+pub(crate) fn extra_motor_path(path: &str) -> Option<(usize, &str)> {
+    let rest = path.strip_prefix("extra_motors.")?;
+    let (index, key) = rest.split_once('.')?;
+    Some((index.parse().ok()?, key))
+}
+
 /// The curve-valued key `key` of a tank (its curves of time and a custom geometry's radius).
 fn tank_curve<'a>(tank: &'a TankSpec, key: &str) -> Option<&'a Curve> {
     match key {
@@ -176,6 +184,10 @@ fn tank_curve_mut<'a>(tank: &'a mut TankSpec, key: &str) -> Option<&'a mut Curve
 
 /// Paths of the curve-valued keys (a `Constant` curve among them resolves to a number).
 fn curve_at<'a>(spec: &'a MissionSpec, path: &str) -> Option<&'a Curve> {
+    if let Some((index, rest)) = extra_motor_path(path) {
+        let extra = spec.extra_motors.get(index)?;
+        return motor_curve(&extra.motor, rest.strip_prefix("motor.")?);
+    }
     if let Some((index, rest)) = stage_path(path) {
         let stage = spec.stages.get(index)?;
         return match rest {
@@ -201,11 +213,7 @@ fn part_curve<'a>(
     path: &str,
 ) -> Option<&'a Curve> {
     if let Some(key) = path.strip_prefix("motor.") {
-        let motor = motor?;
-        if let Some((index, key)) = tank_key(key) {
-            return tank_curve(motor.tanks.get(index)?, key);
-        }
-        return (key == "thrust").then_some(&motor.thrust);
+        return motor_curve(motor?, key);
     }
     match path {
         "rocket.power_off_drag" => Some(&rocket.power_off_drag),
@@ -214,8 +222,28 @@ fn part_curve<'a>(
     }
 }
 
+/// The curve at `key` of a motor (its thrust, its tanks' curves).
+fn motor_curve<'a>(motor: &'a MotorSpec, key: &str) -> Option<&'a Curve> {
+    if let Some((index, key)) = tank_key(key) {
+        return tank_curve(motor.tanks.get(index)?, key);
+    }
+    (key == "thrust").then_some(&motor.thrust)
+}
+
+/// [`motor_curve`], mutable.
+fn motor_curve_mut<'a>(motor: &'a mut MotorSpec, key: &str) -> Option<&'a mut Curve> {
+    if let Some((index, key)) = tank_key(key) {
+        return tank_curve_mut(motor.tanks.get_mut(index)?, key);
+    }
+    (key == "thrust").then_some(&mut motor.thrust)
+}
+
 /// [`curve_at`], mutable.
 pub(crate) fn curve_mut<'a>(spec: &'a mut MissionSpec, path: &str) -> Option<&'a mut Curve> {
+    if let Some((index, rest)) = extra_motor_path(path) {
+        let extra = spec.extra_motors.get_mut(index)?;
+        return motor_curve_mut(&mut extra.motor, rest.strip_prefix("motor.")?);
+    }
     if let Some((index, rest)) = stage_path(path) {
         let stage = spec.stages.get_mut(index)?;
         return match rest {
@@ -241,11 +269,7 @@ fn part_curve_mut<'a>(
     path: &str,
 ) -> Option<&'a mut Curve> {
     if let Some(key) = path.strip_prefix("motor.") {
-        let motor = motor?;
-        if let Some((index, key)) = tank_key(key) {
-            return tank_curve_mut(motor.tanks.get_mut(index)?, key);
-        }
-        return (key == "thrust").then_some(&mut motor.thrust);
+        return motor_curve_mut(motor?, key);
     }
     match path {
         "rocket.power_off_drag" => Some(&mut rocket.power_off_drag),
@@ -367,12 +391,16 @@ pub fn resolve<'a>(spec: &'a MissionSpec, path: &str) -> Result<Input<'a>, PathE
         });
     }
     // A tank's flux time is addressed as a number: its end.
-    let tank = match stage_path(path) {
-        Some((index, rest)) => spec
+    let tank = match (stage_path(path), extra_motor_path(path)) {
+        (Some((index, rest)), _) => spec
             .stages
             .get(index)
             .and_then(|s| Some((s.motor.as_ref()?, rest.strip_prefix("motor.")?))),
-        None => path.strip_prefix("motor.").map(|rest| (&spec.motor, rest)),
+        (None, Some((index, rest))) => spec
+            .extra_motors
+            .get(index)
+            .and_then(|e| Some((&e.motor, rest.strip_prefix("motor.")?))),
+        (None, None) => path.strip_prefix("motor.").map(|rest| (&spec.motor, rest)),
     };
     if let Some((motor, rest)) = tank
         && let Some((index, "flux_time")) = tank_key(rest)
@@ -463,6 +491,9 @@ fn slot<'a>(spec: &'a mut MissionSpec, path: &str) -> Option<Slot<'a>> {
     if let Some((index, rest)) = stage_path(path) {
         return stage_slot(spec.stages.get_mut(index)?, rest);
     }
+    if let Some((index, rest)) = extra_motor_path(path) {
+        return extra_motor_slot(spec.extra_motors.get_mut(index)?, rest);
+    }
     if let Some((array, index)) = path.rsplit_once('.')
         && let Ok(index) = index.parse::<usize>()
     {
@@ -549,6 +580,25 @@ fn stage_slot<'a>(stage: &'a mut StageSpec, path: &str) -> Option<Slot<'a>> {
     }
 }
 
+/// The numeric slot at `path` within an `[[extra_motors]]` entry: its own keys, or its
+/// motor's as in `[motor]`.
+fn extra_motor_slot<'a>(extra: &'a mut ExtraMotorSpec, path: &str) -> Option<Slot<'a>> {
+    use Slot::Float;
+    match path {
+        "motor_position" => Some(Float(&mut extra.motor_position)),
+        "ignition_delay" => Some(Float(&mut extra.ignition_delay)),
+        _ => {
+            let key = path.strip_prefix("motor.")?;
+            if let Some((array, index)) = key.rsplit_once('.')
+                && let Ok(index) = index.parse::<usize>()
+            {
+                return motor_component(&mut extra.motor, array, index).map(Float);
+            }
+            motor_slot(&mut extra.motor, key)
+        }
+    }
+}
+
 /// The numeric slot `key` of a motor.
 fn motor_slot<'a>(m: &'a mut MotorSpec, key: &str) -> Option<Slot<'a>> {
     use Slot::{Float, Integer};
@@ -585,6 +635,29 @@ fn motor_slot<'a>(m: &'a mut MotorSpec, key: &str) -> Option<Slot<'a>> {
     })
 }
 
+/// Component `index` of the array `key` of a motor (its dry inertia, burn interval, reshape
+/// pair, a tank's flux time).
+fn motor_component<'a>(motor: &'a mut MotorSpec, key: &str, index: usize) -> Option<&'a mut f64> {
+    let pair = |[start, end]: [&'a mut f64; 2]| match index {
+        0 => Some(start),
+        1 => Some(end),
+        _ => None,
+    };
+    if let Some((tank, "flux_time")) = tank_key(key) {
+        let t = &mut motor.tanks.get_mut(tank)?.flux_time;
+        return pair([&mut t.start, &mut t.end]);
+    }
+    match key {
+        "dry_inertia" => motor.dry_inertia.0.get_mut(index),
+        "burn_time" => {
+            let b = motor.burn_time.as_mut()?;
+            pair([&mut b.start, &mut b.end])
+        }
+        "reshape_thrust_curve" => motor.reshape_thrust_curve.as_mut()?.get_mut(index),
+        _ => None,
+    }
+}
+
 /// Component `index` of the array of numbers at `rocket.<key>` or `motor.<key>` (its file
 /// form: an inertia always has six components, a burn time two).
 fn part_component<'a>(
@@ -593,26 +666,8 @@ fn part_component<'a>(
     array: &str,
     index: usize,
 ) -> Option<&'a mut f64> {
-    let pair = |[start, end]: [&'a mut f64; 2]| match index {
-        0 => Some(start),
-        1 => Some(end),
-        _ => None,
-    };
     if let Some(key) = array.strip_prefix("motor.") {
-        let motor = motor?;
-        if let Some((tank, "flux_time")) = tank_key(key) {
-            let t = &mut motor.tanks.get_mut(tank)?.flux_time;
-            return pair([&mut t.start, &mut t.end]);
-        }
-        return match key {
-            "dry_inertia" => motor.dry_inertia.0.get_mut(index),
-            "burn_time" => {
-                let b = motor.burn_time.as_mut()?;
-                pair([&mut b.start, &mut b.end])
-            }
-            "reshape_thrust_curve" => motor.reshape_thrust_curve.as_mut()?.get_mut(index),
-            _ => None,
-        };
+        return motor_component(motor?, key, index);
     }
     if let Some(name) = array
         .strip_prefix("rocket.parachutes.")

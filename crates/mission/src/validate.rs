@@ -172,7 +172,68 @@ pub(crate) fn validate(
     flight(&mut c, spec);
     dispersion(&mut c, spec);
     stages(&mut c, spec);
+    extra_motors(&mut c, spec);
     c.problems
+}
+
+/// The `[[extra_motors]]` entries: each motor with the checks of `[motor]`, its ignition
+/// delay, and what a combination of motors needs (linear thrust curves, no pressure-thrust
+/// correction, a single-stage rocket): everything the flight's combination would refuse.
+fn extra_motors(c: &mut Checker<'_, '_>, spec: &MissionSpec) {
+    if spec.extra_motors.is_empty() {
+        return;
+    }
+    if !spec.stages.is_empty() {
+        c.report(
+            "extra_motors",
+            ProblemKind::Unsupported {
+                what: "`[[extra_motors]]` on a multi-stage rocket".to_owned(),
+            },
+        );
+    }
+    let motors = std::iter::once(("motor".to_owned(), &spec.motor)).chain(
+        spec.extra_motors
+            .iter()
+            .enumerate()
+            .map(|(index, e)| (format!("extra_motors.{index}.motor"), &e.motor)),
+    );
+    for (key, m) in motors {
+        if m.interpolation != crate::schema::InterpolationKind::Linear {
+            c.report(
+                &format!("{key}.interpolation"),
+                ProblemKind::Unsupported {
+                    what: format!(
+                        "a thrust curve interpolated as `{}` in a rocket of several motors \
+                         (their thrust curves are summed on the union of their times: \
+                         `interpolation = \"linear\"`)",
+                        m.interpolation
+                    ),
+                },
+            );
+        }
+        if m.reference_pressure.is_some() {
+            c.report(
+                &format!("{key}.reference_pressure"),
+                ProblemKind::Unsupported {
+                    what: "the pressure-thrust correction (`reference_pressure`) in a rocket of \
+                           several motors"
+                        .to_owned(),
+                },
+            );
+        }
+    }
+    for (index, extra) in spec.extra_motors.iter().enumerate() {
+        let mut alone = spec.clone();
+        alone.motor = extra.motor.clone();
+        alone.extra_motors.clear();
+        c.stage = Some(format!("extra_motors.{index}"));
+        motor(c, &alone);
+        c.stage = None;
+        c.non_negative(
+            &format!("extra_motors.{index}.ignition_delay"),
+            extra.ignition_delay,
+        );
+    }
 }
 
 /// The `[[stages]]` entries: each stage's airframe and motor with the checks of `[rocket]`

@@ -130,7 +130,7 @@ fn missing_table_concerns_no_key() {
             (
                 "flight_plan",
                 "unknown field `flight_plan`, expected one of `name`, `description`, \
-                 `environment`, `motor`, `rocket`, `flight`, `stages`, `dispersion`"
+                 `environment`, `motor`, `rocket`, `flight`, `stages`, `extra_motors`, `dispersion`"
                     .to_owned()
             ),
         ]

@@ -430,3 +430,94 @@ fn a_stage_without_a_motor_rides_on_the_stage_below() {
         imported.warnings
     );
 }
+
+#[test]
+fn a_bottom_motor_openrocket_never_lights_rides_as_mass_on_the_stage_above() {
+    // The sustainer lit at launch; the booster's motor at the burn-out of a stage below it,
+    // which the bottom stage does not have: OpenRocket never lights it.
+    let unlit = |separation: &'static str| {
+        edited_two_stage(move |t| {
+            t.replacen(
+                "<ignitionconfiguration configid=\"fadeeef3-4aa4-49e9-9581-71e14fa91c14\">\n                        <ignitionevent>burnout</ignitionevent>",
+                "<ignitionconfiguration configid=\"fadeeef3-4aa4-49e9-9581-71e14fa91c14\">\n                        <ignitionevent>launch</ignitionevent>",
+                1,
+            )
+            .replacen(
+                "<ignitionconfiguration configid=\"fadeeef3-4aa4-49e9-9581-71e14fa91c14\">\n                    <ignitionevent>automatic</ignitionevent>",
+                "<ignitionconfiguration configid=\"fadeeef3-4aa4-49e9-9581-71e14fa91c14\">\n                    <ignitionevent>burnout</ignitionevent>",
+                1,
+            )
+            .replacen(
+                "<separationevent>upperignition</separationevent>\n            <separationaltitude>200.0</separationaltitude>",
+                &format!("<separationevent>{separation}</separationevent>\n            <separationaltitude>200.0</separationaltitude>"),
+                1,
+            )
+        })
+    };
+    // Separated at the sustainer's ignition, i.e. at launch: refused by name.
+    let e = unlit("upperignition").expect_err("separates at launch");
+    assert!(
+        e.to_string().contains("Booster") && e.to_string().contains("upperignition"),
+        "{e}"
+    );
+    // Separated at its own motor's burn-out, which never comes: one body, the booster's
+    // unlit motor carried whole (its RASP total mass, 0.34944 kg).
+    let imported = unlit("burnout").expect("imports");
+    assert!(
+        !imported.mission.contains("[[stages]]"),
+        "{}",
+        imported.mission
+    );
+    assert!(
+        imported.warnings.iter().any(|w| w.contains("never lights")),
+        "{:?}",
+        imported.warnings
+    );
+    let path = tempdir().join("unlit.toml");
+    let one = karman_mission::parse(&imported.mission, &path, &[]).expect("loads");
+    let two = karman_mission::parse(
+        &edited_two_stage(str::to_owned).expect("imports").mission,
+        &path,
+        &[],
+    )
+    .expect("loads");
+    let structure = two.spec.rocket.mass + two.spec.stages[0].rocket.mass;
+    let carried = one.spec.rocket.mass - structure;
+    assert!((carried - 0.34944).abs() < 1e-9, "{carried}");
+}
+
+#[test]
+fn a_transition_between_equal_radii_is_no_tail() {
+    // The base-drag transition made a straight piece of the tube's radius.
+    let path = design("base_drag_hack_short_wide");
+    let text = document_text(&path, &std::fs::read(&path).expect("fixture")).expect("document");
+    let edited = text.replacen(
+        "<foreradius>1.5142307692307692E-5</foreradius>",
+        "<foreradius>0.03937</foreradius>",
+        1,
+    );
+    assert_ne!(edited, text);
+    let file = tempdir().join("equal_transition.ork");
+    std::fs::write(&file, edited).expect("write");
+    let options = ImportOptions {
+        motors: vec![path.parent().expect("dir").to_owned()],
+        ..ImportOptions::default()
+    };
+    let imported = import(&file, &options).expect("imports");
+    assert!(
+        !imported.mission.contains("type = \"tail\""),
+        "{}",
+        imported.mission
+    );
+    assert!(
+        imported
+            .warnings
+            .iter()
+            .any(|w| w.contains("Base-Drag Hack Transition") && w.contains("piece of tube")),
+        "{:?}",
+        imported.warnings
+    );
+    let mission =
+        karman_mission::parse(&imported.mission, &file.with_extension("toml"), &[]).expect("loads");
+    karman_mission::build::preflight::prepare(&mission, 0).expect("builds");
+}

@@ -433,6 +433,10 @@ fn typed_slots_match_the_file_form() {
             .iter()
             .map(|p| load(p, &[]).unwrap_or_else(|e| panic!("{e}")).spec),
     );
+    // A mission of several motors: its `[[extra_motors]]` entries' own keys and motors.
+    let airstart =
+        std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../../fixtures/airstart.toml");
+    specs.push(load(&airstart, &[]).unwrap_or_else(|e| panic!("{e}")).spec);
     let mut seen = std::collections::BTreeSet::new();
     for spec in &specs {
         for (path, value) in paths::numeric_inputs(spec) {
@@ -451,6 +455,10 @@ fn typed_slots_match_the_file_form() {
     }
     // The every-key mission reaches every slot kind: a sample of them must have been seen.
     for key in [
+        "extra_motors.0.ignition_delay",
+        "extra_motors.0.motor_position",
+        "extra_motors.0.motor.dry_inertia.0",
+        "extra_motors.0.motor.propellant_initial_mass",
         "environment.gravity",
         "environment.atmosphere.wind_v",
         "motor.reference_pressure",

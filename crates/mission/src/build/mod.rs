@@ -3,6 +3,7 @@ pub mod drag;
 pub mod environment;
 pub mod flight;
 pub mod motor;
+pub mod motors;
 pub mod preflight;
 pub mod rocket;
 pub mod scripts;

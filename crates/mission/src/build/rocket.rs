@@ -271,6 +271,22 @@ fn build(
         surfaces.push(surface_input(spec, name, surface, airfoil));
     }
 
+    let (count, radius) = cluster_of(mission);
+    let single = clustered(motor_properties(motor), count, radius)
+        .map_err(|e| mission.model_error("motor", e))?;
+    let properties = if ignition == 0.0 {
+        single
+    } else {
+        delayed(single, ignition).map_err(|e| mission.model_error("motor", e))?
+    };
+    // `[[extra_motors]]`: the motors flown as one, burning out at the last burn-out.
+    let properties = super::motors::with_extra_motors(mission, properties)?;
+    let burn_out = if mission.spec.extra_motors.is_empty() {
+        motor.burn_out() + ignition
+    } else {
+        properties.burn_out
+    };
+
     let mut parachutes = Vec::with_capacity(spec.parachutes.len());
     for (name, p) in &spec.parachutes {
         let chute = Parachute::new(&airframe::ParachuteSpec {
@@ -281,7 +297,7 @@ fn build(
                 schema::Trigger::HeightAboveGround(h) => Trigger::HeightAboveGround(*h),
                 schema::Trigger::Launch(delay) => Trigger::Custom(Arc::new(AfterTime(*delay))),
                 schema::Trigger::Burnout(delay) => {
-                    Trigger::Custom(Arc::new(AfterTime(motor.burn_out() + ignition + delay)))
+                    Trigger::Custom(Arc::new(AfterTime(burn_out + delay)))
                 }
                 schema::Trigger::Expression(text) => {
                     let expression = Expression::parse(text).map_err(|e| {
@@ -347,14 +363,6 @@ fn build(
         parachutes,
         rail_buttons,
     };
-    let (count, radius) = cluster_of(mission);
-    let single = clustered(motor_properties(motor), count, radius)
-        .map_err(|e| mission.model_error("motor", e))?;
-    let properties = if ignition == 0.0 {
-        single
-    } else {
-        delayed(single, ignition).map_err(|e| mission.model_error("motor", e))?
-    };
     let rocket = Rocket::new(inputs, properties).map_err(|e| {
         let section = match &e {
             AirframeError::NotFinite { component, .. }
@@ -419,8 +427,7 @@ pub fn estimated_drag(
         .iter()
         .map(|(name, s)| surface_input(spec, name, s, None))
         .collect();
-    let (count, _) = cluster_of(mission);
-    let nozzle_radius = cluster_exit_radius(motor.nozzle_radius(), count);
+    let nozzle_radius = super::motors::combined_exit_radius(mission, motor.nozzle_radius());
     super::drag::estimate(mission, &surfaces, nozzle_radius).map(Some)
 }
 

@@ -116,6 +116,8 @@ pub struct Component {
     pub material: Option<(f64, String)>,
     /// A second material (the line of a parachute).
     pub line_material: Option<f64>,
+    /// The density of a fin set's fillets (kg/m³).
+    pub fillet_material: Option<f64>,
     /// Fin outline points of a free-form fin set.
     pub points: Vec<[f64; 2]>,
     /// Motors of a motor mount by configuration id: (manufacturer, designation, delay).
@@ -538,6 +540,7 @@ fn component(
     let mut fields = BTreeMap::new();
     let mut material = None;
     let mut line_material = None;
+    let mut fillet_material = None;
     let mut points = Vec::new();
     let mut motors = BTreeMap::new();
     let mut overhang = 0.0;
@@ -559,6 +562,9 @@ fn component(
                 let method = e.attribute("method").unwrap_or("relative");
                 fields.insert(format!("{t}method"), method.to_owned());
                 fields.insert(t.to_owned(), text);
+            }
+            "filletmaterial" => {
+                fillet_material = e.attribute("density").and_then(|d| d.parse::<f64>().ok());
             }
             "axialoffset" => {
                 axial = Some((
@@ -658,6 +664,7 @@ fn component(
         fields,
         material,
         line_material,
+        fillet_material,
         points,
         motors,
         overhang,

@@ -1,7 +1,12 @@
 //! Mass, centre of mass and inertia of the design without motor, component by component as
 //! OpenRocket builds them: material density times volume (bulk, kg/m³), area (surface,
 //! kg/m²) or length (line, kg/m), or a given mass; mass and CG overrides of a component or of
-//! its whole subtree (`overridesubcomponents*`).
+//! its whole subtree (`overridesubcomponents*`): an override mass sits at the component's own
+//! CG, a stage's (which has no mass of its own) at its children's.
+//!
+//! Where OpenRocket computes a dimension itself, so does the reader: a centering ring's
+//! automatic bore is the inner tube beside it; a fin's volume is its plate's times
+//! OpenRocket's factor for the cross-section, plus its fillets.
 //!
 //! Inertias are those of the solid each component approximates — thin or thick tubes, disks,
 //! shells of revolution integrated along the axis, fins as plates at their centroid — about
@@ -111,6 +116,21 @@ fn shell(x0: f64, length: f64, fore: f64, aft: f64, p: Profile, t: f64, rho: f64
     total
 }
 
+/// The volume of a fin of cross-section `crosssection` relative to the flat plate of its
+/// outline and thickness, as OpenRocket counts it (`FinSet.CrossSection`, read for the
+/// values: square 1, rounded 0.99, airfoil 0.85); the tab is a flat plate.
+fn section_volume(c: &Component) -> Result<f64, OrkError> {
+    match c.text("crosssection").unwrap_or("square") {
+        "square" => Ok(1.0),
+        "rounded" => Ok(0.99),
+        "airfoil" => Ok(0.85),
+        other => Err(c.value_error(
+            "crosssection",
+            &format!("{other:?} is not square, rounded or airfoil"),
+        )),
+    }
+}
+
 fn fins(c: &Component, body_radius: f64) -> Result<MassProps, OrkError> {
     let n = c.num_or("fincount", 1.0)?;
     let t = c.dim("thickness")?;
@@ -152,25 +172,82 @@ fn fins(c: &Component, body_radius: f64) -> Result<MassProps, OrkError> {
         (0.0, 0.0)
     };
     let tab = c.num_or("tabheight", 0.0)? * c.num_or("tablength", 0.0)?;
-    let m_fin = rho * t * (area + tab);
+    let m_fin = rho * t * (area * section_volume(c)? + tab);
     let m = n * m_fin;
     let arm = body_radius + cy;
     let chord = c.length.max(1e-12);
-    Ok(MassProps {
+    let fins = MassProps {
         mass: m,
         cg: c.x + cx,
         i_long: m * (0.5 * arm * arm + chord * chord / 12.0),
         i_rot: m * arm * arm,
-    })
+    };
+    // Fillets along the root chord, their centroid a fifth of their radius off the body
+    // (OpenRocket's estimate).
+    let r = c.num_or("filletradius", 0.0)?;
+    if r <= 0.0 {
+        return Ok(fins);
+    }
+    let density = c
+        .fillet_material
+        .ok_or_else(|| c.value_error("filletmaterial", "is missing"))?;
+    let m = n * density * fillet_area(r, body_radius) * c.length;
+    let arm = body_radius + 0.2 * r;
+    Ok(fins.add(MassProps {
+        mass: m,
+        cg: c.x + 0.5 * c.length,
+        i_long: m * (0.5 * arm * arm + chord * chord / 12.0),
+        i_rot: m * arm * arm,
+    }))
+}
+
+/// The cross-section of the two concave fillets of radius `r` at the root of a fin on a body
+/// of radius `body` (OpenRocket's `FinSet.calculateFilletCrossSection`, read for the
+/// method): each is the triangle between the body's centre, the fillet's centre and its
+/// tangent point on the fin, less the sectors of the fillet's circle and of the body in it.
+fn fillet_area(r: f64, body: f64) -> f64 {
+    let h = r + body;
+    let (inner, outer) = ((r / h).asin(), (r / h).acos());
+    let one = 0.5 * outer.tan() * r * r - 0.5 * outer * r * r - 0.5 * inner * body * body;
+    if one.is_finite() { 2.0 * one } else { 0.0 }
+}
+
+/// The automatic inner radius of centering ring `ring` among its `siblings` (OpenRocket's
+/// `CenteringRing.getInnerRadius`, read for the method): the largest outer radius of the
+/// inner tubes beside it whose length reaches the ring's (touching counts), at most the
+/// ring's outer radius `outer`; 0 with no such tube.
+fn ring_inner_radius(
+    ring: &Component,
+    siblings: &[Component],
+    outer: f64,
+) -> Result<f64, OrkError> {
+    let mut inner: f64 = 0.0;
+    for tube in siblings.iter().filter(|k| k.kind == Kind::InnerTube) {
+        let overlaps = ring.x + ring.length >= tube.x && ring.x <= tube.x + tube.length;
+        if overlaps {
+            inner = inner.max(tube.dim("outerradius")?);
+        }
+    }
+    Ok(inner.min(outer))
+}
+
+/// A radius that OpenRocket may compute (`auto`, with or without the value it last
+/// resolved, which may be stale): `automatic` then, else the stored value.
+fn radius_or_auto(c: &Component, element: &str, automatic: f64) -> Result<f64, OrkError> {
+    match c.text(element) {
+        None => Ok(automatic),
+        Some(t) if t.trim_start().starts_with("auto") => Ok(automatic),
+        Some(_) => c.dim(element),
+    }
 }
 
 /// Mass properties of `c` alone (not its children); `parent_inner` is the inner radius of
-/// the tube it sits in, `mount_outer` the outer radius of a sibling inner tube.
+/// the tube it sits in, `siblings` the components beside it (its parent's children).
 fn own(
     c: &Component,
     parent_inner: f64,
     body_radius: f64,
-    mount_outer: f64,
+    siblings: &[Component],
 ) -> Result<MassProps, OrkError> {
     let x = c.x;
     Ok(match c.kind {
@@ -243,7 +320,10 @@ fn own(
         Kind::CenteringRing | Kind::Bulkhead | Kind::EngineBlock => {
             let ro = c.num_or("outerradius", parent_inner)?;
             let ri = match c.kind {
-                Kind::CenteringRing => c.num_or("innerradius", mount_outer)?,
+                Kind::CenteringRing => {
+                    let automatic = ring_inner_radius(c, siblings, ro)?;
+                    radius_or_auto(c, "innerradius", automatic)?
+                }
                 Kind::EngineBlock => ro - c.dim("thickness")?,
                 _ => 0.0,
             };
@@ -292,6 +372,26 @@ fn own(
     })
 }
 
+/// A motor carried unlit: a solid cylinder of `mass`, `length` and `radius` whose aft end
+/// is at `aft`, repeated by a cluster of `count` motors at the root mean square distance
+/// `offset` from the axis (as [`subtree`] repeats a clustered inner tube).
+pub fn unlit_motor(
+    aft: f64,
+    length: f64,
+    radius: f64,
+    mass: f64,
+    (count, offset): (u32, f64),
+) -> MassProps {
+    let n = f64::from(count);
+    let total = n * mass;
+    MassProps {
+        mass: total,
+        cg: aft - 0.5 * length,
+        i_long: total * ((3.0 * radius * radius + length * length) / 12.0 + 0.5 * offset * offset),
+        i_rot: total * (0.5 * radius * radius + offset * offset),
+    }
+}
+
 fn flag(c: &Component, element: &str) -> bool {
     c.text(element) == Some("true")
 }
@@ -302,19 +402,30 @@ fn flag(c: &Component, element: &str) -> bool {
 /// # Errors
 /// [`OrkError::Value`] for a missing or malformed dimension or material.
 pub fn subtree(c: &Component, parent_inner: f64, body_radius: f64) -> Result<MassProps, OrkError> {
-    let mount_outer = c
-        .children
-        .iter()
-        .find(|k| k.kind == Kind::InnerTube)
-        .map_or(Ok(0.0), |k| k.num_or("outerradius", 0.0))?;
-    let mut p = own(c, parent_inner, body_radius, mount_outer)?;
+    within(c, parent_inner, body_radius, &[])
+}
+
+/// [`subtree`] of `c` among `siblings` (its parent's children, `c` included).
+fn within(
+    c: &Component,
+    parent_inner: f64,
+    body_radius: f64,
+    siblings: &[Component],
+) -> Result<MassProps, OrkError> {
+    // OpenRocket's overrides (`MassCalculation.calculateStructure`, read for the method): a
+    // component's override mass replaces its own mass at its own CG, and with
+    // `overridesubcomponentsmass` its children's too; a stage, which has no mass of its own,
+    // puts its override at its children's CG (beside them, or in their place).
+    let mut p = own(c, parent_inner, body_radius, siblings)?;
+    let own_mass = p;
+    let massive = c.kind != Kind::Stage;
     let subs_override = flag(c, "overridesubcomponentsmass");
-    if let Some(m) = c
+    let override_mass = c
         .fields
         .get("overridemass")
-        .and_then(|t| super::design::number(t))
-    {
-        if !subs_override {
+        .and_then(|t| super::design::number(t));
+    if let Some(m) = override_mass {
+        if massive && !subs_override {
             p = p.scaled(m);
         }
     }
@@ -346,8 +457,23 @@ pub fn subtree(c: &Component, parent_inner: f64, body_radius: f64) -> Result<Mas
         }
         _ => (parent_inner, body_radius),
     };
-    for k in &c.children {
-        p = p.add(subtree(k, inner, radius)?);
+    let children = c
+        .children
+        .iter()
+        .map(|k| within(k, inner, radius, &c.children))
+        .collect::<Result<Vec<_>, _>>()?;
+    if let (Some(m), false, false) = (override_mass, massive, subs_override) {
+        let all = children.iter().fold(MassProps::default(), |a, &k| a.add(k));
+        p = MassProps {
+            mass: m,
+            cg: if all.mass > 0.0 { all.cg } else { c.x },
+            i_long: 0.0,
+            i_rot: 0.0,
+        };
+    }
+    // Summed in the order of the file, one child after the other.
+    for k in children {
+        p = p.add(k);
     }
     if c.kind == Kind::PodSet {
         // `n` pods, their axes `d` from the rocket's: as a cluster, `M d²` more roll
@@ -369,14 +495,12 @@ pub fn subtree(c: &Component, parent_inner: f64, body_radius: f64) -> Result<Mas
             p.i_rot += p.mass * r * r;
         }
     }
-    if subs_override {
-        if let Some(m) = c
-            .fields
-            .get("overridemass")
-            .and_then(|t| super::design::number(t))
-        {
-            p = p.scaled(m);
-        }
+    if let (Some(m), true) = (override_mass, subs_override) {
+        p = if massive {
+            own_mass.scaled(m)
+        } else {
+            p.scaled(m)
+        };
     }
     if flag(c, "overridesubcomponentscg") {
         if let Some(cg) = c
@@ -388,4 +512,64 @@ pub fn subtree(c: &Component, parent_inner: f64, body_radius: f64) -> Result<Mas
         }
     }
     Ok(p)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::ork::Design;
+
+    /// A stage (with `stage` extra elements) holding a 1 m paper tube (with `tube` extra
+    /// elements) and, in the tube, a 0.1 kg mass at its aft end.
+    fn stage(stage: &str, tube: &str) -> Component {
+        let text = format!(
+            r#"<openrocket version="1.10"><rocket><name>r</name><subcomponents>
+            <stage><name>S</name>{stage}<subcomponents>
+            <bodytube><name>T</name>{tube}<material type="bulk" density="800">paper</material>
+            <length>1.0</length><thickness>0.001</thickness><radius>0.05</radius>
+            <subcomponents><masscomponent><name>M</name><axialoffset method="bottom">0.0</axialoffset>
+            <packedlength>0.0</packedlength><mass>0.1</mass></masscomponent></subcomponents>
+            </bodytube></subcomponents></stage></subcomponents></rocket></openrocket>"#
+        );
+        let design = Design::parse(std::path::Path::new("t.ork"), &text).expect("a design");
+        design.stages[0].clone()
+    }
+
+    #[test]
+    fn overrides_replace_a_components_own_mass_as_openrocket_does() {
+        let plain = subtree(&stage("", ""), 0.0, 0.05).expect("mass");
+        // A stage's override comes beside its children, at their CG.
+        let s = "<overridemass>0.5</overridemass><overridesubcomponentsmass>false</overridesubcomponentsmass>";
+        let p = subtree(&stage(s, ""), 0.0, 0.05).expect("mass");
+        assert!((p.mass - (plain.mass + 0.5)).abs() < 1e-12, "{p:?}");
+        assert!((p.cg - plain.cg).abs() < 1e-12, "{p:?} vs {plain:?}");
+        // A tube's override with its subcomponents': the whole at the tube's own CG.
+        let t = "<overridemass>0.5</overridemass><overridesubcomponentsmass>true</overridesubcomponentsmass>";
+        let p = subtree(&stage("", t), 0.0, 0.05).expect("mass");
+        assert!(
+            (p.mass - 0.5).abs() < 1e-12 && (p.cg - 0.5).abs() < 1e-12,
+            "{p:?}"
+        );
+        // Without them: the tube's own mass replaced, the aft mass kept.
+        let t = "<overridemass>0.5</overridemass><overridesubcomponentsmass>false</overridesubcomponentsmass>";
+        let p = subtree(&stage("", t), 0.0, 0.05).expect("mass");
+        assert!((p.mass - 0.6).abs() < 1e-12, "{p:?}");
+        assert!(
+            (p.cg - (0.5 * 0.5 + 0.1 * 1.0) / 0.6).abs() < 1e-12,
+            "{p:?}"
+        );
+    }
+
+    #[test]
+    fn fillets_on_a_flat_wall_fill_a_square_less_a_quarter_circle() {
+        // On a body much larger than the fillet, each side's fillet is the square of its
+        // radius less the quarter disc: both together r² (2 − π/2).
+        let r = 0.005;
+        let area = fillet_area(r, 1e4 * r);
+        let flat = r * r * (2.0 - 0.5 * PI);
+        assert!((area - flat).abs() < 1e-3 * flat, "{area} vs {flat}");
+        // A body of twice the fillet's radius curves away under it: less fillet.
+        let round = fillet_area(r, 2.0 * r);
+        assert!(round > 0.0 && round < area, "{round} vs {area}");
+    }
 }

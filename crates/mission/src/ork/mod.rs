@@ -18,10 +18,17 @@
 //! - a design of several stages onto `[[stages]]`: the top stage as `[rocket]` and `[motor]`,
 //!   each stage below with its own airframe, motor and drag-estimate table, and OpenRocket's
 //!   separation and ignition events (with their delays) as `separation = "burnout + X"` and
-//!   `ignition_delay` (module `write`); a stage without a motor rides on the stage below.
+//!   `ignition_delay` (module `write`); a motor OpenRocket never lights is carried as mass, and
+//!   a stage without a lit motor rides on the stage below (at the bottom, on the stage above
+//!   while its separation never fires).
 //!
 //! - a clustered inner tube onto `[motor] cluster_count` and `cluster_radius`, its copies'
 //!   masses with their offsets (`Component::cluster`).
+//!
+//! - several motor mounts in one stage of a single-stage design onto `[motor]` (the mount lit
+//!   first) and `[[extra_motors]]` (each with its ignition delay after launch, OpenRocket's
+//!   `automatic`/`launch` events; the launch stage's `burnout`/`ejection` never fire, and those
+//!   motors are carried as mass like any motor OpenRocket never lights).
 //!
 //! - pod sets onto `[rocket.pods]` (their surfaces, and their masses at the pods' offset).
 //!

@@ -117,8 +117,10 @@ fn find_motor(
     options: &ImportOptions,
 ) -> Result<(PathBuf, EngHeader), OrkError> {
     let mut places: Vec<PathBuf> = options.motors.clone();
+    // A bare file name's parent is the empty path: the current folder.
     let design_dir = file
         .parent()
+        .filter(|p| !p.as_os_str().is_empty())
         .map_or_else(|| PathBuf::from("."), Path::to_path_buf);
     places.push(design_dir);
     let mut candidates = Vec::new();
@@ -199,17 +201,26 @@ fn condition(sim: &Simulation, key: &str, default: f64) -> f64 {
 }
 
 /// One body of the imported flight: consecutive OpenRocket stages, top first, flown as one
-/// airframe with the motor of its lowest stage (a stage without a motor in the chosen
-/// configuration rides on the stage below it).
+/// airframe with the one motor among them that OpenRocket lights (a stage without a lit
+/// motor in the chosen configuration rides on the stage below it, or, at the bottom of the
+/// rocket, on the stage above it when its separation never fires).
 struct Group<'a> {
     /// The OpenRocket stages, top first.
     stages: Vec<&'a Component>,
     /// OpenRocket's number of the first (0: the top stage).
     number: usize,
-    /// The motor mount of the lowest one.
+    /// The motor mount of the stage with the lit motor.
     mount: &'a Component,
     /// Its motor in the configuration.
     motor: &'a MotorRef,
+    /// The index in `stages` of the stage with the lit motor.
+    powered: usize,
+    /// The further motors lit in a single-stage design's one stage, with their mounts, in
+    /// the order of their ignition (`[[extra_motors]]`).
+    extra: Vec<(&'a Component, &'a MotorRef)>,
+    /// The motors of its stages that OpenRocket never lights in the configuration, with
+    /// their mounts: carried as mass.
+    unlit: Vec<(&'a Component, &'a MotorRef)>,
 }
 
 impl Group<'_> {
@@ -248,6 +259,57 @@ fn after(event: &str, delay: f64) -> String {
     }
 }
 
+/// Whether OpenRocket lights the motor `motor` of stage `number` (0: the top) of a rocket
+/// whose bottom stage is `bottom`, given `below`, whether the stage under it has a lit motor
+/// and that motor's ejection delay (`None`: plugged). OpenRocket's ignition events
+/// (`IgnitionEvent`, read for the method): `launch` at launch; `automatic` at launch in the
+/// bottom stage, elsewhere as `ejection`; `ejection` and `burnout` at the ejection charge or
+/// burn-out of a motor in the stage directly below; `never` never. An event this reader
+/// does not know counts as lit, for the staging to refuse it by name.
+fn lit(motor: &MotorRef, number: usize, bottom: usize, below: Option<Option<f64>>) -> bool {
+    match motor.ignition.0.as_str() {
+        "launch" => true,
+        "automatic" if number == bottom => true,
+        "automatic" | "ejection" => below.is_some_and(|delay| delay.is_some()),
+        "burnout" => below.is_some(),
+        "never" => false,
+        _ => true,
+    }
+}
+
+/// Why OpenRocket never lights `motor` (`bottom`: its stage is the bottom one; `below` as
+/// for [`lit`]), for the import's note.
+fn unlit_reason(motor: &MotorRef, bottom: bool, below: Option<Option<f64>>) -> String {
+    let (event, _) = &motor.ignition;
+    match event.as_str() {
+        "never" => "its ignition event is `never`".to_owned(),
+        _ if bottom => format!(
+            "its ignition event `{event}` waits for a stage below it, and it is the bottom stage"
+        ),
+        _ if below.is_none() => {
+            format!(
+                "its ignition event `{event}` waits for a motor of the stage below, which has none lit"
+            )
+        }
+        _ => format!(
+            "its ignition event `{event}` waits for the ejection charge of the stage below, \
+             whose motor is plugged"
+        ),
+    }
+}
+
+/// Whether the separation of stage `number` (a stage without a lit motor) from the stage
+/// above fires in the flight: OpenRocket's separation events at the ignition, burn-out or
+/// ejection of the stage's own motor never do; `upperignition` does when the stage above
+/// has a lit motor (`above_lit`); `launch`, `apogee` and the altitudes do.
+fn separation_fires(separation: &SeparationRef, above_lit: bool) -> bool {
+    match separation.event.as_str() {
+        "never" | "ignition" | "burnout" | "ejection" => false,
+        "upperignition" => above_lit,
+        _ => true,
+    }
+}
+
 /// The design's stages grouped into the bodies karman flies ([`Group`]) for `sim`.
 fn groups<'a>(
     file: &Path,
@@ -255,13 +317,11 @@ fn groups<'a>(
     sim: &Simulation,
     warnings: &mut Vec<String>,
 ) -> Result<Vec<Group<'a>>, OrkError> {
-    let mut out: Vec<Group<'a>> = Vec::new();
-    let mut pending: Vec<&Component> = Vec::new();
-    let mut first = 0;
+    // Each stage's motor mount in the configuration (the first lit of a single-stage design
+    // with several, `others` the rest).
+    let mut mounts: Vec<Option<(&'a Component, &'a MotorRef)>> = Vec::new();
+    let mut others: Vec<(&'a Component, &'a MotorRef)> = Vec::new();
     for (number, stage) in design.stages.iter().enumerate() {
-        if pending.is_empty() {
-            first = number;
-        }
         if sim.inactive_stages.contains(&number) {
             return Err(unsupported(
                 file,
@@ -269,51 +329,145 @@ fn groups<'a>(
                 format!("a stage left inactive by simulation {:?}", sim.name),
             ));
         }
-        pending.push(stage);
-        let mounts: Vec<&Component> = stage
+        let found: Vec<&Component> = stage
             .walk()
             .into_iter()
             .filter(|c| c.motors.contains_key(&sim.config))
             .collect();
-        match mounts.as_slice() {
-            [] => {}
-            [mount] => {
-                out.push(Group {
-                    stages: std::mem::take(&mut pending),
-                    number: first,
-                    mount,
-                    motor: &mount.motors[&sim.config],
+        match found.as_slice() {
+            [] => mounts.push(None),
+            [mount] => mounts.push(Some((*mount, &mount.motors[&sim.config]))),
+            several if design.stages.len() == 1 => {
+                // A single-stage design: the motors lit (at launch plus their delays) first,
+                // in the order of their ignition, then those never lit; the first is
+                // `[motor]`, the other lit ones `[[extra_motors]]`.
+                let mut all: Vec<(&'a Component, &'a MotorRef)> = several
+                    .iter()
+                    .map(|m| (*m, &m.motors[&sim.config]))
+                    .collect();
+                all.sort_by(|a, b| {
+                    let key =
+                        |(_, m): &(&Component, &MotorRef)| (!lit(m, 0, 0, None), m.ignition.1);
+                    let (ka, kb) = (key(a), key(b));
+                    ka.0.cmp(&kb.0).then(ka.1.total_cmp(&kb.1))
                 });
+                mounts.push(Some(all[0]));
+                others = all[1..].to_vec();
             }
             several => {
                 let names: Vec<String> = several.iter().map(|m| m.name.clone()).collect();
                 return Err(unsupported(
                     file,
                     &names.join(", "),
-                    "several motors in one stage".to_owned(),
+                    "several motors in one stage of a multi-stage rocket".to_owned(),
                 ));
             }
+        }
+    }
+    // Which of them OpenRocket lights, from the bottom stage up.
+    let bottom = design.stages.len() - 1;
+    let mut lit_motor: Vec<bool> = vec![false; mounts.len()];
+    for number in (0..mounts.len()).rev() {
+        if let Some((mount, motor)) = mounts[number] {
+            let below = (number < bottom && lit_motor[number + 1])
+                .then(|| mounts[number + 1].and_then(|(_, m)| m.delay));
+            lit_motor[number] = lit(motor, number, bottom, below);
+            if !lit_motor[number] {
+                warnings.push(format!(
+                    "`{}`: OpenRocket never lights its {} {} in this configuration ({}); it is \
+                     carried as mass (its full mass from the thrust curve)",
+                    mount.name,
+                    motor.manufacturer,
+                    motor.designation,
+                    unlit_reason(motor, number == bottom, below)
+                ));
+            }
+        }
+    }
+
+    let mut out: Vec<Group<'a>> = Vec::new();
+    let mut pending: Vec<&Component> = Vec::new();
+    let mut unlit = Vec::new();
+    let mut first = 0;
+    for (number, stage) in design.stages.iter().enumerate() {
+        if pending.is_empty() {
+            first = number;
+        }
+        pending.push(stage);
+        match mounts[number] {
+            Some((mount, motor)) if lit_motor[number] => {
+                out.push(Group {
+                    powered: pending.len() - 1,
+                    stages: std::mem::take(&mut pending),
+                    number: first,
+                    mount,
+                    motor,
+                    extra: Vec::new(),
+                    unlit: std::mem::take(&mut unlit),
+                });
+            }
+            Some(dead) => unlit.push(dead),
+            None => {}
         }
     }
     if out.is_empty() {
         return Err(unsupported(
             file,
             &sim.name,
-            "a simulation without a motor".to_owned(),
+            "a simulation without a motor lit".to_owned(),
         ));
     }
-    if let Some(stage) = pending.first() {
-        return Err(unsupported(
-            file,
-            &stage.name,
-            "a stage without a motor below the last stage with one".to_owned(),
-        ));
+    // The other motors of a single-stage design: those OpenRocket lights fly as extra
+    // motors, the others are carried as mass.
+    if let Some(group) = out.first_mut() {
+        for (mount, motor) in others {
+            if lit(motor, 0, 0, None) {
+                group.extra.push((mount, motor));
+            } else {
+                warnings.push(format!(
+                    "`{}`: OpenRocket never lights its {} {} in this configuration ({}); it is \
+                     carried as mass (its full mass from the thrust curve)",
+                    mount.name,
+                    motor.manufacturer,
+                    motor.designation,
+                    unlit_reason(motor, true, None)
+                ));
+                group.unlit.push((mount, motor));
+            }
+        }
+    }
+    // Stages below the last lit motor ride on the body above while their separation never
+    // fires.
+    if let Some(last) = out.last_mut() {
+        for (k, stage) in pending.iter().enumerate() {
+            let number = first + k;
+            let separation = separation(&sim.config, stage);
+            if separation_fires(&separation, lit_motor[number - 1]) {
+                return Err(unsupported(
+                    file,
+                    &stage.name,
+                    format!(
+                        "a stage without a motor lit below the last stage with one, separated {}",
+                        after(&separation.event, separation.delay)
+                    ),
+                ));
+            }
+            warnings.push(format!(
+                "`{}` has no motor lit in this configuration and its separation (OpenRocket: \
+                 {}) never fires: it flies attached to `{}`",
+                stage.name,
+                after(&separation.event, separation.delay),
+                design.stages[number - 1].name
+            ));
+            last.stages.push(stage);
+        }
+        last.unlit.append(&mut unlit);
     }
     for group in &out {
-        for pair in group.stages.windows(2) {
+        for pair in group.stages[..=group.powered].windows(2) {
             let separation = separation(&sim.config, pair[1]);
             warnings.push(format!(
-                "`{}` has no motor in this configuration and flies on `{}` as one body: \
+                "`{}` has no motor lit in this configuration and flies on `{}` as one body: \
                  karman's stages each carry a motor, so its separation (OpenRocket: {}) is \
                  not flown",
                 pair[0].name,
@@ -683,8 +837,9 @@ fn staging(
     let ejection = lower.motor.delay;
     let (event, delay) = &upper.motor.ignition;
     let ignition = match event.as_str() {
-        "automatic" | "burnout" => *delay,
-        "ejection" => ejection.ok_or_else(|| plugged("an ignition"))? + delay,
+        "burnout" => *delay,
+        // OpenRocket's `automatic` above the bottom stage: the ejection charge below.
+        "automatic" | "ejection" => ejection.ok_or_else(|| plugged("an ignition"))? + delay,
         other => {
             return Err(unsupported(
                 file,
@@ -747,6 +902,113 @@ fn spent_stage_drag(front: f64, base: f64, radius: f64) -> String {
         })
         .collect();
     format!("[{}]", points.join(", "))
+}
+
+/// The motor table `[motor_key]` of `motor` in `mount` (a generic motor from its RASP file,
+/// with the mount's cluster) and the rocket coordinate of its nozzle exit: the mount's aft end
+/// plus its overhang.
+fn motor_text(
+    file: &Path,
+    mount: &Component,
+    motor: &MotorRef,
+    motor_key: &str,
+    options: &ImportOptions,
+) -> Result<(String, f64), OrkError> {
+    let (eng_path, eng) = find_motor(file, motor, options)?;
+    let motor_length = if motor.length.is_finite() {
+        motor.length
+    } else {
+        eng.length
+    };
+    let motor_diameter = if motor.diameter.is_finite() {
+        motor.diameter
+    } else {
+        eng.diameter
+    };
+    let nozzle_at = mount.x + mount.length + mount.overhang;
+    let dry = (eng.total - eng.propellant).max(0.0);
+
+    let mut m = String::new();
+    let _ = writeln!(
+        m,
+        "# {} {} from {}: RASP masses {} kg propellant, {} kg total; the propellant is",
+        motor.manufacturer,
+        motor.designation,
+        eng_path.display(),
+        eng.propellant,
+        eng.total
+    );
+    let _ = writeln!(
+        m,
+        "# a cylinder filling the motor case, and leaves in proportion to the impulse."
+    );
+    let _ = writeln!(
+        m,
+        "[{motor_key}]\nkind = \"generic\"\nthrust = {}",
+        quoted(&relative(&eng_path, options.output_dir.as_deref()))
+    );
+    let _ = writeln!(
+        m,
+        "dry_mass = {}\ncenter_of_dry_mass_position = {}",
+        n(dry),
+        n(0.5 * motor_length)
+    );
+    let _ = writeln!(
+        m,
+        "nozzle_radius = {}\npropellant_initial_mass = {}",
+        n(0.25 * motor_diameter),
+        n(eng.propellant)
+    );
+    let _ = writeln!(
+        m,
+        "chamber_radius = {}\nchamber_height = {}\nchamber_position = {}",
+        n(0.5 * motor_diameter),
+        n(motor_length),
+        n(0.5 * motor_length)
+    );
+    let (cluster_count, cluster_radius) = mount.cluster()?;
+    if cluster_count > 1 {
+        let _ = writeln!(
+            m,
+            "# OpenRocket's {} cluster: {cluster_count} motors lit together, their axes {} m from\n\
+             # the rocket's axis (root mean square).\ncluster_count = {cluster_count}\ncluster_radius = {}",
+            mount.text("clusterconfiguration").unwrap_or(""),
+            (cluster_radius * 1e4).round() / 1e4,
+            n(cluster_radius)
+        );
+    }
+    let _ = writeln!(m, "coordinate_system = \"nozzle_to_combustion_chamber\"\n");
+    Ok((m, nozzle_at))
+}
+
+/// The time after launch of the first ejection charge among the motors of `group` (each
+/// fires its delay after its own burn-out, the end of its thrust curve, OpenRocket's
+/// `EJECTION_CHARGE` event); `None` when every motor is plugged.
+fn first_ejection(
+    file: &Path,
+    group: &Group,
+    options: &ImportOptions,
+) -> Result<Option<f64>, OrkError> {
+    let mut first: Option<f64> = None;
+    for (mount, motor) in
+        std::iter::once((group.mount, group.motor)).chain(group.extra.iter().copied())
+    {
+        let Some(charge) = motor.delay else { continue };
+        let (path, _) = find_motor(file, motor, options)?;
+        let end = karman_propulsion::ThrustData::load(&path)
+            .ok()
+            .and_then(|d| d.times.last().copied())
+            .ok_or_else(|| {
+                unsupported(
+                    file,
+                    &mount.name,
+                    format!("a thrust curve {} that cannot be read", path.display()),
+                )
+            })?;
+        let t = motor.ignition.1 + end + charge;
+        first = Some(first.map_or(t, |f| f.min(t)));
+    }
+    Ok(first)
 }
 
 #[allow(clippy::too_many_arguments)]
@@ -826,78 +1088,34 @@ fn body_text(
         }
     }
 
-    // Mass without motor.
+    // Mass without motor, with the motors OpenRocket never lights carried whole.
     let mut props = MassProps::default();
     for stage in &group.stages {
         props = props.add(mass::subtree(stage, 0.0, radius)?);
     }
+    for (mount, motor) in &group.unlit {
+        let (_, eng) = find_motor(file, motor, options)?;
+        let length = if motor.length.is_finite() {
+            motor.length
+        } else {
+            eng.length
+        };
+        let diameter = if motor.diameter.is_finite() {
+            motor.diameter
+        } else {
+            eng.diameter
+        };
+        props = props.add(mass::unlit_motor(
+            mount.x + mount.length + mount.overhang,
+            length,
+            0.5 * diameter,
+            eng.total,
+            mount.cluster()?,
+        ));
+    }
 
     // Motor of the simulation's configuration.
-    let (mount, motor) = (group.mount, group.motor);
-    let (eng_path, eng) = find_motor(file, motor, options)?;
-    let motor_length = if motor.length.is_finite() {
-        motor.length
-    } else {
-        eng.length
-    };
-    let motor_diameter = if motor.diameter.is_finite() {
-        motor.diameter
-    } else {
-        eng.diameter
-    };
-    let nozzle_at = mount.x + mount.length + mount.overhang;
-    let dry = (eng.total - eng.propellant).max(0.0);
-
-    let mut m = String::new();
-    let _ = writeln!(
-        m,
-        "# {} {} from {}: RASP masses {} kg propellant, {} kg total; the propellant is",
-        motor.manufacturer,
-        motor.designation,
-        eng_path.display(),
-        eng.propellant,
-        eng.total
-    );
-    let _ = writeln!(
-        m,
-        "# a cylinder filling the motor case, and leaves in proportion to the impulse."
-    );
-    let _ = writeln!(
-        m,
-        "[{motor_key}]\nkind = \"generic\"\nthrust = {}",
-        quoted(&relative(&eng_path, options.output_dir.as_deref()))
-    );
-    let _ = writeln!(
-        m,
-        "dry_mass = {}\ncenter_of_dry_mass_position = {}",
-        n(dry),
-        n(0.5 * motor_length)
-    );
-    let _ = writeln!(
-        m,
-        "nozzle_radius = {}\npropellant_initial_mass = {}",
-        n(0.25 * motor_diameter),
-        n(eng.propellant)
-    );
-    let _ = writeln!(
-        m,
-        "chamber_radius = {}\nchamber_height = {}\nchamber_position = {}",
-        n(0.5 * motor_diameter),
-        n(motor_length),
-        n(0.5 * motor_length)
-    );
-    let (cluster_count, cluster_radius) = mount.cluster()?;
-    if cluster_count > 1 {
-        let _ = writeln!(
-            m,
-            "# OpenRocket's {} cluster: {cluster_count} motors lit together, their axes {} m from\n\
-             # the rocket's axis (root mean square).\ncluster_count = {cluster_count}\ncluster_radius = {}",
-            mount.text("clusterconfiguration").unwrap_or(""),
-            (cluster_radius * 1e4).round() / 1e4,
-            n(cluster_radius)
-        );
-    }
-    let _ = writeln!(m, "coordinate_system = \"nozzle_to_combustion_chamber\"\n");
+    let (m, nozzle_at) = motor_text(file, group.mount, group.motor, motor_key, options)?;
 
     let mut t = String::new();
     let w = &mut t;
@@ -992,6 +1210,18 @@ fn body_text(
     }
     for b in &body {
         if b.kind == Kind::Transition {
+            // Equal radii (automatic ends between tubes of one radius): a piece of tube,
+            // which the drag estimate's body already has; no tail.
+            if (b.dim("foreradius")? - b.dim("aftradius")?).abs() <= 1e-9 {
+                if b.fields.contains_key("overridecd") {
+                    warnings.push(format!(
+                        "`{}`: a transition between equal radii is a piece of tube; its \
+                         drag-coefficient override is not modelled",
+                        b.name
+                    ));
+                }
+                continue;
+            }
             if b.text("shape") != Some("conical") {
                 warnings.push(format!(
                     "`{}`: a {} transition is flown (normal force, CP and drag) as a conical one",
@@ -1148,7 +1378,20 @@ fn body_text(
                     "launch" => "\"launch + 0\"".to_owned(),
                     "never" => continue,
                     // The motor's ejection charge fires its delay after burn-out.
-                    "ejection" => match motor.delay {
+                    // Several motors: the first charge of any of them, a time after launch.
+                    "ejection" if !group.extra.is_empty() => {
+                        match first_ejection(file, group, options)? {
+                            Some(t) => format!("\"launch + {}\"", n(t)),
+                            None => {
+                                warnings.push(format!(
+                                    "`{}`: deployed by the ejection charges of plugged motors in OpenRocket, so never deployed; left out",
+                                    c.name
+                                ));
+                                continue;
+                            }
+                        }
+                    }
+                    "ejection" => match group.motor.delay {
                         Some(charge) => format!("\"burnout + {}\"", n(charge)),
                         None => {
                             warnings.push(format!(
@@ -1269,7 +1512,8 @@ pub(super) fn mission(
     );
     let motors: Vec<String> = groups
         .iter()
-        .map(|g| format!("{} {}", g.motor.manufacturer, g.motor.designation))
+        .flat_map(|g| std::iter::once(g.motor).chain(g.extra.iter().map(|(_, m)| *m)))
+        .map(|m| format!("{} {}", m.manufacturer, m.designation))
         .collect();
     let _ = writeln!(
         w,
@@ -1333,6 +1577,27 @@ pub(super) fn mission(
         n(heading),
         n(max_time)
     );
+    // Further motor mounts of a single-stage rocket, each lit its delay after launch.
+    for (mount, motor) in &groups[0].extra {
+        let (text, nozzle_at) = motor_text(file, mount, motor, "extra_motors.motor", options)?;
+        let _ = writeln!(
+            w,
+            "\n# `{}`: {} {}, lit {} (OpenRocket: {}).",
+            mount.name,
+            motor.manufacturer,
+            motor.designation,
+            after("launch", motor.ignition.1),
+            after(&motor.ignition.0, motor.ignition.1)
+        );
+        let _ = writeln!(
+            w,
+            "[[extra_motors]]\nname = {}\nmotor_position = {}                # nozzle exit: the mount's aft end plus overhang\nignition_delay = {}\n",
+            quoted(&mount.name),
+            n(nozzle_at),
+            n(motor.ignition.1)
+        );
+        w.push_str(&text);
+    }
     // Stage names as reports show them, made unique by OpenRocket's stage number.
     let title = |g: &Group| {
         if groups.iter().filter(|o| o.name() == g.name()).count() > 1 {

@@ -34,7 +34,7 @@ pub use toml::value::Datetime;
 pub use values::{AirBrakesCurve, Atol, BurnTime, Curve, ESTIMATE, Inertia, STATE_SIZE, Trigger};
 
 /// A whole mission file.
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[derive(Clone, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct MissionSpec {
     /// Name shown in reports.
@@ -56,9 +56,34 @@ pub struct MissionSpec {
     /// single-stage rocket.
     #[serde(default, skip_serializing_if = "Vec::is_empty")]
     pub stages: Vec<StageSpec>,
+    /// `[[extra_motors]]`: further motors of a single-stage rocket besides `[motor]`, each
+    /// at its own place and lit at its own time (an air start, two different motors); empty:
+    /// `[motor]` alone.
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub extra_motors: Vec<ExtraMotorSpec>,
     /// `[dispersion]`: Monte Carlo settings, optional.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub dispersion: Option<DispersionSpec>,
+}
+
+/// The derived form, but without `extra_motors` when there is none: a Monte Carlo study's
+/// data fingerprint hashes this text, so a mission written before the key existed keeps its
+/// fingerprint (and its study directories stay resumable).
+impl std::fmt::Debug for MissionSpec {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        let mut s = f.debug_struct("MissionSpec");
+        s.field("name", &self.name)
+            .field("description", &self.description)
+            .field("environment", &self.environment)
+            .field("motor", &self.motor)
+            .field("rocket", &self.rocket)
+            .field("flight", &self.flight)
+            .field("stages", &self.stages);
+        if !self.extra_motors.is_empty() {
+            s.field("extra_motors", &self.extra_motors);
+        }
+        s.field("dispersion", &self.dispersion).finish()
+    }
 }
 
 impl MissionSpec {
@@ -115,6 +140,12 @@ impl MissionSpec {
                 curve(&key(&format!("rocket.surfaces.{name}.airfoil")), lift);
             }
         }
+        for (index, extra) in self.extra_motors.iter().enumerate() {
+            curve(
+                &format!("extra_motors.{index}.motor.thrust"),
+                Some(&extra.motor.thrust),
+            );
+        }
         if let Some(file) = &atm.file {
             files.insert(0, ("environment.atmosphere.file".to_owned(), file.clone()));
         }
@@ -164,6 +195,24 @@ pub struct StageSpec {
     /// The stage's airframe alone, in the coordinates of `[rocket]` (its drag curves are the
     /// spent stage's, after separation).
     pub rocket: RocketSpec,
+}
+
+/// One `[[extra_motors]]` entry: a motor besides `[motor]` (mission-format.md, "Several
+/// motors"), with its own definition, its place on the rocket and its ignition time.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct ExtraMotorSpec {
+    /// A label for the entry (the importer writes the motor mount's name).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub name: Option<String>,
+    /// Where this motor's coordinate origin sits, rocket coordinates, m (as
+    /// `rocket.motor_position` for `[motor]`).
+    pub motor_position: f64,
+    /// Ignition time after launch, s (0: lit with `[motor]` at launch).
+    #[serde(default)]
+    pub ignition_delay: f64,
+    /// The motor, the keys of `[motor]`.
+    pub motor: MotorSpec,
 }
 
 /// `[environment]` (RocketPy `Environment`).
