@@ -56,6 +56,7 @@ fn geometry() -> DragGeometry {
             positions: vec![0.9, 1.4],
         }),
         nozzle_exit_radius: 0.012,
+        pods: Vec::new(),
     }
 }
 

@@ -54,8 +54,8 @@
 //!         power_on_drag: Table1::linear(vec![0.0, 1.0], vec![0.40, 0.50])?,
 //!         motor_position: 0.0,
 //!         surfaces: vec![
-//!             SurfaceInput { name: "nose".into(), position: 1.3, spec: SurfaceSpec::Nose(nose) },
-//!             SurfaceInput { name: "fins".into(), position: 0.12, spec: SurfaceSpec::TrapezoidalFins(fins) },
+//!             SurfaceInput { name: "nose".into(), position: 1.3, spec: SurfaceSpec::Nose(nose), pod: None },
+//!             SurfaceInput { name: "fins".into(), position: 0.12, spec: SurfaceSpec::TrapezoidalFins(fins), pod: None },
 //!         ],
 //!         parachutes: Vec::new(),
 //!         rail_buttons: None,
@@ -82,7 +82,7 @@ pub mod surfaces;
 pub use air_brakes::{AIR_BRAKES_CONTROL, AirBrakes, AirBrakesDrag, AirBrakesSpec};
 pub use drag::{
     BodyLift, BodySegment, DragComponents, DragEstimate, DragGeometry, DragModel, FinCrossSection,
-    FinSetDrag, FlowReference, LaunchLug, Profile, RailButtonDrag, TubeFinSetDrag,
+    FinSetDrag, FlowReference, LaunchLug, PodDrag, Profile, RailButtonDrag, TubeFinSetDrag,
 };
 pub use error::AirframeError;
 pub use motor::{MotorProperties, PropellantPart};
@@ -93,7 +93,7 @@ pub use recovery::{
 pub use rocket::{CoordinateSystem, Rocket, RocketInputs, inertia_components};
 pub use surfaces::{
     Airfoil, AngleUnit, EllipticalFinsSpec, FinAerodynamics, FreeFormFinsSpec, Geometry,
-    NoseConeSpec, NoseKind, Surface, SurfaceInput, SurfaceSpec, Sweep, TailSpec,
+    NoseConeSpec, NoseKind, PodPlacement, Surface, SurfaceInput, SurfaceSpec, Sweep, TailSpec,
     TrapezoidalFinsSpec, TubeFinsSpec,
 };
 

@@ -170,9 +170,13 @@ impl Rocket {
             warnings.extend(w);
             surfaces.push(surface);
         }
+        // A pod surface counts once per pod.
         let surface_weights: Vec<f64> = surfaces
             .iter()
-            .map(|s| (s.radius / radius).powi(2))
+            .map(|s| match s.pod {
+                None => (s.radius / radius).powi(2),
+                Some(pod) => (s.radius / radius).powi(2) * pod.factor(),
+            })
             .collect();
         let total0: f64 = surfaces
             .iter()
@@ -254,7 +258,7 @@ impl Rocket {
         let tip = self
             .surfaces
             .iter()
-            .filter(|s| matches!(s.geometry, Geometry::Nose { .. }))
+            .filter(|s| matches!(s.geometry, Geometry::Nose { .. }) && s.pod.is_none())
             .map(|s| body(s.position))
             .fold(None, |acc: Option<f64>, z| {
                 Some(acc.map_or(z, |a| a.max(z)))

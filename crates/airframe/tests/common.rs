@@ -168,6 +168,7 @@ pub fn calisto_inputs(dir: &std::path::Path, airfoil: Option<Airfoil>) -> Rocket
         motor_position: -1.255,
         surfaces: vec![
             SurfaceInput {
+                pod: None,
                 name: "nose".to_owned(),
                 position: 1.278,
                 spec: SurfaceSpec::Nose(NoseConeSpec {
@@ -178,6 +179,7 @@ pub fn calisto_inputs(dir: &std::path::Path, airfoil: Option<Airfoil>) -> Rocket
                 }),
             },
             SurfaceInput {
+                pod: None,
                 name: "fins".to_owned(),
                 position: -1.04956,
                 spec: SurfaceSpec::TrapezoidalFins(TrapezoidalFinsSpec {
@@ -193,6 +195,7 @@ pub fn calisto_inputs(dir: &std::path::Path, airfoil: Option<Airfoil>) -> Rocket
                 }),
             },
             SurfaceInput {
+                pod: None,
                 name: "tail".to_owned(),
                 position: -1.194656,
                 spec: SurfaceSpec::Tail(TailSpec {
@@ -257,6 +260,7 @@ pub fn single_surface(spec: SurfaceSpec, rocket_radius: f64) -> karman_airframe:
         power_on_drag: Table1::linear(vec![0.0], vec![0.5]).expect("table"),
         motor_position: 0.0,
         surfaces: vec![SurfaceInput {
+            pod: None,
             name: "s".to_owned(),
             position: 0.3,
             spec,

@@ -119,6 +119,7 @@ fn inputs(u: &Units, coordinate_system: CoordinateSystem) -> RocketInputs {
         unit: AngleUnit::Radians,
     };
     let surface = |name: &str, position: f64, spec| SurfaceInput {
+        pod: None,
         name: name.to_owned(),
         position: l(s * position),
         spec,

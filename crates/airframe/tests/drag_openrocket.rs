@@ -64,6 +64,7 @@ fn simple_rocket() -> DragGeometry {
         }],
         rail_buttons: None,
         nozzle_exit_radius: 0.0,
+        pods: Vec::new(),
     }
 }
 
@@ -113,4 +114,71 @@ fn simple_model_rocket_rows_match_openrocket() {
         }
     }
     assert!(rows > 500, "{rows} rows");
+}
+
+/// A pod set of `count` ogive-nosed pods with a blunt-based tail cone, beside the simple
+/// rocket's body tube.
+fn with_pods(count: u32, blunt: bool) -> DragGeometry {
+    let k = 60e-6;
+    let segment = |name: &str, length: f64, fore: f64, aft: f64, profile| BodySegment {
+        name: name.into(),
+        length,
+        fore_radius: fore,
+        aft_radius: aft,
+        profile,
+        roughness: k,
+        drag_override: None,
+    };
+    let r = 0.006;
+    let tail_aft = if blunt { 0.003 } else { 0.0 };
+    let mut g = simple_rocket();
+    g.pods.push(karman_airframe::PodDrag {
+        name: "pods".into(),
+        count,
+        position: 0.25,
+        body: vec![
+            segment("pod nose", 0.03, 0.0, r, Profile::Ogive(1.0)),
+            segment("pod tube", 0.06, r, r, Profile::Conical),
+            segment("pod tail", 0.02, r, tail_aft, Profile::Conical),
+        ],
+    });
+    g
+}
+
+#[test]
+fn pods_add_their_terms_once_per_pod() {
+    // OpenRocket 24.12 sums every term of a pod's components once per instance; the pods lie
+    // within the body's length and radius, so the fineness correction is the body's alone
+    // and every term is linear in the pod count.
+    let c = PhysicalConstants::SI;
+    let terms = |g: &DragGeometry| {
+        DragModel::new(g, &c)
+            .expect("geometry")
+            .components(0.3, 102.0, 1.5e-5)
+    };
+    let none = terms(&simple_rocket());
+    for blunt in [false, true] {
+        let one = terms(&with_pods(1, blunt));
+        let three = terms(&with_pods(3, blunt));
+        let close = |a: f64, b: f64| (a - b).abs() <= 1e-12 * a.abs().max(1e-3);
+        for (n, o, t) in [
+            (none.friction, one.friction, three.friction),
+            (none.pressure, one.pressure, three.pressure),
+            (none.base, one.base, three.base),
+            (none.base_power_on, one.base_power_on, three.base_power_on),
+        ] {
+            assert!(close(t - n, 3.0 * (o - n)), "{n} {o} {t}");
+        }
+        assert!(one.friction > none.friction && one.pressure > none.pressure);
+        // A pod's base drag: only where its tail leaves a base.
+        let base = one.base - none.base;
+        assert!(
+            if blunt {
+                base > 0.0
+            } else {
+                base.abs() < 1e-15
+            },
+            "{base}"
+        );
+    }
 }

@@ -11,6 +11,7 @@ use proptest::prelude::*;
 
 fn nose(position: f64) -> SurfaceInput {
     SurfaceInput {
+        pod: None,
         name: "nose".to_owned(),
         position,
         spec: SurfaceSpec::Nose(NoseConeSpec {
@@ -24,6 +25,7 @@ fn nose(position: f64) -> SurfaceInput {
 
 fn fins(position: f64, span: f64, tip: f64) -> SurfaceInput {
     SurfaceInput {
+        pod: None,
         name: "fins".to_owned(),
         position,
         spec: SurfaceSpec::TrapezoidalFins(TrapezoidalFinsSpec {
@@ -112,6 +114,7 @@ fn no_surfaces_is_a_warning_with_finite_margins() {
 fn cancelling_slopes_are_a_warning_with_finite_margins() {
     // A nose (CNα 2) and a boat-tail from r to 0 (CNα −2) cancel at every Mach.
     let tail = SurfaceInput {
+        pod: None,
         name: "tail".to_owned(),
         position: 0.2,
         spec: SurfaceSpec::Tail(TailSpec {
@@ -179,6 +182,7 @@ fn impossible_geometry_is_an_error() {
     }
     assert!(bad(vec![n]), "negative nose length");
     let e = SurfaceInput {
+        pod: None,
         name: "e".to_owned(),
         position: 0.1,
         spec: SurfaceSpec::EllipticalFins(EllipticalFinsSpec {
@@ -193,6 +197,7 @@ fn impossible_geometry_is_an_error() {
     };
     assert!(bad(vec![e]), "zero root chord");
     let f = SurfaceInput {
+        pod: None,
         name: "f".to_owned(),
         position: 0.1,
         spec: SurfaceSpec::FreeFormFins(FreeFormFinsSpec {
@@ -260,6 +265,7 @@ proptest! {
         position in -2.0f64..2.0, radius in -0.1f64..0.2,
     ) {
         let f = SurfaceInput {
+            pod: None,
             name: "fins".to_owned(),
             position,
             spec: SurfaceSpec::TrapezoidalFins(TrapezoidalFinsSpec {
@@ -281,6 +287,7 @@ proptest! {
         shape.extend(pts.iter().map(|&(x, y)| [x, y]));
         shape.push([0.2, 0.0]);
         let f = SurfaceInput {
+            pod: None,
             name: "fins".to_owned(),
             position: 0.2,
             spec: SurfaceSpec::FreeFormFins(FreeFormFinsSpec {
@@ -302,6 +309,7 @@ proptest! {
             NoseKind::LvHaack, NoseKind::Parabolic, NoseKind::PowerSeries(power),
         ];
         let n = SurfaceInput {
+            pod: None,
             name: "nose".to_owned(),
             position: 1.0,
             spec: SurfaceSpec::Nose(NoseConeSpec {
@@ -309,6 +317,7 @@ proptest! {
             }),
         };
         let t = SurfaceInput {
+            pod: None,
             name: "tail".to_owned(),
             position: 0.1,
             spec: SurfaceSpec::Tail(TailSpec {

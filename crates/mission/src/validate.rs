@@ -686,6 +686,57 @@ fn motor(c: &mut Checker<'_, '_>, spec: &MissionSpec) {
     }
 }
 
+/// `[rocket.pods]`: at least one pod, every surface named exists and belongs to one pod,
+/// at most one nose cone per pod.
+fn pods(c: &mut Checker<'_, '_>, r: &RocketSpec) {
+    let mut owner: std::collections::BTreeMap<&str, &str> = std::collections::BTreeMap::new();
+    for (pod, p) in &r.pods {
+        let key = |k: &str| format!("rocket.pods.{pod}.{k}");
+        c.range(
+            &key("count"),
+            f64::from(p.count),
+            p.count >= 1,
+            "needs at least 1 pod",
+        );
+        if let Some(l) = p.body_length {
+            c.positive(&key("body_length"), l);
+        }
+        let mut noses = 0;
+        for name in &p.surfaces {
+            match r.surfaces.get(name) {
+                None => c.report(
+                    &key("surfaces"),
+                    ProblemKind::UnknownPath {
+                        path: key("surfaces"),
+                        reason: format!("there is no surface [rocket.surfaces.{name}]"),
+                    },
+                ),
+                Some(SurfaceSpec::Nose(_)) => noses += 1,
+                Some(_) => {}
+            }
+            if let Some(other) = owner.insert(name.as_str(), pod.as_str()) {
+                c.report(
+                    &key("surfaces"),
+                    ProblemKind::Schema {
+                        message: format!(
+                            "surface `{name}` is already carried by pod `{other}`; a surface belongs to one pod set"
+                        ),
+                    },
+                );
+            }
+        }
+        if noses > 1 {
+            c.report(
+                &key("surfaces"),
+                ProblemKind::OutOfRange {
+                    value: f64::from(noses),
+                    expected: "a pod has at most one nose cone",
+                },
+            );
+        }
+    }
+}
+
 /// `[rocket.drag_estimate]`: dimensions in range, every fin table names a fin set.
 fn drag_estimate(c: &mut Checker<'_, '_>, d: &crate::schema::DragEstimateSpec, r: &RocketSpec) {
     const K: &str = "rocket.drag_estimate";
@@ -1020,6 +1071,7 @@ fn rocket(c: &mut Checker<'_, '_>, spec: &MissionSpec) {
     if let Some(d) = &r.drag_estimate {
         drag_estimate(c, d, r);
     }
+    pods(c, r);
     for (name, surface) in &r.surfaces {
         let key = |k: &str| format!("rocket.surfaces.{name}.{k}");
         match surface {
@@ -1054,7 +1106,8 @@ fn rocket(c: &mut Checker<'_, '_>, spec: &MissionSpec) {
                     );
                 }
                 if let Some(radius) = s.radius {
-                    c.positive(&key("radius"), radius);
+                    // 0: fins on no body (a pod's phantom tube).
+                    c.non_negative(&key("radius"), radius);
                 }
             }
             SurfaceSpec::EllipticalFins(s) => {
@@ -1062,7 +1115,8 @@ fn rocket(c: &mut Checker<'_, '_>, spec: &MissionSpec) {
                 c.positive(&key("span"), s.span);
                 c.positive(&key("root_chord"), s.root_chord);
                 if let Some(radius) = s.radius {
-                    c.positive(&key("radius"), radius);
+                    // 0: fins on no body (a pod's phantom tube).
+                    c.non_negative(&key("radius"), radius);
                 }
             }
             SurfaceSpec::FreeFormFins(s) => {
@@ -1077,12 +1131,14 @@ fn rocket(c: &mut Checker<'_, '_>, spec: &MissionSpec) {
                     );
                 }
                 if let Some(radius) = s.radius {
-                    c.positive(&key("radius"), radius);
+                    // 0: fins on no body (a pod's phantom tube).
+                    c.non_negative(&key("radius"), radius);
                 }
             }
             SurfaceSpec::Tail(s) => {
                 c.positive(&key("top_radius"), s.top_radius);
-                c.positive(&key("bottom_radius"), s.bottom_radius);
+                // 0: a cone closing to a point (a pod's tail).
+                c.non_negative(&key("bottom_radius"), s.bottom_radius);
                 c.positive(&key("length"), s.length);
             }
             SurfaceSpec::TubeFins(s) => {

@@ -380,3 +380,49 @@ fn cluster_mistakes_are_located() {
         "{text}"
     );
 }
+
+#[test]
+fn pod_mistakes_are_located() {
+    // No pods, a surface that does not exist, a surface carried twice.
+    let pods = "[rocket.pods.wings]\ncount = 0\nsurfaces = [\"fins\", \"flaps\"]\n\n\
+                [rocket.pods.tail]\nsurfaces = [\"fins\"]\n\n[rocket.parachutes.main]\n";
+    let text = edited(&[("[rocket.parachutes.main]\n", pods)]);
+    let found = problems(&text, &[]);
+    let keys: Vec<&str> = found.iter().map(|p| p.key.as_str()).collect();
+    assert_eq!(
+        keys,
+        [
+            "rocket.pods.wings.count",
+            "rocket.pods.wings.surfaces",
+            "rocket.pods.tail.surfaces",
+        ]
+    );
+    assert!(
+        found
+            .iter()
+            .all(|p| matches!(p.location, Location::File { .. }))
+    );
+    let text = error_text(&text, &[]);
+    assert!(text.contains("at least 1 pod"), "{text}");
+    assert!(
+        text.contains("flaps") && text.contains("already carried by pod `wings`"),
+        "{text}"
+    );
+    // A well-formed pod set loads: its fins count twice.
+    let good = edited(&[(
+        "[rocket.parachutes.main]\n",
+        "[rocket.pods.wings]\ncount = 2\nangular_position = 45\nsurfaces = [\"fins\"]\n\n[rocket.parachutes.main]\n",
+    )]);
+    let mission = parse(&good, &fixture("minimal.toml"), &[]).expect("loads");
+    let pod = &mission.spec.rocket.pods["wings"];
+    assert_eq!((pod.count, pod.angular_position_deg), (2, 45.0));
+    let plain = parse(&edited(&[]), &fixture("minimal.toml"), &[]).expect("loads");
+    let slope = |m: &karman_mission::Mission| {
+        use karman_mission::build::{motor::build_motor, rocket::build_rocket};
+        let motor = build_motor(m).expect("motor");
+        build_rocket(m, &motor).expect("rocket").total_cn_alpha(0.3)
+    };
+    // Nose 2, and the fin set once per pod.
+    let (one, two) = (slope(&plain) - 2.0, slope(&mission) - 2.0);
+    assert!((two - 2.0 * one).abs() < 1e-12, "{one} {two}");
+}

@@ -155,6 +155,7 @@ fn rocket(u: &Units, c: &PhysicalConstants) -> Rocket {
         motor_position: l(-1.255),
         surfaces: vec![
             SurfaceInput {
+                pod: None,
                 name: "nose".into(),
                 position: l(1.278),
                 spec: SurfaceSpec::Nose(NoseConeSpec {
@@ -165,6 +166,7 @@ fn rocket(u: &Units, c: &PhysicalConstants) -> Rocket {
                 }),
             },
             SurfaceInput {
+                pod: None,
                 name: "fins".into(),
                 position: l(-1.04956),
                 spec: SurfaceSpec::TrapezoidalFins(TrapezoidalFinsSpec {
@@ -184,6 +186,7 @@ fn rocket(u: &Units, c: &PhysicalConstants) -> Rocket {
                 }),
             },
             SurfaceInput {
+                pod: None,
                 name: "tail".into(),
                 position: l(-1.194656),
                 spec: SurfaceSpec::Tail(TailSpec {

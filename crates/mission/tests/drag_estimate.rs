@@ -59,6 +59,7 @@ fn by_hand() -> DragGeometry {
         launch_lugs: Vec::new(),
         rail_buttons: None,
         nozzle_exit_radius: 0.02,
+        pods: Vec::new(),
     }
 }
 

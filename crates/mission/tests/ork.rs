@@ -1,6 +1,6 @@
 //! The `.ork` reader on bad input: every error names the file and, where there is one, the
-//! component; arbitrary bytes never panic. The refusals of what karman cannot fly yet, and a
-//! motor cluster mapped onto `[motor] cluster_count`.
+//! component; arbitrary bytes never panic. The refusals of what karman cannot fly yet, a
+//! motor cluster mapped onto `[motor] cluster_count` and pod sets onto `[rocket.pods]`.
 
 use std::path::{Path, PathBuf};
 
@@ -83,15 +83,92 @@ fn unknown_simulation_lists_the_names() {
     assert!(e.to_string().contains("\"Simulation 1\""), "{e}");
 }
 
+fn pods_xml() -> String {
+    let path = design("pods_airframes_and_winglets");
+    document_text(&path, &std::fs::read(&path).expect("fixture")).expect("zip with rocket.ork")
+}
+
 #[test]
-fn pods_are_refused_by_name() {
-    let e = import(
-        &design("pods_airframes_and_winglets"),
-        &ImportOptions::default(),
+fn pods_import_as_pod_sets_with_their_mass_at_their_offset() {
+    let dir = design("pods_airframes_and_winglets")
+        .parent()
+        .expect("dir")
+        .to_owned();
+    let options = ImportOptions {
+        simulation: Some("Simulation 3".into()),
+        output_dir: Some(dir.clone()),
+        ..ImportOptions::default()
+    };
+    let imported = import(&design("pods_airframes_and_winglets"), &options).expect("imports");
+    let mission = karman_mission::parse(&imported.mission, &dir.join("imported.toml"), &[])
+        .unwrap_or_else(|e| panic!("{e}\n{}", imported.mission));
+    let pods = &mission.spec.rocket.pods;
+    let wings = &pods["wing_pods"];
+    assert_eq!((wings.count, wings.angular_position_deg), (2, 90.0));
+    assert_eq!(wings.surfaces, ["pod_nose", "pod_tail"]);
+    assert!(wings.body_length.is_some());
+    // The phantom pod: fins on a radius-0 tube, no pod body.
+    let stab = &pods["horizontal_stab_pod"];
+    assert_eq!((stab.count, stab.body_length), (1, None));
+    assert_eq!(stab.surfaces, ["horizontal_stabilizer"]);
+    assert!(
+        imported.mission.contains("radius = 0.0\n"),
+        "{}",
+        imported.mission
+    );
+    // OpenRocket's launch mass and CG (Simulation 3, C6-5): within 1 % and 1 mm (the nose
+    // tip is the origin, aft positive).
+    let reference: serde_json::Value = serde_json::from_str(
+        &std::fs::read_to_string(dir.join("reference.json")).expect("reference"),
     )
-    .expect_err("pods");
+    .expect("json");
+    let ascent = &reference["simulations"][2]["branches"][0]["ascent"];
+    let (mass, cg) = (
+        ascent["mass_kg"][0].as_f64().expect("mass"),
+        ascent["cg_m"][0].as_f64().expect("cg"),
+    );
+    let motor = karman_mission::build::motor::build_motor(&mission).expect("motor");
+    let rocket = karman_mission::build::rocket::build_rocket(&mission, &motor).expect("rocket");
+    let ours = rocket.total_mass(0.0);
+    assert!((ours - mass).abs() < 0.01 * mass, "{ours} vs {mass}");
+    let ours_cg = rocket.center_of_mass(0.0);
+    assert!((ours_cg - cg).abs() < 1e-3, "{ours_cg} vs {cg}");
+}
+
+#[test]
+fn powered_pods_and_parallel_boosters_are_refused_by_name() {
+    let xml = pods_xml();
+    // A motor mount inside the wing pods' body tube.
+    let tube_end = "<radius>0.0068707</radius>\n                  </bodytube>";
+    assert!(xml.contains(tube_end));
+    let mount = "<radius>0.0068707</radius>\n<subcomponents><innertube><name>Pod mount</name>\
+        <material type=\"bulk\" density=\"894.4\">Paper</material><length>0.03</length>\
+        <outerradius>0.005</outerradius><thickness>0.0003</thickness><motormount>\
+        <motor configid=\"ebe43947-e8b6-486a-aaea-07077ea9b8b7\"><manufacturer>Estes</manufacturer>\
+        <designation>A8</designation><diameter>0.018</diameter><length>0.07</length>\
+        <delay>3.0</delay></motor></motormount></innertube></subcomponents></bodytube>";
+    let powered = xml.replacen(tube_end, mount, 1);
+    let dir = tempdir();
+    let file = dir.join("powered.ork");
+    std::fs::write(&file, &powered).expect("write");
+    let e = import(&file, &ImportOptions::default()).expect_err("powered pods");
     assert!(matches!(e, OrkError::Unsupported { .. }), "{e}");
-    assert!(e.to_string().contains("Wing pods"), "{e}");
+    let text = e.to_string();
+    assert!(text.contains("powered.ork"), "{text}");
+    assert!(
+        text.contains("Wing pods") && text.contains("Pod mount"),
+        "{text}"
+    );
+    assert!(text.contains("motor mount"), "{text}");
+    // Side boosters.
+    let boosters =
+        xml.replacen("<podset>", "<parallelstage>", 1)
+            .replacen("</podset>", "</parallelstage>", 1);
+    let e = parse_error(&boosters);
+    assert!(
+        e.contains("Wing pods") && e.contains("parallel booster"),
+        "{e}"
+    );
 }
 
 #[test]

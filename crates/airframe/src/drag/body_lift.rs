@@ -50,6 +50,18 @@ impl BodyLift {
             }
             start += s.length;
         }
+        // Each pod's planform counts once per pod (OpenRocket sums the body lift of every
+        // instance), at its own axial place.
+        for pod in &geometry.pods {
+            let mut start = pod.position;
+            for s in &pod.body {
+                let [area, moment] = planform(s.profile, s.fore_radius, s.aft_radius, s.length);
+                if area > 0.0 {
+                    planforms.push([area * f64::from(pod.count), start + moment / area]);
+                }
+                start += s.length;
+            }
+        }
         BodyLift {
             reference_area: PI * geometry.reference_radius * geometry.reference_radius,
             planforms,
@@ -96,7 +108,10 @@ impl BodyLift {
         for s in rocket.surfaces() {
             let body = matches!(s.geometry, Geometry::Nose { .. } | Geometry::Tail { .. });
             let k = s.reference_area / area * if body { sinc(alpha) } else { 1.0 };
-            let roll_factor = s.fin_aerodynamics().map_or(1.0, |f| f.roll_factor(roll));
+            let roll_factor = s.fin_aerodynamics().map_or(1.0, |f| match s.pod {
+                None => f.roll_factor(roll),
+                Some(pod) => pod.mean_roll_factor(f, roll),
+            });
             let w = k * roll_factor * s.cn_alpha(mach);
             weight += w;
             moment += w * csys * (tip - s.cp_user(csys));
@@ -106,9 +121,10 @@ impl BodyLift {
 
     /// The flow's roll angle (rad) at which `rocket`'s CP lies furthest forward, OpenRocket's
     /// "worst" CP (its `getWorstCP`: Barrowman's CP at α = 0 and Mach 0.3 over the roll angles
-    /// `2π k / 360`, the first of the most forward). OpenRocket rolls the rocket on the launch
-    /// rod so that the wind comes from this angle; it differs from 0 only when a set of one
-    /// or two fins makes the CP depend on the roll angle.
+    /// `2π k / 360`, the first of the most forward). OpenRocket's launch code means to roll
+    /// the rocket on the rod so that the wind comes from this angle (24.12 starts it at 0
+    /// instead: `karman_mission::report::openrocket`); it differs from 0 only when a set of
+    /// one or two fins makes the CP depend on the roll angle.
     #[must_use]
     pub fn worst_roll_angle(&self, rocket: &Rocket, tip: f64) -> f64 {
         let mut worst = (f64::INFINITY, 0.0);
@@ -181,6 +197,7 @@ mod tests {
             launch_lugs: Vec::new(),
             rail_buttons: None,
             nozzle_exit_radius: 0.0,
+            pods: Vec::new(),
         };
         let lift = BodyLift::new(&geometry);
         // Triangle 0.3 × 0.1 (centroid 2/3 of the way aft) and rectangle 1.0 × 0.1.
@@ -197,6 +214,19 @@ mod tests {
         assert!((m / w - exact_x).abs() < 1e-6);
         let [w0, m0] = lift.weights(0.0, 0.3);
         assert!(w0.abs() < 1e-15 && m0.abs() < 1e-15, "{w0} {m0}");
+        // Two pods, each a 0.2 m tube of radius 0.01 starting 0.5 m aft of the tip: twice
+        // its rectangle, centred at 0.6 m.
+        let mut podded = geometry.clone();
+        podded.pods.push(crate::drag::PodDrag {
+            name: "pods".into(),
+            count: 2,
+            position: 0.5,
+            body: vec![segment(0.2, 0.01, 0.01, Profile::Conical)],
+        });
+        let [pa, px] = BodyLift::new(&podded).planform();
+        let pod_area = 2.0 * 0.2 * 0.02;
+        assert!((pa - (exact_a + pod_area)).abs() < 1e-9, "{pa}");
+        assert!((px - (exact_a * exact_x + pod_area * 0.6) / (exact_a + pod_area)).abs() < 1e-6);
         // Turning slowly (M < 0.05, α > 45°) the lift is scaled by (M / 0.05)².
         let [slow, _] = lift.weights(1.0, 0.025);
         let [fast, _] = lift.weights(1.0, 0.05);

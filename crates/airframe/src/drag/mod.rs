@@ -88,6 +88,25 @@ pub struct FinSetDrag {
     pub roughness: f64,
 }
 
+/// The bodies of a pod set (OpenRocket's `PodSet`): `count` copies of one body of
+/// revolution beside the main body. OpenRocket 24.12 sums every drag term of a component
+/// once per instance (Niskanen 2009 §3.4 per component, times the instance count): each
+/// pod's skin friction joins the body's (under the rocket's one fineness correction, whose
+/// length and radius span the pods too), its nose and tail pressure drag and the base drag of
+/// its aft end count `count` times, and a pod that starts blunt adds the stagnation drag of
+/// its front face.
+#[derive(Debug, Clone, PartialEq)]
+pub struct PodDrag {
+    /// Its name, for error messages.
+    pub name: String,
+    /// Number of pods.
+    pub count: u32,
+    /// Distance of the pod body's forward end aft of the rocket's nose tip (m).
+    pub position: f64,
+    /// One pod's body segments from its forward end aft, contiguous.
+    pub body: Vec<BodySegment>,
+}
+
 /// The geometry the drag estimate needs.
 #[derive(Debug, Clone, PartialEq)]
 pub struct DragGeometry {
@@ -105,6 +124,8 @@ pub struct DragGeometry {
     pub rail_buttons: Option<RailButtonDrag>,
     /// Nozzle exit radius (m) of the power-on base.
     pub nozzle_exit_radius: f64,
+    /// Pod sets.
+    pub pods: Vec<PodDrag>,
 }
 
 /// The drag terms at one flight condition, on the reference area.
@@ -194,6 +215,8 @@ struct Segment {
     step_down: f64,
     /// Its drag coefficient when overridden.
     drag_override: Option<f64>,
+    /// Copies of it: the number of pods of a pod segment, else 1.
+    count: f64,
 }
 
 #[derive(Debug, Clone, PartialEq)]
@@ -234,6 +257,62 @@ pub struct DragModel {
     rail_buttons: Option<RailButtonDrag>,
     base_area: f64,
     nozzle_area: f64,
+}
+
+/// The per-segment data of one body of revolution whose segments count `count` times; the
+/// last segment of a `closed` body (a pod) has its aft face as a step down to nothing (base
+/// drag), the main body's base is the rocket's (with the jet).
+fn body_segments(body: &[BodySegment], gamma: f64, count: f64, closed: bool) -> Vec<Segment> {
+    let n = body.len();
+    let mut segments = Vec::with_capacity(n);
+    for (i, s) in body.iter().enumerate() {
+        let (fore, aft) = if s.length > 0.0 {
+            (s.fore_radius, s.aft_radius)
+        } else {
+            let r = s.fore_radius.max(s.aft_radius);
+            (r, r)
+        };
+        let frontal_area = PI * (fore * fore - aft * aft).abs();
+        let shape = if s.length <= 0.0 {
+            SegmentShape::Face {
+                up: s.fore_radius > s.aft_radius,
+            }
+        } else if (fore - aft).abs() <= f64::EPSILON * fore.max(aft) {
+            SegmentShape::Tube
+        } else {
+            let fineness = s.length / (2.0 * (aft - fore).abs());
+            if aft < fore {
+                SegmentShape::Boattail(fineness)
+            } else {
+                let sin_phi = shape::aft_slope_sine(s.profile, fore, aft, s.length);
+                SegmentShape::Nose(pressure::nose_table(s.profile, fineness, sin_phi, gamma))
+            }
+        };
+        let previous_aft = if i == 0 { 0.0 } else { body[i - 1].aft_radius };
+        let next_fore = body.get(i + 1).map_or(0.0, |b| b.fore_radius);
+        let face_fore = if s.length <= 0.0 {
+            fore.max(aft)
+        } else {
+            s.fore_radius
+        };
+        let step_up = PI * (face_fore * face_fore - previous_aft * previous_aft).max(0.0);
+        let step_down = if i + 1 < n || closed {
+            PI * (aft * aft - next_fore * next_fore).max(0.0)
+        } else {
+            0.0
+        };
+        segments.push(Segment {
+            wetted_area: shape::wetted_area(s.profile, fore, aft, s.length),
+            roughness: s.roughness,
+            shape,
+            frontal_area,
+            step_up,
+            step_down,
+            drag_override: s.drag_override,
+            count,
+        });
+    }
+    segments
 }
 
 fn check_profile(name: &str, profile: Profile) -> Result<(), AirframeError> {
@@ -362,57 +441,36 @@ impl DragModel {
         }
 
         let gamma = constants.heat_capacity_ratio;
-        let n = geometry.body.len();
-        let mut segments = Vec::with_capacity(n);
-        for (i, s) in geometry.body.iter().enumerate() {
-            let (fore, aft) = if s.length > 0.0 {
-                (s.fore_radius, s.aft_radius)
-            } else {
-                let r = s.fore_radius.max(s.aft_radius);
-                (r, r)
-            };
-            let frontal_area = PI * (fore * fore - aft * aft).abs();
-            let shape = if s.length <= 0.0 {
-                SegmentShape::Face {
-                    up: s.fore_radius > s.aft_radius,
+        let mut segments = body_segments(&geometry.body, gamma, 1.0, false);
+        for pod in &geometry.pods {
+            finite(&pod.name, "position", pod.position)?;
+            if pod.count == 0 {
+                return Err(AirframeError::NotPositive {
+                    component: pod.name.clone(),
+                    quantity: "pod count",
+                    value: 0.0,
+                });
+            }
+            let mut pod_length = 0.0;
+            for s in &pod.body {
+                non_negative(&s.name, "length", s.length)?;
+                non_negative(&s.name, "fore radius", s.fore_radius)?;
+                non_negative(&s.name, "aft radius", s.aft_radius)?;
+                non_negative(&s.name, "roughness", s.roughness)?;
+                if let Some(cd) = s.drag_override {
+                    finite(&s.name, "drag override", cd)?;
                 }
-            } else if (fore - aft).abs() <= f64::EPSILON * fore.max(aft) {
-                SegmentShape::Tube
-            } else {
-                let fineness = s.length / (2.0 * (aft - fore).abs());
-                if aft < fore {
-                    SegmentShape::Boattail(fineness)
-                } else {
-                    let sin_phi = shape::aft_slope_sine(s.profile, fore, aft, s.length);
-                    SegmentShape::Nose(pressure::nose_table(s.profile, fineness, sin_phi, gamma))
+                check_profile(&s.name, s.profile)?;
+                pod_length += s.length;
+                if s.drag_override.is_none() {
+                    max_radius = max_radius.max(s.fore_radius).max(s.aft_radius);
                 }
-            };
-            let previous_aft = if i == 0 {
-                0.0
-            } else {
-                geometry.body[i - 1].aft_radius
-            };
-            let next_fore = geometry.body.get(i + 1).map_or(0.0, |b| b.fore_radius);
-            let face_fore = if s.length <= 0.0 {
-                fore.max(aft)
-            } else {
-                s.fore_radius
-            };
-            let step_up = PI * (face_fore * face_fore - previous_aft * previous_aft).max(0.0);
-            let step_down = if i + 1 < n {
-                PI * (aft * aft - next_fore * next_fore).max(0.0)
-            } else {
-                0.0
-            };
-            segments.push(Segment {
-                wetted_area: shape::wetted_area(s.profile, fore, aft, s.length),
-                roughness: s.roughness,
-                shape,
-                frontal_area,
-                step_up,
-                step_down,
-                drag_override: s.drag_override,
-            });
+            }
+            // OpenRocket's fineness and Reynolds lengths run over every body component,
+            // the pods' included.
+            fineness_length = fineness_length.max(pod.position + pod_length);
+            length = length.max(pod.position + pod_length);
+            segments.extend(body_segments(&pod.body, gamma, f64::from(pod.count), true));
         }
         // The rocket's base, unless its last segment's drag is overridden.
         let last_aft = geometry
@@ -454,12 +512,14 @@ impl DragModel {
         let mut body_friction = 0.0;
         let mut pressure_cd = 0.0;
         let mut base_cd = 0.0;
+        // `count` is 1 on the main body (a product by 1 is exact) and the number of pods on
+        // a pod's segments.
         for s in &self.segments {
             if let Some(cd) = s.drag_override {
-                pressure_cd += cd * a_ref;
+                pressure_cd += cd * a_ref * s.count;
                 continue;
             }
-            body_friction += cf(s.roughness) * s.wetted_area;
+            body_friction += cf(s.roughness) * s.wetted_area * s.count;
             pressure_cd += match &s.shape {
                 SegmentShape::Tube => 0.0,
                 SegmentShape::Face { up: true } => stagnation * s.frontal_area,
@@ -468,9 +528,9 @@ impl DragModel {
                     pressure::boattail_coefficient(*f, base) * s.frontal_area
                 }
                 SegmentShape::Nose(t) => t.eval(mach) * s.frontal_area,
-            };
-            pressure_cd += stagnation * s.step_up;
-            base_cd += base * s.step_down;
+            } * s.count;
+            pressure_cd += stagnation * s.step_up * s.count;
+            base_cd += base * s.step_down * s.count;
         }
         let mut fin_friction = 0.0;
         for f in &self.fins {

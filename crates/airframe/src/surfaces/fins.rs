@@ -119,8 +119,12 @@ pub struct FreeFormFinsSpec {
 pub struct FinAerodynamics {
     /// Number of fins N.
     pub n: u32,
-    /// Body radius at the fins r_t (m): the reference radius of the set.
+    /// Body radius at the fins r_t (m): the reference radius of the set, unless it is 0.
     pub body_radius: f64,
+    /// Reference radius of the coefficients (m): `r_t`, or the rocket radius for fins on no
+    /// body (`r_t = 0`: OpenRocket's "phantom" zero-radius body tube of a pod, which carries
+    /// fins only).
+    pub reference_radius: f64,
     /// One fin's planform area A_f (m²).
     pub fin_area: f64,
     /// Aspect ratio `2 s² / A_f`.
@@ -314,10 +318,12 @@ fn airfoil_slope(name: &str, airfoil: Option<&Airfoil>, warnings: &mut Vec<Strin
     slope
 }
 
+#[allow(clippy::too_many_arguments)]
 fn finish(
     name: &str,
     n: u32,
     body_radius: f64,
+    rocket_radius: f64,
     cant_angle_deg: f64,
     angular_position_deg: f64,
     root_chord: f64,
@@ -338,9 +344,20 @@ fn finish(
     let cant = cant_angle_deg.to_radians();
     let angular_position = finite(name, "angular_position", angular_position_deg)?.to_radians();
     let tau = (p.span + body_radius) / body_radius;
-    let reference_area = PI * body_radius * body_radius;
-    let d = 2.0 * body_radius;
-    let k_f = roll_forcing_interference(tau);
+    // Fins on no body (r_t = 0, τ = ∞): no body interference, `1 + 1/τ = 1` and Barrowman's
+    // `K_f → 1`; the coefficients are then referred to the rocket radius.
+    let reference_radius = if body_radius > 0.0 {
+        body_radius
+    } else {
+        rocket_radius
+    };
+    let reference_area = PI * reference_radius * reference_radius;
+    let d = 2.0 * reference_radius;
+    let k_f = if body_radius > 0.0 {
+        roll_forcing_interference(tau)
+    } else {
+        1.0
+    };
     let nf = f64::from(n);
     let cla0 = airfoil_slope(name, airfoil, &mut warnings);
     let aspect_ratio = 2.0 * p.span * p.span / p.fin_area;
@@ -348,6 +365,7 @@ fn finish(
     let aero = FinAerodynamics {
         n,
         body_radius,
+        reference_radius,
         fin_area: p.fin_area,
         aspect_ratio,
         mid_chord_sweep: p.mid_chord_sweep,
@@ -403,7 +421,8 @@ pub(crate) fn trapezoidal(
             reason: format!("span {s} m: a fin needs a positive span"),
         });
     }
-    let r = positive(name, "radius", spec.radius.unwrap_or(rocket_radius))?;
+    // 0: fins on no body (a pod's phantom tube).
+    let r = non_negative(name, "radius", spec.radius.unwrap_or(rocket_radius))?;
     let sweep = match spec.sweep {
         Sweep::Default => cr - ct,
         Sweep::Length(l) => finite(name, "sweep_length", l)?,
@@ -424,10 +443,14 @@ pub(crate) fn trapezoidal(
     let yr = cr + ct;
     let lambda = ct / cr;
     let tau = (s + r) / r;
-    let k_d = 1.0
-        + ((tau - lambda) / tau - ((1.0 - lambda) / (tau - 1.0)) * tau.ln())
+    // No body (τ = ∞): no damping interference.
+    let k_d = if r > 0.0 {
+        1.0 + ((tau - lambda) / tau - ((1.0 - lambda) / (tau - 1.0)) * tau.ln())
             / ((tau + 1.0) * (tau - lambda) / 2.0
-                - (1.0 - lambda) * (tau.powi(3) - 1.0) / (3.0 * (tau - 1.0)));
+                - (1.0 - lambda) * (tau.powi(3) - 1.0) / (3.0 * (tau - 1.0)))
+    } else {
+        1.0
+    };
     let g = ((cr + 3.0 * ct) * s.powi(3)
         + 4.0 * (cr + 2.0 * ct) * r * s * s
         + 6.0 * (cr + ct) * s * r * r)
@@ -447,6 +470,7 @@ pub(crate) fn trapezoidal(
         name,
         spec.n,
         r,
+        rocket_radius,
         spec.cant_angle_deg,
         spec.angular_position_deg,
         cr,
@@ -465,8 +489,12 @@ pub(crate) fn elliptical(
     check_count(name, spec.n)?;
     let cr = positive(name, "root_chord", spec.root_chord)?;
     let s = positive(name, "span", spec.span)?;
-    let r = positive(name, "radius", spec.radius.unwrap_or(rocket_radius))?;
-    let k_d = if s > r {
+    // 0: fins on no body (a pod's phantom tube).
+    let r = non_negative(name, "radius", spec.radius.unwrap_or(rocket_radius))?;
+    let k_d = if r <= 0.0 {
+        // No body: no damping interference.
+        1.0
+    } else if s > r {
         let q = (s * s - r * r).sqrt();
         1.0 + r
             * r
@@ -510,6 +538,7 @@ pub(crate) fn elliptical(
         name,
         spec.n,
         r,
+        rocket_radius,
         spec.cant_angle_deg,
         spec.angular_position_deg,
         cr,
@@ -543,7 +572,8 @@ pub(crate) fn free_form(
         finite(name, "shape_points x", *x)?;
         finite(name, "shape_points y", *y)?;
     }
-    let r = positive(name, "radius", spec.radius.unwrap_or(rocket_radius))?;
+    // 0: fins on no body (a pod's phantom tube).
+    let r = non_negative(name, "radius", spec.radius.unwrap_or(rocket_radius))?;
     let mut warnings = Vec::new();
     let mut down = false;
     for w in pts.windows(2) {
@@ -674,7 +704,12 @@ pub(crate) fn free_form(
         mid_chord_sweep: cos_gamma.acos(),
         mean_aerodynamic_span: mac_span,
         roll_integral: g * dy,
-        roll_damping_interference: 1.0 + (kd_num * dy) / (kd_den * dy),
+        // No body (r = 0, where the root station's term is 0/0): no damping interference.
+        roll_damping_interference: if r > 0.0 {
+            1.0 + (kd_num * dy) / (kd_den * dy)
+        } else {
+            1.0
+        },
         cp_local: mac_lead + 0.25 * mac_len,
         span,
         outline: pts.clone(),
@@ -683,6 +718,7 @@ pub(crate) fn free_form(
         name,
         spec.n,
         r,
+        rocket_radius,
         spec.cant_angle_deg,
         spec.angular_position_deg,
         root_chord,
@@ -715,6 +751,88 @@ mod tests {
 
     fn close(a: f64, b: f64, rel: f64) -> bool {
         (a - b).abs() <= rel * b.abs()
+    }
+
+    #[test]
+    fn fins_on_no_body_have_no_interference_and_the_rocket_reference() {
+        // OpenRocket's phantom pod tube (r_t = 0): `1 + r_t/(s + r_t) = 1` and the slope is
+        // on the rocket's area, so the set's force `A_ref CNα` equals that of a lone fin pair
+        // `N/2 · 2π AR A_f / (2 + √(…))` with no body factor, and K_f = K_d = 1.
+        let rocket = 0.0168;
+        let mut spec = TrapezoidalFinsSpec {
+            n: 2,
+            root_chord: 0.028,
+            tip_chord: 0.0127,
+            span: 0.019,
+            sweep: Sweep::Length(0.0127),
+            cant_angle_deg: 1.0,
+            angular_position_deg: 90.0,
+            radius: Some(0.0),
+            airfoil: None,
+        };
+        let bare = trapezoidal("stab", &spec, rocket)
+            .expect("fins on no body")
+            .0
+            .aero;
+        assert!(bare.reference_radius.to_bits() == rocket.to_bits());
+        assert!(bare.lift_interference.to_bits() == 1.0f64.to_bits());
+        assert!(bare.roll_forcing_interference.to_bits() == 1.0f64.to_bits());
+        assert!(bare.roll_damping_interference.to_bits() == 1.0f64.to_bits());
+        for mach in [0.0, 0.5, 1.2] {
+            assert!(bare.cn_alpha(mach).is_finite() && bare.cn_alpha(mach) > 0.0);
+            assert!(bare.roll_forcing_derivative(mach).is_finite());
+            assert!(bare.roll_damping_derivative(mach).is_finite());
+        }
+        // On a thin body the slope per unit fin approaches it from above (interference > 1).
+        spec.radius = Some(1e-6);
+        let thin = trapezoidal("stab", &spec, rocket).expect("fins").0.aero;
+        let force = |a: &FinAerodynamics| a.cn_alpha(0.3) * a.reference_radius.powi(2);
+        assert!(
+            close(force(&thin), force(&bare), 1e-3),
+            "{} {}",
+            force(&thin),
+            force(&bare)
+        );
+        for (name, fins) in [
+            (
+                "elliptical",
+                elliptical(
+                    "e",
+                    &EllipticalFinsSpec {
+                        n: 2,
+                        root_chord: 0.03,
+                        span: 0.02,
+                        cant_angle_deg: 0.0,
+                        angular_position_deg: 0.0,
+                        radius: Some(0.0),
+                        airfoil: None,
+                    },
+                    rocket,
+                ),
+            ),
+            (
+                "free-form",
+                free_form(
+                    "f",
+                    &FreeFormFinsSpec {
+                        n: 1,
+                        shape_points: vec![[0.0, 0.0], [0.01, 0.02], [0.03, 0.0]],
+                        cant_angle_deg: 0.0,
+                        angular_position_deg: 0.0,
+                        radius: Some(0.0),
+                        airfoil: None,
+                    },
+                    rocket,
+                ),
+            ),
+        ] {
+            let a = fins.expect(name).0.aero;
+            assert!(
+                a.roll_damping_interference.to_bits() == 1.0f64.to_bits(),
+                "{name}"
+            );
+            assert!(a.cn_alpha(0.3).is_finite(), "{name}");
+        }
     }
 
     #[test]

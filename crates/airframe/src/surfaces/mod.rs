@@ -51,6 +51,45 @@ pub struct SurfaceInput {
     pub position: f64,
     /// Kind and dimensions.
     pub spec: SurfaceSpec,
+    /// The pod set it belongs to, if any: the surface is then repeated on every pod.
+    pub pod: Option<PodPlacement>,
+}
+
+/// Where the copies of a pod surface sit: OpenRocket's pod set (Niskanen 2009 §3.2 sums the
+/// Barrowman terms per component; OpenRocket 24.12 sums them per instance of a component).
+/// Each copy is the surface on its own pod's axis: the same normal-force slope and axial CP
+/// (OpenRocket takes each instance's CP on the rocket's axis), so the set's slope is `count`
+/// times one copy's. The roll position matters only for a set of one or two fins, whose
+/// slope depends on the flow's roll angle ([`FinAerodynamics::roll_factor`]).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct PodPlacement {
+    /// Number of pods, evenly spaced around the rocket axis.
+    pub count: u32,
+    /// Roll position of the first pod about the rocket axis (rad); the others at
+    /// `+ 2π i / count`. A pod's fins sit at their own angular positions plus their pod's.
+    pub angular_position: f64,
+}
+
+impl PodPlacement {
+    /// `count` as a factor.
+    #[must_use]
+    pub fn factor(&self) -> f64 {
+        f64::from(self.count)
+    }
+
+    /// The mean over the pods of a fin set's [`FinAerodynamics::roll_factor`] at the flow's
+    /// roll angle `theta` (rad): each pod sees the flow at `theta` less its own position.
+    #[must_use]
+    pub fn mean_roll_factor(&self, fins: &FinAerodynamics, theta: f64) -> f64 {
+        let k = self.count.max(1);
+        let sum: f64 = (0..k)
+            .map(|j| {
+                let pod = self.angular_position + 2.0 * PI * f64::from(j) / f64::from(k);
+                fins.roll_factor(theta - pod)
+            })
+            .sum();
+        sum / f64::from(k)
+    }
 }
 
 /// The resolved shape of a surface, in its local frame (x aft of the reference point).
@@ -165,13 +204,17 @@ pub struct Surface {
     pub cp_local: f64,
     /// CP in body axes measured from the centre of dry mass, `p` of physics.md §2.5 (m).
     pub cp_body: [f64; 3],
-    /// Reference area `π r_s²` of the coefficients (m²).
+    /// Reference area `π r_s²` of the coefficients (m²), times the number of pods for a pod
+    /// surface: the force on all its copies is `q · reference_area · CNα · α`.
     pub reference_area: f64,
     /// Reference radius r_s (m): the nose base radius, the fins' body radius, or the tail's
     /// reference radius.
     pub radius: f64,
     /// Resolved shape.
     pub geometry: Geometry,
+    /// The pod set it is repeated on, if any ([`SurfaceInput::pod`]); the reference area
+    /// then counts every pod.
+    pub pod: Option<PodPlacement>,
     aero: Aero,
 }
 
@@ -191,6 +234,16 @@ impl Surface {
     ) -> Result<(Surface, Vec<String>), AirframeError> {
         let name = input.name.as_str();
         let position = finite(name, "position", input.position)?;
+        if let Some(pod) = input.pod {
+            if pod.count == 0 {
+                return Err(AirframeError::NotPositive {
+                    component: name.to_owned(),
+                    quantity: "pod count",
+                    value: 0.0,
+                });
+            }
+            finite(name, "pod angular position", pod.angular_position)?;
+        }
         let (geometry, aero, cp_local, radius, warnings) = match &input.spec {
             SurfaceSpec::Nose(spec) => {
                 let (n, w) = nose::build(name, spec, rocket_radius, constants)?;
@@ -244,9 +297,13 @@ impl Surface {
             position,
             cp_local,
             cp_body: [0.0, 0.0, csys * (position - cdm) - cp_local],
-            reference_area: PI * radius * radius,
+            reference_area: match input.pod {
+                None => PI * radius * radius,
+                Some(pod) => PI * radius * radius * pod.factor(),
+            },
             radius,
             geometry,
+            pod: input.pod,
             aero,
         };
         Ok((surface, warnings))
@@ -342,12 +399,12 @@ impl Surface {
 type Parts = (Geometry, Aero, f64, f64, Vec<String>);
 
 fn fin_parts((set, warnings): (fins::FinSet, Vec<String>)) -> Parts {
-    let radius = set.aero.body_radius;
+    let radius = set.aero.reference_radius;
     let g = Geometry::Fins {
         n: set.aero.n,
         root_chord: set.root_chord,
         span: set.span,
-        body_radius: radius,
+        body_radius: set.aero.body_radius,
         outline: set.outline,
     };
     (
@@ -357,4 +414,87 @@ fn fin_parts((set, warnings): (fins::FinSet, Vec<String>)) -> Parts {
         radius,
         warnings,
     )
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use std::f64::consts::FRAC_PI_2;
+
+    fn pod_fins(pod: Option<PodPlacement>) -> Surface {
+        let input = SurfaceInput {
+            name: "fins".into(),
+            position: 0.4,
+            spec: SurfaceSpec::TrapezoidalFins(TrapezoidalFinsSpec {
+                n: 2,
+                root_chord: 0.03,
+                tip_chord: 0.01,
+                span: 0.02,
+                sweep: Sweep::Length(0.01),
+                cant_angle_deg: 0.0,
+                angular_position_deg: 90.0,
+                radius: Some(0.007),
+                airfoil: None,
+            }),
+            pod,
+        };
+        Surface::build(&input, 0.017, -1.0, 0.2, &PhysicalConstants::SI)
+            .expect("surface")
+            .0
+    }
+
+    #[test]
+    fn a_pod_surface_counts_once_per_pod() {
+        let one = pod_fins(None);
+        let three = pod_fins(Some(PodPlacement {
+            count: 3,
+            angular_position: 0.0,
+        }));
+        assert!((three.reference_area - 3.0 * one.reference_area).abs() < 1e-18);
+        assert!(three.cn_alpha(0.3).to_bits() == one.cn_alpha(0.3).to_bits());
+        assert!(three.cp_body.map(f64::to_bits) == one.cp_body.map(f64::to_bits));
+        // No pods is an error, not a surface that vanishes.
+        let input = SurfaceInput {
+            pod: Some(PodPlacement {
+                count: 0,
+                angular_position: 0.0,
+            }),
+            ..SurfaceInput {
+                name: "n".into(),
+                position: 0.0,
+                spec: SurfaceSpec::Nose(NoseConeSpec {
+                    length: 0.1,
+                    kind: NoseKind::Conical,
+                    base_radius: Some(0.01),
+                    bluffness: 0.0,
+                }),
+                pod: None,
+            }
+        };
+        assert!(Surface::build(&input, 0.017, -1.0, 0.0, &PhysicalConstants::SI).is_err());
+    }
+
+    #[test]
+    fn pod_fins_see_the_flow_at_their_pod_s_roll_position() {
+        let fins = pod_fins(None);
+        let aero = fins.fin_aerodynamics().expect("fins");
+        // One pod at 90°: its fins (at 90° and 270° on it) face the flow at θ − 90°.
+        let one = PodPlacement {
+            count: 1,
+            angular_position: FRAC_PI_2,
+        };
+        for theta in [0.0, 0.3, 1.2, 2.5] {
+            let expected = aero.roll_factor(theta - FRAC_PI_2);
+            assert!((one.mean_roll_factor(aero, theta) - expected).abs() < 1e-15);
+        }
+        // Two opposite pods average two sets half a turn apart: the same as one for fins at
+        // 90° and 270°; four pods a quarter turn apart average sin² and cos² to 1.
+        let four = PodPlacement {
+            count: 4,
+            angular_position: 0.0,
+        };
+        for theta in [0.0, 0.7, 2.0] {
+            assert!((four.mean_roll_factor(aero, theta) - 1.0).abs() < 1e-12);
+        }
+    }
 }

@@ -37,11 +37,18 @@ pub(crate) fn build(
     rocket_radius: f64,
 ) -> Result<Tail, AirframeError> {
     let top = non_negative(name, "top_radius", spec.top_radius)?;
-    let bottom = positive(name, "bottom_radius", spec.bottom_radius)?;
+    // A bottom radius of 0 closes the tail to a point (a pod's tail cone).
+    let bottom = non_negative(name, "bottom_radius", spec.bottom_radius)?;
     let length = positive(name, "length", spec.length)?;
     let reference_radius = positive(name, "radius", spec.radius.unwrap_or(rocket_radius))?;
+    if top <= 0.0 && bottom <= 0.0 {
+        return Err(AirframeError::Geometry {
+            component: name.to_owned(),
+            reason: "top and bottom radii are both 0".to_owned(),
+        });
+    }
     let q = top / bottom;
-    if (1.0 - q).abs() < 1e-9 {
+    if bottom > 0.0 && (1.0 - q).abs() < 1e-9 {
         return Err(AirframeError::Geometry {
             component: name.to_owned(),
             reason: format!(
@@ -50,7 +57,13 @@ pub(crate) fn build(
         });
     }
     let cn_alpha = 2.0 * ((bottom / reference_radius).powi(2) - (top / reference_radius).powi(2));
-    let cp_local = (length / 3.0) * (1.0 + (1.0 - q) / (1.0 - q * q));
+    // A cone closing to a point (q → ∞): the frustum's limit L/3, Barrowman's
+    // `(L A_aft − V)/(A_aft − A_fore)` with A_aft = 0.
+    let cp_local = if bottom > 0.0 {
+        (length / 3.0) * (1.0 + (1.0 - q) / (1.0 - q * q))
+    } else {
+        length / 3.0
+    };
     Ok(Tail {
         top_radius: top,
         bottom_radius: bottom,
@@ -94,8 +107,17 @@ mod tests {
         let mut s = ok.clone();
         s.length = -0.1;
         assert!(build("t", &s, 0.06).is_err());
-        let mut s = ok;
+        let mut s = ok.clone();
         s.top_radius = -0.01;
         assert!(build("t", &s, 0.06).is_err());
+        let mut s = ok.clone();
+        (s.top_radius, s.bottom_radius) = (0.0, 0.0);
+        assert!(build("t", &s, 0.06).is_err());
+        // A cone closing to a point: −2 (r/r_ref)², CP a third of its length aft.
+        let mut s = ok;
+        s.bottom_radius = 0.0;
+        let t = build("t", &s, 0.06).expect("a closing cone");
+        assert!((t.cn_alpha + 2.0).abs() < 1e-15);
+        assert!((t.cp_local - 0.1 / 3.0).abs() < 1e-15);
     }
 }

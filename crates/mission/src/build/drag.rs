@@ -9,7 +9,7 @@
 
 use karman_airframe::{
     self as airframe, BodySegment, DragEstimate, DragGeometry, DragModel, FinSetDrag,
-    FlowReference, Geometry, LaunchLug, NoseKind, Profile, RailButtonDrag, SurfaceInput,
+    FlowReference, Geometry, LaunchLug, NoseKind, PodDrag, Profile, RailButtonDrag, SurfaceInput,
     TubeFinSetDrag,
 };
 use karman_math::PhysicalConstants;
@@ -102,15 +102,21 @@ pub fn drag_geometry(
         mission.model_error(&format!("rocket.surfaces.{name}"), e)
     };
 
-    let mut nose = None;
-    // (start aft of the tip, length, fore radius, aft radius, name)
-    let mut tails = Vec::new();
-    let mut fins = Vec::new();
-    let mut tube_fins = Vec::new();
-    let mut aft_end: f64 = 0.0;
+    // The rocket's own parts, and each pod's (by pod name).
+    let mut parts = Parts::default();
+    let mut pods: indexmap::IndexMap<&str, (&schema::PodSpec, Parts)> = indexmap::IndexMap::new();
     for s in surfaces {
         let g = airframe::Surface::geometry_of(s, rocket.radius, &constants)
             .map_err(|e| model(&s.name, e))?;
+        let (pod_name, pod) = match super::rocket::pod_of(rocket, &s.name) {
+            Some((name, pod)) => (Some(name), Some(pod)),
+            None => (None, None),
+        };
+        let part = match pod_name.zip(pod) {
+            Some((name, pod)) => &mut pods.entry(name).or_insert((pod, Parts::default())).1,
+            None => &mut parts,
+        };
+        let copies = pod.map_or(1, |p| p.count);
         match g {
             Geometry::Nose {
                 kind,
@@ -118,13 +124,17 @@ pub fn drag_geometry(
                 base_radius,
                 ..
             } => {
-                if nose.is_some() {
+                if part.nose.is_some() {
+                    let within = pod_name.map_or(String::new(), |p| format!(" in pod `{p}`"));
                     return Err(geometry_error(
                         mission,
-                        format!("a second nose cone `{}`: the estimate needs one", s.name),
+                        format!(
+                            "a second nose cone `{}`{within}: the estimate needs one",
+                            s.name
+                        ),
                     ));
                 }
-                nose = Some((
+                part.nose = Some((
                     s.position,
                     length,
                     base_radius,
@@ -136,7 +146,7 @@ pub fn drag_geometry(
                 top_radius,
                 bottom_radius,
                 length,
-            } => tails.push((
+            } => part.tails.push((
                 s.position,
                 length,
                 top_radius,
@@ -148,16 +158,18 @@ pub fn drag_geometry(
                 root_chord,
                 outline,
                 ..
-            } => fins.push((s.position, n, root_chord, outline, s.name.clone())),
+            } => part
+                .fins
+                .push((s.position, n * copies, root_chord, outline, s.name.clone())),
             Geometry::TubeFins {
                 n,
                 length,
                 outer_radius,
                 inner_radius,
                 body_radius,
-            } => tube_fins.push(TubeFinSetDrag {
+            } => part.tube_fins.push(TubeFinSetDrag {
                 name: s.name.clone(),
-                count: n,
+                count: n * copies,
                 length,
                 outer_radius,
                 inner_radius,
@@ -168,50 +180,178 @@ pub fn drag_geometry(
             }),
         }
     }
-    let Some((tip, nose_length, nose_radius, nose_profile, nose_name)) = nose else {
+    let Some((tip, nose_length, nose_radius, nose_profile, nose_name)) = parts.nose.take() else {
         return Err(geometry_error(
             mission,
             "the drag estimate needs a nose cone among the surfaces".to_owned(),
         ));
     };
-    aft_end = aft_end.max(nose_length);
     let aft_of_tip = |position: f64| csys * (tip - position);
-    let mut tails: Vec<_> = tails
-        .into_iter()
-        .map(|(p, l, top, bottom, name)| (aft_of_tip(p), l, top, bottom, name))
-        .collect();
-    tails.sort_by(|a, b| a.0.total_cmp(&b.0));
-    for t in &tails {
-        aft_end = aft_end.max(t.0 + t.1);
-    }
-    let mut fin_sets = Vec::with_capacity(fins.len());
-    for (position, n, root_chord, outline, name) in fins {
-        let at = aft_of_tip(position);
-        aft_end = aft_end.max(at + root_chord);
-        let Some(f) = spec.fins.get(&name) else {
-            return Err(geometry_error(
-                mission,
-                format!(
-                    "fin set `{name}` needs [rocket.drag_estimate.fins.{name}] with its thickness"
-                ),
-            ));
+    let (mut fin_sets, mut tube_fins, aft_end) =
+        parts.appendages(mission, spec, roughness, nose_length, &aft_of_tip)?;
+    let body_end = spec.body_length.unwrap_or(aft_end);
+    let body = implied_body(
+        mission,
+        (nose_name, nose_length, nose_radius, nose_profile),
+        std::mem::take(&mut parts.tails),
+        body_end,
+        spec,
+        roughness,
+        &aft_of_tip,
+    )?;
+
+    let mut pod_bodies = Vec::new();
+    for (name, (pod, mut p)) in pods {
+        let (fins, tubes, pod_aft) = p.appendages(mission, spec, roughness, 0.0, &aft_of_tip)?;
+        fin_sets.extend(fins);
+        tube_fins.extend(tubes);
+        let Some((pod_tip, length, radius, shape, nose)) = p.nose.take() else {
+            if let Some(t) = p.tails.first() {
+                return Err(geometry_error(
+                    mission,
+                    format!(
+                        "pod `{name}` has tail `{}` but no nose cone: a pod's body starts with its nose",
+                        t.4
+                    ),
+                ));
+            }
+            // Fins on no body: no pod body.
+            continue;
         };
-        fin_sets.push(FinSetDrag {
-            name: name.clone(),
-            count: n,
-            outline,
-            position: at,
-            thickness: f.thickness,
-            cross_section: cross_section(f.cross_section),
-            roughness: f.finish.map_or(roughness, SurfaceFinish::roughness),
+        let start = aft_of_tip(pod_tip);
+        // The pod's end, from its own tip.
+        let pod_end = pod.body_length.unwrap_or((pod_aft - start).max(length));
+        let pod_of_tip = |position: f64| csys * (tip - position) - start;
+        let segments = implied_body(
+            mission,
+            (nose, length, radius, shape),
+            p.tails,
+            pod_end,
+            spec,
+            roughness,
+            &pod_of_tip,
+        )?;
+        pod_bodies.push(PodDrag {
+            name: format!("rocket.pods.{name}"),
+            count: pod.count,
+            position: start,
+            body: segments,
         });
     }
-    for t in &mut tube_fins {
-        t.position = aft_of_tip(t.position);
-        aft_end = aft_end.max(t.position + t.length);
-    }
-    let body_end = spec.body_length.unwrap_or(aft_end);
 
+    let launch_lugs = spec
+        .launch_lugs
+        .iter()
+        .map(|(name, l)| LaunchLug {
+            name: format!("{SECTION}.launch_lugs.{name}"),
+            outer_radius: l.outer_radius,
+            inner_radius: l.inner_radius,
+            length: l.length,
+            count: l.count,
+            roughness,
+        })
+        .collect();
+    let rail_buttons = match (&spec.rail_buttons, &rocket.rail_buttons) {
+        (Some(size), Some(at)) => Some(RailButtonDrag {
+            outer_diameter: size.outer_diameter,
+            inner_diameter: size.inner_diameter,
+            height: size.height,
+            inner_height: size.inner_height,
+            positions: vec![aft_of_tip(at.upper_position), aft_of_tip(at.lower_position)],
+        }),
+        _ => None,
+    };
+    Ok(DragGeometry {
+        tube_fins,
+        reference_radius: rocket.radius,
+        body,
+        fins: fin_sets,
+        launch_lugs,
+        rail_buttons,
+        nozzle_exit_radius: nozzle_radius,
+        pods: pod_bodies,
+    })
+}
+
+/// A nose: (tip position, length, base radius, profile, name).
+type Nose = (f64, f64, f64, Profile, String);
+/// A tail: (forward end, length, fore radius, aft radius, name).
+type Tail = (f64, f64, f64, f64, String);
+/// A fin set: (root leading edge, fin count, root chord, outline, name).
+type Fin = (f64, u32, f64, Vec<[f64; 2]>, String);
+
+/// The surfaces of one body (the rocket's or a pod's), sorted by kind.
+#[derive(Default)]
+struct Parts {
+    nose: Option<Nose>,
+    tails: Vec<Tail>,
+    fins: Vec<Fin>,
+    tube_fins: Vec<TubeFinSetDrag>,
+}
+
+impl Parts {
+    /// The fin and tube-fin sets, placed aft of the nose tip by `aft_of_tip`, and the aftmost
+    /// end of a tail, a fin root chord or a tube (at least `end`).
+    fn appendages(
+        &mut self,
+        mission: &Mission,
+        spec: &DragEstimateSpec,
+        roughness: f64,
+        end: f64,
+        aft_of_tip: &dyn Fn(f64) -> f64,
+    ) -> Result<(Vec<FinSetDrag>, Vec<TubeFinSetDrag>, f64), MissionError> {
+        let mut aft_end = end;
+        for t in &self.tails {
+            aft_end = aft_end.max(aft_of_tip(t.0) + t.1);
+        }
+        let mut fin_sets = Vec::with_capacity(self.fins.len());
+        for (position, n, root_chord, outline, name) in std::mem::take(&mut self.fins) {
+            let at = aft_of_tip(position);
+            aft_end = aft_end.max(at + root_chord);
+            let Some(f) = spec.fins.get(&name) else {
+                return Err(geometry_error(
+                    mission,
+                    format!(
+                        "fin set `{name}` needs [rocket.drag_estimate.fins.{name}] with its thickness"
+                    ),
+                ));
+            };
+            fin_sets.push(FinSetDrag {
+                name: name.clone(),
+                count: n,
+                outline,
+                position: at,
+                thickness: f.thickness,
+                cross_section: cross_section(f.cross_section),
+                roughness: f.finish.map_or(roughness, SurfaceFinish::roughness),
+            });
+        }
+        let mut tube_fins = std::mem::take(&mut self.tube_fins);
+        for t in &mut tube_fins {
+            t.position = aft_of_tip(t.position);
+            aft_end = aft_end.max(t.position + t.length);
+        }
+        Ok((fin_sets, tube_fins, aft_end))
+    }
+}
+
+/// The body a nose and tails imply: the nose from the tip, the tails where they are placed
+/// (`place` gives a position's distance aft of this body's tip), cylinders of the radius
+/// reached so far between them, to `body_end` aft of the tip.
+fn implied_body(
+    mission: &Mission,
+    (nose_name, nose_length, nose_radius, nose_profile): (String, f64, f64, Profile),
+    tails: Vec<Tail>,
+    body_end: f64,
+    spec: &DragEstimateSpec,
+    roughness: f64,
+    place: &dyn Fn(f64) -> f64,
+) -> Result<Vec<BodySegment>, MissionError> {
+    let mut tails: Vec<_> = tails
+        .into_iter()
+        .map(|(p, l, top, bottom, name)| (place(p), l, top, bottom, name))
+        .collect();
+    tails.sort_by(|a, b| a.0.total_cmp(&b.0));
     let mut body = vec![BodySegment {
         drag_override: spec.overrides.get(&nose_name).copied(),
         name: nose_name,
@@ -251,38 +391,7 @@ pub fn drag_geometry(
     if body_end > x + tolerance {
         body.push(tube(body_end - x, radius, roughness));
     }
-
-    let launch_lugs = spec
-        .launch_lugs
-        .iter()
-        .map(|(name, l)| LaunchLug {
-            name: format!("{SECTION}.launch_lugs.{name}"),
-            outer_radius: l.outer_radius,
-            inner_radius: l.inner_radius,
-            length: l.length,
-            count: l.count,
-            roughness,
-        })
-        .collect();
-    let rail_buttons = match (&spec.rail_buttons, &rocket.rail_buttons) {
-        (Some(size), Some(at)) => Some(RailButtonDrag {
-            outer_diameter: size.outer_diameter,
-            inner_diameter: size.inner_diameter,
-            height: size.height,
-            inner_height: size.inner_height,
-            positions: vec![aft_of_tip(at.upper_position), aft_of_tip(at.lower_position)],
-        }),
-        _ => None,
-    };
-    Ok(DragGeometry {
-        tube_fins,
-        reference_radius: rocket.radius,
-        body,
-        fins: fin_sets,
-        launch_lugs,
-        rail_buttons,
-        nozzle_exit_radius: nozzle_radius,
-    })
+    Ok(body)
 }
 
 fn tube(length: f64, radius: f64, roughness: f64) -> BodySegment {

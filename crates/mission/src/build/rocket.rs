@@ -268,7 +268,7 @@ fn build(
             }),
             None => None,
         };
-        surfaces.push(surface_input(name, surface, airfoil));
+        surfaces.push(surface_input(spec, name, surface, airfoil));
     }
 
     let (count, radius) = cluster_of(mission);
@@ -425,7 +425,7 @@ pub fn estimated_drag(
     let surfaces: Vec<SurfaceInput> = spec
         .surfaces
         .iter()
-        .map(|(name, s)| surface_input(name, s, None))
+        .map(|(name, s)| surface_input(spec, name, s, None))
         .collect();
     let nozzle_radius = super::motors::combined_exit_radius(mission, motor.nozzle_radius());
     super::drag::estimate(mission, &surfaces, nozzle_radius).map(Some)
@@ -437,18 +437,34 @@ pub fn estimated_drag(
 /// # Errors
 /// As [`estimated_drag`].
 pub fn estimate_geometry(mission: &Mission) -> Result<DragGeometry, MissionError> {
-    let surfaces: Vec<SurfaceInput> = mission
-        .spec
-        .rocket
+    let rocket = &mission.spec.rocket;
+    let surfaces: Vec<SurfaceInput> = rocket
         .surfaces
         .iter()
-        .map(|(name, s)| surface_input(name, s, None))
+        .map(|(name, s)| surface_input(rocket, name, s, None))
         .collect();
     super::drag::drag_geometry(mission, &surfaces, 0.0)
 }
 
-/// The airframe's description of one mission surface.
-fn surface_input(name: &str, surface: &SurfaceSpec, airfoil: Option<Airfoil>) -> SurfaceInput {
+/// The pod set of `rocket` that carries surface `name`, if any (`[rocket.pods.<pod>]`).
+pub(crate) fn pod_of<'a>(
+    rocket: &'a schema::RocketSpec,
+    name: &str,
+) -> Option<(&'a str, &'a schema::PodSpec)> {
+    rocket
+        .pods
+        .iter()
+        .find(|(_, pod)| pod.surfaces.iter().any(|s| s == name))
+        .map(|(key, pod)| (key.as_str(), pod))
+}
+
+/// The airframe's description of one mission surface of `rocket`.
+fn surface_input(
+    rocket: &schema::RocketSpec,
+    name: &str,
+    surface: &SurfaceSpec,
+    airfoil: Option<Airfoil>,
+) -> SurfaceInput {
     let (position, spec) = match surface {
         SurfaceSpec::Nose(s) => (
             s.position,
@@ -537,5 +553,9 @@ fn surface_input(name: &str, surface: &SurfaceSpec, airfoil: Option<Airfoil>) ->
         name: name.to_owned(),
         position,
         spec,
+        pod: pod_of(rocket, name).map(|(_, pod)| airframe::PodPlacement {
+            count: pod.count,
+            angular_position: pod.angular_position_deg.to_radians(),
+        }),
     }
 }

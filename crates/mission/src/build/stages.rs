@@ -327,6 +327,7 @@ fn stack_rocket_spec(mission: &Mission, bottom: usize, above: Lump) -> RocketSpe
         rail_buttons: members.iter().rev().find_map(|m| m.rail_buttons.clone()),
         surfaces,
         parachutes: indexmap::IndexMap::new(),
+        pods: members.iter().flat_map(|m| m.pods.clone()).collect(),
         air_brakes: None,
     }
 }

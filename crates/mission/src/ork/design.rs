@@ -47,6 +47,8 @@ pub enum Kind {
     MassComponent,
     /// `<tubefinset>`.
     TubeFins,
+    /// `<podset>`: `instancecount` side bodies around the body it sits on.
+    PodSet,
 }
 
 impl Kind {
@@ -71,6 +73,7 @@ impl Kind {
             "shockcord" => Kind::ShockCord,
             "masscomponent" => Kind::MassComponent,
             "tubefinset" => Kind::TubeFins,
+            "podset" => Kind::PodSet,
             _ => return None,
         })
     }
@@ -78,6 +81,13 @@ impl Kind {
     /// A part of the outer body of revolution.
     pub fn is_body(self) -> bool {
         matches!(self, Kind::NoseCone | Kind::BodyTube | Kind::Transition)
+    }
+
+    /// A part in the airflow: the body, fins, tube fins, launch lugs and rail buttons.
+    pub fn is_aerodynamic(self) -> bool {
+        self.is_body()
+            || self.is_fins()
+            || matches!(self, Kind::TubeFins | Kind::LaunchLug | Kind::RailButton)
     }
 
     /// A fin set.
@@ -283,6 +293,46 @@ impl Component {
         Ok((outer, inner))
     }
 
+    /// The placement of a pod set on a body of outer radius `parent_radius`: the number of
+    /// pods, the distance of their axes from the rocket's axis (m) and the first pod's roll
+    /// position (rad). OpenRocket's radius methods: `relative` (the offset from the parent
+    /// tube's surface to the pod's surface: parent radius + offset + the pod's largest body
+    /// radius), `surface` (touching: parent radius + pod radius), `free` (the offset is the
+    /// distance) and `coaxial` (0).
+    ///
+    /// # Errors
+    /// [`OrkError::Value`] for a malformed count or offset, [`OrkError::Unsupported`] for a
+    /// radius method OpenRocket does not have.
+    pub fn pod_placement(&self, parent_radius: f64) -> Result<(u32, f64, f64), OrkError> {
+        let count = self.num_or("instancecount", 1.0)?;
+        if count < 1.0 || count.fract() != 0.0 {
+            return Err(self.value_error(
+                "instancecount",
+                &format!("{count} is not a whole number of pods"),
+            ));
+        }
+        let mut pod_radius: f64 = 0.0;
+        for c in self.children.iter().filter(|c| c.kind.is_body()) {
+            for e in ["radius", "aftradius", "foreradius"] {
+                if c.fields.contains_key(e) {
+                    pod_radius = pod_radius.max(c.dim(e)?);
+                }
+            }
+        }
+        let offset = self.num_or("radiusoffset", 0.0)?;
+        let distance = match self.text("radiusoffsetmethod").unwrap_or("relative") {
+            "relative" => parent_radius + offset + pod_radius,
+            "surface" => parent_radius + pod_radius,
+            "free" => offset,
+            "coaxial" => 0.0,
+            other => {
+                return Err(self.unsupported(&format!("a pod radius method {other:?}")));
+            }
+        };
+        let angle = self.num_or("angleoffset", 0.0)?.to_radians();
+        Ok((count as u32, distance.max(0.0), angle))
+    }
+
     /// A non-negative dimension.
     ///
     /// # Errors
@@ -361,6 +411,8 @@ fn positioning_length(kind: Kind, c: &Component) -> Result<f64, OrkError> {
         }
         Kind::RailButton => c.num_or("outerdiameter", 0.0)?,
         Kind::Stage => 0.0,
+        // Set from its body parts before it is placed (`assembly_length`).
+        Kind::PodSet => c.length,
         _ => c.num_or("length", 0.0)?,
     })
 }
@@ -373,8 +425,8 @@ impl Design {
     /// Parses the OpenRocket document `text` of `file`.
     ///
     /// # Errors
-    /// [`OrkError`]: malformed XML, an unknown version, no stage, pods, a value that is not a
-    /// number.
+    /// [`OrkError`]: malformed XML, an unknown version, no stage, parallel boosters, a value
+    /// that is not a number.
     pub fn parse(file: &Path, text: &str) -> Result<Design, OrkError> {
         let doc = roxmltree::Document::parse(text).map_err(|e| OrkError::Xml {
             file: file.to_owned(),
@@ -478,7 +530,9 @@ fn component(
     };
     let Some(kind) = Kind::from_tag(tag) else {
         let what = match tag {
-            "podset" | "parallelstage" => "a pod or parallel booster set".to_owned(),
+            "parallelstage" => "a parallel booster set (side boosters with motors of their \
+                                own, separated in flight; karman flies axial stages only)"
+                .to_owned(),
             other => format!("a <{other}> component"),
         };
         return Err(unsupported(what));
@@ -503,6 +557,11 @@ fn component(
             }
             "linematerial" => {
                 line_material = e.attribute("density").and_then(|d| d.parse::<f64>().ok());
+            }
+            "radiusoffset" | "angleoffset" => {
+                let method = e.attribute("method").unwrap_or("relative");
+                fields.insert(format!("{t}method"), method.to_owned());
+                fields.insert(t.to_owned(), text);
             }
             "filletmaterial" => {
                 fillet_material = e.attribute("density").and_then(|d| d.parse::<f64>().ok());
@@ -620,6 +679,9 @@ fn component(
     if kind == Kind::InnerTube {
         c.cluster()?;
     }
+    if kind == Kind::PodSet {
+        c.length = assembly_length(node);
+    }
     c.length = positioning_length(kind, &c)?;
     let (parent_top, parent_length) = parent.unwrap_or((0.0, 0.0));
     let (method, value) = match &axial {
@@ -655,6 +717,18 @@ fn component(
         c.length = end.map_or(0.0, |e| e - c.x);
     }
     Ok(c)
+}
+
+/// The length of a pod set: its body parts end to end (OpenRocket places them one after the
+/// other from the pod's forward end), as needed to place the pod itself by its aft end or
+/// middle.
+fn assembly_length(node: roxmltree::Node<'_, '_>) -> f64 {
+    node.children()
+        .filter(|s| s.has_tag_name("subcomponents"))
+        .flat_map(|s| s.children())
+        .filter(|c| Kind::from_tag(c.tag_name().name()).is_some_and(Kind::is_body))
+        .filter_map(|c| child_text(c, "length").as_deref().and_then(number))
+        .sum()
 }
 
 /// The `<separationevent>` and `<separationdelay>` of a stage or one of its

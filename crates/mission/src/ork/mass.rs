@@ -251,7 +251,7 @@ fn own(
 ) -> Result<MassProps, OrkError> {
     let x = c.x;
     Ok(match c.kind {
-        Kind::Stage => MassProps::default(),
+        Kind::Stage | Kind::PodSet => MassProps::default(),
         Kind::BodyTube | Kind::InnerTube | Kind::TubeCoupler | Kind::LaunchLug => {
             let ro = match c.kind {
                 Kind::BodyTube | Kind::LaunchLug => c.dim("radius")?,
@@ -474,6 +474,15 @@ fn within(
     // Summed in the order of the file, one child after the other.
     for k in children {
         p = p.add(k);
+    }
+    if c.kind == Kind::PodSet {
+        // `n` pods, their axes `d` from the rocket's: as a cluster, `M d²` more roll
+        // inertia and `M d² / 2` more transverse inertia (the mean over the two lateral
+        // axes, exact for two or more evenly spaced pods).
+        let (n, d, _) = c.pod_placement(body_radius)?;
+        p = p.scaled(p.mass * f64::from(n));
+        p.i_long += 0.5 * p.mass * d * d;
+        p.i_rot += p.mass * d * d;
     }
     if c.kind == Kind::InnerTube {
         // A cluster repeats the tube with what it holds: `n` copies at the root mean square

@@ -30,7 +30,9 @@
 //!   `automatic`/`launch` events; the launch stage's `burnout`/`ejection` never fire, and those
 //!   motors are carried as mass like any motor OpenRocket never lights).
 //!
-//! Pods and staging events the format cannot express are refused,
+//! - pod sets onto `[rocket.pods]` (their surfaces, and their masses at the pods' offset).
+//!
+//! Powered pods, parallel boosters and staging events the format cannot express are refused,
 //! naming the component; what is mapped approximately is listed in [`Imported::warnings`].
 
 mod design;

@@ -479,6 +479,332 @@ fn groups<'a>(
     Ok(out)
 }
 
+/// Pods that hold a motor mount (OpenRocket's powered pods) are refused: their motors
+/// would be a cluster at each pod's offset, lit with the core's or on their own event,
+/// which the import does not write.
+fn refuse_powered_pods(file: &Path, design: &Design) -> Result<(), OrkError> {
+    for stage in &design.stages {
+        for pod in stage.walk().into_iter().filter(|c| c.kind == Kind::PodSet) {
+            if let Some(mount) = pod.walk().into_iter().find(|c| !c.motors.is_empty()) {
+                return Err(unsupported(
+                    file,
+                    &pod.name,
+                    format!(
+                        "a powered pod set (motor mount `{}`: its motors would fly as a second \
+                         cluster, at the pods' offset, beside the core's motor; karman imports \
+                         unpowered pods)",
+                        mount.name
+                    ),
+                ));
+            }
+        }
+    }
+    Ok(())
+}
+
+/// karman's nose `kind` for OpenRocket's `shape` and shape parameter of `nose`, with a
+/// warning where the shape is approximated.
+fn nose_kind(
+    nose: &Component,
+    shape: &str,
+    parameter: f64,
+    warnings: &mut Vec<String>,
+) -> Result<String, OrkError> {
+    Ok(match shape {
+        "conical" => "conical".to_owned(),
+        "ogive" => {
+            if parameter < 0.999 {
+                warnings.push(format!(
+                    "`{}`: a secant ogive (parameter {parameter}) is flown as a tangent ogive",
+                    nose.name
+                ));
+            }
+            "tangent".to_owned()
+        }
+        "ellipsoid" => "elliptical".to_owned(),
+        "power" => "powerseries".to_owned(),
+        "parabolic" => {
+            if parameter < 0.999 {
+                warnings.push(format!(
+                    "`{}`: a {parameter} parabolic series is flown as a full parabola",
+                    nose.name
+                ));
+            }
+            "parabolic".to_owned()
+        }
+        "haack" => {
+            if parameter > 1.0 / 6.0 {
+                "lvhaack".to_owned()
+            } else {
+                "von karman".to_owned()
+            }
+        }
+        other => return Err(nose.value_error("shape", &format!("unknown shape {other:?}"))),
+    })
+}
+
+/// The text a pod set adds to the mission: its surfaces (`[<rocket>.surfaces.*]`), its
+/// fins' drag tables and its `[<rocket>.pods.<name>]` table.
+struct PodText {
+    surfaces: String,
+    fins: String,
+    pod: String,
+}
+
+/// The surfaces, fin drag tables and pod table of pod set `pod` under `rocket_key`, sitting
+/// on a body of outer radius `parent_radius`.
+#[allow(clippy::too_many_arguments)]
+fn pod_text(
+    file: &Path,
+    pod: &Component,
+    parent_radius: f64,
+    rocket_key: &str,
+    finish: &str,
+    used: &mut BTreeSet<String>,
+    warnings: &mut Vec<String>,
+) -> Result<PodText, OrkError> {
+    let (count, distance, angle) = pod.pod_placement(parent_radius)?;
+    let body: Vec<&Component> = pod.children.iter().filter(|c| c.kind.is_body()).collect();
+    if let Some(c) = pod
+        .children
+        .iter()
+        .find(|c| !c.kind.is_body() && (c.kind.is_aerodynamic() || c.kind == Kind::PodSet))
+    {
+        return Err(unsupported(
+            file,
+            &c.name,
+            "a pod's part other than a nose cone, body tube, transition or fin set".to_owned(),
+        ));
+    }
+    let radius_of = |c: &Component| -> Result<f64, OrkError> {
+        let mut r: f64 = 0.0;
+        for e in ["radius", "aftradius", "foreradius"] {
+            if c.fields.contains_key(e) {
+                r = r.max(c.dim(e)?);
+            }
+        }
+        Ok(r)
+    };
+    let mut pod_radius: f64 = 0.0;
+    for b in &body {
+        pod_radius = pod_radius.max(radius_of(b)?);
+    }
+    let mut surfaces = String::new();
+    let mut names = Vec::new();
+    let has_body = pod_radius > 0.0;
+    if has_body {
+        match body.first() {
+            Some(first)
+                if first.kind == Kind::NoseCone && first.text("isflipped") != Some("true") => {}
+            Some(first) => {
+                return Err(unsupported(
+                    file,
+                    &first.name,
+                    "a pod body that does not start with a nose cone (a blunt front)".to_owned(),
+                ));
+            }
+            None => {}
+        }
+    }
+    let mut body_end = pod.x;
+    for (i, b) in body.iter().enumerate() {
+        body_end = body_end.max(b.x + b.length);
+        if radius_of(b)? <= 0.0 {
+            continue;
+        }
+        let flipped = b.text("isflipped") == Some("true");
+        let section = |k: &str| format!("[{rocket_key}.surfaces.{k}]");
+        match b.kind {
+            Kind::NoseCone if i == 0 && !flipped => {
+                let k = key(&b.name, used);
+                let shape = b.text("shape").unwrap_or("conical");
+                let kind = nose_kind(b, shape, b.num_or("shapeparameter", 1.0)?, warnings)?;
+                let _ = write!(
+                    surfaces,
+                    "{}
+type = \"nose\"\nlength = {}\nkind = \"{kind}\"\n",
+                    section(&k),
+                    n(b.length)
+                );
+                if kind == "powerseries" {
+                    let _ = writeln!(surfaces, "power = {}", n(b.num_or("shapeparameter", 1.0)?));
+                }
+                let _ = write!(
+                    surfaces,
+                    "position = {}\nbase_radius = {}\n\n",
+                    n(b.x),
+                    n(b.dim("aftradius")?)
+                );
+                names.push(k);
+            }
+            // A nose cone turned aft (the pod's tail) or a transition: a conical tail.
+            Kind::NoseCone | Kind::Transition => {
+                let (fore, aft) = if b.kind == Kind::NoseCone {
+                    (b.dim("aftradius")?, 0.0)
+                } else {
+                    (b.dim("foreradius")?, b.dim("aftradius")?)
+                };
+                let shape = b.text("shape").unwrap_or("conical");
+                if shape != "conical" {
+                    warnings.push(format!(
+                        "`{}`: a {shape} pod {} is flown (normal force, CP and drag) as a conical one",
+                        b.name,
+                        if b.kind == Kind::NoseCone { "tail cone" } else { "transition" }
+                    ));
+                }
+                if (fore - aft).abs() <= 1e-12 {
+                    continue;
+                }
+                let k = key(&b.name, used);
+                let _ = write!(
+                    surfaces,
+                    "{}\ntype = \"tail\"\ntop_radius = {}\nbottom_radius = {}\nlength = {}\nposition = {}\n\n",
+                    section(&k),
+                    n(fore),
+                    n(aft),
+                    n(b.length),
+                    n(b.x)
+                );
+                names.push(k);
+            }
+            _ => {}
+        }
+    }
+    let mut fins = String::new();
+    for b in &body {
+        let tube_radius = b.num_or("radius", b.num_or("aftradius", 0.0)?)?;
+        for c in &b.children {
+            if c.kind.is_fins() {
+                let (k, surface, drag) = fin_tables(c, rocket_key, tube_radius, finish, used)?;
+                surfaces.push_str(&surface);
+                fins.push_str(&drag);
+                names.push(k);
+            } else if c.kind == Kind::PodSet {
+                return Err(unsupported(
+                    file,
+                    &c.name,
+                    "a pod set inside a pod".to_owned(),
+                ));
+            } else if c.kind.is_aerodynamic() {
+                return Err(unsupported(
+                    file,
+                    &c.name,
+                    "a pod's part other than a nose cone, body tube, transition or fin set"
+                        .to_owned(),
+                ));
+            }
+        }
+    }
+    let pod_key = key(&pod.name, used);
+    let mut t = String::new();
+    let _ = writeln!(
+        t,
+        "# OpenRocket's pod set `{}`: {count} pod(s), their axes {} m from the rocket's axis\n\
+         # (mass and inertia above include them{}).",
+        pod.name,
+        (distance * 1e4).round() / 1e4,
+        if count > 1 {
+            ""
+        } else {
+            ", the pitch and yaw inertias averaged"
+        }
+    );
+    let _ = writeln!(
+        t,
+        "[{rocket_key}.pods.{pod_key}]\ncount = {count}\nangular_position = {}",
+        n(angle.to_degrees())
+    );
+    let quoted_names: Vec<String> = names.iter().map(|k| quoted(k)).collect();
+    let _ = writeln!(t, "surfaces = [{}]", quoted_names.join(", "));
+    if has_body {
+        let tip = body.first().map_or(pod.x, |b| b.x);
+        let _ = writeln!(t, "body_length = {}", n(body_end - tip));
+    } else {
+        let _ = writeln!(
+            t,
+            "# A body of radius 0 (OpenRocket's \"phantom\" tube): fins only, no pod body."
+        );
+    }
+    t.push('\n');
+    Ok(PodText {
+        surfaces,
+        fins,
+        pod: t,
+    })
+}
+
+/// The `[<rocket>.surfaces.<key>]` table of fin set `c` on a tube of radius `tube_radius`,
+/// and its `[<rocket>.drag_estimate.fins.<key>]` table.
+fn fin_tables(
+    c: &Component,
+    rocket_key: &str,
+    tube_radius: f64,
+    finish: &str,
+    used: &mut BTreeSet<String>,
+) -> Result<(String, String, String), OrkError> {
+    let name = key(&c.name, used);
+    let mut surfaces = String::new();
+    let mut fins = String::new();
+    let count = c.num_or("fincount", 1.0)?;
+    let cant = c.num_or("cant", 0.0)?;
+    // OpenRocket's fin-set rotation: the first fin's roll position.
+    let rotation = c.num_or("rotation", 0.0)?;
+    let common = format!(
+        "n = {}\nposition = {}\ncant_angle = {}\nangular_position = {}\nradius = {}\n",
+        count as u32,
+        n(c.x),
+        n(cant),
+        n(rotation),
+        n(tube_radius)
+    );
+    let table = format!("{rocket_key}.surfaces.{name}");
+    match c.kind {
+        Kind::TrapezoidFins => {
+            let _ = write!(
+                surfaces,
+                "[{table}]\ntype = \"trapezoidal_fins\"\nroot_chord = {}\ntip_chord = {}\nspan = {}\nsweep_length = {}\n{common}\n",
+                n(c.dim("rootchord")?),
+                n(c.dim("tipchord")?),
+                n(c.dim("height")?),
+                n(c.num("sweeplength")?)
+            );
+        }
+        Kind::EllipticalFins => {
+            let _ = write!(
+                surfaces,
+                "[{table}]\ntype = \"elliptical_fins\"\nroot_chord = {}\nspan = {}\n{common}\n",
+                n(c.dim("rootchord")?),
+                n(c.dim("height")?)
+            );
+        }
+        _ => {
+            let points: Vec<String> = c
+                .points
+                .iter()
+                .map(|p| format!("[{}, {}]", n(p[0]), n(p[1])))
+                .collect();
+            let _ = write!(
+                surfaces,
+                "[{table}]\ntype = \"free_form_fins\"\nshape_points = [{}]\n{common}\n",
+                points.join(", ")
+            );
+        }
+    }
+    let section = c.text("crosssection").unwrap_or("square");
+    let _ = write!(
+        fins,
+        "[{rocket_key}.drag_estimate.fins.{name}]\nthickness = {}\ncross_section = \"{section}\"\n",
+        n(c.dim("thickness")?)
+    );
+    if let Some(f) = c.text("finish") {
+        if f != finish {
+            let _ = writeln!(fins, "finish = \"{f}\"");
+        }
+    }
+    fins.push('\n');
+    Ok((name, surfaces, fins))
+}
+
 /// The separation of `stage` in configuration `config`.
 fn separation(config: &str, stage: &Component) -> SeparationRef {
     stage
@@ -727,6 +1053,16 @@ fn body_text(
     if radius <= 0.0 {
         return Err(first.value_error("radius", "the body has no positive radius"));
     }
+    // OpenRocket's reference radius is the largest body radius, pods included.
+    for pod in all.iter().filter(|c| c.kind == Kind::PodSet) {
+        for b in pod.children.iter().filter(|c| c.kind.is_body()) {
+            for e in ["radius", "aftradius", "foreradius"] {
+                if b.fields.contains_key(e) {
+                    radius = radius.max(b.dim(e)?);
+                }
+            }
+        }
+    }
     let body_end = body.last().map_or(0.0, |b| b.x + b.length);
     for c in &all {
         let overridden = c.fields.contains_key("overridecd");
@@ -838,6 +1174,8 @@ fn body_text(
         .max_by_key(|f| finishes.iter().filter(|g| *g == f).count())
         .unwrap_or("normal");
     let mut surfaces = String::new();
+    let mut pod_surfaces = String::new();
+    let mut pods = String::new();
     let mut fins = String::new();
     let mut lugs = String::new();
     let mut buttons = None;
@@ -858,37 +1196,7 @@ fn body_text(
         );
         let shape = nose.text("shape").unwrap_or("conical");
         let parameter = nose.num_or("shapeparameter", 1.0)?;
-        let kind = match shape {
-            "conical" => "conical".to_owned(),
-            "ogive" => {
-                if parameter < 0.999 {
-                    warnings.push(format!(
-                        "`{}`: a secant ogive (parameter {parameter}) is flown as a tangent ogive",
-                        nose.name
-                    ));
-                }
-                "tangent".to_owned()
-            }
-            "ellipsoid" => "elliptical".to_owned(),
-            "power" => "powerseries".to_owned(),
-            "parabolic" => {
-                if parameter < 0.999 {
-                    warnings.push(format!(
-                        "`{}`: a {parameter} parabolic series is flown as a full parabola",
-                        nose.name
-                    ));
-                }
-                "parabolic".to_owned()
-            }
-            "haack" => {
-                if parameter > 1.0 / 6.0 {
-                    "lvhaack".to_owned()
-                } else {
-                    "von karman".to_owned()
-                }
-            }
-            other => return Err(nose.value_error("shape", &format!("unknown shape {other:?}"))),
-        };
+        let kind = nose_kind(nose, shape, parameter, warnings)?;
         let _ = writeln!(surfaces, "kind = \"{kind}\"");
         if kind == "powerseries" {
             let _ = writeln!(surfaces, "power = {}", n(parameter));
@@ -944,64 +1252,15 @@ fn body_text(
         for c in &parent.children {
             match c.kind {
                 Kind::TrapezoidFins | Kind::EllipticalFins | Kind::FreeFormFins => {
-                    let name = key(&c.name, used);
-                    let count = c.num_or("fincount", 1.0)?;
-                    let cant = c.num_or("cant", 0.0)?;
-                    // OpenRocket's fin-set rotation: the first fin's roll position.
-                    let rotation = c.num_or("rotation", 0.0)?;
-                    let common = format!(
-                        "n = {}\nposition = {}\ncant_angle = {}\nangular_position = {}\nradius = {}\n",
-                        count as u32,
-                        n(c.x),
-                        n(cant),
-                        n(rotation),
-                        n(tube_radius)
-                    );
-                    let table = format!("{rocket_key}.surfaces.{name}");
-                    match c.kind {
-                        Kind::TrapezoidFins => {
-                            let _ = write!(
-                                surfaces,
-                                "[{table}]\ntype = \"trapezoidal_fins\"\nroot_chord = {}\ntip_chord = {}\nspan = {}\nsweep_length = {}\n{common}\n",
-                                n(c.dim("rootchord")?),
-                                n(c.dim("tipchord")?),
-                                n(c.dim("height")?),
-                                n(c.num("sweeplength")?)
-                            );
-                        }
-                        Kind::EllipticalFins => {
-                            let _ = write!(
-                                surfaces,
-                                "[{table}]\ntype = \"elliptical_fins\"\nroot_chord = {}\nspan = {}\n{common}\n",
-                                n(c.dim("rootchord")?),
-                                n(c.dim("height")?)
-                            );
-                        }
-                        _ => {
-                            let points: Vec<String> = c
-                                .points
-                                .iter()
-                                .map(|p| format!("[{}, {}]", n(p[0]), n(p[1])))
-                                .collect();
-                            let _ = write!(
-                                surfaces,
-                                "[{table}]\ntype = \"free_form_fins\"\nshape_points = [{}]\n{common}\n",
-                                points.join(", ")
-                            );
-                        }
-                    }
-                    let section = c.text("crosssection").unwrap_or("square");
-                    let _ = write!(
-                        fins,
-                        "[{rocket_key}.drag_estimate.fins.{name}]\nthickness = {}\ncross_section = \"{section}\"\n",
-                        n(c.dim("thickness")?)
-                    );
-                    if let Some(f) = c.text("finish") {
-                        if f != finish {
-                            let _ = writeln!(fins, "finish = \"{f}\"");
-                        }
-                    }
-                    fins.push('\n');
+                    let (_, surface, drag) = fin_tables(c, rocket_key, tube_radius, finish, used)?;
+                    surfaces.push_str(&surface);
+                    fins.push_str(&drag);
+                }
+                Kind::PodSet => {
+                    let p = pod_text(file, c, tube_radius, rocket_key, finish, used, warnings)?;
+                    pod_surfaces.push_str(&p.surfaces);
+                    fins.push_str(&p.fins);
+                    pods.push_str(&p.pod);
                 }
                 Kind::TubeFins => {
                     let (outer, inner) = c.tube_fin_radii(tube_radius)?;
@@ -1095,6 +1354,8 @@ fn body_text(
         );
     }
     w.push_str(&surfaces);
+    w.push_str(&pods);
+    w.push_str(&pod_surfaces);
 
     // Recovery.
     for c in &all {
@@ -1194,6 +1455,7 @@ pub(super) fn mission(
             },
         });
     };
+    refuse_powered_pods(file, design)?;
     let groups = groups(file, design, sim, &mut warnings)?;
     let bottom = &groups[groups.len() - 1];
     if !matches!(bottom.motor.ignition.0.as_str(), "automatic" | "launch")

@@ -13,8 +13,11 @@
 //! fin set of two, whose normal force OpenRocket takes at the flow's roll angle θ
 //! (`2 C_Nα1 sin²(θ − φ)`, [`karman_airframe::FinAerodynamics::roll_factor`]) where the
 //! flight model averages it to `C_Nα1`: the compared CP is taken at OpenRocket's roll angle
-//! at rod exit (`rod_exit_roll`), flow normal to the canards. `clustered_motors` flies its
-//! four motors as one cluster (`[motor] cluster_count`). `deployable_payload`'s upper "stage"
+//! at rod exit (`rod_exit_roll`). `clustered_motors` flies its four motors as one cluster
+//! (`[motor] cluster_count`). `pods_airframes_and_winglets` has two pod sets
+//! (`[rocket.pods]`: wing pods, and a radius-0 "phantom" pod carrying the horizontal
+//! stabiliser), wings of two fins and single fins, whose CP depends on the roll angle.
+//! `deployable_payload`'s upper "stage"
 //! is a payload without a motor, ejected by the booster's ejection charge: the import flies it
 //! on the booster as one body, so its apogee and speed are compared and its separation is not
 //! flown (the booster's parachute, ejected with the payload, opens at that time on the one
@@ -32,10 +35,7 @@ use crate::report::rocket::AngleStability;
 
 /// Designs karman refuses on purpose, by folder name, with the reason: their refusal is
 /// reported and is not a miss. A listed design that imports is a miss (the entry is stale).
-pub const KNOWN_REFUSALS: &[(&str, &str)] = &[(
-    "pods_airframes_and_winglets",
-    "pod sets (OpenRocket's <podset>) are not modelled yet",
-)];
+pub const KNOWN_REFUSALS: &[(&str, &str)] = &[];
 
 /// Simulations of multi-stage designs whose apogee cannot match, by design and simulation,
 /// with the reason: they are flown and reported, not held to [`STAGED_APOGEE`].
@@ -182,15 +182,19 @@ fn column(ascent: &Value, name: &str) -> Vec<f64> {
 }
 
 /// The roll angle of the flow in the body frame (rad) at rod exit of OpenRocket's flight
-/// with the simulation `conditions` (`reference.json`), the rocket rolled to `worst`
-/// ([`karman_airframe::BodyLift::worst_roll_angle`]). OpenRocket starts the rocket at the orientation
-/// `R_z(π/2 − d) R_y(a) R_z(−θ_w − (π/2 − d))` (rod angle `a`, rod direction `d`, the
-/// wind's direction when launched into the wind; worst angle `θ_w`) and takes the flow's
-/// roll angle as the azimuth of the air velocity in the body frame. On the rod the rocket's
-/// own velocity is along its axis, so the lateral flow is the wind's, from direction `d_w`:
-/// with `γ = d − d_w`, the angle is `θ_w + π/2 − d + atan2(sin γ, cos a cos γ)`; with no
-/// wind OpenRocket takes 0. The fins' `sin²` makes the sign of the flow irrelevant.
-fn rod_exit_roll(conditions: &Value, worst: f64) -> f64 {
+/// with the simulation `conditions` (`reference.json`). OpenRocket starts the rocket at the
+/// orientation `R_z(π/2 − d) R_y(a) R_z(−θ₀ − (π/2 − d))` (rod angle `a`, rod direction `d`,
+/// the wind's direction when launched into the wind) and takes the flow's roll angle as the
+/// azimuth of the air velocity in the body frame. Its code means `θ₀` to be the worst roll
+/// angle, but OpenRocket 24.12 (`SimulationStatus`'s constructor) reads it from a new
+/// `FlightConditions`, whose roll angle is 0, and never runs the worst-CP search there: the
+/// rocket starts unrolled, `θ₀ = 0`, which is what the stored CPs show (a design whose CP
+/// depends on the roll angle, `pods_airframes_and_winglets` with its wings and single fins,
+/// has OpenRocket's rod-exit CP at `θ = 0`, not at the worst angle 90°). On the rod the
+/// rocket's own velocity is along its axis, so the lateral flow is the wind's, from
+/// direction `d_w`: with `γ = d − d_w`, the angle is `π/2 − d + atan2(sin γ, cos a cos γ)`;
+/// with no wind OpenRocket takes 0. The fins' `sin²` makes the sign of the flow irrelevant.
+fn rod_exit_roll(conditions: &Value) -> f64 {
     let wind = &conditions["wind"];
     let speed = wind["average_speed_m_s"].as_f64().unwrap_or(0.0);
     let wind_direction = wind["direction_rad"].as_f64().unwrap_or(0.0);
@@ -212,7 +216,7 @@ fn rod_exit_roll(conditions: &Value, worst: f64) -> f64 {
         .to_radians();
     let gamma = rod_direction - wind_direction;
     let lateral = gamma.sin().atan2(rod_angle.cos() * gamma.cos());
-    worst + std::f64::consts::FRAC_PI_2 - rod_direction + lateral
+    std::f64::consts::FRAC_PI_2 - rod_direction + lateral
 }
 
 /// Why a design, or one of its stored simulations, was not compared.
@@ -337,11 +341,10 @@ pub fn compare_design(
         if !(cp_time.is_finite() && cp_alpha.is_finite() && cp_mach.is_finite()) {
             return Err("no rod-exit CP row in reference.json".to_owned());
         }
-        let stability =
-            AngleStability::new(&mission, rocket, cp_time, cp_alpha, cp_mach, |worst| {
-                rod_exit_roll(&sim["conditions"], worst)
-            })
-            .map_err(|e| e.to_string())?;
+        let stability = AngleStability::new(&mission, rocket, cp_time, cp_alpha, cp_mach, |_| {
+            rod_exit_roll(&sim["conditions"])
+        })
+        .map_err(|e| e.to_string())?;
         let body_length = mission
             .spec
             .rocket
@@ -851,15 +854,13 @@ mod tests {
 
     #[test]
     fn the_rod_exit_roll_angle_follows_openrockets_initial_orientation() {
-        let worst = 0.3;
-        // Into the wind on a vertical rod: the flow comes from the worst roll angle.
+        // Into the wind on a vertical rod: the flow comes at roll angle 0.
         let into = conditions(true, [0.0, 0.0], [2.0, FRAC_PI_2]);
-        assert!((rod_exit_roll(&into, worst) - worst).abs() < 1e-15);
-        // A vertical rod rolls the rocket by −θ_w whatever its direction: a north wind on a
-        // rod pointing east comes at θ_w + 90° in the body frame.
+        assert!(rod_exit_roll(&into).abs() < 1e-15);
+        // A vertical rod pointing east with a north wind: the flow comes at 90°.
         let north = conditions(false, [0.0, 90.0], [2.0, 0.0]);
-        assert!((rod_exit_roll(&north, worst) - (worst + FRAC_PI_2)).abs() < 1e-15);
+        assert!((rod_exit_roll(&north) - FRAC_PI_2).abs() < 1e-15);
         // No wind: OpenRocket's 0.
-        assert!(rod_exit_roll(&conditions(true, [5.0, 0.0], [0.0, 1.0]), worst) == 0.0);
+        assert!(rod_exit_roll(&conditions(true, [5.0, 0.0], [0.0, 1.0])) == 0.0);
     }
 }

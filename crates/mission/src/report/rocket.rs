@@ -35,7 +35,8 @@ pub struct AngleStability {
 impl AngleStability {
     /// The figures of `mission`'s `rocket` at time `time_s`, angle of attack `alpha` (rad) and
     /// `mach`; the flow's roll angle is `roll` of OpenRocket's worst roll angle
-    /// ([`BodyLift::worst_roll_angle`], the one OpenRocket rolls the rocket to on the pad).
+    /// ([`BodyLift::worst_roll_angle`], the one OpenRocket's launch code means to roll the
+    /// rocket to on the pad; the OpenRocket comparison passes its 24.12 start, unrolled).
     ///
     /// # Errors
     /// As [`estimate_geometry`].

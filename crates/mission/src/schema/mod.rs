@@ -27,8 +27,8 @@ pub use names::{
     SurfaceFinish, SurfaceType, TankGeometryKind, TankKindName, WeatherSource,
 };
 pub use surfaces::{
-    AirfoilSpec, EllipticalFinsSpec, FreeFormFinsSpec, NoseSpec, SurfaceSpec, Sweep, TailSpec,
-    TrapezoidalFinsSpec, TubeFinsSpec,
+    AirfoilSpec, EllipticalFinsSpec, FreeFormFinsSpec, NoseSpec, PodSpec, SurfaceSpec, Sweep,
+    TailSpec, TrapezoidalFinsSpec, TubeFinsSpec,
 };
 pub use toml::value::Datetime;
 pub use values::{AirBrakesCurve, Atol, BurnTime, Curve, ESTIMATE, Inertia, STATE_SIZE, Trigger};
@@ -576,6 +576,9 @@ pub struct RocketSpec {
     /// `[rocket.parachutes.<name>]`, in file order.
     #[serde(default, skip_serializing_if = "IndexMap::is_empty")]
     pub parachutes: IndexMap<String, ParachuteSpec>,
+    /// `[rocket.pods.<name>]`: pod sets and the surfaces each pod carries.
+    #[serde(default, skip_serializing_if = "IndexMap::is_empty")]
+    pub pods: IndexMap<String, PodSpec>,
     /// `[rocket.air_brakes]`, optional.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub air_brakes: Option<AirBrakesSpec>,

@@ -1,4 +1,5 @@
-//! `[rocket.surfaces.<name>]`: aerodynamic surfaces, one table per surface with a `type`.
+//! `[rocket.surfaces.<name>]`: aerodynamic surfaces, one table per surface with a `type`;
+//! `[rocket.pods.<name>]`: the pod sets that carry some of them.
 //!
 //! A surface table is read as one flat set of keys (so an unknown key is located exactly) and
 //! then turned into the [`SurfaceSpec`] variant of its `type`; a key the type needs that is
@@ -615,4 +616,37 @@ impl From<SurfaceSpec> for RawSurface {
             },
         }
     }
+}
+
+fn one_pod() -> u32 {
+    1
+}
+
+/// `[rocket.pods.<name>]`: a pod set (OpenRocket's `podset`), `count` identical side bodies
+/// evenly spaced around the rocket axis, each carrying the surfaces named in `surfaces`.
+/// Those surfaces are placed on the rocket's axis as usual (their `position`s along it, a
+/// fin set's `radius` the pod's body radius, 0 for fins on no body) and count once per pod;
+/// a pod holding a nose cone also has a body for the drag estimate (nose, tails and
+/// cylinders between, like the rocket's own body).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct PodSpec {
+    /// Names of the `[rocket.surfaces.<name>]` tables one pod carries.
+    pub surfaces: Vec<String>,
+    /// Number of pods; default 1.
+    #[serde(default = "one_pod")]
+    pub count: u32,
+    /// Roll position of the first pod about the rocket axis, deg; the others follow at
+    /// `360° / count`. Default 0.
+    #[serde(rename = "angular_position", default, skip_serializing_if = "is_zero")]
+    pub angular_position_deg: f64,
+    /// Length of a pod's body from its nose tip, m; absent: to the aftmost end of its tails
+    /// and fin root chords. Only a pod with a nose cone has a body.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub body_length: Option<f64>,
+}
+
+#[allow(clippy::trivially_copy_pass_by_ref)] // serde's `skip_serializing_if` passes a reference
+fn is_zero(v: &f64) -> bool {
+    *v == 0.0
 }
