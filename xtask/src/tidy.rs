@@ -12,7 +12,7 @@ pub const ALLOWED: &[(&str, &[&str])] = &[
     ("karman-math", &[]),
     ("karman-model", &["karman-math"]),
     ("karman-atmos", &["karman-math", "karman-model"]),
-    ("karman-propulsion", &["karman-math"]),
+    ("karman-propulsion", &["karman-math", "karman-model"]),
     ("karman-airframe", &["karman-math", "karman-model"]),
     ("karman-dynamics", &["karman-math", "karman-model"]),
     ("karman-dispersion", &["karman-math"]),

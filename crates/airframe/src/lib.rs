@@ -85,7 +85,7 @@ pub use drag::{
     FinSetDrag, FlowReference, LaunchLug, PodDrag, Profile, RailButtonDrag, TubeFinSetDrag,
 };
 pub use error::AirframeError;
-pub use motor::{MotorProperties, PropellantPart};
+pub use motor::MotorProperties;
 pub use recovery::{
     DEFAULT_CANOPY_DRAG_COEFFICIENT, DEFAULT_POROSITY, DEFAULT_SAMPLING_RATE, Parachute,
     ParachuteSpec, RailButtons, Trigger,

@@ -6,25 +6,9 @@
 //! times in s from the thrust curve's time origin (RocketPy `Motor`, physics.md §5.2, §6).
 
 use karman_math::Table1;
+use karman_model::PropellantPart;
 
 use crate::error::{AirframeError, finite, non_negative, positive};
-
-/// A part of a motor's propellant on a time grid of its own (a tank of a liquid motor, the
-/// grain or the tanks of a hybrid), as [`MotorProperties::propellant_parts`] sums them. Its
-/// axial inertia is in the motor's propellant I33 table.
-#[derive(Debug, Clone, PartialEq)]
-pub struct PropellantPart {
-    /// Mass m_i(t) (kg).
-    pub mass: Table1,
-    /// Centre of mass z_i(t) in motor coordinates (m): the tank's position plus its fluids'
-    /// centre of mass.
-    pub center_of_mass: Table1,
-    /// Mass moment m_i z_i (kg·m), node-wise on the part's grid (RocketPy's product of the
-    /// two tables), interpolated as the mass.
-    pub moment: Table1,
-    /// I11 about z_i (kg·m²).
-    pub i11: Table1,
-}
 
 /// Tabulated properties of one motor (RocketPy `Motor` attributes, physics.md §6).
 ///

@@ -235,6 +235,28 @@ pub enum MissionError {
     },
 }
 
+impl MissionError {
+    /// This error met while building a part of the mission as a mission of its own
+    /// ([`crate::Mission::part`]), named by the part's keys: a model error about a section
+    /// under one of `roots` gets `prefix` back (`rocket.mass` → `stages.0.rocket.mass`).
+    pub(crate) fn in_part(self, prefix: &str, roots: &[&str]) -> MissionError {
+        match self {
+            MissionError::Model {
+                file,
+                location,
+                section,
+                source,
+            } if roots.iter().any(|root| section.starts_with(root)) => MissionError::Model {
+                file,
+                location,
+                section: format!("{prefix}{section}"),
+                source,
+            },
+            other => other,
+        }
+    }
+}
+
 /// What is wrong with a `--set` argument.
 #[derive(Debug, Clone, PartialEq, Eq, Error)]
 pub enum OverrideError {

@@ -102,6 +102,27 @@ impl Mission {
         }
     }
 
+    /// A part of this mission flown or built as a mission of its own: `spec` (this mission's
+    /// with the part's tables moved to the top), its keys located where the part wrote them,
+    /// so that `prefix` + a key under one of `roots` (`stages.0.` + `rocket.mass`) is found
+    /// as the bare key (`rocket.mass`) too.
+    pub(crate) fn part(&self, spec: schema::MissionSpec, prefix: &str, roots: &[&str]) -> Mission {
+        let mut keys = (*self.keys.0).clone();
+        for (key, location) in self.keys.0.iter() {
+            if let Some(inner) = key.strip_prefix(prefix)
+                && roots.iter().any(|root| inner.starts_with(root))
+            {
+                keys.insert(inner.to_owned(), location.clone());
+            }
+        }
+        Mission {
+            path: self.path.clone(),
+            dir: self.dir.clone(),
+            spec,
+            keys: KeyLocations(Arc::new(keys)),
+        }
+    }
+
     /// A data path of the mission resolved against its directory (absolute paths unchanged).
     pub fn resolve(&self, relative: &Path) -> PathBuf {
         self.dir.join(relative)

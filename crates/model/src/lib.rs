@@ -17,6 +17,8 @@
 //!   more implementation.
 //! - [`Configuration`]: what can change during a flight without changing the equations'
 //!   form — control inputs (an air-brake deployment level) and the recovery devices deployed.
+//! - [`PropellantPart`]: the one piece of plain data shared by the motor crate, which makes
+//!   it, and the vehicle crate, which sums it (neither may depend on the other).
 //!
 //! Contract of every per-step method: no allocation, and a value that depends on its
 //! arguments only. Table lookups take a [`Cursor`] that the caller keeps between evaluations
@@ -50,12 +52,14 @@
 
 mod atmosphere;
 mod configuration;
+mod propellant;
 mod surface;
 mod vehicle;
 
 pub use atmosphere::{Air, AtmosphereModel};
 pub use configuration::{Configuration, MAX_CONTROLS};
 pub use karman_math::Cursor;
+pub use propellant::PropellantPart;
 pub use surface::{Loads, LocalFlow, SurfaceModel};
 pub use vehicle::{
     BodyFlow, MassFlowLaw, MassSample, ParachuteSpec, RailButtonGeometry, StabilityModel,

@@ -32,10 +32,10 @@
 use karman_math::{Cursor, Extrapolation, Interpolation, PhysicalConstants, Table1};
 
 use crate::liquid::{LiquidPropellant, tanks_at, union_grid};
+use crate::propellant::propellant_part;
 use crate::solid::{grain_grid, regress};
 use crate::{
-    BatesGrains, GrainState, PropellantModel, PropellantPart, PropellantTables, PropulsionError,
-    ThrustCurve,
+    BatesGrains, GrainState, PropellantModel, PropellantTables, PropulsionError, ThrustCurve,
 };
 
 /// Bisection steps that locate the grain's burn-out to the resolution of an `f64`.
@@ -168,7 +168,7 @@ impl PropellantModel for HybridPropellant<'_> {
         let like = |ys, what| {
             Table1::on_same_abscissae(&mass, ys, lin, hold).map_err(PropulsionError::table(what))
         };
-        let grain = PropellantPart::new(
+        let grain = propellant_part(
             like(grain_mass, "grain mass")?,
             like(vec![grain_center; n], "grain centre of mass")?,
             like(grain_i11s, "grain I11")?,
@@ -176,7 +176,7 @@ impl PropellantModel for HybridPropellant<'_> {
         let liquid = self.tanks.tables(thrust, exhaust_velocity, constants)?;
         let mut parts = vec![grain];
         if liquid.parts.is_empty() {
-            parts.push(PropellantPart::new(
+            parts.push(propellant_part(
                 liquid.mass,
                 liquid.center_of_mass,
                 liquid.i11,

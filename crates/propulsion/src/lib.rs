@@ -42,7 +42,7 @@ pub use fluid::{Density, Fluid};
 pub use generic::CylindricalChamber;
 pub use liquid::PositionedTank;
 pub use motor::{CoordinateSystem, Motor, MotorKind, MotorStructure};
-pub use propellant::{PropellantModel, PropellantPart, PropellantTables};
+pub use propellant::{PropellantModel, PropellantTables};
 pub use solid::{BatesGrains, GrainState};
 pub use tank::{
     DEFAULT_DISCRETIZE, DEFAULT_PRESSURE, DEFAULT_TEMPERATURE, Tank, TankCurve, TankKind, TankSpec,

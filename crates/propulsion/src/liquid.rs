@@ -25,10 +25,8 @@
 
 use karman_math::{Extrapolation, Interpolation, PhysicalConstants, Table1};
 
-use crate::propellant::finite;
-use crate::{
-    PropellantModel, PropellantPart, PropellantTables, PropulsionError, Tank, ThrustCurve,
-};
+use crate::propellant::{finite, propellant_part};
+use crate::{PropellantModel, PropellantTables, PropulsionError, Tank, ThrustCurve};
 
 /// A tank placed in the motor (RocketPy `add_tank(tank, position)`).
 #[derive(Debug, Clone, PartialEq)]
@@ -134,7 +132,7 @@ impl PropellantModel for LiquidPropellant<'_> {
         let mut parts = Vec::new();
         if !one_grid {
             for p in self.tanks {
-                parts.push(PropellantPart::new(
+                parts.push(propellant_part(
                     p.tank.mass().clone(),
                     p.center_of_mass_in_motor()?,
                     p.tank.inertia().clone(),

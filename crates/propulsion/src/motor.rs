@@ -15,9 +15,10 @@ use crate::hybrid::HybridPropellant;
 use crate::liquid::LiquidPropellant;
 use crate::propellant::{finite, non_negative};
 use crate::{
-    BatesGrains, CylindricalChamber, PositionedTank, PropellantModel, PropellantPart,
-    PropellantTables, PropulsionError, ThrustCurve,
+    BatesGrains, CylindricalChamber, PositionedTank, PropellantModel, PropellantTables,
+    PropulsionError, ThrustCurve,
 };
+use karman_model::PropellantPart;
 
 /// Orientation of the motor's axial coordinate.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]

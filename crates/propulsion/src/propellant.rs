@@ -8,6 +8,7 @@
 //! ([`crate::CylindricalChamber`]) models exist; hybrid and liquid models plug in the same way.
 
 use karman_math::{PhysicalConstants, Table1};
+use karman_model::PropellantPart;
 
 use crate::{PropulsionError, ThrustCurve};
 
@@ -29,51 +30,18 @@ pub struct PropellantTables {
     pub parts: Vec<PropellantPart>,
 }
 
-/// One part of a propellant summed pointwise (a tank, a hybrid's grain or its tanks
-/// together): tables of time (s).
-#[derive(Debug, Clone, PartialEq)]
-pub struct PropellantPart {
-    /// Mass `m_i(t)`, kg.
-    pub mass: Table1,
-    /// Centre of mass `z_i(t)`, m, motor coordinates (for a tank, its position plus its
-    /// fluids' centre of mass).
-    pub center_of_mass: Table1,
-    /// Mass moment `m_i z_i`, kg·m: the node-wise products on the part's grid, interpolated
-    /// and extrapolated as its mass (RocketPy multiplies the two tables node by node before
-    /// summing the parts pointwise).
-    pub moment: Table1,
-    /// `I11_i(t)` about `z_i`, kg·m² (the axial inertia is the propellant tables' I33).
-    pub i11: Table1,
-}
-
-impl PropellantPart {
-    /// The part whose mass, centre of mass (motor coordinates) and `I11` are these tables,
-    /// its moment the node-wise products of the first two (on the mass's grid, with its
-    /// interpolation; the centre of mass must share that grid).
-    ///
-    /// # Errors
-    /// [`PropulsionError::Table`] when the grids differ or a product overflows.
-    pub(crate) fn new(
-        mass: Table1,
-        center_of_mass: Table1,
-        i11: Table1,
-    ) -> Result<PropellantPart, PropulsionError> {
-        let products = mass
-            .ys()
-            .iter()
-            .zip(center_of_mass.ys())
-            .map(|(m, z)| m * z)
-            .collect();
-        let moment =
-            Table1::on_same_abscissae(&mass, products, mass.interpolation(), mass.extrapolation())
-                .map_err(PropulsionError::table("propellant mass moment"))?;
-        Ok(PropellantPart {
-            mass,
-            center_of_mass,
-            moment,
-            i11,
-        })
-    }
+/// The propellant part whose mass, centre of mass (motor coordinates) and `I11` are these
+/// tables ([`PropellantPart::from_tables`]).
+///
+/// # Errors
+/// [`PropulsionError::Table`] when the grids differ or a product overflows.
+pub(crate) fn propellant_part(
+    mass: Table1,
+    center_of_mass: Table1,
+    i11: Table1,
+) -> Result<PropellantPart, PropulsionError> {
+    PropellantPart::from_tables(mass, center_of_mass, i11)
+        .map_err(PropulsionError::table("propellant mass moment"))
 }
 
 /// A motor type's propellant bookkeeping.

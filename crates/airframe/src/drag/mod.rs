@@ -315,6 +315,18 @@ fn body_segments(body: &[BodySegment], gamma: f64, count: f64, closed: bool) -> 
     segments
 }
 
+/// A body segment's dimensions, roughness, drag override and nose profile, checked.
+fn check_segment(s: &BodySegment) -> Result<(), AirframeError> {
+    non_negative(&s.name, "length", s.length)?;
+    non_negative(&s.name, "fore radius", s.fore_radius)?;
+    non_negative(&s.name, "aft radius", s.aft_radius)?;
+    non_negative(&s.name, "roughness", s.roughness)?;
+    if let Some(cd) = s.drag_override {
+        finite(&s.name, "drag override", cd)?;
+    }
+    check_profile(&s.name, s.profile)
+}
+
 fn check_profile(name: &str, profile: Profile) -> Result<(), AirframeError> {
     if let Some((p, min, max)) = profile.parameter() {
         finite(name, "shape parameter", p)?;
@@ -357,14 +369,7 @@ impl DragModel {
         let mut fineness_length = 0.0;
         let mut max_radius: f64 = 0.0;
         for s in &geometry.body {
-            non_negative(&s.name, "length", s.length)?;
-            non_negative(&s.name, "fore radius", s.fore_radius)?;
-            non_negative(&s.name, "aft radius", s.aft_radius)?;
-            non_negative(&s.name, "roughness", s.roughness)?;
-            if let Some(cd) = s.drag_override {
-                finite(&s.name, "drag override", cd)?;
-            }
-            check_profile(&s.name, s.profile)?;
+            check_segment(s)?;
             body_length += s.length;
             if s.drag_override.is_none() {
                 fineness_length += s.length;
@@ -453,14 +458,7 @@ impl DragModel {
             }
             let mut pod_length = 0.0;
             for s in &pod.body {
-                non_negative(&s.name, "length", s.length)?;
-                non_negative(&s.name, "fore radius", s.fore_radius)?;
-                non_negative(&s.name, "aft radius", s.aft_radius)?;
-                non_negative(&s.name, "roughness", s.roughness)?;
-                if let Some(cd) = s.drag_override {
-                    finite(&s.name, "drag override", cd)?;
-                }
-                check_profile(&s.name, s.profile)?;
+                check_segment(s)?;
                 pod_length += s.length;
                 if s.drag_override.is_none() {
                     max_radius = max_radius.max(s.fore_radius).max(s.aft_radius);

@@ -42,14 +42,14 @@
 //!   than each nozzle with its own flow; those are small beside `d_n²` (a few cm² against a
 //!   lever arm of a metre or so).
 
-use karman_airframe::{MotorProperties, PropellantPart};
+use karman_airframe::MotorProperties;
 use karman_math::{Extrapolation, Interpolation, MathError, Table1};
-use std::sync::Arc;
+use karman_model::PropellantPart;
 
 use super::motor::build_motor;
 use super::rocket::{clustered, delayed, motor_properties};
 use crate::schema::RocketCoordinateSystem;
-use crate::{KeyLocations, Mission, MissionError};
+use crate::{Mission, MissionError};
 
 /// One motor of a combination: its properties (clustered and moved to its ignition time) in
 /// its own coordinates, and where its coordinate origin sits in rocket coordinates.
@@ -102,40 +102,15 @@ pub(crate) fn extra_motor_mission(mission: &Mission, index: usize) -> Mission {
     let mut spec = mission.spec.clone();
     spec.motor = spec.extra_motors[index].motor.clone();
     spec.extra_motors.clear();
-    let prefix = format!("extra_motors.{index}.");
-    let mut keys = (*mission.keys.0).clone();
-    for (key, location) in mission.keys.0.iter() {
-        if let Some(inner) = key.strip_prefix(&prefix)
-            && inner.starts_with("motor")
-        {
-            keys.insert(inner.to_owned(), location.clone());
-        }
-    }
-    Mission {
-        path: mission.path.clone(),
-        dir: mission.dir.clone(),
-        spec,
-        keys: KeyLocations(Arc::new(keys)),
-    }
+    mission.part(spec, &extra_prefix(index), EXTRA_ROOTS)
 }
 
-/// An error met while building extra motor `index` from its own mission, named by the
-/// entry's key.
-fn in_extra(error: MissionError, index: usize) -> MissionError {
-    match error {
-        MissionError::Model {
-            file,
-            location,
-            section,
-            source,
-        } if section.starts_with("motor") => MissionError::Model {
-            file,
-            location,
-            section: format!("extra_motors.{index}.{section}"),
-            source,
-        },
-        other => other,
-    }
+/// The tables of an `[[extra_motors]]` entry built as a mission's own.
+const EXTRA_ROOTS: &[&str] = &["motor"];
+
+/// The key prefix of `[[extra_motors]]` entry `index`.
+fn extra_prefix(index: usize) -> String {
+    format!("extra_motors.{index}.")
 }
 
 /// The key of a motor of the combination: `motor` for index 0, else its
@@ -168,7 +143,8 @@ pub fn with_extra_motors(
     });
     for (index, extra) in spec.extra_motors.iter().enumerate() {
         let alone = extra_motor_mission(mission, index);
-        let motor = build_motor(&alone).map_err(|e| in_extra(e, index))?;
+        let motor =
+            build_motor(&alone).map_err(|e| e.in_part(&extra_prefix(index), EXTRA_ROOTS))?;
         let m = &extra.motor;
         let key = |k: &str| format!("extra_motors.{index}.{k}");
         let single = clustered(

@@ -7,13 +7,14 @@ use std::sync::Arc;
 
 use karman_airframe::{
     self as airframe, AirBrakes, AirBrakesSpec, Airfoil, AirframeError, CoordinateSystem,
-    DragEstimate, DragGeometry, MotorProperties, NoseKind, Parachute, PropellantPart, RailButtons,
-    Rocket, RocketInputs, SurfaceInput, Trigger,
+    DragEstimate, DragGeometry, MotorProperties, NoseKind, Parachute, RailButtons, Rocket,
+    RocketInputs, SurfaceInput, Trigger,
 };
 use karman_script::Expression;
 
 use super::scripts::{AfterTime, ExpressionTrigger};
 use karman_math::{Extrapolation, Interpolation, Table1};
+use karman_model::PropellantPart;
 use karman_propulsion::Motor;
 
 use crate::schema::{self, AngleUnit, RocketCoordinateSystem, SurfaceSpec};
@@ -28,16 +29,7 @@ use crate::{Mission, MissionError};
 #[must_use]
 pub fn motor_properties(motor: &Motor) -> MotorProperties {
     let (i11, i33) = motor.propellant_inertia();
-    let propellant_parts = motor
-        .propellant_parts()
-        .iter()
-        .map(|p| PropellantPart {
-            mass: p.mass.clone(),
-            center_of_mass: p.center_of_mass.clone(),
-            moment: p.moment.clone(),
-            i11: p.i11.clone(),
-        })
-        .collect();
+    let propellant_parts = motor.propellant_parts().to_vec();
     MotorProperties {
         thrust: motor.thrust_table().clone(),
         burn_start: motor.burn_start(),

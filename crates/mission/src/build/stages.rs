@@ -46,7 +46,7 @@ use super::scripts::{AfterTime, ExpressionTrigger};
 use crate::montecarlo::WindAdjusted;
 use crate::report::trajectory::Track;
 use crate::schema::{Curve, DragEstimateSpec, Inertia, RocketSpec, StageSpec, Trigger};
-use crate::{KeyLocations, Mission, MissionError};
+use crate::{Mission, MissionError};
 
 /// One integrated flight of a vehicle of the tree: a stack until a separation, or a body to
 /// its end.
@@ -133,21 +133,15 @@ pub(crate) fn stage_mission(mission: &Mission, index: usize) -> Mission {
         spec.motor = motor.clone();
     }
     spec.stages.clear();
-    let prefix = format!("stages.{index}.");
-    let mut keys = (*mission.keys.0).clone();
-    for (key, location) in mission.keys.0.iter() {
-        if let Some(inner) = key.strip_prefix(&prefix)
-            && (inner.starts_with("rocket") || inner.starts_with("motor"))
-        {
-            keys.insert(inner.to_owned(), location.clone());
-        }
-    }
-    Mission {
-        path: mission.path.clone(),
-        dir: mission.dir.clone(),
-        spec,
-        keys: KeyLocations(Arc::new(keys)),
-    }
+    mission.part(spec, &stage_prefix(index), STAGE_ROOTS)
+}
+
+/// The tables of a `[[stages]]` entry built as a mission's own.
+const STAGE_ROOTS: &[&str] = &["rocket", "motor"];
+
+/// The key prefix of `[[stages]]` entry `index`.
+fn stage_prefix(index: usize) -> String {
+    format!("stages.{index}.")
 }
 
 /// The own motor of lower stage `index` (which has one), as it flies after separation, from
@@ -165,20 +159,7 @@ pub(crate) fn stage_motor(
 
 /// An error found while building stage `index` from its own mission, named by the stage's key.
 fn in_stage(error: MissionError, index: usize) -> MissionError {
-    match error {
-        MissionError::Model {
-            file,
-            location,
-            section,
-            source,
-        } if section.starts_with("rocket") || section.starts_with("motor") => MissionError::Model {
-            file,
-            location,
-            section: format!("stages.{index}.{section}"),
-            source,
-        },
-        other => other,
-    }
+    error.in_part(&stage_prefix(index), STAGE_ROOTS)
 }
 
 /// The top stage alone as a mission (without `[[stages]]`).

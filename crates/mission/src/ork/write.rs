@@ -74,6 +74,17 @@ struct EngHeader {
     total: f64,
 }
 
+impl EngHeader {
+    /// The length and diameter (m) of `motor`: those the design stores, else this file's.
+    fn size_of(&self, motor: &MotorRef) -> (f64, f64) {
+        let pick = |stored: f64, file: f64| if stored.is_finite() { stored } else { file };
+        (
+            pick(motor.length, self.length),
+            pick(motor.diameter, self.diameter),
+        )
+    }
+}
+
 fn eng_header(path: &Path) -> Option<EngHeader> {
     let text = std::fs::read_to_string(path).ok()?;
     let line = text
@@ -915,16 +926,7 @@ fn motor_text(
     options: &ImportOptions,
 ) -> Result<(String, f64), OrkError> {
     let (eng_path, eng) = find_motor(file, motor, options)?;
-    let motor_length = if motor.length.is_finite() {
-        motor.length
-    } else {
-        eng.length
-    };
-    let motor_diameter = if motor.diameter.is_finite() {
-        motor.diameter
-    } else {
-        eng.diameter
-    };
+    let (motor_length, motor_diameter) = eng.size_of(motor);
     let nozzle_at = mount.x + mount.length + mount.overhang;
     let dry = (eng.total - eng.propellant).max(0.0);
 
@@ -1095,16 +1097,7 @@ fn body_text(
     }
     for (mount, motor) in &group.unlit {
         let (_, eng) = find_motor(file, motor, options)?;
-        let length = if motor.length.is_finite() {
-            motor.length
-        } else {
-            eng.length
-        };
-        let diameter = if motor.diameter.is_finite() {
-            motor.diameter
-        } else {
-            eng.diameter
-        };
+        let (length, diameter) = eng.size_of(motor);
         props = props.add(mass::unlit_motor(
             mount.x + mount.length + mount.overhang,
             length,
