@@ -24,8 +24,8 @@
 //! no varied input reaches is built once from the nominal mission and shared: the
 //! environment unless a stored `environment.*` input varies, the motor unless a `motor.*`
 //! input or knob varies, the rocket unless the motor or a `rocket.*` input varies; thrust and
-//! rocket curve files are read once (those of every stage of a multi-stage mission too:
-//! [`crate::build::stages::StageThrusts`]). Parachute trigger noise of sample `i` is seeded from the
+//! rocket curve files are read once (those of every motor: each stage's of a multi-stage
+//! mission, each `[[extra_motors]]` entry's; [`crate::build::motors::ThrustCache`]). Parachute trigger noise of sample `i` is seeded from the
 //! sample's reserved stream ([`karman_dispersion::sampling::flight_seed`]), so it replays with
 //! the sample.
 //!
@@ -42,8 +42,8 @@
 
 use crate::build::environment::build_environment;
 use crate::build::flight::{early_ending, flight_settings, fly};
-use crate::build::motor::{build_motor_with, thrust_source};
-use crate::build::rocket::{EstimateScaling, build_rocket, build_rocket_scaled};
+use crate::build::motors::ThrustCache;
+use crate::build::rocket::{EstimateScaling, build_rocket_scaled};
 use crate::build::scripts::{ControllerEnvironment, compile_controller};
 use crate::build::stages;
 use crate::paths::{self, DerivedKnob, Input};
@@ -58,7 +58,7 @@ use karman_dispersion::{
 };
 use karman_dynamics::{Air, AtmosphereModel, Summary};
 use karman_math::Cursor;
-use karman_propulsion::{Motor, ThrustSource};
+use karman_propulsion::Motor;
 use karman_script::ControllerScript;
 use sha2::{Digest, Sha256};
 use std::fmt::Write as _;
@@ -170,8 +170,6 @@ struct LowerStage {
 struct Reach {
     /// A stored `environment.*` input: the environment is rebuilt per sample.
     environment: bool,
-    /// `motor.thrust` itself: the thrust data are taken from the sample's mission.
-    thrust: bool,
     /// A `motor.*` input or knob: the motor is rebuilt per sample.
     motor: bool,
     /// A `rocket.*` or `extra_motors.*` input, or the motor: the rocket (which carries the
@@ -184,7 +182,6 @@ impl Reach {
         let section = path.split('.').next().unwrap_or_default();
         let knob = DerivedKnob::from_path(path);
         self.environment |= section == "environment" && knob.is_none();
-        self.thrust |= path == "motor.thrust";
         self.motor |= section == "motor";
         self.rocket |= matches!(section, "motor" | "rocket" | "extra_motors");
     }
@@ -202,8 +199,8 @@ pub struct MonteCarlo {
     environment: Option<Arc<Environment>>,
     /// The air-brake controller script, compiled once.
     controller: Option<ControllerScript>,
-    /// The nominal thrust data, read once.
-    thrust: ThrustSource,
+    /// The thrust data of every motor of the mission, read once.
+    thrusts: ThrustCache,
     /// The nominal motor and rocket, shared by the samples that do not vary them.
     motor: Motor,
     rocket: Rocket,
@@ -214,8 +211,6 @@ pub struct MonteCarlo {
     stage_reshapes: Vec<Option<[f64; 2]>>,
     /// The lower stages of a multi-stage mission (each sample flies the staged flight).
     lower: Vec<LowerStage>,
-    /// The thrust data of every motor of a multi-stage mission, read once.
-    stage_thrusts: Option<stages::StageThrusts>,
 }
 
 /// `--samples` / `--seed` overrides of the `[dispersion]` table.
@@ -290,24 +285,19 @@ impl MonteCarlo {
                 invalid("the mission has no [dispersion] table; give --samples".into())
             })?;
         let seed = overrides.seed.or(table.map(|d| d.seed)).unwrap_or(0);
-        let thrust = thrust_source(mission)?;
-        let motor = build_motor_with(mission, &thrust)?;
-        let rocket = build_rocket(mission, &motor)?;
+        let thrusts = ThrustCache::read(mission)?;
+        let motor = thrusts.motor(mission)?;
+        let rocket = build_rocket_scaled(mission, &motor, EstimateScaling::default(), &thrusts)?;
         let environment = build_environment(mission)?;
-        let stage_thrusts = if spec.stages.is_empty() {
-            None
-        } else {
-            Some(stages::StageThrusts::read(mission)?)
-        };
         let mut stage_reshapes = Vec::with_capacity(spec.stages.len());
         for (index, stage) in spec.stages.iter().enumerate() {
-            stage_reshapes.push(match (&stage.motor, &stage_thrusts) {
-                (Some(_), Some(thrusts)) => {
+            stage_reshapes.push(match &stage.motor {
+                Some(_) => {
                     let alone = stages::stage_mission(mission, index);
-                    let motor = stages::stage_motor(&alone, thrusts, index)?;
+                    let motor = stages::stage_motor(&alone, &thrusts, index)?;
                     Some([motor.burn_out(), motor.total_impulse()])
                 }
-                _ => None,
+                None => None,
             });
         }
         let mut inputs = Vec::new();
@@ -441,11 +431,10 @@ impl MonteCarlo {
             reach,
             environment: (!reach.environment).then(|| Arc::new(environment)),
             controller: compile_controller(mission)?,
-            thrust,
+            thrusts,
             nominal_reshape: [motor.burn_out(), motor.total_impulse()],
             stage_reshapes,
             lower,
-            stage_thrusts,
             motor,
             rocket,
         })
@@ -575,19 +564,13 @@ impl MonteCarlo {
         let (sample_motor, sample_rocket);
         let rocket = if self.reach.rocket {
             let motor = if self.reach.motor {
-                let read;
-                let thrust = if self.reach.thrust {
-                    read = thrust_source(&mission).map_err(|e| chain(&e))?;
-                    &read
-                } else {
-                    &self.thrust
-                };
-                sample_motor = build_motor_with(&mission, thrust).map_err(|e| chain(&e))?;
+                sample_motor = self.thrusts.motor(&mission).map_err(|e| chain(&e))?;
                 &sample_motor
             } else {
                 &self.motor
             };
-            sample_rocket = build_rocket_scaled(&mission, motor, drag).map_err(|e| chain(&e))?;
+            sample_rocket =
+                build_rocket_scaled(&mission, motor, drag, &self.thrusts).map_err(|e| chain(&e))?;
             &sample_rocket
         } else {
             &self.rocket
@@ -631,13 +614,14 @@ impl MonteCarlo {
         wind: [f64; 2],
     ) -> Result<Outcome, String> {
         let noise_seed = flight_seed(self.study.seed, index);
-        let thrusts = self
-            .stage_thrusts
-            .as_ref()
-            .ok_or("a multi-stage study without its thrust data")?;
-        let run =
-            stages::simulate_staged_in(mission, thrusts, environment.clone(), wind, noise_seed)
-                .map_err(|e| chain(&e))?;
+        let run = stages::simulate_staged_in(
+            mission,
+            &self.thrusts,
+            environment.clone(),
+            wind,
+            noise_seed,
+        )
+        .map_err(|e| chain(&e))?;
         let (values, ended) = staged_values(&run, &self.lower)?;
         Ok(match ended {
             None => Outcome::new(values),

@@ -7,6 +7,7 @@ use karman_math::PhysicalConstants;
 use karman_mission::build::drag::launch_air;
 use karman_mission::build::flight::simulate;
 use karman_mission::build::motor::build_motor;
+use karman_mission::build::motors::ThrustCache;
 use karman_mission::build::rocket::{EstimateScaling, build_rocket, build_rocket_scaled};
 use karman_mission::montecarlo::{MonteCarlo, StudyOverrides};
 use karman_mission::{Override, load};
@@ -149,7 +150,13 @@ fn a_factor_or_offset_on_an_estimated_curve_changes_each_samples_estimate() {
         power_off: [1.25, 0.0],
         power_on: [1.0, 0.02],
     };
-    let scaled = build_rocket_scaled(&mission, &motor, scaling).expect("scaled rocket");
+    let scaled = build_rocket_scaled(
+        &mission,
+        &motor,
+        scaling,
+        &ThrustCache::read(&mission).expect("thrusts"),
+    )
+    .expect("scaled rocket");
     for mach in [0.1, 0.9, 2.0] {
         let off = nominal.drag_coefficient(false, mach);
         let on = nominal.drag_coefficient(true, mach);

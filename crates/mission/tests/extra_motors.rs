@@ -476,3 +476,58 @@ fn a_study_varying_only_an_extra_motor_rebuilds_the_rocket() {
     let apogee_time = |delay: f64| study.fly(1, &[delay]).expect("flies").values()[2];
     assert!(apogee_time(6.0) > apogee_time(3.0));
 }
+
+#[test]
+fn a_study_reads_every_thrust_and_curve_file_once() {
+    // The air start with its outboard motors' thrust in a file beside the mission: once the
+    // study is set up, the samples (which rebuild the rocket and its extra motors) must not
+    // read the thrust or curve files again, so removing them changes nothing.
+    let dir = std::env::temp_dir().join(format!("karman-extra-motors-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).expect("temp dir");
+    let inline = "thrust = [[0, 0], [0.05, 320], [0.3, 290], [1.4, 230], [1.6, 0]]";
+    let text = text_of("airstart.toml");
+    assert!(text.contains(inline), "the fixture's outboard thrust");
+    let text = text.replace(inline, "thrust = \"outboard.csv\"");
+    std::fs::write(dir.join("airstart.toml"), &text).expect("mission written");
+    std::fs::write(
+        dir.join("outboard.csv"),
+        "0,0\n0.05,320\n0.3,290\n1.4,230\n1.6,0\n",
+    )
+    .expect("thrust written");
+    let copied = [
+        "example_K1960.eng",
+        "power_off_drag.csv",
+        "power_on_drag.csv",
+    ];
+    for file in copied {
+        std::fs::copy(repo_fixture(file), dir.join(file)).expect("fixture copied");
+    }
+    let mission = parse(&text, &dir.join("airstart.toml"), &[]).unwrap_or_else(|e| panic!("{e}"));
+    let study = MonteCarlo::new(&mission, StudyOverrides::default()).expect("study");
+    let values = [4.2, 1960.0, 3.0, 0.28, 1.0, 2.57, 86.0, 30.0];
+    let before = study.fly(3, &values).expect("flies");
+    for file in copied.iter().chain(&["outboard.csv"]) {
+        std::fs::remove_file(dir.join(file)).expect("removed");
+    }
+    let after = study
+        .fly(3, &values)
+        .expect("flies without its thrust files");
+    let bits = |values: &[Option<f64>]| {
+        values
+            .iter()
+            .map(|v| v.map(f64::to_bits))
+            .collect::<Vec<_>>()
+    };
+    assert_eq!(bits(before.values()), bits(after.values()));
+    // And the same data as the inline curve.
+    let nominal = MonteCarlo::new(
+        &load(&text_of("airstart.toml"), "airstart.toml"),
+        StudyOverrides::default(),
+    )
+    .expect("study");
+    assert_eq!(
+        bits(nominal.fly(3, &values).expect("flies").values()),
+        bits(before.values())
+    );
+    std::fs::remove_dir_all(&dir).expect("temp dir removed");
+}

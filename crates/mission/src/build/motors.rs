@@ -45,10 +45,13 @@
 use karman_airframe::MotorProperties;
 use karman_math::{Extrapolation, Interpolation, MathError, Table1};
 use karman_model::PropellantPart;
+use karman_propulsion::{Motor, ThrustSource};
+use std::borrow::Cow;
 
-use super::motor::build_motor;
+use super::motor::{build_motor, build_motor_with, thrust_source};
 use super::rocket::{clustered, delayed, motor_properties};
-use crate::schema::RocketCoordinateSystem;
+use super::stages::{in_stage, stage_mission};
+use crate::schema::{Curve, RocketCoordinateSystem};
 use crate::{Mission, MissionError};
 
 /// One motor of a combination: its properties (clustered and moved to its ignition time) in
@@ -96,6 +99,69 @@ pub enum CombineError {
     Table(#[from] MathError),
 }
 
+/// The thrust data of every motor of a mission (`[motor]`, each `[stages.motor]`, each
+/// `[[extra_motors]]` entry's), read once, each with the `thrust` key it was read from: a
+/// multi-stage flight builds its motors from them, and a Monte Carlo study reads its thrust
+/// files once for all its samples.
+#[derive(Debug, Clone)]
+pub struct ThrustCache(Vec<(Curve, ThrustSource)>);
+
+impl ThrustCache {
+    /// Reads the thrust of every motor of `mission`.
+    ///
+    /// # Errors
+    /// The thrust readers' errors, named by the motor's key.
+    pub fn read(mission: &Mission) -> Result<Self, MissionError> {
+        let mut cache = Self(vec![(
+            mission.spec.motor.thrust.clone(),
+            thrust_source(mission)?,
+        )]);
+        for (index, stage) in mission.spec.stages.iter().enumerate() {
+            if let Some(motor) = &stage.motor
+                && !cache.holds(&motor.thrust)
+            {
+                let source = thrust_source(&stage_mission(mission, index))
+                    .map_err(|e| in_stage(e, index))?;
+                cache.0.push((motor.thrust.clone(), source));
+            }
+        }
+        for (index, extra) in mission.spec.extra_motors.iter().enumerate() {
+            if !cache.holds(&extra.motor.thrust) {
+                let source = thrust_source(&extra_motor_mission(mission, index))
+                    .map_err(|e| e.in_part(&extra_prefix(index), EXTRA_ROOTS))?;
+                cache.0.push((extra.motor.thrust.clone(), source));
+            }
+        }
+        Ok(cache)
+    }
+
+    fn holds(&self, thrust: &Curve) -> bool {
+        self.0.iter().any(|(curve, _)| curve == thrust)
+    }
+
+    /// The `[motor]` of `vehicle` (a mission in the same folder: one vehicle of a stack, one
+    /// extra motor alone, a Monte Carlo sample), from the thrust read once when its `thrust`
+    /// key is one of those read, else read now (a sample that varies the curve).
+    ///
+    /// # Errors
+    /// The motor builder's errors.
+    pub fn motor(&self, vehicle: &Mission) -> Result<Motor, MissionError> {
+        build_motor_with(vehicle, &*self.source(vehicle)?)
+    }
+
+    /// The thrust data of `vehicle`'s `[motor]`, as [`ThrustCache::motor`] takes it.
+    ///
+    /// # Errors
+    /// The thrust readers' errors, for a curve not read before.
+    pub fn source(&self, vehicle: &Mission) -> Result<Cow<'_, ThrustSource>, MissionError> {
+        let thrust = &vehicle.spec.motor.thrust;
+        Ok(match self.0.iter().find(|(curve, _)| curve == thrust) {
+            Some((_, source)) => Cow::Borrowed(source),
+            None => Cow::Owned(thrust_source(vehicle)?),
+        })
+    }
+}
+
 /// `mission` with `[[extra_motors]]` entry `index`'s motor as its `[motor]` (and no extra
 /// motors), its keys located at the entry's, so that the motor builder's errors name them.
 pub(crate) fn extra_motor_mission(mission: &Mission, index: usize) -> Mission {
@@ -124,6 +190,7 @@ fn motor_key(index: usize, key: &str) -> String {
 
 /// `primary` (the `[motor]` of `mission`, clustered and at its ignition time) combined with
 /// every `[[extra_motors]]` entry ([`combined`]); `primary` unchanged when there is none.
+/// The extra motors' thrust data come from `thrusts` when given, else are read now.
 ///
 /// # Errors
 /// The motor builder's errors, named by the entry's keys; [`CombineError`] located at the
@@ -131,6 +198,7 @@ fn motor_key(index: usize, key: &str) -> String {
 pub fn with_extra_motors(
     mission: &Mission,
     primary: MotorProperties,
+    thrusts: Option<&ThrustCache>,
 ) -> Result<MotorProperties, MissionError> {
     let spec = &mission.spec;
     if spec.extra_motors.is_empty() {
@@ -143,8 +211,11 @@ pub fn with_extra_motors(
     });
     for (index, extra) in spec.extra_motors.iter().enumerate() {
         let alone = extra_motor_mission(mission, index);
-        let motor =
-            build_motor(&alone).map_err(|e| e.in_part(&extra_prefix(index), EXTRA_ROOTS))?;
+        let motor = match thrusts {
+            Some(thrusts) => thrusts.motor(&alone),
+            None => build_motor(&alone),
+        }
+        .map_err(|e| e.in_part(&extra_prefix(index), EXTRA_ROOTS))?;
         let m = &extra.motor;
         let key = |k: &str| format!("extra_motors.{index}.{k}");
         let single = clustered(

@@ -12,6 +12,7 @@ use karman_airframe::{
 };
 use karman_script::Expression;
 
+use super::motors::ThrustCache;
 use super::scripts::{AfterTime, ExpressionTrigger};
 use karman_math::{Extrapolation, Interpolation, Table1};
 use karman_model::PropellantPart;
@@ -181,11 +182,12 @@ pub fn cluster_of(mission: &Mission) -> (u32, f64) {
 /// and (section `rocket`, `rocket.surfaces.<name>`,
 /// `rocket.parachutes.<name>` or `rocket.rail_buttons`) for impossible airframe inputs.
 pub fn build_rocket(mission: &Mission, motor: &Motor) -> Result<Rocket, MissionError> {
-    build_rocket_ignited_at(mission, motor, 0.0)
+    build(mission, motor, 0.0, EstimateScaling::default(), None)
 }
 
 /// [`build_rocket`] with the motor ignited at `ignition` s ([`delayed`]; a `"burnout + X"`
-/// trigger counts from its delayed burn-out): an upper stage of a multi-stage rocket.
+/// trigger counts from its delayed burn-out): an upper stage of a multi-stage rocket. Its
+/// extra motors' thrust data come from `thrusts`.
 ///
 /// # Errors
 /// As [`build_rocket`], and [`MissionError::Model`] (section `motor`) when the delay cannot be
@@ -194,8 +196,15 @@ pub fn build_rocket_ignited_at(
     mission: &Mission,
     motor: &Motor,
     ignition: f64,
+    thrusts: &ThrustCache,
 ) -> Result<Rocket, MissionError> {
-    build(mission, motor, ignition, EstimateScaling::default())
+    build(
+        mission,
+        motor,
+        ignition,
+        EstimateScaling::default(),
+        Some(thrusts),
+    )
 }
 
 /// A change `a · Cd + b` of each drag curve estimated from the geometry (`"estimate"`), as
@@ -219,7 +228,8 @@ impl Default for EstimateScaling {
 }
 
 /// [`build_rocket`] with its estimated drag curves changed by `scaling` (curves read from the
-/// mission are not estimates, and stay as they are).
+/// mission are not estimates, and stay as they are), its extra motors' thrust data from
+/// `thrusts`: a Monte Carlo sample.
 ///
 /// # Errors
 /// As [`build_rocket`].
@@ -227,8 +237,9 @@ pub fn build_rocket_scaled(
     mission: &Mission,
     motor: &Motor,
     scaling: EstimateScaling,
+    thrusts: &ThrustCache,
 ) -> Result<Rocket, MissionError> {
-    build(mission, motor, 0.0, scaling)
+    build(mission, motor, 0.0, scaling, Some(thrusts))
 }
 
 fn build(
@@ -236,6 +247,7 @@ fn build(
     motor: &Motor,
     ignition: f64,
     scaling: EstimateScaling,
+    thrusts: Option<&ThrustCache>,
 ) -> Result<Rocket, MissionError> {
     let spec = &mission.spec.rocket;
     // A curve as a table of the given kind: airfoils are linear with held ends, the drag
@@ -272,7 +284,7 @@ fn build(
         delayed(single, ignition).map_err(|e| mission.model_error("motor", e))?
     };
     // `[[extra_motors]]`: the motors flown as one, burning out at the last burn-out.
-    let properties = super::motors::with_extra_motors(mission, properties)?;
+    let properties = super::motors::with_extra_motors(mission, properties, thrusts)?;
     let burn_out = if mission.spec.extra_motors.is_empty() {
         motor.burn_out() + ignition
     } else {

@@ -22,7 +22,6 @@
 //! (`"launch + 0"`) happens on the pad: the stack above launches from the rail, and the stage
 //! stays there (it is not flown).
 
-use std::borrow::Cow;
 use std::sync::Arc;
 
 use karman_airframe::Rocket;
@@ -34,18 +33,18 @@ use karman_dynamics::{
     Termination,
 };
 use karman_model::TriggerCondition;
-use karman_propulsion::{Motor, ThrustSource};
+use karman_propulsion::Motor;
 use karman_script::Expression;
 
 use super::environment::build_environment_checked;
 use super::flight::flight_settings;
-use super::motor::{build_motor_with, thrust_source};
+use super::motors::ThrustCache;
 use super::preflight::{MAX_KNOT_STOPS, checked_models, prepare};
 use super::rocket::build_rocket_ignited_at;
 use super::scripts::{AfterTime, ExpressionTrigger};
 use crate::montecarlo::WindAdjusted;
 use crate::report::trajectory::Track;
-use crate::schema::{Curve, DragEstimateSpec, Inertia, RocketSpec, StageSpec, Trigger};
+use crate::schema::{DragEstimateSpec, Inertia, RocketSpec, StageSpec, Trigger};
 use crate::{Mission, MissionError};
 
 /// One integrated flight of a vehicle of the tree: a stack until a separation, or a body to
@@ -151,14 +150,14 @@ fn stage_prefix(index: usize) -> String {
 /// The motor builder's errors, named by the stage's keys.
 pub(crate) fn stage_motor(
     alone: &Mission,
-    thrusts: &StageThrusts,
+    thrusts: &ThrustCache,
     index: usize,
 ) -> Result<Motor, MissionError> {
     thrusts.motor(alone).map_err(|e| in_stage(e, index))
 }
 
 /// An error found while building stage `index` from its own mission, named by the stage's key.
-fn in_stage(error: MissionError, index: usize) -> MissionError {
+pub(crate) fn in_stage(error: MissionError, index: usize) -> MissionError {
     error.in_part(&stage_prefix(index), STAGE_ROOTS)
 }
 
@@ -167,47 +166,6 @@ fn top_mission(mission: &Mission) -> Mission {
     let mut top = mission.clone();
     top.spec.stages.clear();
     top
-}
-
-/// The thrust data of every motor of a multi-stage mission, read once (a Monte Carlo study
-/// reads them once for all its samples), each with the `thrust` key it was read from.
-#[derive(Debug, Clone)]
-pub struct StageThrusts(Vec<(Curve, ThrustSource)>);
-
-impl StageThrusts {
-    /// Reads the thrust of `[motor]` and of every `[stages.motor]`.
-    ///
-    /// # Errors
-    /// The thrust readers' errors, named by the motor's key.
-    pub fn read(mission: &Mission) -> Result<Self, MissionError> {
-        let mut thrusts = vec![(mission.spec.motor.thrust.clone(), thrust_source(mission)?)];
-        for (index, stage) in mission.spec.stages.iter().enumerate() {
-            if let Some(motor) = &stage.motor
-                && !thrusts.iter().any(|(curve, _)| *curve == motor.thrust)
-            {
-                let source = thrust_source(&stage_mission(mission, index))
-                    .map_err(|e| in_stage(e, index))?;
-                thrusts.push((motor.thrust.clone(), source));
-            }
-        }
-        Ok(Self(thrusts))
-    }
-
-    /// The motor of `vehicle` (one vehicle of the stack, in the mission's folder): from the
-    /// thrust read once when its `thrust` key is one of those read, else read now (a Monte
-    /// Carlo sample that varies the curve).
-    fn motor(&self, vehicle: &Mission) -> Result<Motor, MissionError> {
-        build_motor_with(vehicle, &*self.source(vehicle)?)
-    }
-
-    /// The thrust data of `vehicle`'s motor, as [`StageThrusts::motor`] takes it.
-    fn source(&self, vehicle: &Mission) -> Result<Cow<'_, ThrustSource>, MissionError> {
-        let thrust = &vehicle.spec.motor.thrust;
-        Ok(match self.0.iter().find(|(curve, _)| curve == thrust) {
-            Some((_, source)) => Cow::Borrowed(source),
-            None => Cow::Owned(thrust_source(vehicle)?),
-        })
-    }
 }
 
 /// Mass, centre of mass (rocket coordinates) and inertia about it of a rigid part.
@@ -325,21 +283,21 @@ fn stack_mission(mission: &Mission, count: usize, above: Lump) -> Mission {
 /// The vehicle of the stack with `count` lower stages, its motor ignited at `ignition`.
 fn build_stack(
     mission: &Mission,
-    thrusts: &StageThrusts,
+    thrusts: &ThrustCache,
     count: usize,
     ignition: f64,
 ) -> Result<(Mission, Rocket), MissionError> {
     if count == 0 {
         let top = top_mission(mission);
         let motor = thrusts.motor(&top)?;
-        let rocket = build_rocket_ignited_at(&top, &motor, ignition)?;
+        let rocket = build_rocket_ignited_at(&top, &motor, ignition, thrusts)?;
         return Ok((top, rocket));
     }
     let (_, above) = build_stack(mission, thrusts, count - 1, 0.0)?;
     let stack = stack_mission(mission, count, Lump::unburnt(&above));
     let motor = thrusts.motor(&stack).map_err(|e| in_stage(e, count - 1))?;
-    let rocket =
-        build_rocket_ignited_at(&stack, &motor, ignition).map_err(|e| in_stage(e, count - 1))?;
+    let rocket = build_rocket_ignited_at(&stack, &motor, ignition, thrusts)
+        .map_err(|e| in_stage(e, count - 1))?;
     Ok((stack, rocket))
 }
 
@@ -555,7 +513,7 @@ fn vehicle_settings(mission: &Mission, rocket: &Rocket, seed: u64) -> FlightSett
 /// As [`simulate_staged`], without the flight's.
 pub fn prepare_staged(mission: &Mission, seed: u64) -> Result<Vec<String>, MissionError> {
     let stages = &mission.spec.stages;
-    let thrusts = StageThrusts::read(mission)?;
+    let thrusts = ThrustCache::read(mission)?;
     let mut warnings = Vec::new();
     let pad = stages
         .iter()
@@ -582,7 +540,7 @@ pub fn prepare_staged(mission: &Mission, seed: u64) -> Result<Vec<String>, Missi
             if stage.rocket.mass > 0.0 && stage.motor.is_some() {
                 let alone = stage_mission(mission, count - 1);
                 let motor = stage_motor(&alone, &thrusts, count - 1)?;
-                let spent = build_rocket_ignited_at(&alone, &motor, 0.0)
+                let spent = build_rocket_ignited_at(&alone, &motor, 0.0, &thrusts)
                     .map_err(|e| in_stage(e, count - 1))?;
                 warnings.extend(
                     spent
@@ -613,7 +571,7 @@ enum Start {
 /// checks of the launch stack, and [`MissionError::Model`] (section `flight`) when a flight
 /// cannot be integrated.
 pub fn simulate_staged(mission: &Mission, seed: u64) -> Result<StagedRun, MissionError> {
-    let thrusts = StageThrusts::read(mission)?;
+    let thrusts = ThrustCache::read(mission)?;
     let (environment, weather) = build_environment_checked(mission)?;
     let tree = fly_tree(mission, &thrusts, &environment, &environment, weather, seed)?;
     Ok(StagedRun::of(environment, tree, OWN_WIND))
@@ -628,7 +586,7 @@ pub fn simulate_staged(mission: &Mission, seed: u64) -> Result<StagedRun, Missio
 /// As [`simulate_staged`].
 pub fn simulate_staged_in(
     mission: &Mission,
-    thrusts: &StageThrusts,
+    thrusts: &ThrustCache,
     environment: Environment,
     wind: [f64; 2],
     seed: u64,
@@ -668,7 +626,7 @@ impl StagedRun {
 /// which the launch is checked; `weather` its warnings, reported with the launch checks).
 fn fly_tree<A: AtmosphereModel>(
     mission: &Mission,
-    thrusts: &StageThrusts,
+    thrusts: &ThrustCache,
     base: &Environment,
     environment: &A,
     weather: Vec<String>,
@@ -786,7 +744,7 @@ fn fly_tree<A: AtmosphereModel>(
         if stage.rocket.mass > 0.0 && stage.motor.is_some() {
             let alone = stage_mission(mission, index);
             let motor = stage_motor(&alone, thrusts, index)?;
-            let spent = build_rocket_ignited_at(&alone, &motor, ignition)
+            let spent = build_rocket_ignited_at(&alone, &motor, ignition, thrusts)
                 .map_err(|e| in_stage(e, index))?;
             warnings.extend(
                 spent
