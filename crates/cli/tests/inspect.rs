@@ -126,3 +126,31 @@ fn bad_heights_are_a_usage_error_not_a_panic() {
     assert_eq!(output.status.code(), Some(2), "{text}");
     assert!(text.contains("x"), "{text}");
 }
+
+#[test]
+fn extra_motors_are_listed_each_as_it_would_be_alone() {
+    let airstart = example().with_file_name("airstart.toml");
+    let output = karman(&["inspect", airstart.to_str().expect("UTF-8"), "--json"]);
+    assert_eq!(output.status.code(), Some(0), "{}", stderr(&output));
+    let v: serde_json::Value = serde_json::from_slice(&output.stdout).expect("JSON");
+    let extra = &v["extra_motors"][0];
+    assert_eq!(extra["name"], "outboard");
+    assert_eq!(extra["ignition_delay_s"], 3.0);
+    assert_eq!(extra["cluster_count"], 2);
+    // The fixture's inline curve [[0, 0], [0.05, 320], [0.3, 290], [1.4, 230], [1.6, 0]]:
+    // 8 + 76.25 + 286 + 23 N·s by the trapezoidal rule.
+    let impulse = extra["motor"]["total_impulse_ns"]
+        .as_f64()
+        .expect("impulse");
+    assert!((impulse - 393.25).abs() < 1e-9, "{impulse}");
+    assert_eq!(extra["motor"]["burn_out_s"], 1.6);
+    // `[motor]` stays the K motor alone; the rocket's masses hold every motor.
+    assert!(v["motor"]["total_impulse_ns"].as_f64().expect("K") > 1900.0);
+    let text = karman(&["inspect", airstart.to_str().expect("UTF-8")]);
+    assert!(
+        String::from_utf8_lossy(&text.stdout)
+            .contains("Extra motor 'outboard' ([[extra_motors]] 0"),
+        "{}",
+        String::from_utf8_lossy(&text.stdout)
+    );
+}

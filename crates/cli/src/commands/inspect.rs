@@ -25,7 +25,7 @@ use karman_mission::build::{
 use karman_mission::math::linspace;
 use karman_mission::propulsion::Motor;
 use karman_mission::report::environment::{default_heights, environment_report};
-use karman_mission::report::motor::{MotorReport, TankReport};
+use karman_mission::report::motor::{ExtraMotorReport, MotorReport, TankReport};
 use karman_mission::report::rocket::{AngleStability, RocketReport, draw_rocket_svg};
 
 use super::MissionArgs;
@@ -82,6 +82,7 @@ pub fn run(args: &InspectArgs) -> Result<()> {
         None => MotorReport::new(&motor),
     };
     let tanks = TankReport::for_motor(&motor, &motor_report.times_s);
+    let extra_motors = ExtraMotorReport::for_mission(&mission, args.times.as_deref())?;
     let rocket_report = RocketReport::new(&rocket);
     let rail_exit = stability_at_rail_exit(&mission)?;
     let mut out = std::io::stdout().lock();
@@ -94,6 +95,9 @@ pub fn run(args: &InspectArgs) -> Result<()> {
         if !tanks.is_empty() {
             value["tanks"] = serde_json::to_value(&tanks)?;
         }
+        if !extra_motors.is_empty() {
+            value["extra_motors"] = serde_json::to_value(&extra_motors)?;
+        }
         if let Some(stability) = &rail_exit {
             value["stability_at_rail_exit"] = serde_json::to_value(stability)?;
         }
@@ -102,6 +106,9 @@ pub fn run(args: &InspectArgs) -> Result<()> {
         writeln!(out, "Environment\n{env_report}\n{motor_report}")?;
         for tank in &tanks {
             writeln!(out, "{tank}")?;
+        }
+        for extra in &extra_motors {
+            writeln!(out, "{extra}")?;
         }
         writeln!(out, "{rocket_report}")?;
         if let Some(stability) = &rail_exit {

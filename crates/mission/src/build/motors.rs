@@ -174,6 +174,24 @@ pub(crate) fn extra_motor_mission(mission: &Mission, index: usize) -> Mission {
 /// The tables of an `[[extra_motors]]` entry built as a mission's own.
 const EXTRA_ROOTS: &[&str] = &["motor"];
 
+/// The motor of `[[extra_motors]]` entry `index` alone (one motor of its cluster, at its own
+/// time origin), its thrust data from `thrusts` when given, else read now.
+///
+/// # Errors
+/// The motor builder's errors, named by the entry's keys.
+pub(crate) fn extra_motor(
+    mission: &Mission,
+    index: usize,
+    thrusts: Option<&ThrustCache>,
+) -> Result<Motor, MissionError> {
+    let alone = extra_motor_mission(mission, index);
+    match thrusts {
+        Some(thrusts) => thrusts.motor(&alone),
+        None => build_motor(&alone),
+    }
+    .map_err(|e| e.in_part(&extra_prefix(index), EXTRA_ROOTS))
+}
+
 /// The key prefix of `[[extra_motors]]` entry `index`.
 fn extra_prefix(index: usize) -> String {
     format!("extra_motors.{index}.")
@@ -210,12 +228,7 @@ pub fn with_extra_motors(
         position: spec.rocket.motor_position,
     });
     for (index, extra) in spec.extra_motors.iter().enumerate() {
-        let alone = extra_motor_mission(mission, index);
-        let motor = match thrusts {
-            Some(thrusts) => thrusts.motor(&alone),
-            None => build_motor(&alone),
-        }
-        .map_err(|e| e.in_part(&extra_prefix(index), EXTRA_ROOTS))?;
+        let motor = extra_motor(mission, index, thrusts)?;
         let m = &extra.motor;
         let key = |k: &str| format!("extra_motors.{index}.{k}");
         let single = clustered(

@@ -1,12 +1,16 @@
 //! Motor report: the `motor` figures of `reference.json` ([`MotorReport`]) — thrust-curve
 //! figures and, at chosen times, thrust, masses, centre of mass (motor coordinates) and
 //! inertia about the motor's centre of mass — and, for hybrid and liquid motors, each tank's
-//! contents at the same times ([`TankReport`]).
+//! contents at the same times ([`TankReport`]); each `[[extra_motors]]` entry's motor as it
+//! would be alone, with where and when it burns ([`ExtraMotorReport`]).
 
 use std::fmt;
 
 use karman_propulsion::Motor;
 use serde::Serialize;
+
+use crate::build::motors::extra_motor;
+use crate::{Mission, MissionError};
 
 /// Number of intervals the burn is split into by the default report times.
 const BURN_DIVISIONS: usize = 10;
@@ -72,6 +76,72 @@ pub struct TankReport {
     /// Transverse inertia of the fluids about their centre of mass, kg·m².
     #[serde(rename = "I11_kgm2")]
     pub i11_kgm2: Vec<f64>,
+}
+
+/// One `[[extra_motors]]` entry: its motor's report as the motor would be alone (one motor of
+/// its cluster, on its own time axis from its ignition), and where and when it burns.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct ExtraMotorReport {
+    /// The entry's `name`, else `extra motor <index>`.
+    pub name: String,
+    /// Its index in `[[extra_motors]]`.
+    pub index: usize,
+    /// Rocket coordinate of the motor's origin, m.
+    pub motor_position_m: f64,
+    /// Ignition after launch, s.
+    pub ignition_delay_s: f64,
+    /// Motors in its cluster.
+    pub cluster_count: u32,
+    /// One motor of the cluster, times from its ignition.
+    pub motor: MotorReport,
+}
+
+impl ExtraMotorReport {
+    /// Every `[[extra_motors]]` entry of `mission`, at `times` (s from each motor's ignition)
+    /// or at [`default_times`] of each motor.
+    ///
+    /// # Errors
+    /// The motor builder's errors, named by the entry's keys.
+    pub fn for_mission(
+        mission: &Mission,
+        times: Option<&[f64]>,
+    ) -> Result<Vec<ExtraMotorReport>, MissionError> {
+        mission
+            .spec
+            .extra_motors
+            .iter()
+            .enumerate()
+            .map(|(index, extra)| {
+                let motor = extra_motor(mission, index, None)?;
+                Ok(ExtraMotorReport {
+                    name: extra
+                        .name
+                        .clone()
+                        .unwrap_or_else(|| format!("extra motor {index}")),
+                    index,
+                    motor_position_m: extra.motor_position,
+                    ignition_delay_s: extra.ignition_delay,
+                    cluster_count: extra.motor.cluster_count.unwrap_or(1),
+                    motor: match times {
+                        Some(times) => MotorReport::at_times(&motor, times),
+                        None => MotorReport::new(&motor),
+                    },
+                })
+            })
+            .collect()
+    }
+}
+
+impl fmt::Display for ExtraMotorReport {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        writeln!(
+            f,
+            "Extra motor '{}' ([[extra_motors]] {}: origin at {:.6} m, lit {:.6} s after launch, \
+             cluster of {}; one motor, times from its ignition)",
+            self.name, self.index, self.motor_position_m, self.ignition_delay_s, self.cluster_count
+        )?;
+        self.motor.write_figures(f)
+    }
 }
 
 /// The reference's sample times: burn start + k/10 of the burn (k = 0..10), then burn-out
@@ -176,6 +246,14 @@ impl fmt::Display for TankReport {
 
 impl fmt::Display for MotorReport {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        writeln!(f, "Motor")?;
+        self.write_figures(f)
+    }
+}
+
+impl MotorReport {
+    /// The figures and the table, without a title.
+    fn write_figures(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         let rows = [
             ("total impulse", self.total_impulse_ns, "N·s"),
             (
@@ -189,7 +267,6 @@ impl fmt::Display for MotorReport {
             ("maximum thrust", self.max_thrust_n, "N"),
             ("exhaust velocity", self.exhaust_velocity_mps, "m/s"),
         ];
-        writeln!(f, "Motor")?;
         for (label, value, unit) in rows {
             writeln!(f, "  {label:<26} {value:>14.6} {unit}")?;
         }
