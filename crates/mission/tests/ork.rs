@@ -133,6 +133,18 @@ fn pods_import_as_pod_sets_with_their_mass_at_their_offset() {
     assert!((ours - mass).abs() < 0.01 * mass, "{ours} vs {mass}");
     let ours_cg = rocket.center_of_mass(0.0);
     assert!((ours_cg - cg).abs() < 1e-3, "{ours_cg} vs {cg}");
+    // The drawing keeps the pods out of the body: one body tube from the nose to the tail
+    // (a pod's nose and tail are no shells of the body), the three pod surfaces dashed.
+    let svg = karman_mission::report::rocket::draw_rocket_svg(&mission, &rocket);
+    let tubes = svg.lines().filter(|l| l.contains("#eef2f8")).count();
+    assert_eq!(tubes, 1, "{svg}");
+    for name in ["pod_nose", "pod_tail", "horizontal_stabilizer"] {
+        assert!(
+            svg.lines()
+                .any(|l| l.contains("stroke-dasharray=\"4 3\"") && l.contains(name)),
+            "{name}: {svg}"
+        );
+    }
 }
 
 #[test]

@@ -5,7 +5,7 @@
 
 use std::fmt::{self, Write as _};
 
-use karman_airframe::{BodyLift, Geometry, Rocket};
+use karman_airframe::{BodyLift, Geometry, Rocket, Surface};
 use serde::Serialize;
 
 use crate::build::rocket::estimate_geometry;
@@ -198,7 +198,9 @@ fn escape(text: &str) -> String {
 /// A side view of the rocket to scale, as SVG text: nose, body tubes, tails, fins (top and
 /// bottom), nozzle exit, rail buttons, the centre of mass at t = 0 (CG) and of dry mass
 /// (CDM), and the centre of pressure at Mach 0 (CP). The horizontal axis is the rocket's user
-/// axis growing to the right, as in RocketPy's `Rocket.draw()`.
+/// axis growing to the right, as in RocketPy's `Rocket.draw()`. The surfaces of a pod set
+/// (`[rocket.pods]`) are drawn as dashed outlines on the rocket's axis, apart from the body
+/// (the mission gives a pod's axial place and roll position, not its radial distance).
 #[must_use]
 pub fn draw_rocket_svg(mission: &Mission, rocket: &Rocket) -> String {
     let csys = rocket.csys();
@@ -257,23 +259,34 @@ pub fn draw_rocket_svg(mission: &Mission, rocket: &Rocket) -> String {
             pts.join(" ")
         );
     };
+    // A pod surface: a dashed outline, named, over the body.
+    let pod_outline = |svg: &mut String, s: &Surface, points: &[(f64, f64)]| {
+        let pts: Vec<String> = points
+            .iter()
+            .map(|(a, b)| format!("{a:.2},{b:.2}"))
+            .collect();
+        let count = s.pod.map_or(1, |p| p.count);
+        let _ = writeln!(
+            svg,
+            r##"<polygon points="{}" fill="none" stroke="#6a3d9a" stroke-width="1" stroke-dasharray="4 3"><title>{} (on {count} pod(s), drawn on the rocket axis)</title></polygon>"##,
+            pts.join(" "),
+            escape(&s.name)
+        );
+    };
 
-    // Shells (nose, tails) from front to aft, to lay body tubes between them.
-    let body = |z: f64| csys * (z - rocket.center_of_dry_mass());
-    let mut shells: Vec<(f64, f64, f64, f64)> = Vec::new(); // (front z, aft z, front r, aft r)
-    let mut aft_most = rocket.nozzle_position();
-    for s in rocket.surfaces() {
-        let aft = s.position - csys * s.geometry.length();
-        if body(aft) < body(aft_most) {
-            aft_most = aft;
-        }
+    // Every surface's outline polygons, in drawing coordinates.
+    let outlines = |s: &Surface| -> Vec<Vec<(f64, f64)>> {
+        let (z0, z1) = (s.position, s.position - csys * s.geometry.length());
+        let quad = |r0: f64, r1: f64| {
+            vec![
+                (x(z0), y(r0)),
+                (x(z1), y(r1)),
+                (x(z1), y(-r1)),
+                (x(z0), y(-r0)),
+            ]
+        };
         match &s.geometry {
-            Geometry::Nose {
-                profile,
-                base_radius,
-                length,
-                ..
-            } => {
+            Geometry::Nose { profile, .. } => {
                 let mut pts: Vec<(f64, f64)> = profile
                     .iter()
                     .map(|p| (x(s.position - csys * p[0]), y(p[1])))
@@ -284,47 +297,82 @@ pub fn draw_rocket_svg(mission: &Mission, rocket: &Rocket) -> String {
                         .rev()
                         .map(|p| (x(s.position - csys * p[0]), y(-p[1]))),
                 );
-                polygon(&mut svg, &pts, "#d9e4f5");
-                shells.push((s.position, s.position - csys * length, 0.0, *base_radius));
+                vec![pts]
             }
             Geometry::Tail {
                 top_radius,
                 bottom_radius,
-                length,
-            } => {
-                let (z0, z1) = (s.position, s.position - csys * length);
-                let pts = [
-                    (x(z0), y(*top_radius)),
-                    (x(z1), y(*bottom_radius)),
-                    (x(z1), y(-bottom_radius)),
-                    (x(z0), y(-top_radius)),
-                ];
-                polygon(&mut svg, &pts, "#d9e4f5");
-                shells.push((z0, z1, *top_radius, *bottom_radius));
-            }
+                ..
+            } => vec![quad(*top_radius, *bottom_radius)],
+            // One tube seen from the side above and below the body.
             Geometry::TubeFins {
-                length,
                 outer_radius,
                 body_radius,
                 ..
-            } => {
-                // One tube seen from the side above and below the body.
-                let (z0, z1) = (s.position, s.position - csys * length);
-                for side in [1.0, -1.0] {
+            } => [1.0, -1.0]
+                .iter()
+                .map(|side| {
                     let (r0, r1) = (
                         side * body_radius,
                         side * (body_radius + 2.0 * outer_radius),
                     );
-                    let pts = [
+                    vec![
                         (x(z0), y(r0)),
                         (x(z1), y(r0)),
                         (x(z1), y(r1)),
                         (x(z0), y(r1)),
-                    ];
-                    polygon(&mut svg, &pts, "#f2d8c9");
-                }
+                    ]
+                })
+                .collect(),
+            // One fin above and one below the axis.
+            Geometry::Fins {
+                outline,
+                body_radius,
+                ..
+            } => [1.0, -1.0]
+                .iter()
+                .map(|side| {
+                    outline
+                        .iter()
+                        .map(|p| (x(s.position - csys * p[0]), y(side * (body_radius + p[1]))))
+                        .collect()
+                })
+                .collect(),
+        }
+    };
+
+    // Shells (nose, tails) from front to aft, to lay body tubes between them.
+    let body = |z: f64| csys * (z - rocket.center_of_dry_mass());
+    let mut shells: Vec<(f64, f64, f64, f64)> = Vec::new(); // (front z, aft z, front r, aft r)
+    let mut aft_most = rocket.nozzle_position();
+    let own = || rocket.surfaces().iter().filter(|s| s.pod.is_none());
+    for s in own() {
+        let aft = s.position - csys * s.geometry.length();
+        if body(aft) < body(aft_most) {
+            aft_most = aft;
+        }
+        let fill = match &s.geometry {
+            Geometry::Nose {
+                base_radius,
+                length,
+                ..
+            } => {
+                shells.push((s.position, s.position - csys * length, 0.0, *base_radius));
+                "#d9e4f5"
             }
-            Geometry::Fins { .. } => {}
+            Geometry::Tail {
+                top_radius,
+                bottom_radius,
+                ..
+            } => {
+                shells.push((s.position, aft, *top_radius, *bottom_radius));
+                "#d9e4f5"
+            }
+            Geometry::TubeFins { .. } => "#f2d8c9",
+            Geometry::Fins { .. } => continue,
+        };
+        for pts in outlines(s) {
+            polygon(&mut svg, &pts, fill);
         }
     }
     shells.sort_by(|a, b| body(b.0).total_cmp(&body(a.0)));
@@ -354,21 +402,16 @@ pub fn draw_rocket_svg(mission: &Mission, rocket: &Rocket) -> String {
             polygon(&mut svg, &pts, "#eef2f8");
         }
     }
-    // Fins on top of the tubes, one above and one below the axis.
-    for s in rocket.surfaces() {
-        if let Geometry::Fins {
-            outline,
-            body_radius,
-            ..
-        } = &s.geometry
-        {
-            for side in [1.0, -1.0] {
-                let pts: Vec<(f64, f64)> = outline
-                    .iter()
-                    .map(|p| (x(s.position - csys * p[0]), y(side * (body_radius + p[1]))))
-                    .collect();
-                polygon(&mut svg, &pts, "#b8c9e6");
-            }
+    // Fins on top of the tubes.
+    for s in own().filter(|s| matches!(s.geometry, Geometry::Fins { .. })) {
+        for pts in outlines(s) {
+            polygon(&mut svg, &pts, "#b8c9e6");
+        }
+    }
+    // Pod surfaces: dashed outlines on the rocket's axis, named.
+    for s in rocket.surfaces().iter().filter(|s| s.pod.is_some()) {
+        for pts in outlines(s) {
+            pod_outline(&mut svg, s, &pts);
         }
     }
     // Nozzle exit.
