@@ -1,4 +1,5 @@
-//! `[[extra_motors]]`: several motors in one rocket (mission-format.md, "Several motors").
+//! `[[extra_motors]]`: several motors in one rocket (mission-format.md, "Several motors"), and
+//! [`ThrustCache`], the thrust data of all of a mission's motors read once.
 //!
 //! The airframe flies one [`MotorProperties`]; a rocket with motors besides `[motor]` flies
 //! their sum, [`combined`], built once before the flight:
@@ -135,8 +136,14 @@ impl ThrustCache {
         Ok(cache)
     }
 
+    fn find(&self, thrust: &Curve) -> Option<&ThrustSource> {
+        self.0
+            .iter()
+            .find_map(|(curve, source)| (curve == thrust).then_some(source))
+    }
+
     fn holds(&self, thrust: &Curve) -> bool {
-        self.0.iter().any(|(curve, _)| curve == thrust)
+        self.find(thrust).is_some()
     }
 
     /// The `[motor]` of `vehicle` (a mission in the same folder: one vehicle of a stack, one
@@ -154,9 +161,8 @@ impl ThrustCache {
     /// # Errors
     /// The thrust readers' errors, for a curve not read before.
     pub fn source(&self, vehicle: &Mission) -> Result<Cow<'_, ThrustSource>, MissionError> {
-        let thrust = &vehicle.spec.motor.thrust;
-        Ok(match self.0.iter().find(|(curve, _)| curve == thrust) {
-            Some((_, source)) => Cow::Borrowed(source),
+        Ok(match self.find(&vehicle.spec.motor.thrust) {
+            Some(source) => Cow::Borrowed(source),
             None => Cow::Owned(thrust_source(vehicle)?),
         })
     }
