@@ -85,7 +85,7 @@ impl VehicleModel for Rocket {
         Rocket::surfaces(self)
     }
 
-    #[inline]
+    #[inline(always)]
     fn mass(&self, t: f64, law: MassFlowLaw, cursors: &mut [Cursor; 2]) -> MassSample {
         let p = self.mass_properties_near(t, cursors);
         match law {
@@ -115,7 +115,7 @@ impl VehicleModel for Rocket {
     /// The drag `−½ ρ |v|² A C_D(Mach)` of the power-on or power-off curve (physics.md §7.1),
     /// with the air brakes' drag added or substituted while their level (control
     /// [`AIR_BRAKES_CONTROL`]) is above 0 (§16.1).
-    #[inline]
+    #[inline(always)]
     fn axial_load(
         &self,
         flow: &BodyFlow,

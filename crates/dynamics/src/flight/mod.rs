@@ -245,7 +245,7 @@ fn acceleration(u_dot: &State) -> f64 {
 }
 
 /// Evaluates the equations of a phase in a configuration.
-#[inline]
+#[inline(always)]
 pub(crate) fn evaluate<A: AtmosphereModel, V: VehicleModel>(
     eq: &Equations<'_, A, V>,
     kind: &PhaseKind,
