@@ -1,6 +1,6 @@
 //! # karman-model
 //!
-//! The interfaces the flight engine (karman-dynamics) flies, and nothing else: the crates that
+//! The interfaces the flight engine (karman-dynamics) flies: the crates that
 //! own the physical models (karman-atmos, karman-airframe, or a test's analytic mock) implement
 //! them, and the engine depends on this crate only.
 //!
