@@ -153,4 +153,21 @@ fn extra_motors_are_listed_each_as_it_would_be_alone() {
         "{}",
         String::from_utf8_lossy(&text.stdout)
     );
+    // The thrust and mass charts show every motor beside [motor].
+    let dir = Path::new(env!("CARGO_TARGET_TMPDIR")).join("karman-cli/inspect-airstart");
+    let _ = std::fs::remove_dir_all(&dir);
+    let output = karman(&[
+        "inspect",
+        airstart.to_str().expect("UTF-8"),
+        "--plot",
+        dir.to_str().expect("UTF-8"),
+    ]);
+    assert_eq!(output.status.code(), Some(0), "{}", stderr(&output));
+    for chart in ["thrust", "motor_mass"] {
+        let svg = std::fs::read_to_string(dir.join(format!("{chart}.svg"))).expect("svg file");
+        assert!(
+            svg.contains("[motor]") && svg.contains("every motor"),
+            "{chart}.svg"
+        );
+    }
 }

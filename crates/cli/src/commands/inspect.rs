@@ -14,7 +14,7 @@ use std::path::{Path, PathBuf};
 use anyhow::{Context, Result};
 use clap::Args;
 use karman_mission::Mission;
-use karman_mission::airframe::{DragComponents, DragEstimate, Rocket};
+use karman_mission::airframe::{DragComponents, DragEstimate, MotorProperties, Rocket};
 use karman_mission::atmos::Environment;
 use karman_mission::build::{
     environment::build_environment,
@@ -125,7 +125,8 @@ pub fn run(args: &InspectArgs) -> Result<()> {
             .copied()
             .fold(environment.elevation() + 1000.0, f64::max);
         plot_environment(&environment, top, dir)?;
-        plot_motor(&motor, dir)?;
+        let all = (!mission.spec.extra_motors.is_empty()).then(|| rocket.motor());
+        plot_motor(&motor, all, dir)?;
         plot_drag(&rocket, estimated_drag(&mission, &motor)?.as_ref(), dir)?;
     }
     if let Some(file) = &args.draw {
@@ -231,34 +232,58 @@ fn plot_environment(env: &Environment, top: f64, dir: &Path) -> Result<()> {
 }
 
 /// Thrust, mass and inertia of the motor from ignition to burn-out + 1 s.
-fn plot_motor(motor: &Motor, dir: &Path) -> Result<()> {
-    let times = linspace(0.0_f64.min(motor.burn_start()), motor.burn_out() + 1.0, 500);
+/// Charts of `[motor]` (thrust, masses, inertia, its tanks'), with, for a rocket with
+/// `[[extra_motors]]`, the thrust and propellant of `all` its motors (each cluster, each at its
+/// ignition time) beside `[motor]`'s.
+fn plot_motor(motor: &Motor, all: Option<&MotorProperties>, dir: &Path) -> Result<()> {
+    let end = all.map_or(motor.burn_out(), |a| a.burn_out.max(motor.burn_out()));
+    let times = linspace(0.0_f64.min(motor.burn_start()), end + 1.0, 500);
     let curve = |f: &dyn Fn(f64) -> f64| times.iter().map(|&t| (t, f(t))).collect::<Vec<_>>();
+    let mut thrust = vec![Series {
+        label: if all.is_some() { "[motor]" } else { "thrust" },
+        points: curve(&|t| motor.thrust(t)),
+    }];
+    let mut mass = vec![
+        Series {
+            label: if all.is_some() {
+                "[motor] total"
+            } else {
+                "total"
+            },
+            points: curve(&|t| motor.total_mass(t)),
+        },
+        Series {
+            label: if all.is_some() {
+                "[motor] propellant"
+            } else {
+                "propellant"
+            },
+            points: curve(&|t| motor.propellant_mass().eval(t)),
+        },
+    ];
+    if let Some(all) = all {
+        thrust.push(Series {
+            label: "every motor",
+            points: curve(&|t| all.thrust.eval(t)),
+        });
+        mass.push(Series {
+            label: "every motor's propellant",
+            points: curve(&|t| all.propellant_mass.eval(t)),
+        });
+    }
     line_chart(
         &dir.join("thrust.svg"),
         "Thrust",
         "time (s)",
         "thrust (N)",
-        &[Series {
-            label: "thrust",
-            points: curve(&|t| motor.thrust(t)),
-        }],
+        &thrust,
     )?;
     line_chart(
         &dir.join("motor_mass.svg"),
         "Motor mass",
         "time (s)",
         "mass (kg)",
-        &[
-            Series {
-                label: "total",
-                points: curve(&|t| motor.total_mass(t)),
-            },
-            Series {
-                label: "propellant",
-                points: curve(&|t| motor.propellant_mass().eval(t)),
-            },
-        ],
+        &mass,
     )?;
     line_chart(
         &dir.join("motor_inertia.svg"),
