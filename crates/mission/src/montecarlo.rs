@@ -25,9 +25,9 @@
 //! environment unless a stored `environment.*` input varies, the motor unless a `motor.*`
 //! input or knob varies, the rocket unless the motor or a `rocket.*` input varies; thrust and
 //! rocket curve files are read once (those of every motor: each stage's of a multi-stage
-//! mission, each `[[extra_motors]]` entry's; [`crate::build::motors::ThrustCache`]). Parachute trigger noise of sample `i` is seeded from the
-//! sample's reserved stream ([`karman_dispersion::sampling::flight_seed`]), so it replays with
-//! the sample.
+//! mission, each `[[extra_motors]]` entry's; [`crate::build::motors::ThrustCache`]).
+//! Parachute trigger noise of sample `i` is seeded from the sample's reserved stream
+//! ([`karman_dispersion::sampling::flight_seed`]), so it replays with the sample.
 //!
 //! A multi-stage mission (`[[stages]]`) flies each sample as
 //! [`crate::build::stages::simulate_staged`] does, in the shared environment unless a stored

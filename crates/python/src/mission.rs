@@ -208,10 +208,7 @@ impl Mission {
                         mission.spec.environment.max_expected_height,
                     )
                 });
-                let motor_report = match &times {
-                    Some(times) => MotorReport::at_times(&motor, times),
-                    None => MotorReport::new(&motor),
-                };
+                let motor_report = MotorReport::at(&motor, times.as_deref());
                 Ok(serde_json::json!({
                     "environment": environment_report(&environment, &heights),
                     "motor": motor_report,

@@ -77,10 +77,7 @@ pub fn run(args: &InspectArgs) -> Result<()> {
         )
     });
     let env_report = environment_report(&environment, &heights);
-    let motor_report = match &args.times {
-        Some(times) => MotorReport::at_times(&motor, times),
-        None => MotorReport::new(&motor),
-    };
+    let motor_report = MotorReport::at(&motor, args.times.as_deref());
     let tanks = TankReport::for_motor(&motor, &motor_report.times_s);
     let extra_motors = ExtraMotorReport::for_mission(&mission, args.times.as_deref())?;
     let rocket_report = RocketReport::new(&rocket);
@@ -231,33 +228,29 @@ fn plot_environment(env: &Environment, top: f64, dir: &Path) -> Result<()> {
     Ok(())
 }
 
-/// Thrust, mass and inertia of the motor from ignition to burn-out + 1 s.
-/// Charts of `[motor]` (thrust, masses, inertia, its tanks'), with, for a rocket with
-/// `[[extra_motors]]`, the thrust and propellant of `all` its motors (each cluster, each at its
-/// ignition time) beside `[motor]`'s.
+/// Charts of `[motor]` (thrust, masses, inertia, its tanks') from ignition to burn-out + 1 s,
+/// with, for a rocket with `[[extra_motors]]`, the thrust and propellant of `all` its motors
+/// (each cluster, each at its ignition time) beside `[motor]`'s, to the last burn-out + 1 s.
 fn plot_motor(motor: &Motor, all: Option<&MotorProperties>, dir: &Path) -> Result<()> {
     let end = all.map_or(motor.burn_out(), |a| a.burn_out.max(motor.burn_out()));
     let times = linspace(0.0_f64.min(motor.burn_start()), end + 1.0, 500);
     let curve = |f: &dyn Fn(f64) -> f64| times.iter().map(|&t| (t, f(t))).collect::<Vec<_>>();
+    let [thrust_label, total_label, propellant_label] = if all.is_some() {
+        ["[motor]", "[motor] total", "[motor] propellant"]
+    } else {
+        ["thrust", "total", "propellant"]
+    };
     let mut thrust = vec![Series {
-        label: if all.is_some() { "[motor]" } else { "thrust" },
+        label: thrust_label,
         points: curve(&|t| motor.thrust(t)),
     }];
     let mut mass = vec![
         Series {
-            label: if all.is_some() {
-                "[motor] total"
-            } else {
-                "total"
-            },
+            label: total_label,
             points: curve(&|t| motor.total_mass(t)),
         },
         Series {
-            label: if all.is_some() {
-                "[motor] propellant"
-            } else {
-                "propellant"
-            },
+            label: propellant_label,
             points: curve(&|t| motor.propellant_mass().eval(t)),
         },
     ];

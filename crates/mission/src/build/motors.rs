@@ -129,7 +129,7 @@ impl ThrustCache {
         for (index, extra) in mission.spec.extra_motors.iter().enumerate() {
             if !cache.holds(&extra.motor.thrust) {
                 let source = thrust_source(&extra_motor_mission(mission, index))
-                    .map_err(|e| e.in_part(&extra_prefix(index), EXTRA_ROOTS))?;
+                    .map_err(|e| in_extra(e, index))?;
                 cache.0.push((extra.motor.thrust.clone(), source));
             }
         }
@@ -195,7 +195,13 @@ pub(crate) fn extra_motor(
         Some(thrusts) => thrusts.motor(&alone),
         None => build_motor(&alone),
     }
-    .map_err(|e| e.in_part(&extra_prefix(index), EXTRA_ROOTS))
+    .map_err(|e| in_extra(e, index))
+}
+
+/// An error met while building `[[extra_motors]]` entry `index` from its own mission, named by
+/// the entry's keys.
+fn in_extra(error: MissionError, index: usize) -> MissionError {
+    error.in_part(&extra_prefix(index), EXTRA_ROOTS)
 }
 
 /// The key prefix of `[[extra_motors]]` entry `index`.

@@ -122,10 +122,7 @@ impl ExtraMotorReport {
                     motor_position_m: extra.motor_position,
                     ignition_delay_s: extra.ignition_delay,
                     cluster_count: extra.motor.cluster_count.unwrap_or(1),
-                    motor: match times {
-                        Some(times) => MotorReport::at_times(&motor, times),
-                        None => MotorReport::new(&motor),
-                    },
+                    motor: MotorReport::at(&motor, times),
                 })
             })
             .collect()
@@ -164,6 +161,15 @@ impl MotorReport {
     #[must_use]
     pub fn new(motor: &Motor) -> Self {
         Self::at_times(motor, &default_times(motor))
+    }
+
+    /// The report at `times` (s) when given, else at [`default_times`].
+    #[must_use]
+    pub fn at(motor: &Motor, times: Option<&[f64]>) -> Self {
+        match times {
+            Some(times) => Self::at_times(motor, times),
+            None => Self::new(motor),
+        }
     }
 
     /// The report at the given times, s.

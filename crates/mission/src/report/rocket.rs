@@ -248,28 +248,27 @@ pub fn draw_rocket_svg(mission: &Mission, rocket: &Rocket) -> String {
         MARGIN / 2.0,
         WIDTH - MARGIN / 2.0
     );
-    let polygon = |svg: &mut String, points: &[(f64, f64)], fill: &str| {
-        let pts: Vec<String> = points
+    let points_text = |points: &[(f64, f64)]| {
+        points
             .iter()
             .map(|(a, b)| format!("{a:.2},{b:.2}"))
-            .collect();
+            .collect::<Vec<_>>()
+            .join(" ")
+    };
+    let polygon = |svg: &mut String, points: &[(f64, f64)], fill: &str| {
         let _ = writeln!(
             svg,
             r##"<polygon points="{}" fill="{fill}" stroke="#222" stroke-width="1"/>"##,
-            pts.join(" ")
+            points_text(points)
         );
     };
     // A pod surface: a dashed outline, named, over the body.
     let pod_outline = |svg: &mut String, s: &Surface, points: &[(f64, f64)]| {
-        let pts: Vec<String> = points
-            .iter()
-            .map(|(a, b)| format!("{a:.2},{b:.2}"))
-            .collect();
         let count = s.pod.map_or(1, |p| p.count);
         let _ = writeln!(
             svg,
             r##"<polygon points="{}" fill="none" stroke="#6a3d9a" stroke-width="1" stroke-dasharray="4 3"><title>{} (on {count} pod(s), drawn on the rocket axis)</title></polygon>"##,
-            pts.join(" "),
+            points_text(points),
             escape(&s.name)
         );
     };
