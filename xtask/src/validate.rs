@@ -437,7 +437,7 @@ const ASSUMED_FIN_THICKNESS: f64 = 0.003;
 /// Mach 0.05 to the flight's max Mach) and the apogee error against the measured flight
 /// beside the team curve's.
 fn estimated_drag_report(data: &Path, flights: &[Flight]) -> String {
-    use karman_mission::build::flight::simulate;
+    use karman_mission::assemble::flight::simulate;
     use karman_mission::schema::{
         Curve, DragEstimateSpec, ESTIMATE, FinCrossSection, FinDragSpec, SurfaceFinish, SurfaceSpec,
     };
@@ -492,8 +492,8 @@ fn estimated_drag_report(data: &Path, flights: &[Flight]) -> String {
                 format!("{e}: {}", source.unwrap_or_default())
             })?;
             let team_motor =
-                karman_mission::build::motor::build_motor(&team).map_err(|e| e.to_string())?;
-            let team_rocket = karman_mission::build::rocket::build_rocket(&team, &team_motor)
+                karman_mission::assemble::motor::build_motor(&team).map_err(|e| e.to_string())?;
+            let team_rocket = karman_mission::assemble::rocket::build_rocket(&team, &team_motor)
                 .map_err(|e| e.to_string())?;
             let max_mach = num(&f.summary, "max_mach").unwrap_or(0.3).max(0.1);
             let (mut sum, mut worst, mut count) = (0.0, 0.0_f64, 0);

@@ -24,11 +24,11 @@ use common::{calisto, validation_mission};
 use criterion::measurement::WallTime;
 use criterion::{BenchmarkGroup, Criterion, Throughput, criterion_group, criterion_main};
 use karman_mission::Override;
-use karman_mission::build::environment::build_environment;
-use karman_mission::build::flight::flight_settings;
-use karman_mission::build::motor::build_motor;
-use karman_mission::build::rocket::build_rocket;
-use karman_mission::build::scripts::{ControllerEnvironment, compile_controller};
+use karman_mission::assemble::environment::build_environment;
+use karman_mission::assemble::flight::flight_settings;
+use karman_mission::assemble::motor::build_motor;
+use karman_mission::assemble::rocket::build_rocket;
+use karman_mission::assemble::scripts::{ControllerEnvironment, compile_controller};
 use std::sync::Arc;
 
 /// Noise seed of the noisy flight (any fixed value: the bench must time the same flight).
@@ -82,7 +82,7 @@ fn bench_controlled(group: &mut BenchmarkGroup<'_, WallTime>) {
     settings.equations = karman_mission::dynamics::EquationsForm::RocketPy113;
     let script = compile_controller(&mission).expect("script compiles");
     let fly = || {
-        karman_mission::build::flight::fly(
+        karman_mission::assemble::flight::fly(
             &mission,
             &*environment,
             &rocket,

@@ -18,12 +18,12 @@
 //!   [`MissionError`] naming the file, line, column and key.
 //! - [`paths`]: the numeric inputs of a mission by dotted path (overrides, dispersion).
 //! - [`montecarlo`]: the `[dispersion]` study of a mission, its samples applied and flown.
-//! - [`build`]: mission → physics models; [`report`]: outputs.
+//! - [`assemble`]: mission → physics models; [`report`]: outputs.
 //!
 //! The lower crates are re-exported ([`math`], [`atmos`], [`propulsion`], [`airframe`],
 //! [`dynamics`], [`dispersion`]) so the command-line interface depends on this crate only.
 
-pub mod build;
+pub mod assemble;
 mod curves;
 mod document;
 mod error;

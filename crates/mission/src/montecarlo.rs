@@ -19,20 +19,20 @@
 //!   angle), for every atmosphere model: the flight sees the environment through
 //!   [`WindAdjusted`].
 //!
-//! Each sample is built and flown exactly as [`crate::build::flight::simulate_with_seed`]
+//! Each sample is built and flown exactly as [`crate::assemble::flight::simulate_with_seed`]
 //! does (a sample drawing the nominal values gives bit-identical results), except that what
 //! no varied input reaches is built once from the nominal mission and shared: the
 //! environment unless a stored `environment.*` input varies, the motor unless a `motor.*`
 //! input or knob varies, the rocket unless the motor or a `rocket.*` input varies; thrust and
 //! rocket curve files are read once (those of every motor: each stage's of a multi-stage
-//! mission, each `[[extra_motors]]` entry's; [`crate::build::motors::ThrustCache`]).
+//! mission, each `[[extra_motors]]` entry's; [`crate::assemble::motors::ThrustCache`]).
 //! Parachute trigger noise of sample `i` is seeded from the sample's reserved stream
 //! ([`karman_dispersion::sampling::flight_seed`]), so it replays with the sample.
 //!
 //! A multi-stage mission (`[[stages]]`) flies each sample as
-//! [`crate::build::stages::simulate_staged`] does, in the shared environment unless a stored
+//! [`crate::assemble::stages::simulate_staged`] does, in the shared environment unless a stored
 //! environment input varies, with the wind knobs applied
-//! ([`crate::build::stages::simulate_staged_in`]); a lower stage's inputs are reached by
+//! ([`crate::assemble::stages::simulate_staged_in`]); a lower stage's inputs are reached by
 //! `stages.<index>.` paths (its motor's knobs reshape that motor's thrust curve), and each lower
 //! stage adds its separation time and, when it flies alone, its body's outputs
 //! ([`BODY_OUTPUTS`]) and landing points to the study.
@@ -40,12 +40,12 @@
 //! as the flight's own track does (RocketPy's ellipse export uses 6.3781e6 m: up to 0.1 %
 //! apart, about 1 m per km of drift).
 
-use crate::build::environment::build_environment;
-use crate::build::flight::{early_ending, flight_settings, fly};
-use crate::build::motors::ThrustCache;
-use crate::build::rocket::{EstimateScaling, build_rocket_scaled};
-use crate::build::scripts::{ControllerEnvironment, compile_controller};
-use crate::build::stages;
+use crate::assemble::environment::build_environment;
+use crate::assemble::flight::{early_ending, flight_settings, fly};
+use crate::assemble::motors::ThrustCache;
+use crate::assemble::rocket::{EstimateScaling, build_rocket_scaled};
+use crate::assemble::scripts::{ControllerEnvironment, compile_controller};
+use crate::assemble::stages;
 use crate::paths::{self, DerivedKnob, Input};
 use crate::schema::{AirBrakesCurve, Curve, Distribution, MissionSpec};
 use crate::{Mission, MissionError};
@@ -898,7 +898,7 @@ impl AtmosphereModel for WindAdjusted<'_> {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::build::flight::simulate_with_seed;
+    use crate::assemble::flight::simulate_with_seed;
     use std::path::PathBuf;
 
     /// The test fixture `minimal.toml` in a custom atmosphere with a constant wind

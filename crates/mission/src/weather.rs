@@ -4,7 +4,7 @@
 //! time of download); the mission then reads it offline like any other data file, and a
 //! Monte Carlo study's data fingerprint covers it.
 
-use crate::build::environment::{launch_unix_time, weather_earth_radius};
+use crate::assemble::environment::{launch_unix_time, weather_earth_radius};
 use crate::schema::WeatherSource;
 use crate::{Mission, MissionError, Override};
 use karman_atmos::fetch::{Download, Fetcher, Request, Service};

@@ -8,10 +8,10 @@
 //! output included) through the 6-DOF phase and the parachute descent (everything but the
 //! storing of solution points, which `simulate` does into a `Vec`).
 
-use karman_mission::build::environment::build_environment;
-use karman_mission::build::flight::flight_settings;
-use karman_mission::build::motor::build_motor;
-use karman_mission::build::rocket::build_rocket;
+use karman_mission::assemble::environment::build_environment;
+use karman_mission::assemble::flight::flight_settings;
+use karman_mission::assemble::motor::build_motor;
+use karman_mission::assemble::rocket::build_rocket;
 use karman_mission::dynamics::equations::{CanopyState, Cursors, Equations};
 use karman_mission::dynamics::integrator::{Pair, RungeKutta, StepStatus, Tolerances};
 use karman_mission::dynamics::{Configuration, PhaseKind, SolutionPoint, simulate};

@@ -418,7 +418,7 @@ fn pod_mistakes_are_located() {
     assert_eq!((pod.count, pod.angular_position_deg), (2, 45.0));
     let plain = parse(&edited(&[]), &fixture("minimal.toml"), &[]).expect("loads");
     let slope = |m: &karman_mission::Mission| {
-        use karman_mission::build::{motor::build_motor, rocket::build_rocket};
+        use karman_mission::assemble::{motor::build_motor, rocket::build_rocket};
         let motor = build_motor(m).expect("motor");
         build_rocket(m, &motor).expect("rocket").total_cn_alpha(0.3)
     };

@@ -4,11 +4,11 @@
 use crate::common::fixture;
 use karman_airframe::{BodySegment, DragGeometry, DragModel, FinCrossSection, FinSetDrag, Profile};
 use karman_math::PhysicalConstants;
-use karman_mission::build::drag::launch_air;
-use karman_mission::build::flight::simulate;
-use karman_mission::build::motor::build_motor;
-use karman_mission::build::motors::ThrustCache;
-use karman_mission::build::rocket::{EstimateScaling, build_rocket, build_rocket_scaled};
+use karman_mission::assemble::drag::launch_air;
+use karman_mission::assemble::flight::simulate;
+use karman_mission::assemble::motor::build_motor;
+use karman_mission::assemble::motors::ThrustCache;
+use karman_mission::assemble::rocket::{EstimateScaling, build_rocket, build_rocket_scaled};
 use karman_mission::montecarlo::{MonteCarlo, StudyOverrides};
 use karman_mission::{Override, load};
 

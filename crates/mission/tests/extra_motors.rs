@@ -1,11 +1,11 @@
 //! `[[extra_motors]]`: several motors in one rocket, summed into the one motor the airframe
-//! flies (`build::motors`), on hand-checkable cases: two identical motors lit together are a
+//! flies (`assemble::motors`), on hand-checkable cases: two identical motors lit together are a
 //! cluster of two, a motor combined with nothing is itself, an air start's thrust is the sum
 //! of the shifted curves, its propellant is conserved, its burn window runs from the first
 //! ignition to the last burn-out; mistakes are located; a study of such a mission flies.
 
-use karman_mission::build::motors::{PlacedMotor, combined};
-use karman_mission::build::{flight::simulate, motor::build_motor, rocket::build_rocket};
+use karman_mission::assemble::motors::{PlacedMotor, combined};
+use karman_mission::assemble::{flight::simulate, motor::build_motor, rocket::build_rocket};
 use karman_mission::montecarlo::{MonteCarlo, StudyOverrides};
 use karman_mission::ork::{ImportOptions, OrkError, document_text, import};
 use karman_mission::{Location, Mission, MissionError, parse};

@@ -26,7 +26,7 @@ fn validate_missions_load() {
 #[test]
 fn rocket_drag_curves_follow_their_interpolation_keys() {
     use karman_mission::Override;
-    use karman_mission::build::{motor::build_motor, rocket::build_rocket};
+    use karman_mission::assemble::{motor::build_motor, rocket::build_rocket};
     let cd_on = |sets: &[(&str, &str)]| {
         let overrides: Vec<Override> = sets
             .iter()

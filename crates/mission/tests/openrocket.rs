@@ -65,7 +65,7 @@ fn the_openrocket_exceptions_name_designs_of_the_fixtures() {
 /// gram. A component type whose mass OpenRocket computes differently shows here first.
 #[test]
 fn validate_openrocket_launch_masses() {
-    use karman_mission::build::{motor::build_motor, rocket::build_rocket};
+    use karman_mission::assemble::{motor::build_motor, rocket::build_rocket};
     use karman_mission::ork::{ImportOptions, import};
     const STORED_HALF_UNIT: f64 = 0.0005;
     let mut failures = Vec::new();

@@ -127,8 +127,8 @@ fn pods_import_as_pod_sets_with_their_mass_at_their_offset() {
         ascent["mass_kg"][0].as_f64().expect("mass"),
         ascent["cg_m"][0].as_f64().expect("cg"),
     );
-    let motor = karman_mission::build::motor::build_motor(&mission).expect("motor");
-    let rocket = karman_mission::build::rocket::build_rocket(&mission, &motor).expect("rocket");
+    let motor = karman_mission::assemble::motor::build_motor(&mission).expect("motor");
+    let rocket = karman_mission::assemble::rocket::build_rocket(&mission, &motor).expect("rocket");
     let ours = rocket.total_mass(0.0);
     assert!((ours - mass).abs() < 0.01 * mass, "{ours} vs {mass}");
     let ours_cg = rocket.center_of_mass(0.0);
@@ -185,7 +185,7 @@ fn powered_pods_and_parallel_boosters_are_refused_by_name() {
 
 #[test]
 fn a_cluster_flies_its_motors_together_at_their_offsets() {
-    use karman_mission::build::{motor::build_motor, rocket::build_rocket};
+    use karman_mission::assemble::{motor::build_motor, rocket::build_rocket};
     let options = ImportOptions {
         simulation: Some("Simulation 1".into()),
         output_dir: Some(design("clustered_motors").parent().expect("dir").to_owned()),
@@ -531,5 +531,5 @@ fn a_transition_between_equal_radii_is_no_tail() {
     );
     let mission =
         karman_mission::parse(&imported.mission, &file.with_extension("toml"), &[]).expect("loads");
-    karman_mission::build::preflight::prepare(&mission, 0).expect("builds");
+    karman_mission::assemble::preflight::prepare(&mission, 0).expect("builds");
 }

@@ -167,9 +167,9 @@ fn fly(
     trigger: &str,
     brakes: &str,
     sets: &[(&str, &str)],
-) -> Result<karman_mission::build::flight::FlightRun, MissionError> {
+) -> Result<karman_mission::assemble::flight::FlightRun, MissionError> {
     let m = load(&mission(trigger, brakes), sets)?;
-    karman_mission::build::flight::simulate(&m)
+    karman_mission::assemble::flight::simulate(&m)
 }
 
 fn brakes_with(script: &str, extra: &str) -> String {
@@ -187,7 +187,7 @@ fn models(
     karman_mission::airframe::Rocket,
     karman_mission::dynamics::FlightSettings,
 ) {
-    use karman_mission::build::{environment, flight, motor, rocket};
+    use karman_mission::assemble::{environment, flight, motor, rocket};
     let env = Arc::new(environment::build_environment(mission).unwrap_or_else(|e| panic!("{e}")));
     let motor = motor::build_motor(mission).unwrap_or_else(|e| panic!("{e}"));
     let rocket = rocket::build_rocket(mission, &motor).unwrap_or_else(|e| panic!("{e}"));
@@ -223,11 +223,15 @@ fn shut_brakes_fly_as_no_brakes_bit_for_bit() {
     let bare = load(&mission("200", ""), &[]).unwrap_or_else(|e| panic!("{e}"));
     let (environment, rocket, mut settings) = models(&bare);
     settings.control_max_time_step = 0.05;
-    let (bare, _) =
-        karman_mission::build::flight::fly(&bare, &*environment, &rocket, &settings, None, || {
-            unreachable!("no controller")
-        })
-        .unwrap_or_else(|e| panic!("{e}"));
+    let (bare, _) = karman_mission::assemble::flight::fly(
+        &bare,
+        &*environment,
+        &rocket,
+        &settings,
+        None,
+        || unreachable!("no controller"),
+    )
+    .unwrap_or_else(|e| panic!("{e}"));
     let shut = fly("200", &brakes_with("shut.rhai", ""), &[]).unwrap_or_else(|e| panic!("{e}"));
     same_flight(&bare, &shut.flight);
     // Called at j / 20 from launch, the rail included, in order.
@@ -264,7 +268,7 @@ fn levels_above_one_are_clamped_unless_clamp_is_off() {
         fly("200", &brakes_with("overdrive.rhai", ""), &[]).unwrap_or_else(|e| panic!("{e}"));
     let free = fly("200", &brakes_with("overdrive.rhai", "clamp = false"), &[])
         .unwrap_or_else(|e| panic!("{e}"));
-    let max = |run: &karman_mission::build::flight::FlightRun| {
+    let max = |run: &karman_mission::assemble::flight::FlightRun| {
         run.controller
             .as_ref()
             .expect("record")
@@ -315,7 +319,8 @@ fn validate_camoes() {
     let path = dir.join("camoes/mission.toml");
     let equations = Override::new("flight.equations", "\"rocketpy_1_13\"").expect("override");
     let mission = karman_mission::load(&path, &[equations]).unwrap_or_else(|e| panic!("{e}"));
-    let run = karman_mission::build::flight::simulate(&mission).unwrap_or_else(|e| panic!("{e}"));
+    let run =
+        karman_mission::assemble::flight::simulate(&mission).unwrap_or_else(|e| panic!("{e}"));
     let reference = crate::common::load_reference(&path);
     let r = &reference["summary"];
     let s = serde_json::to_value(run.summary()).expect("summary");
@@ -383,20 +388,20 @@ fn validate_camoes() {
 
 /// A mission of the repository's `fixtures/airbrakes` folder, flown with RocketPy 1.13's
 /// equations.
-fn fly_airbrakes(name: &str) -> karman_mission::build::flight::FlightRun {
+fn fly_airbrakes(name: &str) -> karman_mission::assemble::flight::FlightRun {
     let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
         .join("../../fixtures/airbrakes")
         .join(name);
     let equations = Override::new("flight.equations", "\"rocketpy_1_13\"").expect("override");
     let mission = karman_mission::load(&path, &[equations]).unwrap_or_else(|e| panic!("{e}"));
-    karman_mission::build::flight::simulate(&mission).unwrap_or_else(|e| panic!("{e}"))
+    karman_mission::assemble::flight::simulate(&mission).unwrap_or_else(|e| panic!("{e}"))
 }
 
 /// The summary of `run` against RocketPy's figures `reference` (summary key, value) within
 /// the tolerances of the validation flights (`karman_validation::SUMMARY_PARITY`).
 fn summary_parity(
     flight: &str,
-    run: &karman_mission::build::flight::FlightRun,
+    run: &karman_mission::assemble::flight::FlightRun,
     reference: &[(&str, f64)],
 ) {
     let s = serde_json::to_value(run.summary()).expect("summary");
@@ -527,7 +532,7 @@ fn validate_airbrakes_apogee() {
 /// every call interpreted by Rhai: the same flight and record, bit for bit.
 #[test]
 fn compiled_controllers_fly_as_the_interpreter_bit_for_bit() {
-    use karman_mission::build::scripts::{ControllerEnvironment, compile_controller};
+    use karman_mission::assemble::scripts::{ControllerEnvironment, compile_controller};
     let mut paths: Vec<std::path::PathBuf> = ["calisto_apogee.toml", "calisto_docs.toml"]
         .iter()
         .map(|name| {
@@ -547,7 +552,7 @@ fn compiled_controllers_fly_as_the_interpreter_bit_for_bit() {
             .expect("a controller");
         assert_eq!(script.interpreted_because(), None, "{}", path.display());
         let fly = |script| {
-            karman_mission::build::flight::fly(
+            karman_mission::assemble::flight::fly(
                 &mission,
                 &*environment,
                 &rocket,

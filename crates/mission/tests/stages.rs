@@ -3,8 +3,8 @@
 
 use std::path::{Path, PathBuf};
 
-use karman_mission::build::flight::simulate;
-use karman_mission::build::stages::{StagedRun, TOP_STAGE, simulate_staged};
+use karman_mission::assemble::flight::simulate;
+use karman_mission::assemble::stages::{StagedRun, TOP_STAGE, simulate_staged};
 use karman_mission::dynamics::{Summary, Termination};
 use karman_mission::{Mission, MissionError, Override, load, parse};
 

@@ -4,7 +4,7 @@
 //! of liquid motors on different grids and of hybrids match RocketPy 1.13.
 
 use crate::common::fixture;
-use karman_mission::build::motor::build_motor;
+use karman_mission::assemble::motor::build_motor;
 use karman_mission::{Location, MissionError, Override, ProblemKind, load, parse};
 use proptest::prelude::*;
 
@@ -53,7 +53,7 @@ fn the_liquid_fixture_builds_its_four_tanks() {
     let rho = gas / volume;
     let edge = 1.29 + (290.0 - 273.15) / (300.0 - 273.15) * (1.18 - 1.29);
     assert!((rho - edge).abs() < 1e-9, "{rho}");
-    let run = karman_mission::build::flight::simulate(&mission).expect("flies");
+    let run = karman_mission::assemble::flight::simulate(&mission).expect("flies");
     let summary = karman_mission::report::flight::flight_summary(&run);
     assert!(summary.apogee_agl_m.is_some_and(|a| a > 100.0));
 }
@@ -314,7 +314,7 @@ fn tanks_on_different_grids_are_summed_pointwise_as_rocketpy() {
     let mission = load(&path, &set).expect("loads");
     let motor = build_motor(&mission).expect("builds");
     assert_eq!(motor.propellant_parts().len(), 2);
-    let rocket = karman_mission::build::rocket::build_rocket(&mission, &motor).expect("rocket");
+    let rocket = karman_mission::assemble::rocket::build_rocket(&mission, &motor).expect("rocket");
     let close = |got: f64, want: f64, scale: f64, what: &str, t: f64| {
         assert!(
             (got - want).abs() <= 1e-9 * scale,
@@ -416,7 +416,7 @@ fn hybrid_grain_and_tanks_are_summed_pointwise_as_rocketpy() {
     let motor = build_motor(&mission).expect("builds");
     // The grain and the tank (one grid) as two parts.
     assert_eq!(motor.propellant_parts().len(), 2);
-    let rocket = karman_mission::build::rocket::build_rocket(&mission, &motor).expect("rocket");
+    let rocket = karman_mission::assemble::rocket::build_rocket(&mission, &motor).expect("rocket");
     // After the burn the one-pass figures are settled ones: still the individual methods'.
     #[allow(clippy::float_cmp)] // the same arithmetic on the same numbers: equal to the bit.
     for t in [5.2, 8.0, 60.0] {

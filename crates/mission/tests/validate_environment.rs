@@ -4,7 +4,7 @@
 //! (relative) — the acceptance of the atmosphere issue.
 
 use crate::common::{flight_name, load_reference, validation_missions};
-use karman_mission::build::environment::build_environment;
+use karman_mission::assemble::environment::build_environment;
 use karman_mission::report::environment::{EnvironmentReport, environment_report};
 use serde_json::Value;
 use std::path::PathBuf;

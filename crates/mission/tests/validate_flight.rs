@@ -7,7 +7,7 @@
 
 use crate::common::{calisto_with, flight_name, load_reference, validation_missions};
 use karman_mission::Override;
-use karman_mission::build::flight::simulate;
+use karman_mission::assemble::flight::simulate;
 use karman_mission::report::flight::{SummaryComparison, flight_summary};
 use karman_validation::{IMPACT_FRACTION, PARACHUTE_TRIGGER_FRACTION, SUMMARY_PARITY};
 use serde_json::Value;
@@ -173,9 +173,9 @@ fn validate_equations_of_motion_vectors() {
         "the Calisto mission has an airfoil line to remove"
     );
     let mission = karman_mission::parse(&plain, &path, &[]).expect("plain-fin Calisto parses");
-    let env = karman_mission::build::environment::build_environment(&mission).expect("env");
-    let motor = karman_mission::build::motor::build_motor(&mission).expect("motor");
-    let rocket = karman_mission::build::rocket::build_rocket(&mission, &motor).expect("rocket");
+    let env = karman_mission::assemble::environment::build_environment(&mission).expect("env");
+    let motor = karman_mission::assemble::motor::build_motor(&mission).expect("motor");
+    let rocket = karman_mission::assemble::rocket::build_rocket(&mission, &motor).expect("rocket");
     let eq = Equations::new(&env, &rocket, karman_dynamics::EquationsForm::RocketPy113);
     let (configuration, cursors) = (&Configuration::default(), &mut Cursors::default());
 
@@ -282,10 +282,10 @@ fn too_heavy_to_leave_the_rail_is_flagged() {
         other => panic!("expected the launch check's error, got {other:?}"),
     }
     // Flown anyway, the engine ends the flight on the rail in bounded time.
-    let env = karman_mission::build::environment::build_environment(&mission).expect("env");
-    let motor = karman_mission::build::motor::build_motor(&mission).expect("motor");
-    let rocket = karman_mission::build::rocket::build_rocket(&mission, &motor).expect("rocket");
-    let settings = karman_mission::build::flight::flight_settings(&mission, 0);
+    let env = karman_mission::assemble::environment::build_environment(&mission).expect("env");
+    let motor = karman_mission::assemble::motor::build_motor(&mission).expect("motor");
+    let rocket = karman_mission::assemble::rocket::build_rocket(&mission, &motor).expect("rocket");
+    let settings = karman_mission::assemble::flight::flight_settings(&mission, 0);
     let start = std::time::Instant::now();
     let flight = karman_mission::dynamics::simulate(&env, &rocket, &settings).expect("flight");
     assert!(start.elapsed() < std::time::Duration::from_secs(30));
@@ -388,7 +388,7 @@ fn standard_and_rocketpy_equations() {
         simulate(&mission).expect("flies")
     };
     let (rocketpy, standard) = (fly("rocketpy_1_13"), fly("standard"));
-    let apogee = |run: &karman_mission::build::flight::FlightRun| {
+    let apogee = |run: &karman_mission::assemble::flight::FlightRun| {
         run.summary().apogee_agl_m.expect("apogee")
     };
     let (a, b) = (apogee(&rocketpy), apogee(&standard));

@@ -15,7 +15,7 @@
 //! exact regression by up to ~1e-4 of m_p0 near burn-out.
 
 use crate::common::{calisto_path, calisto_with, flight_name, load_reference, validation_missions};
-use karman_mission::build::motor::build_motor;
+use karman_mission::assemble::motor::build_motor;
 use karman_mission::report::motor::MotorReport;
 use serde_json::Value;
 

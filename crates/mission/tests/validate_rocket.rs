@@ -5,8 +5,8 @@
 //! The worst errors are printed per mission (`cargo test -- --nocapture`).
 
 use crate::common::{load_reference, validation_missions};
-use karman_mission::build::motor::build_motor;
-use karman_mission::build::rocket::build_rocket;
+use karman_mission::assemble::motor::build_motor;
+use karman_mission::assemble::rocket::build_rocket;
 use karman_mission::report::rocket::{RocketReport, draw_rocket_svg};
 use serde_json::Value;
 

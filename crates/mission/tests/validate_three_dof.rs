@@ -16,7 +16,7 @@
 //! `"6 DOF"` reproduces `reference.json` exactly (apogee 3305.477453854797 m).
 
 use karman_mission::Override;
-use karman_mission::build::flight::simulate;
+use karman_mission::assemble::flight::simulate;
 use karman_mission::report::flight::{SummaryComparison, flight_summary};
 use karman_validation::{IMPACT_FRACTION, PARACHUTE_TRIGGER_FRACTION, SUMMARY_PARITY};
 
@@ -167,9 +167,9 @@ fn validate_point_mass_vectors() {
         println!("validate_point_mass_vectors: skipped, the validation folder is absent");
         return;
     };
-    let env = karman_mission::build::environment::build_environment(&mission).expect("env");
-    let motor = karman_mission::build::motor::build_motor(&mission).expect("motor");
-    let rocket = karman_mission::build::rocket::build_rocket(&mission, &motor).expect("rocket");
+    let env = karman_mission::assemble::environment::build_environment(&mission).expect("env");
+    let motor = karman_mission::assemble::motor::build_motor(&mission).expect("motor");
+    let rocket = karman_mission::assemble::rocket::build_rocket(&mission, &motor).expect("rocket");
     let eq = Equations::new(
         &env,
         &rocket,

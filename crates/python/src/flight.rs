@@ -4,7 +4,7 @@
 use std::path::PathBuf;
 use std::sync::OnceLock;
 
-use karman_mission::build::flight::FlightRun;
+use karman_mission::assemble::flight::FlightRun;
 use karman_mission::dynamics::{Sample, Summary};
 use karman_mission::report::trajectory::{self, SERIES};
 use numpy::PyArray1;

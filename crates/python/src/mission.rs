@@ -5,10 +5,10 @@ use std::sync::atomic::{AtomicBool, AtomicU64, Ordering};
 use std::sync::{Arc, OnceLock};
 use std::time::Duration;
 
-use karman_mission::build::environment::build_environment;
-use karman_mission::build::flight::PreparedFlight;
-use karman_mission::build::motor::build_motor;
-use karman_mission::build::rocket::build_rocket;
+use karman_mission::assemble::environment::build_environment;
+use karman_mission::assemble::flight::PreparedFlight;
+use karman_mission::assemble::motor::build_motor;
+use karman_mission::assemble::rocket::build_rocket;
 use karman_mission::dispersion::{
     MemoryRun, ProgressMode, RunOptions, RunReport, run_in_memory, run_until,
 };

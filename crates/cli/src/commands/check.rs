@@ -4,9 +4,9 @@
 
 use super::MissionArgs;
 use clap::Args;
-use karman_mission::build::preflight::prepare;
-use karman_mission::build::scripts::compile_controller;
-use karman_mission::build::stages::prepare_staged;
+use karman_mission::assemble::preflight::prepare;
+use karman_mission::assemble::scripts::compile_controller;
+use karman_mission::assemble::stages::prepare_staged;
 use std::io::Write;
 
 /// Arguments of `karman check`.

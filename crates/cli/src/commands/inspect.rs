@@ -15,13 +15,13 @@ use anyhow::{Context, Result};
 use clap::Args;
 use karman_mission::Mission;
 use karman_mission::airframe::{DragComponents, DragEstimate, MotorProperties, Rocket};
-use karman_mission::atmos::Environment;
-use karman_mission::build::{
+use karman_mission::assemble::{
     environment::build_environment,
     flight::simulate,
     motor::build_motor,
     rocket::{build_rocket, estimated_drag},
 };
+use karman_mission::atmos::Environment;
 use karman_mission::math::linspace;
 use karman_mission::propulsion::Motor;
 use karman_mission::report::environment::{default_heights, environment_report};

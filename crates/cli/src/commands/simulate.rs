@@ -20,8 +20,8 @@ use std::path::Path;
 
 use anyhow::{Context, Result, bail};
 use clap::Args;
-use karman_mission::build::flight::{FlightRun, early_ending, simulate_with_seed};
-use karman_mission::build::stages::{StagedRun, simulate_staged};
+use karman_mission::assemble::flight::{FlightRun, early_ending, simulate_with_seed};
+use karman_mission::assemble::stages::{StagedRun, simulate_staged};
 use karman_mission::dispersion::files::write_atomic;
 use karman_mission::dynamics::Sample;
 use karman_mission::report::trajectory;

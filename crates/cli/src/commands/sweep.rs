@@ -18,8 +18,8 @@ use std::path::PathBuf;
 use anyhow::{Context, Result, bail};
 use clap::Args;
 use karman_mission::Override;
-use karman_mission::build::flight::simulate_with_seed;
-use karman_mission::build::stages::simulate_staged;
+use karman_mission::assemble::flight::simulate_with_seed;
+use karman_mission::assemble::stages::simulate_staged;
 use karman_mission::montecarlo::{OUTPUTS, stage_outputs, staged_outputs};
 use karman_mission::report::trajectory::{self, SERIES};
 

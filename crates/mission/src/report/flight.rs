@@ -7,7 +7,7 @@ use serde::Serialize;
 
 pub use karman_dynamics::{EventRecord, Summary as FlightSummary};
 
-use crate::build::flight::FlightRun;
+use crate::assemble::flight::FlightRun;
 
 /// The summary of a flown mission (serializes to the contract's keys; `Display` prints an
 /// aligned table).

@@ -9,7 +9,7 @@ use std::fmt;
 use karman_propulsion::Motor;
 use serde::Serialize;
 
-use crate::build::motors::extra_motor;
+use crate::assemble::motors::extra_motor;
 use crate::{Mission, MissionError};
 
 /// Number of intervals the burn is split into by the default report times.

@@ -28,8 +28,8 @@ use std::path::{Path, PathBuf};
 
 use serde_json::Value;
 
-use crate::build::flight::simulate;
-use crate::build::stages::simulate_staged;
+use crate::assemble::flight::simulate;
+use crate::assemble::stages::simulate_staged;
 use crate::ork::{Design, ImportOptions, import, read_document};
 use crate::report::rocket::AngleStability;
 

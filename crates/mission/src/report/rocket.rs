@@ -8,7 +8,7 @@ use std::fmt::{self, Write as _};
 use karman_airframe::{BodyLift, Geometry, Rocket, Surface};
 use serde::Serialize;
 
-use crate::build::rocket::estimate_geometry;
+use crate::assemble::rocket::estimate_geometry;
 use crate::{Mission, MissionError};
 
 /// OpenRocket's centre of pressure and stability margin of a rocket at an angle of attack:

@@ -7,11 +7,11 @@ use std::fmt::Write as _;
 use karman_atmos::Environment;
 use karman_dynamics::Sample;
 
-use crate::build::flight::FlightRun;
+use crate::assemble::flight::FlightRun;
 
 /// What the series read of a flown body besides its samples: a single-stage flight
 /// ([`FlightRun`]) or one body of a multi-stage flight
-/// ([`crate::build::stages::BodyTrack`]).
+/// ([`crate::assemble::stages::BodyTrack`]).
 pub trait Track {
     /// The launch environment (latitude and longitude of the points).
     fn environment(&self) -> &Environment;

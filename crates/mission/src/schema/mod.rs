@@ -185,7 +185,7 @@ pub struct StageSpec {
     /// Power-on drag coefficient of that stack.
     pub stack_power_on_drag: Curve,
     /// Drag area `C_D·A` of the spent stage tumbling to the ground, m²; absent: Niskanen's
-    /// estimate from its fins and body ([`crate::build::stages`]). Used only by a stage
+    /// estimate from its fins and body ([`crate::assemble::stages`]). Used only by a stage
     /// without parachutes.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub tumble_drag_area: Option<f64>,

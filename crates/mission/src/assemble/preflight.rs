@@ -99,7 +99,7 @@ pub fn prepare(mission: &Mission, seed: u64) -> Result<Models, MissionError> {
             mission,
             "stages",
             "a multi-stage rocket is one vehicle per stack: `karman check`, `simulate`, \
-             `montecarlo` and `sweep` take it (`build::stages`), the others do not yet"
+             `montecarlo` and `sweep` take it (`assemble::stages`), the others do not yet"
                 .to_owned(),
         ));
     }
