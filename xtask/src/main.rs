@@ -11,7 +11,8 @@
 //!   OpenRocket comparison alone, on the designs of another folder (see `validate.rs`).
 //! - `bench [FILTER]`: run the criterion benchmarks and print their medians.
 //! - `tidy`: repository rules that are not compiler checks (the crate layering of
-//!   ARCHITECTURE.md, read from `cargo metadata`).
+//!   ARCHITECTURE.md, read from `cargo metadata`; every `docs/physics.md §N.M` citation
+//!   naming a section of that file).
 
 mod bench;
 mod python;
@@ -38,7 +39,7 @@ fn run() -> Result<()> {
     let root = workspace_root();
     match args.first().map(String::as_str) {
         Some("ci") => ci(&root),
-        Some("tidy") => tidy::check_layering(&root),
+        Some("tidy") => tidy::check_layering(&root).and_then(|()| tidy::check_citations(&root)),
         Some("validate") => validate::run(&root, &args[1..]),
         Some("bench") => bench::run(&root, &args[1..]),
         _ => {
@@ -92,6 +93,7 @@ fn ci(root: &Path) -> Result<()> {
         ],
     )?;
     tidy::check_layering(root)?;
+    tidy::check_citations(root)?;
     // The API documentation builds without broken links.
     cargo_with(
         root,

@@ -1,4 +1,4 @@
-//! Air brakes (RocketPy's `AirBrakes`, physics.md §16.1–§16.3): a drag coefficient of the
+//! Air brakes (RocketPy's `AirBrakes`, docs/physics.md §16.1–§16.3): a drag coefficient of the
 //! deployment level and the Mach number, its reference area, whether it replaces the rocket's
 //! drag, and the clamp applied to every level written.
 //!
@@ -7,7 +7,7 @@
 //! replacing it (`override_rocket_drag`); at level 0 or below they do nothing. The curve is
 //! RocketPy's default 2-D `Function`: Shepard inverse-distance weighting with weights `d⁻³` in
 //! raw (level, Mach) units, rows in file order, the first exactly matching row's value at a
-//! node, no clamping outside the table (physics.md §16.2).
+//! node, no clamping outside the table (docs/physics.md §16.2).
 
 use crate::error::{AirframeError, finite, positive};
 use karman_math::ScatteredTable;
@@ -133,7 +133,7 @@ impl AirBrakes {
     }
 
     /// The level stored when `value` is written: clipped to `[0, 1]` when the brakes clamp
-    /// (physics.md §16.3).
+    /// (docs/physics.md §16.3).
     #[must_use]
     pub fn clamped(&self, value: f64) -> f64 {
         if self.clamp {
@@ -154,7 +154,7 @@ impl AirBrakes {
     }
 
     /// `A_ab · Cd_ab(level, Mach)` of the brakes at `level`: 0 unless the level is > 0
-    /// (physics.md §16.1), m².
+    /// (docs/physics.md §16.1), m².
     #[inline]
     #[must_use]
     pub fn drag_area(&self, level: f64, mach: f64) -> f64 {

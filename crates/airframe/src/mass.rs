@@ -1,4 +1,4 @@
-//! Time-dependent mass properties of the rocket with its motor (physics.md §5.3–§5.5).
+//! Time-dependent mass properties of the rocket with its motor (docs/physics.md §5.3–§5.5).
 //!
 //! RocketPy forms these quantities with `Function` arithmetic (RocketPy `Rocket.evaluate_*`):
 //! when every operand is a table on the SAME abscissae, the result is a new table of the
@@ -8,7 +8,7 @@
 //! generic motors mix grids (so everything is pointwise). [`MassModel`] reproduces both. A
 //! liquid motor whose tanks are on different grids hands its propellant over in parts
 //! ([`MotorProperties::propellant_parts`]), summed pointwise at each instant as RocketPy's
-//! `LiquidMotor` does (physics.md §15.3).
+//! `LiquidMotor` does (docs/physics.md §15.3).
 //!
 //! Derivatives are those of RocketPy 1.13's complex-step differentiation
 //! (`Function.differentiate_complex_step`): its evaluator picks the interval from the REAL
@@ -73,7 +73,7 @@ fn same_grid(a: &Table1, b: &Table1) -> bool {
 }
 
 impl MassModel {
-    /// Builds the model (physics.md §5.3, §5.5).
+    /// Builds the model (docs/physics.md §5.3, §5.5).
     pub(crate) fn new(
         csys: f64,
         rocket_mass: f64,
@@ -296,7 +296,7 @@ impl MassModel {
     }
 
     /// `(dm/dt, d²m/dt²)` at `t`: the motor's mass-flow table and its slope when it has one,
-    /// else the slopes of the propellant-mass table (physics.md §6.2; the mass the equations
+    /// else the slopes of the propellant-mass table (docs/physics.md §6.2; the mass the equations
     /// fly), with the time located from `cursor` (updated).
     #[inline]
     pub(crate) fn mass_rate_near(&self, t: f64, cursor: &mut Cursor) -> (f64, f64) {
@@ -384,7 +384,7 @@ impl MassModel {
         }
     }
 
-    /// c(t), RocketPy's `com_to_cdm_function` (physics.md §5.4, RocketPy sign).
+    /// c(t), RocketPy's `com_to_cdm_function` (docs/physics.md §5.4, RocketPy sign).
     #[inline]
     pub(crate) fn com_to_cdm(&self, t: f64) -> f64 {
         match &self.nodal_offset {
@@ -436,7 +436,7 @@ impl MassModel {
         }
     }
 
-    /// Inertia about the CDM, `(I11, I22, I33, I12, I13, I23)` (physics.md §5.5).
+    /// Inertia about the CDM, `(I11, I22, I33, I12, I13, I23)` (docs/physics.md §5.5).
     #[inline]
     pub(crate) fn inertia(&self, t: f64) -> [f64; 6] {
         let i11 = match &self.nodal_i11 {

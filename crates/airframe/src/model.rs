@@ -1,6 +1,6 @@
 //! The karman-model interfaces for the airframe: [`VehicleModel`] for [`Rocket`] and
 //! [`SurfaceModel`] for [`Surface`], whose force law (RocketPy's normal force and, for fin
-//! sets, roll moment; physics.md §7.2, §7.6) lives here with the coefficients.
+//! sets, roll moment; docs/physics.md §7.2, §7.6) lives here with the coefficients.
 
 use karman_math::Cursor;
 use karman_model::{
@@ -112,7 +112,7 @@ impl VehicleModel for Rocket {
         self.net_thrust_near(t, ambient_pressure, cursor)
     }
 
-    /// The drag `−½ ρ |v|² A C_D(Mach)` of the power-on or power-off curve (physics.md §7.1),
+    /// The drag `−½ ρ |v|² A C_D(Mach)` of the power-on or power-off curve (docs/physics.md §7.1),
     /// with the air brakes' drag added or substituted while their level (control
     /// [`AIR_BRAKES_CONTROL`]) is above 0 (§16.1).
     #[inline(always)]

@@ -3,14 +3,14 @@
 //! karman-airframe may not depend on karman-propulsion (layering rule), so the mission layer
 //! converts a `karman_propulsion::Motor` into [`MotorProperties`]. Positions are in the
 //! MOTOR's own coordinate system (orientation [`MotorProperties::coordinate_system_sign`]),
-//! times in s from the thrust curve's time origin (RocketPy `Motor`, physics.md §5.2, §6).
+//! times in s from the thrust curve's time origin (RocketPy `Motor`, docs/physics.md §5.2, §6).
 
 use karman_math::Table1;
 use karman_model::PropellantPart;
 
 use crate::error::{AirframeError, finite, non_negative, positive};
 
-/// Tabulated properties of one motor (RocketPy `Motor` attributes, physics.md §6).
+/// Tabulated properties of one motor (RocketPy `Motor` attributes, docs/physics.md §6).
 ///
 /// The tables must be built exactly as RocketPy builds them (sample points and
 /// interpolation), because the rocket's time tables are formed node by node from them when
@@ -39,7 +39,7 @@ pub struct MotorProperties {
     pub propellant_i33: Table1,
     /// The propellant as parts on time grids of their own, summed pointwise (a liquid motor
     /// whose tanks are on different time grids, a hybrid motor's grain and tanks: RocketPy
-    /// evaluates those motors' sums pointwise, physics.md §15.3–15.4); the propellant tables
+    /// evaluates those motors' sums pointwise, docs/physics.md §15.3–15.4); the propellant tables
     /// above then only tabulate the sums (for reports) and the I33. Empty for a motor whose
     /// propellant is those tables.
     pub propellant_parts: Vec<PropellantPart>,

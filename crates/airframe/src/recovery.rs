@@ -1,5 +1,5 @@
 //! Parachutes and rail buttons: data the flight engine uses for recovery events and the
-//! launch rail (RocketPy `Parachute`, `RailButtons`; physics.md §1, §8.1, §8.4, §9.4).
+//! launch rail (RocketPy `Parachute`, `RailButtons`; docs/physics.md §1, §8.1, §8.4, §9.4).
 
 use std::f64::consts::PI;
 use std::sync::Arc;
@@ -67,7 +67,7 @@ pub struct ParachuteSpec {
     pub drag_coefficient: Option<f64>,
 }
 
-/// A parachute with every default resolved (physics.md §8.4).
+/// A parachute with every default resolved (docs/physics.md §8.4).
 #[derive(Debug, Clone, PartialEq)]
 pub struct Parachute {
     /// Name.
@@ -225,7 +225,7 @@ mod tests {
 
     #[test]
     fn defaults_match_physics_md() {
-        // physics.md §13: cd_s 1.0 → R_p = H_p = 0.4768272, C_a = 0.99999941.
+        // docs/physics.md §13: cd_s 1.0 → R_p = H_p = 0.4768272, C_a = 0.99999941.
         let p = Parachute::new(&spec()).expect("valid parachute");
         assert!((p.radius - 0.476_827_2).abs() < 1e-7);
         assert!((p.height - p.radius).abs() < 1e-15);

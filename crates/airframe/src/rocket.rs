@@ -1,5 +1,5 @@
 //! The rocket: airframe, motor, surfaces, parachutes and rail buttons, with the quantities the
-//! equations of motion evaluate per step (RocketPy `Rocket`, physics.md §2.5, §5, §7).
+//! equations of motion evaluate per step (RocketPy `Rocket`, docs/physics.md §2.5, §5, §7).
 
 use std::f64::consts::PI;
 
@@ -98,7 +98,7 @@ pub struct Rocket {
     power_on_drag: Table1,
     mass: MassModel,
     surfaces: Vec<Surface>,
-    /// `(r_s/r)²` per surface (area correction of the rocket CP, physics.md §7.7).
+    /// `(r_s/r)²` per surface (area correction of the rocket CP, docs/physics.md §7.7).
     surface_weights: Vec<f64>,
     /// False when ΣCNα at Mach 0 vanishes: the CP is then 0, as in RocketPy.
     cp_defined: bool,
@@ -366,7 +366,7 @@ impl Rocket {
         self.mass.total_mass_near(t, cursor)
     }
 
-    /// Signed total mass flow rate ṁ(t) = −T(t)/v̄_e (kg/s), physics.md §6.2.
+    /// Signed total mass flow rate ṁ(t) = −T(t)/v̄_e (kg/s), docs/physics.md §6.2.
     #[inline]
     #[must_use]
     pub fn mass_flow_rate(&self, t: f64) -> f64 {
@@ -380,7 +380,7 @@ impl Rocket {
         self.mass.mass_flow_rate_derivative(t)
     }
 
-    /// c(t) = −csys (z_pc − z_CDM) m_p/m (m): RocketPy's CM→CDM offset, physics.md §5.4.
+    /// c(t) = −csys (z_pc − z_CDM) m_p/m (m): RocketPy's CM→CDM offset, docs/physics.md §5.4.
     #[inline]
     #[must_use]
     pub fn com_to_cdm(&self, t: f64) -> f64 {
@@ -395,7 +395,7 @@ impl Rocket {
     }
 
     /// c̈(t) (m/s²): RocketPy's second derivative of c — 0 for the piecewise-linear table of
-    /// a solid motor (physics.md §5.4, checklist item 22), a central difference with step
+    /// a solid motor (docs/physics.md §5.4), a central difference with step
     /// 1e-6 for the pointwise formula of mixed grids (generic motors).
     #[inline]
     #[must_use]
@@ -471,14 +471,14 @@ impl Rocket {
         self.nozzle_position
     }
 
-    /// d_n = −csys (z_noz − z_CDM) (m), physics.md §5.6.
+    /// d_n = −csys (z_noz − z_CDM) (m), docs/physics.md §5.6.
     #[inline]
     #[must_use]
     pub fn nozzle_to_cdm(&self) -> f64 {
         self.nozzle_to_cdm
     }
 
-    /// Nozzle gyration tensor diagonal `(S11, S22, S33)` (m²), physics.md §5.6 **\[RP\]**.
+    /// Nozzle gyration tensor diagonal `(S11, S22, S33)` (m²), docs/physics.md §5.6 **\[RP\]**.
     #[inline]
     #[must_use]
     pub fn nozzle_gyration(&self) -> [f64; 3] {
@@ -498,7 +498,7 @@ impl Rocket {
         self.mass.motor().thrust.eval(t)
     }
 
-    /// Net thrust with the nozzle-pressure correction, clamped at 0 (physics.md §6.3).
+    /// Net thrust with the nozzle-pressure correction, clamped at 0 (docs/physics.md §6.3).
     #[inline]
     #[must_use]
     pub fn net_thrust(&self, t: f64, ambient_pressure: f64) -> f64 {
@@ -532,7 +532,7 @@ impl Rocket {
         self.mass.motor().burn_out
     }
 
-    /// Drag coefficient at `mach`, power-on or power-off curve (physics.md §7.1).
+    /// Drag coefficient at `mach`, power-on or power-off curve (docs/physics.md §7.1).
     #[inline]
     #[must_use]
     pub fn drag_coefficient(&self, power_on: bool, mach: f64) -> f64 {
@@ -566,7 +566,7 @@ impl Rocket {
     }
 
     /// Rocket CP at `mach`, user coordinates (m): the `(r_s/r)²·CNα`-weighted mean of the
-    /// surface CPs (physics.md §7.7).
+    /// surface CPs (docs/physics.md §7.7).
     #[inline]
     #[must_use]
     pub fn cp_position(&self, mach: f64) -> f64 {
@@ -602,7 +602,7 @@ impl Rocket {
     }
 
     /// Static margin (calibres) at time `t`: CP at Mach 0; RocketPy's 200-point spline on
-    /// `[0, t_b1]` (physics.md §7.7).
+    /// `[0, t_b1]` (docs/physics.md §7.7).
     #[must_use]
     pub fn static_margin(&self, t: f64) -> f64 {
         match &self.static_margin {
@@ -611,7 +611,7 @@ impl Rocket {
         }
     }
 
-    /// Stability margin (calibres) at `mach` and time `t` (physics.md §7.7).
+    /// Stability margin (calibres) at `mach` and time `t` (docs/physics.md §7.7).
     #[inline]
     #[must_use]
     pub fn stability_margin(&self, mach: f64, t: f64) -> f64 {
@@ -625,7 +625,7 @@ impl Rocket {
         &self.parachutes
     }
 
-    /// The rocket with `air_brakes` (RocketPy's `add_air_brakes`; physics.md §16).
+    /// The rocket with `air_brakes` (RocketPy's `add_air_brakes`; docs/physics.md §16).
     #[must_use]
     pub fn with_air_brakes(mut self, air_brakes: AirBrakes) -> Self {
         self.air_brakes = Some(air_brakes);

@@ -1,5 +1,5 @@
-//! Calisto (plain fins, physics.md §13 "measured" RocketPy 1.13 values) against a hand-built
-//! motor. physics.md quotes 6–8 significant digits; tolerances are a few units of the last
+//! Calisto (plain fins, docs/physics.md §13 "measured" RocketPy 1.13 values) against a hand-built
+//! motor. docs/physics.md §13 quotes 6–8 significant digits; tolerances are a few units of the last
 //! quoted digit unless a reason is given.
 
 use crate::common::calisto;
@@ -18,7 +18,7 @@ fn validate_calisto_mass_properties() {
     assert_close("z_CDM", r.center_of_dry_mass(), -0.104_825_4, 1e-7);
     assert_close("z_CM(0)", r.center_of_mass(0.0), -0.220_798_1, 1e-7);
     assert_close("dry I11", r.dry_inertia()[0], 7.864_455, 1e-6);
-    // t, m, ṁ, c, I11, I33 (physics.md §13 table).
+    // t, m, ṁ, c, I11, I33 (docs/physics.md §13 table).
     let rows = [
         (0.0, 19.196_912, 0.0, 0.115_973, 9.638_151, 0.037_942),
         (1.0, 18.309_184, -0.997_673, 0.085_078, 9.105_133, 0.037_563),
@@ -86,7 +86,7 @@ fn validate_calisto_surfaces_and_nozzle() {
         0.127,
         1e-15,
     );
-    // Roll coefficients of the set (physics.md §7.6, cant 0.5°).
+    // Roll coefficients of the set (docs/physics.md §7.6, cant 0.5°).
     assert_close(
         "roll forcing",
         s[1].roll_forcing(0.0),
@@ -177,7 +177,7 @@ fn validate_calisto_recovery_data() {
 #[test]
 fn validate_calisto_mirrored_coordinates_give_the_same_physics() {
     // The same rocket described nose-to-tail (every user position negated): body-axis
-    // quantities and margins are unchanged, user-axis positions change sign (physics.md §2.5).
+    // quantities and margins are unchanged, user-axis positions change sign (docs/physics.md §2.5).
     let Some(dir) = crate::common::validation_dir() else {
         return;
     };

@@ -1,8 +1,8 @@
 //! Shared helpers: the validation data folder and a hand-built Calisto rocket.
 //!
 //! The motor tables are built here from the `.eng` file and the BATES grain geometry
-//! (physics.md §6.1, §6.4) on a fine time grid, standing in for karman-propulsion (the airframe
-//! crate may not depend on it).
+//! (docs/physics.md §6.1, §6.4) on a fine time grid, standing in for karman-propulsion (the
+//! airframe crate may not depend on it).
 
 use std::path::PathBuf;
 
@@ -33,7 +33,7 @@ fn columns(path: &PathBuf) -> Vec<[f64; 2]> {
         .collect()
 }
 
-/// Calisto's Cesaroni M1670 as RocketPy builds it (physics.md §6): `.eng` curve with a (0, 0)
+/// Calisto's Cesaroni M1670 as RocketPy builds it (docs/physics.md §6): `.eng` curve with a (0, 0)
 /// point prepended, clipped to [0, 3.9] s; 5 BATES grains.
 pub fn calisto_motor(dir: &std::path::Path) -> MotorProperties {
     let mut points = vec![[0.0, 0.0]];
@@ -214,7 +214,7 @@ pub fn calisto_inputs(dir: &std::path::Path, airfoil: Option<Airfoil>) -> Rocket
     }
 }
 
-/// The Calisto rocket of physics.md §13 (plain fins), or `None` without validation data.
+/// The Calisto rocket of docs/physics.md §13 (plain fins), or `None` without validation data.
 pub fn calisto(airfoil: bool) -> Option<Rocket> {
     let dir = validation_dir()?;
     let foil = airfoil.then(|| naca0012(&dir));

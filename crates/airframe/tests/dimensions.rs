@@ -18,7 +18,7 @@ const TOL: f64 = 1e-9;
 const L: Dimension = Dimension::LENGTH;
 const T: Dimension = Dimension::TIME;
 
-/// Calisto-like motor data (physics.md §6: M1670, 5 BATES grains) as plain tables. With
+/// Calisto-like motor data (docs/physics.md §6: M1670, 5 BATES grains) as plain tables. With
 /// `common_grid` every propellant table shares the thrust grid (RocketPy's node-wise
 /// arithmetic); otherwise the centre of mass is on its own grid and the rocket evaluates its
 /// mass properties pointwise (the generic-motor path, with a numerical second derivative).

@@ -3,7 +3,7 @@
 //!
 //! Sources: NIMA TR8350.2 (2000), Moritz (1980) "Geodetic Reference System 1980"; RocketPy
 //! 1.13 `Environment.somigliana_gravity`, `calculate_earth_radius` and
-//! `__set_earth_rotation_vector` (physics.md §4.3, §4.5, §4.6).
+//! `__set_earth_rotation_vector` (docs/physics.md §4.3, §4.5, §4.6).
 
 use crate::AtmosError;
 use karman_math::PhysicalConstants;
@@ -66,7 +66,7 @@ impl Datum {
         }
     }
 
-    /// Geocentric radius of the ellipsoid at latitude `latitude_deg` (physics.md §4.6):
+    /// Geocentric radius of the ellipsoid at latitude `latitude_deg` (docs/physics.md §4.6):
     /// `R = √(((a² cos φ)² + (b² sin φ)²) / ((a cos φ)² + (b sin φ)²))`, `b = a (1 − f)`.
     #[must_use]
     pub fn radius(self, latitude_deg: f64, c: &PhysicalConstants) -> f64 {
@@ -79,7 +79,7 @@ impl Datum {
 }
 
 /// Somigliana normal gravity (m/s²) at latitude `latitude_deg` and height `h` (m) with the
-/// second-order free-air correction (NIMA TR8350.2 eq. 4-1 and 4-3; physics.md §4.3):
+/// second-order free-air correction (NIMA TR8350.2 eq. 4-1 and 4-3; docs/physics.md §4.3):
 /// `g = g_e (1 + k sin²φ)/√(1 − e² sin²φ) · [1 − (2h/a)(1 + f + m − 2f sin²φ) + 3h²/a²]`.
 #[must_use]
 pub fn somigliana_gravity(latitude_deg: f64, h: f64, c: &PhysicalConstants) -> f64 {
@@ -93,7 +93,7 @@ pub fn somigliana_gravity(latitude_deg: f64, h: f64, c: &PhysicalConstants) -> f
     correction * g_surface
 }
 
-/// Earth's rotation vector in the launch ENU frame, `Ω (0, cos φ, sin φ)` (physics.md §4.5).
+/// Earth's rotation vector in the launch ENU frame, `Ω (0, cos φ, sin φ)` (docs/physics.md §4.5).
 #[must_use]
 pub fn earth_rotation_enu(latitude_deg: f64, c: &PhysicalConstants) -> [f64; 3] {
     let (s, co) = latitude_deg.to_radians().sin_cos();
@@ -107,14 +107,14 @@ mod tests {
 
     #[test]
     fn somigliana_matches_rocketpy_anchor() {
-        // physics.md §13: g(1400 m, lat 32.990254) = 9.7913331 (RocketPy 1.13).
+        // docs/physics.md §13: g(1400 m, lat 32.990254) = 9.7913331 (RocketPy 1.13).
         let g = somigliana_gravity(32.990254, 1400.0, &PhysicalConstants::SI);
         assert!((g - 9.791_333_1).abs() < 1e-7, "{g}");
     }
 
     #[test]
     fn rotation_matches_rocketpy_anchor() {
-        // physics.md §13: Ω_A = (0, 6.1163577e-05, 3.9705302e-05) at lat 32.990254.
+        // docs/physics.md §13: Ω_A = (0, 6.1163577e-05, 3.9705302e-05) at lat 32.990254.
         let w = earth_rotation_enu(32.990254, &PhysicalConstants::SI);
         assert!(w[0].abs() < 1e-20);
         assert!((w[1] - 6.116_357_7e-5).abs() < 1e-12);

@@ -3,7 +3,7 @@
 //!
 //! How each quantity is derived follows RocketPy 1.13's `Function` arithmetic
 //! (`Environment.calculate_density_profile`, `calculate_speed_of_sound_profile`,
-//! `calculate_dynamic_viscosity`; physics.md §4.1–§4.2):
+//! `calculate_dynamic_viscosity`; docs/physics.md §4.1–§4.2):
 //! - density `ρ = P/(R T)`: node by node (then interpolated like the pressure) when pressure
 //!   and temperature are tables on the same heights, pointwise otherwise (e.g. the ISA, whose
 //!   pressure has 100 nodes and temperature 9);
@@ -32,7 +32,7 @@ pub enum Atmosphere {
 /// The gravity model.
 #[derive(Debug, Clone, Copy, PartialEq, Default)]
 pub enum Gravity {
-    /// WGS-84 Somigliana normal gravity with height (physics.md §4.3), sampled at 100 points
+    /// WGS-84 Somigliana normal gravity with height (docs/physics.md §4.3), sampled at 100 points
     /// on [0, 80 km] into a natural cubic spline with constant extrapolation.
     #[default]
     Somigliana,
@@ -60,7 +60,7 @@ pub struct EnvironmentConfig {
 }
 
 /// The latitude and height range from which gravity, the local Earth radius and the
-/// Earth-rotation vector are computed, when they differ from the launch site's (physics.md
+/// Earth-rotation vector are computed, when they differ from the launch site's (docs/physics.md
 /// §18: RocketPy computes them once, in `Environment()`, from the arguments given there; a
 /// script that sets the location afterwards flies with those of the first latitude).
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -525,7 +525,7 @@ impl Environment {
         self.earth_rotation
     }
 
-    /// Barometric height (m ASL) of a pressure (Pa), physics.md §4.4.
+    /// Barometric height (m ASL) of a pressure (Pa), docs/physics.md §4.4.
     #[inline]
     #[must_use]
     pub fn barometric_height(&self, pressure: f64) -> f64 {
@@ -545,7 +545,7 @@ impl Environment {
         )
     }
 
-    /// Local Earth radius of the datum at the launch latitude (m), physics.md §4.6.
+    /// Local Earth radius of the datum at the launch latitude (m), docs/physics.md §4.6.
     #[inline]
     #[must_use]
     pub fn datum_radius(&self) -> f64 {
@@ -644,7 +644,7 @@ mod tests {
 
     #[test]
     fn isa_spot_values_match_rocketpy() {
-        // physics.md §4.1 spot values at 1400 m and §13 anchors at 4700 m (RocketPy 1.13).
+        // docs/physics.md §4.1 spot values at 1400 m and §13 anchors at 4700 m (RocketPy 1.13).
         let e = isa_env();
         let rel = |a: f64, b: f64| ((a - b) / b).abs();
         assert!(rel(e.pressure(1400.0), 85596.6788) < 1e-8);

@@ -1,6 +1,6 @@
-//! Live weather download (cargo feature `fetch`; HTTPS through `reqwest` with rustls, no
-//! system TLS library). Each service's answer is kept as it came (the file a mission then
-//! reads offline) after checking that it holds a profile at the site and time:
+//! Live weather download (docs/physics.md §25.4; cargo feature `fetch`; HTTPS through `reqwest`
+//! with rustls, no system TLS library). Each service's answer is kept as it came (the file a
+//! mission then reads offline) after checking that it holds a profile at the site and time:
 //! - University of Wyoming soundings by station and date (the service's `wsgi/sounding`
 //!   TEXT:LIST page), read by [`Sounding::parse_wyoming`];
 //! - GFS 0.25° through UCAR THREDDS' NetCDF Subset Service (a small netCDF-3 box around the

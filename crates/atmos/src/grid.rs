@@ -1,6 +1,6 @@
-//! Weather grids in netCDF (classic CDF-1/2/5 and netCDF-4/HDF5, read with the pure-Rust
-//! `netcdf-reader`): reanalyses (ERA5 with its current `valid_time`/`pressure_level` names and
-//! the legacy `time`/`level` ones), forecasts (GFS-style THREDDS grids) and ensembles.
+//! Weather grids in netCDF (docs/physics.md §25.2; classic CDF-1/2/5 and netCDF-4/HDF5, read with
+//! the pure-Rust `netcdf-reader`): reanalyses (ERA5 with its current `valid_time`/`pressure_level`
+//! names and the legacy `time`/`level` ones), forecasts (GFS-style THREDDS grids) and ensembles.
 //!
 //! A grid becomes a [`LevelProfile`] at the launch date and site exactly as RocketPy 1.13's
 //! `Environment.process_forecast_reanalysis` / `process_ensemble` do it:

@@ -1,5 +1,5 @@
 //! The International Standard Atmosphere (ISO 2533:1975, with the −2 km extension) as
-//! RocketPy 1.13 discretises it (physics.md §4.1).
+//! RocketPy 1.13 discretises it (docs/physics.md §4.1).
 //!
 //! - Pressure: the analytic layer formula sampled at `linspace(0, 80 000, 100)` geometric
 //!   heights and stored as a natural cubic spline with natural extrapolation.
@@ -10,7 +10,7 @@
 //! - Barometric height: the natural spline through the same 100 `(P, h)` pairs.
 //!
 //! `R_E` is [`PhysicalConstants::isa_earth_radius`] (6 378 100 m), the radius in force when
-//! RocketPy builds these tables (physics.md §4.1 item 6).
+//! RocketPy builds these tables (docs/physics.md §4.1 item 6).
 
 use karman_math::{Extrapolation, Interpolation, MathError, PhysicalConstants, Table1, linspace};
 
@@ -119,7 +119,7 @@ mod tests {
 
     #[test]
     fn layer_bases_in_geometric_height_match_physics_md() {
-        // physics.md §4.1 item 2 lists the converted bases.
+        // docs/physics.md §4.1 item 2 lists the converted bases.
         let c = PhysicalConstants::SI;
         let expected = [
             -1999.373, 0.0, 11019.004, 20062.912, 32161.359, 47348.913, 51411.089, 71799.258,
@@ -133,7 +133,7 @@ mod tests {
 
     #[test]
     fn spot_values_match_rocketpy() {
-        // physics.md §4.1 "Spot values (measured, ISA)" at 1400 m and §13 at 4700 m.
+        // docs/physics.md §4.1 spot values at 1400 m and §13 at 4700 m.
         let c = PhysicalConstants::SI;
         let t = IsaTables::new(&c).expect("ISA tables");
         assert!(rel(t.pressure.eval(1400.0), 85596.6788) < 1e-8);
@@ -153,7 +153,7 @@ mod tests {
 
     #[test]
     fn barometric_height_inverts_pressure_near_ground() {
-        // physics.md §4.4: h_baro(P(z)) − z = +0.16 m at 1400 m, −0.07 m at 2200 m.
+        // docs/physics.md §4.4: h_baro(P(z)) − z = +0.16 m at 1400 m, −0.07 m at 2200 m.
         let c = PhysicalConstants::SI;
         let t = IsaTables::new(&c).expect("ISA tables");
         let d1 = t.barometric_height.eval(t.pressure.eval(1400.0)) - 1400.0;

@@ -3,7 +3,7 @@
 //! The launch environment: atmosphere (pressure, temperature, density, speed of sound,
 //! viscosity), wind and gravity as functions of height above sea level, from the ISA
 //! (ISO 2533), custom profiles, soundings and reanalysis/forecast grids, reproducing RocketPy
-//! 1.13's `Environment` (physics.md §4).
+//! 1.13's `Environment` (docs/physics.md §4).
 //!
 //! - [`Environment`]: built once from an [`EnvironmentConfig`]; every query is an
 //!   allocation-free table evaluation.

@@ -1,5 +1,5 @@
-//! Open-Meteo pressure-level forecasts saved as the API's own JSON (the forecast API
-//! `/v1/forecast` and the ensemble API `/v1/ensemble`; documentation at
+//! Open-Meteo pressure-level forecasts saved as the API's own JSON (docs/physics.md §25.3; the
+//! forecast API `/v1/forecast` and the ensemble API `/v1/ensemble`; documentation at
 //! <https://open-meteo.com/en/docs>): a profile at one hour and one member, offline.
 //!
 //! The response holds, under `hourly`, a `time` array and one array per variable and level,

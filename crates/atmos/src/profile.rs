@@ -6,7 +6,7 @@ use crate::curve::Curve;
 /// Pressure, temperature and wind profiles of height above sea level.
 ///
 /// A missing pressure or temperature falls back to the standard atmosphere (RocketPy
-/// `process_custom_atmosphere`, physics.md §4.2).
+/// `process_custom_atmosphere`, docs/physics.md §4.2).
 #[derive(Debug, Clone, PartialEq)]
 pub struct Profiles {
     /// Where the data came from (a file name or "custom atmosphere"), for messages.

@@ -1,8 +1,8 @@
-//! Upper-air soundings: University of Wyoming TEXT:LIST pages (the bare table or the whole
-//! HTML page the service returns) and NOAA RUC soundings (GSD ASCII format,
+//! Upper-air soundings (docs/physics.md §25.1): University of Wyoming TEXT:LIST pages (the bare
+//! table or the whole HTML page the service returns) and NOAA RUC soundings (GSD ASCII format,
 //! <https://rucsoundings.noaa.gov/raob_format.html>), turned into profiles as RocketPy does
-//! (`Environment.process_wyoming_sounding` of 1.13 and `process_noaaruc_sounding` of 1.2, the
-//! last version that had it).
+//! (`Environment.process_wyoming_sounding` of 1.13 and `process_noaaruc_sounding` of 1.2, the last
+//! version that had it).
 //!
 //! \[RP\] quirks kept for parity: a Wyoming sounding's pressure, temperature and barometric
 //! height use the *reported* (geopotential) heights, only its winds use heights converted to

@@ -1,4 +1,4 @@
-//! Distributions of uncertain inputs (mission-format.md "[dispersion]"; physics.md §12.1) and
+//! Distributions of uncertain inputs (mission-format.md "[dispersion]"; docs/physics.md §12.1) and
 //! the check that a distribution fits what it varies.
 //!
 //! Parameters follow NumPy's `Generator` conventions, as RocketPy's stochastic objects do:

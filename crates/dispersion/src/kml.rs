@@ -8,7 +8,7 @@ use std::fmt::Write as _;
 /// Latitude and longitude (degrees) of the point `x` m east and `y` m north of the site:
 /// the great-circle destination at distance `sqrt(x² + y²)` and bearing `atan2(x, y)` from
 /// north on a sphere of the site's radius (the inverted haversine of RocketPy's
-/// `tools.inverted_haversine`; physics.md §4.6, §12.2).
+/// `tools.inverted_haversine`; docs/physics.md §4.6, §12.2).
 pub fn offset_to_lat_lon(site: &Site, x: f64, y: f64) -> (f64, f64) {
     karman_math::geodesy::destination(
         site.latitude_deg,
@@ -19,7 +19,7 @@ pub fn offset_to_lat_lon(site: &Site, x: f64, y: f64) -> (f64, f64) {
     )
 }
 
-/// Points of each ellipse ring (physics.md §12.2 uses 100).
+/// Points of each ellipse ring (docs/physics.md §12.2 uses 100).
 const RING_POINTS: usize = 100;
 
 /// Line colours (KML `aabbggrr`) of the 1σ, 2σ, 3σ contours: green, orange, red.

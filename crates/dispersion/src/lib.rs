@@ -1,7 +1,7 @@
 //! # karman-dispersion
 //!
 //! Monte Carlo dispersion: reproducible sampling of uncertain inputs, many flights in
-//! parallel, statistics and 1σ/2σ/3σ apogee and landing ellipses (physics.md §12). The crate
+//! parallel, statistics and 1σ/2σ/3σ apogee and landing ellipses (docs/physics.md §12). The crate
 //! knows nothing of rockets: the caller describes the varied inputs ([`VariedInput`]: a
 //! name, what it is, a [`Variation`]) and the scalar outputs, and supplies a function that
 //! flies one sample from its sampled values.
@@ -17,8 +17,8 @@
 //! ];
 //! let study = Study::new(42, 100, inputs, vec!["apogee_m".to_owned()]);
 //! let dir = std::env::temp_dir().join(format!("karman-doc-{}", std::process::id()));
-//! let options = RunOptions { threads: Some(2), progress: ProgressMode::Hidden, ..Default::default() };
-//! let report = run(&study, &dir, &options, |_index, values: &[f64]| {
+//! let options = RunOptions { threads: Some(2), progress: ProgressMode::Hidden,
+//! ..Default::default() }; let report = run(&study, &dir, &options, |_index, values: &[f64]| {
 //!     let (mass, drag_factor) = (values[0], values[1]);
 //!     Ok(Outcome::new(vec![Some(1000.0 / (mass * drag_factor))]))
 //! })?;

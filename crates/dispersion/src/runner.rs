@@ -1,4 +1,5 @@
-//! The run: every missing sample of a shard flown in parallel, rows written in index order.
+//! The run: every missing sample of a shard flown in parallel, rows written in index order
+//! (docs/physics.md §27.2).
 //!
 //! Workers of a local `rayon` pool claim runs of `CLAIM` consecutive sample positions from a
 //! shared counter, draw the inputs ([`crate::sampling`]), fly the samples and send their

@@ -1,4 +1,5 @@
-//! Reproducible random streams: every sample, and every input within it, has its own stream.
+//! Reproducible random streams: every sample, and every input within it, has its own stream
+//! (docs/physics.md §27.1).
 //!
 //! Sample `i` of a study with seed `s` draws input `name` from ChaCha8 (Bernstein 2008, as
 //! implemented by `rand_chacha`) keyed by the 256-bit key `(s, i, 0, 0)` (little-endian

@@ -1,4 +1,4 @@
-//! Summary statistics and confidence ellipses (physics.md §12.1–§12.2).
+//! Summary statistics and confidence ellipses (docs/physics.md §12.1–§12.2).
 //!
 //! Statistics follow RocketPy's `MonteCarlo` report: population standard deviation
 //! (divisor N), median and 2.5 % / 97.5 % quantiles with NumPy's default linear
@@ -210,7 +210,7 @@ impl Ellipse {
         ]
     }
 
-    /// `n` points of the contour at scale `k`, `φ_i = 2π i / n` (physics.md §12.2).
+    /// `n` points of the contour at scale `k`, `φ_i = 2π i / n` (docs/physics.md §12.2).
     pub fn boundary(&self, k: f64, n: usize) -> Vec<[f64; 2]> {
         let [a, b] = self.semi_axes(k);
         let (sin_t, cos_t) = self.orientation_deg.to_radians().sin_cos();
@@ -267,7 +267,7 @@ mod tests {
 
     #[test]
     fn probability_scales() {
-        // 95 % ellipse: k = sqrt(−2 ln 0.05) = 2.4477 (physics.md §12.2).
+        // 95 % ellipse: k = sqrt(−2 ln 0.05) = 2.4477 (docs/physics.md §12.2).
         assert!((probability_scale(0.95) - 2.447_746_830_680_816).abs() < 1e-12);
         assert!((k_sigma_probability(probability_scale(0.6)) - 0.6).abs() < 1e-12);
         // 1 − exp(−1/2) = 39.35 % inside the 1-σ ellipse.

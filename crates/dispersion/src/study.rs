@@ -50,7 +50,7 @@ pub struct Site {
     pub latitude_deg: f64,
     /// Launch longitude, degrees east.
     pub longitude_deg: f64,
-    /// Earth radius of the inverted haversine, m (physics.md §4.6 / §12.2).
+    /// Earth radius of the inverted haversine, m (docs/physics.md §4.6 / §12.2).
     pub earth_radius: f64,
 }
 

@@ -1,4 +1,4 @@
-//! Right-hand sides of the flight phases (physics.md §8): the 1-DOF rail slide (§8.1),
+//! Right-hand sides of the flight phases (docs/physics.md §8): the 1-DOF rail slide (§8.1),
 //! RocketPy's variable-mass 6-DOF "standard" equations (§8.2–§8.3, after Ceotto et al. 2021,
 //! J. Aerosp. Eng. 34(6), and the RocketPy docs "Equations of Motion v1"), the 3-DOF
 //! parachute descent with added mass (§8.4) and, in `point_mass`, RocketPy's 3-DOF
@@ -26,7 +26,7 @@ mod point_mass;
 /// State derivative and the loads behind it (body axes, about the CDM).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Derivative {
-    /// `u̇` (physics.md §3).
+    /// `u̇` (docs/physics.md §3).
     pub u_dot: State,
     /// Aerodynamic force `(R1, R2, R3)` in body axes, N (parachute phase: drag in the
     /// inertial frame, as RocketPy reports it).
@@ -37,7 +37,7 @@ pub struct Derivative {
     pub net_thrust: f64,
 }
 
-/// The parachute currently inflated (physics.md §8.4: the newest one replaces the older).
+/// The parachute currently inflated (docs/physics.md §8.4: the newest one replaces the older).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct CanopyState {
     /// Drag coefficient times area, m².
@@ -84,7 +84,7 @@ pub struct Cursors {
     time: [Cursor; 2],
 }
 
-/// Mass properties after burn-out, when they no longer change (physics.md §8.2 remarks:
+/// Mass properties after burn-out, when they no longer change (docs/physics.md §8.2 remarks:
 /// `m_p = 0`, `c = ċ = 0`, `İ = 0`): read once instead of at every evaluation.
 #[derive(Debug, Clone, Copy, PartialEq)]
 struct CoastMass {
@@ -96,7 +96,7 @@ struct CoastMass {
     inverse_cm_inertia: Mat3,
 }
 
-/// Mass properties at one instant as the 6-DOF equations use them (physics.md §8.2).
+/// Mass properties at one instant as the 6-DOF equations use them (docs/physics.md §8.2).
 #[derive(Debug, Clone, Copy, PartialEq)]
 struct MassState {
     mass: f64,
@@ -112,7 +112,7 @@ struct MassState {
 /// Whether a rocket on the rail without thrust, `travelled` metres along it at `speed`, still
 /// reaches rail exit (`travel` metres) against gravity alone: its coast `v²/(2 g sin i)` covers
 /// the rest (`gravity_along_rail` is `g sin i`; drag would only shorten the coast). The rail
-/// equation (physics.md §8.1) clips the acceleration at zero, so after burn-out RocketPy's
+/// equation (docs/physics.md §8.1) clips the acceleration at zero, so after burn-out RocketPy's
 /// rocket keeps its speed and creeps off the rail however long that takes; one that this
 /// coast cannot carry off would stop and slide back: it is stuck on the rail. The engine
 /// (at burn-out, [`crate::Termination::StuckOnRail`]) and the mission's launch check apply
@@ -122,7 +122,7 @@ pub fn coasts_off_rail(travelled: f64, speed: f64, travel: f64, gravity_along_ra
     travelled + speed * speed / (2.0 * gravity_along_rail) >= travel
 }
 
-/// `I_CM⁻¹` with `I_CM = I − m(|r|² 𝟙 − r rᵀ)`, `r = (0, 0, c)` (physics.md §8.2); NaN when
+/// `I_CM⁻¹` with `I_CM = I − m(|r|² 𝟙 − r rᵀ)`, `r = (0, 0, c)` (docs/physics.md §8.2); NaN when
 /// singular, so the integrator reports the failure.
 #[inline]
 fn inverse_cm_inertia(inertia: &Mat3, mass: f64, c: f64) -> Mat3 {
@@ -201,7 +201,7 @@ impl<'a, A: AtmosphereModel, V: VehicleModel> Equations<'a, A, V> {
         self.vehicle
     }
 
-    /// The vehicle's dry mass, kg (the mass under a canopy, physics.md §8.4).
+    /// The vehicle's dry mass, kg (the mass under a canopy, docs/physics.md §8.4).
     #[must_use]
     pub fn dry_mass(&self) -> f64 {
         self.dry_mass
@@ -216,14 +216,14 @@ impl<'a, A: AtmosphereModel, V: VehicleModel> Equations<'a, A, V> {
         }
     }
 
-    /// Whether the motor is burning at `t` (strict `t_b0 < t < t_b1`, physics.md §6.3).
+    /// Whether the motor is burning at `t` (strict `t_b0 < t < t_b1`, docs/physics.md §6.3).
     #[inline]
     #[must_use]
     pub fn powered(&self, t: f64) -> bool {
         self.burn_start < t && t < self.burn_out
     }
 
-    /// Rail phase (physics.md §8.1): 1-DOF slide along the rocket axis, power-on drag,
+    /// Rail phase (docs/physics.md §8.1): 1-DOF slide along the rocket axis, power-on drag,
     /// gravity times `K33`, acceleration clipped at zero, attitude frozen, no Coriolis.
     #[inline]
     #[must_use]
@@ -281,7 +281,7 @@ impl<'a, A: AtmosphereModel, V: VehicleModel> Equations<'a, A, V> {
     }
 
     /// Aerodynamic force and moment in body axes about the CDM, plus the net thrust
-    /// (physics.md §7.1, §7.2, §7.6, §8.3 steps 1–5); `power_on_drag` picks the drag curve
+    /// (docs/physics.md §7.1, §7.2, §7.6, §8.3 steps 1–5); `power_on_drag` picks the drag curve
     /// (the 6-DOF equations: while the motor burns; the 3-DOF ones: before burn-out).
     #[inline(always)]
     #[allow(clippy::too_many_arguments)]
@@ -375,7 +375,7 @@ impl<'a, A: AtmosphereModel, V: VehicleModel> Equations<'a, A, V> {
         self.loads(t, u, &k, &air, self.powered(t), configuration, cursors)
     }
 
-    /// 6-DOF variable-mass flight (physics.md §8.2, RocketPy's `u_dot_generalized`), with the
+    /// 6-DOF variable-mass flight (docs/physics.md §8.2, RocketPy's `u_dot_generalized`), with the
     /// RocketPy sign of the CM offset (§5.4) and nozzle terms (§5.6), Coriolis (§4.5).
     #[inline]
     #[must_use]
@@ -454,7 +454,7 @@ impl<'a, A: AtmosphereModel, V: VehicleModel> Equations<'a, A, V> {
             inertia_dot,
             inverse_cm_inertia: i_cm_inv,
         } = ms;
-        // RocketPy's `c` is the CM→CDM offset (physics.md §5.4); the standard form flies the
+        // RocketPy's `c` is the CM→CDM offset (docs/physics.md §5.4); the standard form flies the
         // CDM→CM vector, its opposite (`I_CM` depends on `c²` only).
         let s = self.lever_sign;
         let r_cm = [0.0, 0.0, s * c];
@@ -526,7 +526,7 @@ impl<'a, A: AtmosphereModel, V: VehicleModel> Equations<'a, A, V> {
         }
     }
 
-    /// Parachute descent (physics.md §8.4): point mass at the dry mass, quadratic drag of the
+    /// Parachute descent (docs/physics.md §8.4): point mass at the dry mass, quadratic drag of the
     /// newest canopy relative to the wind, hemispheroid added mass dividing drag and weight,
     /// Coriolis; attitude frozen.
     #[inline]

@@ -2,7 +2,7 @@
 //!
 //! The 6-DOF flight engine: equations of motion for the rail, free flight and parachute
 //! phases, events, and the adaptive Runge–Kutta integrator with dense output. It reproduces
-//! RocketPy 1.13's `Flight` (physics.md §2–§3, §8–§11).
+//! RocketPy 1.13's `Flight` (docs/physics.md §2–§3, §8–§11).
 //!
 //! - [`integrator`]: the Dormand–Prince pairs DOPRI5 and DOP853 with dense output, fixed-size
 //!   state, no allocation.

@@ -1,4 +1,4 @@
-//! Parachute pressure-signal noise (physics.md §9.4).
+//! Parachute pressure-signal noise (docs/physics.md §9.4).
 //!
 //! RocketPy draws `n_0 ~ N(μ, σ)` when the parachute is built and then, at every sampling
 //! instant, `n_j = ρ n_{j−1} + s · N(μ, σ)` with `s = √(1 − ρ²)`. Here each parachute owns a

@@ -1,4 +1,4 @@
-//! Post-processing at the stored solution points (physics.md §11) and the flight summary of
+//! Post-processing at the stored solution points (docs/physics.md §11) and the flight summary of
 //! the mission contract (mission-format.md, "The summary").
 //!
 //! As in RocketPy, every derived quantity is computed at the stored points only, extremes are
@@ -217,7 +217,7 @@ fn sample<A: AtmosphereModel, V: VehicleModel + StabilityModel>(
 }
 
 impl Flight {
-    /// Derived quantities at every stored point (physics.md §11).
+    /// Derived quantities at every stored point (docs/physics.md §11).
     #[must_use]
     pub fn samples<A: AtmosphereModel, V: VehicleModel + StabilityModel>(
         &self,

@@ -1,31 +1,32 @@
-//! Flight settings (RocketPy's `Flight` arguments, defaults of physics.md §1 and §10).
+//! Flight settings (RocketPy's `Flight` arguments, defaults of docs/physics.md §1 and §10).
 
 use crate::DynamicsError;
 
 /// RocketPy's default absolute tolerances: positions, velocities 1e-3; quaternion 1e-6;
-/// angular rates 1e-3 (physics.md §1, §10.1).
+/// angular rates 1e-3 (docs/physics.md §1, §10.1).
 pub const DEFAULT_ATOL: [f64; 13] = [
     1e-3, 1e-3, 1e-3, 1e-3, 1e-3, 1e-3, 1e-6, 1e-6, 1e-6, 1e-6, 1e-3, 1e-3, 1e-3,
 ];
 
-/// Which form of the 6-DOF equations a flight integrates (`[flight] equations`).
+/// Which form of the 6-DOF equations a flight integrates (`[flight] equations`,
+/// docs/physics.md §8.6).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default, serde::Serialize, serde::Deserialize)]
 #[serde(rename_all = "snake_case")]
 pub enum EquationsForm {
     /// The physically consistent form (default): the CM and nozzle vectors from the CDM to the
     /// CM and to the nozzle, and a mass flow that is the derivative of the vehicle's mass
-    /// (physics.md §5.4, §5.6, §15.3; RocketPy issue #1186, PR #1196).
+    /// (docs/physics.md §5.4, §5.6, §8.6, §15.3; RocketPy issue #1186, PR #1196).
     #[default]
     Standard,
     /// RocketPy 1.13 exactly: its CM→CDM and nozzle→CDM vectors (the mirrored lever arms of
-    /// physics.md §5.4, §5.6) and `ṁ = −T/v̄_e` for every motor (§15.3). The parity tests
+    /// docs/physics.md §5.4, §5.6) and `ṁ = −T/v̄_e` for every motor (§15.3). The parity tests
     /// and `cargo xtask validate` fly this form against the RocketPy references.
     #[serde(rename = "rocketpy_1_13")]
     RocketPy113,
 }
 
 /// Which equations fly the free flight from rail exit to the first canopy (`[flight]
-/// simulation_mode`, RocketPy 1.12+'s `Flight(simulation_mode=...)`, physics.md §8.5). The
+/// simulation_mode`, RocketPy 1.12+'s `Flight(simulation_mode=...)`, docs/physics.md §8.5). The
 /// rail slide (§8.1) and the parachute descents (§8.4) are the same in both modes.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default, serde::Serialize, serde::Deserialize)]
 pub enum SimulationMode {
@@ -61,12 +62,12 @@ pub struct FlightSettings {
     pub max_time_step: f64,
     /// Largest step while on the rail, s (default 0.01): the rail derivative is zero until
     /// thrust exceeds weight, so the controller would otherwise grow the step without bound
-    /// and skip the burn (physics.md §10.4).
+    /// and skip the burn (docs/physics.md §10.4).
     pub rail_max_time_step: f64,
     /// Largest step where a sampled process that sets a control input needs short steps, s
     /// (default ∞: no bound). A control input set "after the step"
     /// ([`Action::SetControlAfterStep`], RocketPy's `time_overshoot`) acts from the end of
-    /// the solver step that holds the sample (physics.md §16.4), so a mission with a
+    /// the solver step that holds the sample (docs/physics.md §16.4), so a mission with a
     /// controller bounds the steps of the phases whose equations read the control inputs
     /// (the free flight, [`PhaseKind::reads_controls`]) by its sampling interval, keeping
     /// that delay as short as RocketPy's LSODA steps make it. The steps that end the flight's

@@ -1,12 +1,12 @@
 //! The 13-component flight state and the small fixed-size linear algebra the equations of
-//! motion need (physics.md §2–§3).
+//! motion need (docs/physics.md §2–§3).
 //!
 //! `u = [x, y, z, vx, vy, vz, e0, e1, e2, e3, ω1, ω2, ω3]`: position and velocity of the centre
 //! of dry mass in the East-North-Up launch frame (z above sea level), the scalar-first attitude
 //! quaternion (body → inertial, never renormalised in the state) and the body-frame angular
 //! velocity.
 
-/// The flight state vector (physics.md §3).
+/// The flight state vector (docs/physics.md §3).
 pub type State = [f64; 13];
 
 /// A 3-vector.
@@ -107,7 +107,7 @@ pub fn inverse(m: &Mat3) -> Option<Mat3> {
     ])
 }
 
-/// Rotation matrix body → inertial of the normalised quaternion `ê = e/|e|` (physics.md §2.3).
+/// Rotation matrix body → inertial of the normalised quaternion `ê = e/|e|` (docs/physics.md §2.3).
 /// Every entry is quadratic in `ê`, `êi·êj = ei·ej/|e|²`, so the matrix is formed from the raw
 /// components with the one factor `2/|e|²`: no square root, one division.
 #[inline]
@@ -135,7 +135,7 @@ pub fn rotation(e: [f64; 4]) -> Mat3 {
 }
 
 /// Quaternion kinematics `ė = ½ e ⊗ (0, ω)` with the raw (unnormalised) quaternion
-/// (physics.md §2.3; Baruh, *Analytical Dynamics*, §7.7).
+/// (docs/physics.md §2.3; Baruh, *Analytical Dynamics*, §7.7).
 #[inline]
 #[must_use]
 pub fn quaternion_rate(e: [f64; 4], w: Vec3) -> [f64; 4] {
@@ -148,7 +148,7 @@ pub fn quaternion_rate(e: [f64; 4], w: Vec3) -> [f64; 4] {
 }
 
 /// Quaternion of the 3-1-3 Euler sequence (precession `psi`, nutation `theta`, spin `phi`,
-/// radians), scalar first (physics.md §2.4).
+/// radians), scalar first (docs/physics.md §2.4).
 #[must_use]
 pub fn euler313_to_quaternion(phi: f64, theta: f64, psi: f64) -> [f64; 4] {
     let (st, ct) = (0.5 * theta).sin_cos();
@@ -173,7 +173,7 @@ mod tests {
 
     #[test]
     fn initial_attitude_matches_physics_example() {
-        // physics.md §2.4: i = 85°, h = 0°, rail-button angle 45° (measured in RocketPy).
+        // docs/physics.md §2.4: i = 85°, h = 0°, rail-button angle 45° (measured in RocketPy).
         let e = euler313_to_quaternion(45f64.to_radians(), -5f64.to_radians(), 0.0);
         let expected = [0.9230002, -0.0402991, 0.0166924, 0.3823192];
         for (a, b) in e.iter().zip(expected) {

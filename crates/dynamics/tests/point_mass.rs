@@ -1,4 +1,4 @@
-//! The 3-DOF point-mass mode (`SimulationMode::ThreeDof`, physics.md §8.5) on the mock
+//! The 3-DOF point-mass mode (`SimulationMode::ThreeDof`, docs/physics.md §8.5) on the mock
 //! models: where it must equal the 6-DOF flight, the attitude it holds, and the weathercock
 //! law's turn rate.
 

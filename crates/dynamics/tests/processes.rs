@@ -216,7 +216,7 @@ fn simulate_from_a_mid_flight_state_reaches_the_same_apogee() {
         apogee[2]
     );
     // The apogee instant is the linear root of v_z between the ends of the step that holds
-    // it (RocketPy's, physics.md §9.3): second order in the step, which differs between the
+    // it (RocketPy's, docs/physics.md §9.3): second order in the step, which differs between the
     // two flights; at apogee the height is stationary, so it hardly moves the height.
     assert!((t_again - t_apogee).abs() < 1e-4, "{t_again} vs {t_apogee}");
     assert!(resumed.rail_exit.is_none());

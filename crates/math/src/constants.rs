@@ -6,11 +6,11 @@
 //! RocketPy, Ceotto et al. 2021). [`PhysicalConstants::SI`] holds the values in SI units;
 //! [`PhysicalConstants::in_units`] expresses them in another unit system.
 //!
-//! Sources: ISO 2533:1975 (standard atmosphere, layer table including the −2 km extension),
-//! U.S. Standard Atmosphere 1976 (Sutherland law), NIMA TR8350.2 (2000) and Moritz (1980)
-//! (WGS-84 ellipsoid and Somigliana normal gravity). RocketPy 1.13 uses exactly these values
-//! (see `docs/physics.md` §1 of the project brief); the ISA tables use the Earth radius
-//! 6 378 100 m as RocketPy does (§4.1 item 6).
+//! Sources: ISO 2533:1975 (standard atmosphere, layer table including the −2 km extension), U.S.
+//! Standard Atmosphere 1976 (Sutherland law), NIMA TR8350.2 (2000) and Moritz (1980) (WGS-84
+//! ellipsoid and Somigliana normal gravity). RocketPy 1.13 uses exactly these values
+//! (`docs/physics.md` §1); the ISA tables use the Earth radius 6 378 100 m as RocketPy does (§4.1
+//! item 6).
 
 /// A unit system given by the size of its base units relative to SI.
 ///

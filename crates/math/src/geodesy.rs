@@ -3,12 +3,12 @@
 //! karman's flights and dispersion studies live in a flat launch frame (x east, y north);
 //! their latitude/longitude outputs (trajectory, KML) use the great-circle destination on a
 //! sphere of the datum's local radius, as RocketPy 1.13 does (`tools.inverted_haversine`;
-//! physics.md §4.6, §11, §12.2).
+//! docs/physics.md §4.6, §11, §12.2).
 
 /// Latitude and longitude (deg) of the point `east`, `north` (m) from the origin at
 /// `latitude_deg`, `longitude_deg`, on a sphere of radius `radius` (m): the inverted
 /// haversine (great-circle destination) that RocketPy 1.13 uses for flight and dispersion
-/// outputs (physics.md §11, §12.2), with the drift `√(x² + y²)` and the bearing
+/// outputs (docs/physics.md §11, §12.2), with the drift `√(x² + y²)` and the bearing
 /// `atan2(east, north)` from north.
 #[must_use]
 pub fn destination(

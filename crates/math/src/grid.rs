@@ -1,9 +1,9 @@
-//! Functions of several variables: [`RegularGrid`] (tensor-product grid, multilinear
-//! interpolation, clamped outside — scipy's `RegularGridInterpolator(method="linear")` inside
-//! the grid, which RocketPy uses for gridded data) and [`ScatteredTable`] (inverse-distance
-//! weighting, Shepard 1968, *Proc. 23rd ACM National Conference*, 517–524; RocketPy's
-//! `"shepard"` interpolation is the power `p = 3`). Both serve tables such as
-//! `Cd(Mach, Re, …)` or air-brake drag `Cd(deployment, Mach)`. Evaluation does not allocate.
+//! Functions of several variables (docs/physics.md §28.2): [`RegularGrid`] (tensor-product grid,
+//! multilinear interpolation, clamped outside — scipy's `RegularGridInterpolator(method="linear")`
+//! inside the grid, which RocketPy uses for gridded data) and [`ScatteredTable`] (inverse-distance
+//! weighting, Shepard 1968, *Proc. 23rd ACM National Conference*, 517–524; RocketPy's `"shepard"`
+//! interpolation is the power `p = 3`). Both serve tables such as `Cd(Mach, Re, …)` or air-brake
+//! drag `Cd(deployment, Mach)`. Evaluation does not allocate.
 
 use crate::MathError;
 

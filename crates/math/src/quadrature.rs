@@ -1,4 +1,4 @@
-//! Adaptive Gauss–Kronrod quadrature.
+//! Adaptive Gauss–Kronrod quadrature (docs/physics.md §28.3).
 //!
 //! The 21-point Kronrod extension of the 10-point Gauss rule (exact for polynomials of degree
 //! ≤ 31), applied with QUADPACK's globally adaptive strategy (routine QAG, Piessens,

@@ -1,4 +1,4 @@
-//! Tabulated functions of one variable.
+//! Tabulated functions of one variable (docs/physics.md §28.1).
 //!
 //! A [`Table1`] stores its samples and an interpolant built once:
 //!

@@ -1,6 +1,6 @@
-//! Linear interpolation of scattered data in the plane, as RocketPy 1.13 evaluates a
-//! two-variable `Function(..., interpolation="linear", extrapolation="natural")` (its fluid
-//! densities `ρ(T, p)`, rocketpy/motors/fluid.py; rocketpy/mathutils/_calc/polation_nd.py):
+//! Linear interpolation of scattered data in the plane (docs/physics.md §28.2), as RocketPy 1.13
+//! evaluates a two-variable `Function(..., interpolation="linear", extrapolation="natural")` (its
+//! fluid densities `ρ(T, p)`, rocketpy/motors/fluid.py; rocketpy/mathutils/_calc/polation_nd.py):
 //!
 //! - inside the convex hull of the points, the piecewise-linear interpolant on their Delaunay
 //!   triangulation (Delaunay 1934; scipy's `LinearNDInterpolator` on `scipy.spatial.Delaunay`,

@@ -1,7 +1,7 @@
 //! Validation against RocketPy 1.13 (`fixtures/validation/*/reference.json`): the total
 //! impulse and maximum thrust of the missions whose thrust curve is a CSV file, computed here
 //! from the file with [`read_curve`], a linear zero-extrapolated [`Table1`] (RocketPy's
-//! motor thrust function, physics.md §6.1) and its exact integral and maximum on
+//! motor thrust function, docs/physics.md §6.1) and its exact integral and maximum on
 //! `[0, burn_time]`. Also every CSV curve of the validation missions must load.
 
 use std::path::PathBuf;

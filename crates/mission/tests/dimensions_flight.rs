@@ -1,5 +1,5 @@
 //! Dimensional analysis of the flight engine (`karman_math::dimensions`): a Calisto-like
-//! rocket (physics.md §13: M1670-like solid motor, von Kármán nose, canted fins with an
+//! rocket (docs/physics.md §13: M1670-like solid motor, von Kármán nose, canted fins with an
 //! airfoil, tail, drogue and main parachutes with trigger noise, rail buttons) over the ISA
 //! with a wind profile, built directly through the crate APIs from inputs in a random unit
 //! system, with the flight settings of that system — rail length, `atol` of each state in its

@@ -115,7 +115,7 @@ fn calisto_with(overrides: &[&str]) -> Option<karman_mission::Mission> {
 
 #[test]
 fn custom_atmosphere_wind_profile() {
-    // The custom wind of physics.md §13 over the ISA thermodynamics.
+    // The custom wind of docs/physics.md §13 over the ISA thermodynamics.
     let Some(mission) = calisto_with(&[
         "environment.atmosphere.model=\"custom\"",
         "environment.atmosphere.wind_u=[[0,5],[1400,5],[3000,10],[5000,15]]",
@@ -134,7 +134,7 @@ fn custom_atmosphere_wind_profile() {
         (env.wind(9000.0)[0] - 15.0).abs() < 1e-12,
         "held above the table"
     );
-    // ISA thermodynamics kept: physics.md §4.1 spot pressure at 1400 m.
+    // ISA thermodynamics kept: docs/physics.md §4.1 spot pressure at 1400 m.
     assert!(((env.pressure(1400.0) - 85596.6788) / 85596.6788).abs() < 1e-8);
 }
 

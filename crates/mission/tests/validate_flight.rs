@@ -149,7 +149,7 @@ fn compare_with_references(missions: &[std::path::PathBuf]) -> Vec<String> {
     failures
 }
 
-/// The right-hand sides at the derivative test vectors of physics.md §13, measured in
+/// The right-hand sides at the derivative test vectors of docs/physics.md §13, measured in
 /// RocketPy 1.13 on Calisto with plain (no airfoil) fins: the validation Calisto mission with
 /// its `airfoil` line removed.
 #[test]
@@ -372,7 +372,7 @@ fn a_dense_thrust_curve_flies_within_the_step_limits() {
 
 /// The two forms of the 6-DOF equations (`[flight] equations`) on Calisto: the standard form's
 /// mass flow is the slope of the propellant-mass table, and its apogee differs from RocketPy
-/// 1.13's by the lever arms only (physics.md §5.4: a few tenths of a per cent at most).
+/// 1.13's by the lever arms only (docs/physics.md §5.4: a few tenths of a per cent at most).
 #[test]
 fn standard_and_rocketpy_equations() {
     use karman_mission::dynamics::{MassFlowLaw, VehicleModel};

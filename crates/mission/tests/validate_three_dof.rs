@@ -1,4 +1,4 @@
-//! The 3-DOF point-mass mode (`[flight] simulation_mode = "3 DOF"`, physics.md §8.5) against
+//! The 3-DOF point-mass mode (`[flight] simulation_mode = "3 DOF"`, docs/physics.md §8.5) against
 //! RocketPy 1.13's own `simulation_mode="3 DOF"` on the Calisto validation mission: the
 //! summary within the parity tolerances of the 6-DOF flights (`karman_validation`: apogee
 //! 0.1 %, apogee time 0.2 %, rail-exit velocity, largest speed and Mach number 0.5 %, impact
@@ -157,7 +157,7 @@ fn validate_flight_3dof() {
 }
 
 /// RocketPy 1.13's `Flight.u_dot_generalized_3dof` at the 6-DOF derivative test state of
-/// physics.md §13 (`validate_flight::validate_equations_of_motion_vectors`), measured on the
+/// docs/physics.md §13 (`validate_flight::validate_equations_of_motion_vectors`), measured on the
 /// 3-DOF flights of the module documentation (the airfoil fins of the mission as it is).
 #[test]
 fn validate_point_mass_vectors() {

@@ -1,4 +1,4 @@
-//! The atmosphere the engine queries (physics.md §4).
+//! The atmosphere the engine queries (docs/physics.md §4).
 
 use karman_math::Cursor;
 
@@ -16,7 +16,7 @@ pub struct Air {
     pub gravity: f64,
 }
 
-/// Atmosphere, gravity and Earth rotation at the launch site (physics.md §4). Heights are
+/// Atmosphere, gravity and Earth rotation at the launch site (docs/physics.md §4). Heights are
 /// geometric, metres above sea level. The methods marked "once" are read when a flight is
 /// set up; the others are evaluated along the flight and allocate nothing.
 pub trait AtmosphereModel {
@@ -61,6 +61,6 @@ pub trait AtmosphereModel {
     }
     /// Earth rotation vector in the ENU launch frame, rad/s (once).
     fn earth_rotation_enu(&self) -> [f64; 3];
-    /// Barometric height `h_baro(P)` of a (noisy) pressure, m ASL (physics.md §4.4).
+    /// Barometric height `h_baro(P)` of a (noisy) pressure, m ASL (docs/physics.md §4.4).
     fn barometric_height(&self, pressure: f64) -> f64;
 }

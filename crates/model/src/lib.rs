@@ -4,16 +4,16 @@
 //! own the physical models (karman-atmos, karman-airframe, or a test's analytic mock) implement
 //! them, and the engine depends on this crate only.
 //!
-//! - [`AtmosphereModel`]: air, wind, gravity and Earth rotation at a height (physics.md §4).
+//! - [`AtmosphereModel`]: air, wind, gravity and Earth rotation at a height (docs/physics.md §4).
 //! - [`VehicleModel`]: a [`VehicleSetup`] read once (burn window, thrust knots, rail buttons,
 //!   recovery devices, dry mass, nozzle), and the per-step quantities: mass properties (or
 //!   the total mass alone), thrust, the axial aerodynamic load given the flow and the
-//!   [`Configuration`] (physics.md §5–§7).
+//!   [`Configuration`] (docs/physics.md §5–§7).
 //! - [`StabilityModel`]: the stability margin the flight's reports read (§7.7); the
 //!   equations never call it.
 //! - [`SurfaceModel`]: one aerodynamic surface whose force law lives in the surface:
 //!   [`SurfaceModel::loads`] turns the [`LocalFlow`] at its centre of pressure into
-//!   [`Loads`] (physics.md §7.2, §7.6), so a surface with its own coefficient tables is one
+//!   [`Loads`] (docs/physics.md §7.2, §7.6), so a surface with its own coefficient tables is one
 //!   more implementation.
 //! - [`Configuration`]: what can change during a flight without changing the equations'
 //!   form — control inputs (an air-brake deployment level) and the recovery devices deployed.

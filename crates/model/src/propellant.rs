@@ -6,7 +6,7 @@ use karman_math::{MathError, Table1};
 
 /// One part of a motor's propellant on a time grid of its own (a tank of a liquid motor, a
 /// hybrid's grain or its tanks together), which the vehicle sums pointwise with the others as
-/// RocketPy 1.13 does (physics.md §15.3–15.4). Tables of time (s) from the thrust curve's
+/// RocketPy 1.13 does (docs/physics.md §15.3–15.4). Tables of time (s) from the thrust curve's
 /// origin; positions in the motor's own coordinates.
 #[derive(Debug, Clone, PartialEq)]
 pub struct PropellantPart {

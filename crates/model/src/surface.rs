@@ -1,6 +1,6 @@
-//! One aerodynamic surface and its force law (physics.md §7.2, §7.6).
+//! One aerodynamic surface and its force law (docs/physics.md §7.2, §7.6).
 
-/// The stream at a surface's centre of pressure, body axes (physics.md §7.2): what a surface's
+/// The stream at a surface's centre of pressure, body axes (docs/physics.md §7.2): what a surface's
 /// force law needs.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct LocalFlow {
@@ -37,7 +37,7 @@ impl Loads {
         moment: [-0.0; 3],
     };
 
-    /// RocketPy's normal force of a surface on the rocket axis (physics.md §7.2): the lift
+    /// RocketPy's normal force of a surface on the rocket axis (docs/physics.md §7.2): the lift
     /// `½ ρ |s|² A CNα α` along the transverse stream `(s₁, s₂)`, with the angle of attack
     /// `α = acos(−s₃/|s|)`, and its moment about the CDM for a centre of pressure at
     /// `(0, 0, cp_z)`. No force when the stream has no transverse component.
@@ -70,7 +70,7 @@ impl Loads {
         }
     }
 
-    /// RocketPy's roll moment of a fin set (physics.md §7.6): forcing
+    /// RocketPy's roll moment of a fin set (docs/physics.md §7.6): forcing
     /// `½ ρ |s|² A d C_lf,δ δ` minus damping `½ ρ |s| A d² C_ld,ω ω₃ / 2`, with the reference
     /// length `d`, `forcing = C_lf,δ·δ` and `damping = C_ld,ω` at the flow's Mach number.
     #[inline(always)]

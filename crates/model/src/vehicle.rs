@@ -1,4 +1,4 @@
-//! The vehicle the engine flies (physics.md §5–§7, §9.4).
+//! The vehicle the engine flies (docs/physics.md §5–§7, §9.4).
 
 use std::fmt;
 use std::sync::Arc;
@@ -7,7 +7,7 @@ use karman_math::Cursor;
 
 use crate::{Configuration, MAX_CONTROLS, SurfaceModel};
 
-/// Rail-button geometry in the rocket's user coordinates (physics.md §2.5, §8.1).
+/// Rail-button geometry in the rocket's user coordinates (docs/physics.md §2.5, §8.1).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct RailButtonGeometry {
     /// Axial position of the button nearer the nose, m.
@@ -19,16 +19,16 @@ pub struct RailButtonGeometry {
 }
 
 /// A parachute trigger decided from the whole sampled state, as RocketPy's callable trigger
-/// `trigger(p, h, y)` (physics.md §17): sampled at every instant while the parachute is
+/// `trigger(p, h, y)` (docs/physics.md §17): sampled at every instant while the parachute is
 /// pending, ascent included.
 pub trait TriggerCondition: fmt::Debug + Send + Sync {
     /// Whether the parachute fires at sampling instant `t` (s), with the noisy pressure
     /// signal `pressure` (Pa), the barometric height above ground derived from it `height`
-    /// (m, physics.md §4.4) and the 13-component `state` there.
+    /// (m, docs/physics.md §4.4) and the 13-component `state` there.
     fn fires(&self, t: f64, pressure: f64, height: f64, state: &[f64; 13]) -> bool;
 }
 
-/// What fires a parachute (physics.md §9.4, §17).
+/// What fires a parachute (docs/physics.md §9.4, §17).
 #[derive(Debug, Clone)]
 pub enum TriggerKind {
     /// Vertical velocity negative.
@@ -53,7 +53,7 @@ impl PartialEq for TriggerKind {
     }
 }
 
-/// A parachute as the flight engine needs it (resolved defaults, physics.md §1, §8.4, §9.4).
+/// A parachute as the flight engine needs it (resolved defaults, docs/physics.md §1, §8.4, §9.4).
 #[derive(Debug, Clone, PartialEq)]
 pub struct ParachuteSpec {
     /// The user's name for it (event `parachute:<name>`).
@@ -72,7 +72,7 @@ pub struct ParachuteSpec {
     pub radius: f64,
     /// Canopy height, m.
     pub height: f64,
-    /// Added-mass coefficient `C_a(porosity)` (physics.md §8.4).
+    /// Added-mass coefficient `C_a(porosity)` (docs/physics.md §8.4).
     pub added_mass_coefficient: f64,
 }
 
@@ -97,7 +97,7 @@ pub struct VehicleSetup {
     pub dry_mass: f64,
     /// Nozzle exit position, m.
     pub nozzle_position: f64,
-    /// Nozzle-to-CDM distance `d_n` (physics.md §5.6), m.
+    /// Nozzle-to-CDM distance `d_n` (docs/physics.md §5.6), m.
     pub nozzle_to_cdm: f64,
     /// Nozzle gyration tensor diagonal `(S11, S22, S33)`, m².
     pub nozzle_gyration: [f64; 3],
@@ -107,7 +107,7 @@ pub struct VehicleSetup {
     pub initial_controls: [f64; MAX_CONTROLS],
 }
 
-/// Which mass-flow rate [`VehicleModel::mass`] gives (physics.md §6.2, §15.3).
+/// Which mass-flow rate [`VehicleModel::mass`] gives (docs/physics.md §6.2, §15.3).
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum MassFlowLaw {
     /// RocketPy 1.13's `ṁ = −T/v̄_e` for every motor, whatever its mass table.
@@ -126,7 +126,7 @@ pub struct MassSample {
     pub mass_flow_rate: f64,
     /// `m̈(t)` of [`MassSample::mass_flow_rate`], kg/s².
     pub mass_flow_rate_derivative: f64,
-    /// CM→CDM offset `c(t)` with RocketPy's sign (physics.md §5.4), m.
+    /// CM→CDM offset `c(t)` with RocketPy's sign (docs/physics.md §5.4), m.
     pub com_to_cdm: f64,
     /// `ċ(t)`, m/s.
     pub com_to_cdm_rate: f64,
@@ -139,7 +139,7 @@ pub struct MassSample {
 }
 
 /// The free stream of the vehicle as a whole (at its centre of dry mass), what its axial
-/// aerodynamic load depends on (physics.md §7.1).
+/// aerodynamic load depends on (docs/physics.md §7.1).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct BodyFlow {
     /// Whether the motor is burning (power-on drag).
@@ -152,7 +152,7 @@ pub struct BodyFlow {
     pub density: f64,
 }
 
-/// The rocket as the equations of motion see it (physics.md §5–§7): a [`VehicleSetup`] read
+/// The rocket as the equations of motion see it (docs/physics.md §5–§7): a [`VehicleSetup`] read
 /// once, and the quantities evaluated along the flight, which allocate nothing. The cursor
 /// arguments are the caller's table cursors (see the crate overview).
 pub trait VehicleModel {
@@ -172,11 +172,11 @@ pub trait VehicleModel {
     /// rail slide, the point-mass flight).
     fn total_mass(&self, t: f64, cursor: &mut Cursor) -> f64;
     /// Net thrust at `t` with the nozzle-pressure correction for the ambient pressure,
-    /// clamped at 0, N (physics.md §6.3); `cursor` is the first of [`VehicleModel::mass`]'s.
+    /// clamped at 0, N (docs/physics.md §6.3); `cursor` is the first of [`VehicleModel::mass`]'s.
     fn thrust(&self, t: f64, ambient_pressure: f64, cursor: &mut Cursor) -> f64;
     /// Axial aerodynamic force `R3` in body axes (drag, negative forward), N, in the flow
     /// and the configuration (e.g. air brakes deployed) of the instant, with the Mach number
-    /// located from `cursor` (physics.md §7.1).
+    /// located from `cursor` (docs/physics.md §7.1).
     fn axial_load(
         &self,
         flow: &BodyFlow,
@@ -185,7 +185,7 @@ pub trait VehicleModel {
     ) -> f64;
 }
 
-/// The static stability a flight's report reads along the trajectory (physics.md §7.7). It
+/// The static stability a flight's report reads along the trajectory (docs/physics.md §7.7). It
 /// is no force law and the equations of motion never call it, so it is a trait of its own
 /// beside [`VehicleModel`]: the reports ask for both, the engine's step loop for the vehicle
 /// alone.

@@ -1,4 +1,4 @@
-//! Tank fluids (physics.md §15.2; RocketPy `Fluid`, rocketpy/motors/fluid.py): a name and a
+//! Tank fluids (docs/physics.md §15.2; RocketPy `Fluid`, rocketpy/motors/fluid.py): a name and a
 //! density, either constant or a function of temperature and pressure.
 //!
 //! RocketPy 1.13 builds `Fluid(density=f(T, p))` from `[T, p, ρ]` rows as a two-variable
@@ -6,7 +6,7 @@
 //! triangulation of the `(T, p)` points inside their convex hull, the thin-plate spline
 //! through all rows outside it — here [`TriangulatedTable`], which also refuses what RocketPy
 //! refuses (fewer than three rows, rows all on one line of the `(T, p)` plane, a repeated
-//! `(T, p)`). A tank evaluates it at its own temperature and pressure (physics.md §15.2).
+//! `(T, p)`). A tank evaluates it at its own temperature and pressure (docs/physics.md §15.2).
 
 use karman_math::TriangulatedTable;
 

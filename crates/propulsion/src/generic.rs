@@ -1,5 +1,5 @@
 //! Generic motor: the propellant is a solid cylinder filling the combustion chamber
-//! (physics.md §6.5; RocketPy `GenericMotor`, rocketpy/motors/motor.py).
+//! (docs/physics.md §6.5; RocketPy `GenericMotor`, rocketpy/motors/motor.py).
 //!
 //! Reproduces RocketPy's sampling exactly:
 //! - `m_p(t) = m_p0 + ∫ ṁ dt` with `ṁ = −T/v̄_e`, sampled at 100 equally spaced times over the

@@ -1,4 +1,4 @@
-//! Hybrid motor: a solid fuel grain burning with the oxidiser of its tanks (physics.md §15.4;
+//! Hybrid motor: a solid fuel grain burning with the oxidiser of its tanks (docs/physics.md §15.4;
 //! RocketPy `HybridMotor`, rocketpy/motors/hybrid_motor.py).
 //!
 //! RocketPy's `HybridMotor` is a `SolidMotor` (the grain) and a `LiquidMotor` (the tanks)

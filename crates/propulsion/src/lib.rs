@@ -1,6 +1,6 @@
 //! # karman-propulsion
 //!
-//! Rocket motors as RocketPy 1.13 models them (physics.md §5–§6; rocketpy/motors/*.py):
+//! Rocket motors as RocketPy 1.13 models them (docs/physics.md §5–§6; rocketpy/motors/*.py):
 //!
 //! - thrust data from RASP `.eng` ([`eng`]), RockSim `.rse` ([`rse`]) and two-column CSV
 //!   ([`csv`]) files, inline tables or a constant ([`ThrustData`], [`ThrustSource`]);
@@ -9,7 +9,7 @@
 //! - tanks ([`Tank`]): fluids ([`Fluid`]) in a geometry ([`TankGeometry`]: cylinders with or
 //!   without spherical caps, spheres, custom profiles) given by their flows, ullage, level or
 //!   masses ([`TankKind`]), with liquid and gas masses, heights, centre of mass and inertia
-//!   over time (physics.md §15);
+//!   over time (docs/physics.md §15);
 //! - the [`Motor`]: a solid motor with BATES grains ([`BatesGrains`]), a generic motor
 //!   ([`CylindricalChamber`]), a liquid motor (tanks, [`PositionedTank`]), a hybrid motor (a
 //!   grain and tanks) or no motor ([`Motor::empty`]), with its propellant mass, centre of mass

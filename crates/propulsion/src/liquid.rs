@@ -1,4 +1,4 @@
-//! Liquid motor: the propellant is the contents of its tanks (physics.md §15.3; RocketPy
+//! Liquid motor: the propellant is the contents of its tanks (docs/physics.md §15.3; RocketPy
 //! `LiquidMotor`, rocketpy/motors/liquid_motor.py).
 //!
 //! With tank `i` at `position_i` (motor coordinates of its height origin; a tank height adds

@@ -1,12 +1,12 @@
 //! The [`Motor`]: a processed thrust curve, the motor's dry structure and a propellant model,
-//! with the accessors the airframe and dynamics crates use (physics.md §5.2, §6).
+//! with the accessors the airframe and dynamics crates use (docs/physics.md §5.2, §6).
 //!
 //! Motor-level quantities follow RocketPy's `Motor` base class (rocketpy/motors/motor.py):
 //! - `m(t) = m_p(t) + m_dry`;
 //! - `z_cm(t) = (z_p m_p + z_dry m_dry) / m` (motor coordinates);
 //! - `I11(t) = I11_p + m_p (z_p − z_cm)² + I11_dry + m_dry (z_dry − z_cm)²` (parallel axis,
 //!   about the motor's instantaneous centre of mass), `I33(t) = I33_p + I33_dry`;
-//! - `v̄_e = I_tot / m_p0`, `ṁ(t) = −T(t)/v̄_e` (physics.md §6.2);
+//! - `v̄_e = I_tot / m_p0`, `ṁ(t) = −T(t)/v̄_e` (docs/physics.md §6.2);
 //! - pressure thrust `(p_ref − p)·π r_n²` when a reference pressure is given (§6.3).
 
 use karman_math::{Extrapolation, Interpolation, PhysicalConstants, Table1};
@@ -171,7 +171,7 @@ impl Motor {
     }
 
     /// A liquid motor (RocketPy `LiquidMotor` with its `add_tank` calls, in order), inputs in
-    /// SI: the propellant is the tanks' contents (physics.md §15.3).
+    /// SI: the propellant is the tanks' contents (docs/physics.md §15.3).
     ///
     /// # Errors
     /// As [`Motor::solid`]; no tanks is an [`PropulsionError::InvalidParameter`].
@@ -198,7 +198,7 @@ impl Motor {
 
     /// A hybrid motor (RocketPy `HybridMotor` with its `add_tank` calls, in order), inputs in
     /// the unit system of `constants` (which sets the time spacing of the grain's tables):
-    /// the grain regresses with the flow the tanks do not supply (physics.md §15.4).
+    /// the grain regresses with the flow the tanks do not supply (docs/physics.md §15.4).
     ///
     /// # Errors
     /// As [`Motor::liquid`].
@@ -312,7 +312,7 @@ impl Motor {
     pub fn thrust_curve(&self) -> &ThrustCurve {
         &self.thrust
     }
-    /// Raw thrust table `T(t)`, N, zero outside the burn (physics.md §6.1).
+    /// Raw thrust table `T(t)`, N, zero outside the burn (docs/physics.md §6.1).
     #[must_use]
     pub fn thrust_table(&self) -> &Table1 {
         self.thrust.table()
@@ -354,7 +354,7 @@ impl Motor {
         self.exhaust_velocity
     }
     /// The exhaust velocity RocketPy reports at `t` (`motor.exhaust_velocity(t)`), m/s: for a
-    /// liquid motor the tanks' `−T(t)/ṁ_tanks(t)` (0 where the tanks do not flow; physics.md
+    /// liquid motor the tanks' `−T(t)/ṁ_tanks(t)` (0 where the tanks do not flow; docs/physics.md
     /// §15.3, for reports only: the equations of motion use [`Motor::exhaust_velocity`]),
     /// for every other motor `v̄_e`.
     #[must_use]
@@ -431,7 +431,7 @@ impl Motor {
             _ => &[],
         }
     }
-    /// The parts whose pointwise sum the propellant is (physics.md §15.3–15.4): the tanks of a
+    /// The parts whose pointwise sum the propellant is (docs/physics.md §15.3–15.4): the tanks of a
     /// liquid motor whose tanks are on different time grids, the grain and the tanks of a
     /// hybrid motor, for which RocketPy evaluates the sums pointwise; empty for every other
     /// motor, whose propellant tables are exact. The propellant tables then tabulate those

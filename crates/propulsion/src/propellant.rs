@@ -24,7 +24,7 @@ pub struct PropellantTables {
     /// `I33_p(t)` about the propellant centre of mass, kg·m².
     pub i33: Table1,
     /// The parts whose pointwise sum the propellant is, when RocketPy sums them pointwise (a
-    /// liquid motor's tanks on different time grids, physics.md §15.3; a hybrid motor's grain
+    /// liquid motor's tanks on different time grids, docs/physics.md §15.3; a hybrid motor's grain
     /// and tanks, §15.4); the tables above then tabulate that sum for reports (and hold the
     /// I33). Empty when the tables are the propellant exactly.
     pub parts: Vec<PropellantPart>,
@@ -56,7 +56,7 @@ pub trait PropellantModel {
     fn validate(&self) -> Result<(), PropulsionError>;
 
     /// Builds the propellant tables for `thrust`, given the average exhaust velocity
-    /// `v̄_e = I_tot / m_p0` (so the mass flow is `ṁ = −T / v̄_e`, physics.md §6.2), in the
+    /// `v̄_e = I_tot / m_p0` (so the mass flow is `ṁ = −T / v̄_e`, docs/physics.md §6.2), in the
     /// unit system of `constants` (which holds the numerical time steps of the tables).
     ///
     /// # Errors

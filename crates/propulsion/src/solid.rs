@@ -1,4 +1,4 @@
-//! Solid motor with BATES grains (physics.md §6.4; RocketPy `SolidMotor`,
+//! Solid motor with BATES grains (docs/physics.md §6.4; RocketPy `SolidMotor`,
 //! rocketpy/motors/solid_motor.py).
 //!
 //! `N` identical cylindrical grains (outer radius `R_o`, bore `r`, height `h`, density `ρ_g`)
@@ -397,7 +397,7 @@ mod tests {
     fn regression_inverts_volume_exactly() {
         let g = calisto();
         let m0 = g.initial_mass();
-        // physics.md §6.4: Calisto m_p0 = 2.955912 kg.
+        // docs/physics.md §6.4: Calisto m_p0 = 2.955912 kg.
         assert!((m0 - 2.955_912).abs() < 5e-7, "{m0}");
         let fractions = (0..=400)
             .map(|k| f64::from(k) / 400.0)

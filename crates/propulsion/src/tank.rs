@@ -1,4 +1,4 @@
-//! Tanks and their fluids over time (physics.md §15.2; RocketPy `MassFlowRateBasedTank`,
+//! Tanks and their fluids over time (docs/physics.md §15.2; RocketPy `MassFlowRateBasedTank`,
 //! `UllageBasedTank`, `LevelBasedTank`, `MassBasedTank`, rocketpy/motors/tank.py).
 //!
 //! Every tank quantity is a table on the grid `t_k = linspace(t_s, t_e, N)` of the tank's
@@ -29,7 +29,8 @@
 //!
 //! ```text
 //! c_l = M(h_l)/V_l,  c_g = [M(h_g) − M(h_l)]/V_g,  c = (c_l m_l + c_g m_g)/(m_l + m_g)
-//! I   = ρ_l [I_x(h_l) − V_l c_l² + V_l (c_l − c)²] + ρ_g [I_x(h_g) − I_x(h_l) − V_g c_g² + V_g (c_g − c)²]
+//! I   = ρ_l [I_x(h_l) − V_l c_l² + V_l (c_l − c)²] + ρ_g [I_x(h_g) − I_x(h_l) − V_g c_g² + V_g
+//! (c_g − c)²]
 //! ```
 //!
 //! (`c_l = bottom` where `V_l < 1e-4 V_total`, `c_g = h_l` where `V_g < 1e-4 V_total`,
@@ -39,9 +40,10 @@
 //! the tank) composed with the level, so its liquid and total masses are splines that are
 //! **zero outside the grid** (RocketPy 1.13), its gas mass a spline held constant, and its
 //! liquid height the input, linear. A tank given by its contents has the net mass flow of the
-//! derivative of its mass table at the nodes, interpolated and extrapolated as that table. The fluids have no axial inertia. RocketPy's consistency checks are
-//! errors: a negative liquid mass, a gas mass below −1e-6 kg, a fluid volume outside
-//! `[−1e-6, V_total + 1e-6]` m³ or a height more than 1e-4 m outside the tank.
+//! derivative of its mass table at the nodes, interpolated and extrapolated as that table. The
+//! fluids have no axial inertia. RocketPy's consistency checks are errors: a negative liquid mass,
+//! a gas mass below −1e-6 kg, a fluid volume outside `[−1e-6, V_total + 1e-6]` m³ or a height more
+//! than 1e-4 m outside the tank.
 
 use karman_math::{Extrapolation, Interpolation, PhysicalConstants, Table1, linspace};
 
@@ -395,7 +397,7 @@ struct KindTables {
 }
 
 impl Tank {
-    /// Builds the tank's tables (physics.md §15.2), inputs in the unit system of `constants`
+    /// Builds the tank's tables (docs/physics.md §15.2), inputs in the unit system of `constants`
     /// (which holds the slacks of RocketPy's checks).
     ///
     /// # Errors

@@ -1,4 +1,4 @@
-//! Tank geometry (physics.md §15.1; RocketPy `TankGeometry`, `CylindricalTank`,
+//! Tank geometry (docs/physics.md §15.1; RocketPy `TankGeometry`, `CylindricalTank`,
 //! `SphericalTank`, rocketpy/motors/tank_geometry.py).
 //!
 //! A tank is a solid of revolution about its height axis `h`, described by its radius `r(h)`.
@@ -314,7 +314,7 @@ mod tests {
         assert_eq!(g.profile().0.len(), 100);
         let a = PI * r * r;
         assert!(close(g.total_volume(), a * h, 1e-14));
-        // physics.md §15.5: Halcyon's tank volume.
+        // docs/physics.md §15.5: Halcyon's tank volume.
         assert!((g.total_volume() - 0.004_926_017_280_828_808_5).abs() < 1e-17);
         for x in [-0.16, -0.1, 0.0, 0.05, 0.16] {
             assert!(
@@ -354,7 +354,7 @@ mod tests {
         assert_eq!(g.profile().0.len(), 298);
         let exact = PI * r * r * (h - 2.0 * r) + 4.0 / 3.0 * PI * r.powi(3);
         assert!(close(g.total_volume(), exact, 1e-4), "{}", g.total_volume());
-        // physics.md §15.5: Hedy's capped tank volume.
+        // docs/physics.md §15.5: Hedy's capped tank volume.
         assert!((g.total_volume() - 0.005_553_527_460_220_63).abs() < 1e-15);
         let s = TankGeometry::new(TankShape::Spherical { radius: 0.1 }, &PhysicalConstants::SI)
             .unwrap();

@@ -1,4 +1,4 @@
-//! Thrust-curve processing shared by every motor type (physics.md §6.1).
+//! Thrust-curve processing shared by every motor type (docs/physics.md §6.1).
 //!
 //! Mirrors RocketPy's `Motor.__init__`, `Motor.reshape_thrust_curve` and `Motor.clip_thrust`
 //! (rocketpy/motors/motor.py):

@@ -1,4 +1,4 @@
-//! Tanks, liquid and hybrid motors (physics.md §15): a hybrid whose oxidiser tank is empty is
+//! Tanks, liquid and hybrid motors (docs/physics.md §15): a hybrid whose oxidiser tank is empty is
 //! its solid grain; a liquid motor's propellant is the sum of its tanks; and the tank, liquid
 //! and hybrid formulas scale with their units (`karman_math::dimensions`).
 

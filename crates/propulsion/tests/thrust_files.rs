@@ -27,7 +27,7 @@ fn validation_thrust_files_load() {
             }
             let data = ThrustData::load(&path).unwrap_or_else(|e| panic!("{e}"));
             if data.format == ThrustFormat::Eng {
-                // RocketPy prepends (0, 0) to RASP data (physics.md §6.1); a file that states
+                // RocketPy prepends (0, 0) to RASP data (docs/physics.md §6.1); a file that states
                 // its own t = 0 sample keeps it (Halcyon's, which its mission therefore states
                 // as a table: see fixtures/validation/halcyon/mission.toml).
                 let text = std::fs::read_to_string(&path).expect("readable");

@@ -1,5 +1,5 @@
 //! The Calisto solid motor (Cesaroni M1670, validation mission `calisto`) against the RocketPy
-//! 1.13 figures of physics.md §6.4 and §13: total impulse 6026.35 N·s, m_p0 = 2.955912 kg,
+//! 1.13 figures of docs/physics.md §6.4 and §13: total impulse 6026.35 N·s, m_p0 = 2.955912 kg,
 //! v̄_e = 2038.7448 m/s, grain bore r(1 s) = 0.020560 m and height h(1 s) = 0.108879 m, and
 //! propellant masses m(t) − m_dry = 2.068184, 1.095282, 0.224893 kg at t = 1, 2, 3 s
 //! (rocket masses 18.309184, 17.336282, 16.465893 kg minus the dry mass 16.241 kg).

@@ -1,4 +1,4 @@
-//! Air-brake controllers written in Rhai: RocketPy's `controller_function` (physics.md §16.5,
+//! Air-brake controllers written in Rhai: RocketPy's `controller_function` (docs/physics.md §16.5,
 //! mission-format.md "The controller script").
 //!
 //! A [`ControllerScript`] is compiled once per mission; each flight makes its own
@@ -315,7 +315,7 @@ impl AirBrakesHandle {
         f64::from_bits(self.level.load(Ordering::Relaxed))
     }
 
-    /// Stores `value`, clipped to `[0, 1]` when the brakes clamp (physics.md §16.3).
+    /// Stores `value`, clipped to `[0, 1]` when the brakes clamp (docs/physics.md §16.3).
     pub(crate) fn set_level(&self, value: f64) {
         let stored = stored_level(self.setup.clamp, value);
         self.level.store(stored.to_bits(), Ordering::Relaxed);
@@ -323,7 +323,7 @@ impl AirBrakesHandle {
 }
 
 /// The level a write of `value` stores: clipped to `[0, 1]` when the brakes clamp
-/// (physics.md §16.3).
+/// (docs/physics.md §16.3).
 pub(crate) fn stored_level(clamp: bool, value: f64) -> f64 {
     if clamp { value.clamp(0.0, 1.0) } else { value }
 }

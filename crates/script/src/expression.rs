@@ -1,5 +1,5 @@
 //! Parachute trigger expressions: RocketPy's `trigger(p, h, y)` callable written as one
-//! expression (mission-format.md, "Custom triggers"; physics.md §17).
+//! expression (mission-format.md, "Custom triggers"; docs/physics.md §17).
 //!
 //! The language is the common subset of Rhai and Python expressions, so an expression means
 //! the same in both: float literals (`5.0`, `2.5e2`, `1e3`), the variables `p`, `h` and the 13

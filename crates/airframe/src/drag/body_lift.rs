@@ -1,7 +1,7 @@
-//! The centre of pressure at an angle of attack, as OpenRocket's extended Barrowman method
-//! gives it (Niskanen 2009, §3.2.3, after Galejs 1999, "Wind instability — what Barrowman
-//! left out"): besides the linear Barrowman terms, every segment of the body adds a normal
-//! force from its planform,
+//! The centre of pressure at an angle of attack (docs/physics.md §20.6), as OpenRocket's extended
+//! Barrowman method gives it (Niskanen 2009, §3.2.3, after Galejs 1999, "Wind instability — what
+//! Barrowman left out"): besides the linear Barrowman terms, every segment of the body adds a
+//! normal force from its planform,
 //!
 //! `C_N,lift = K · (A_plan / A_ref) · sin² α`,   K = 1.1,
 //!

@@ -1,4 +1,5 @@
-//! Fin-set drag terms (Niskanen 2009, §3.4.1 and §3.4.3, after Hoerner 1965 ch. 6 and 16):
+//! Fin-set drag terms (Niskanen 2009, §3.4.1 and §3.4.3, after Hoerner 1965 ch. 6 and 16;
+//! docs/physics.md §20.4):
 //! the planform quantities of one fin from its outline, and the pressure drag of its leading
 //! and trailing edges.
 //!

@@ -1,4 +1,5 @@
-//! Skin-friction drag (Niskanen 2009, §3.4.1, after Hoerner 1965 ch. 2 and Schlichting).
+//! Skin-friction drag (Niskanen 2009, §3.4.1, after Hoerner 1965 ch. 2 and Schlichting;
+//! docs/physics.md §20.2).
 //!
 //! The flat-plate coefficient of a fully turbulent boundary layer on the whole rocket length
 //! L (Re = V L / ν),

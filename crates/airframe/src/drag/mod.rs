@@ -1,7 +1,7 @@
-//! Drag coefficient from the geometry: the component build-up of Niskanen (2009),
-//! "Development of an Open Source model rocket simulation software" (the OpenRocket technical
-//! documentation), §3.4, which collects Hoerner (1965) *Fluid-Dynamic Drag*, Barrowman (1967)
-//! and Fleeman (2001).
+//! Drag coefficient from the geometry: the component build-up of Niskanen (2009), "Development of
+//! an Open Source model rocket simulation software" (the OpenRocket technical documentation), §3.4
+//! (docs/physics.md §20), which collects Hoerner (1965) *Fluid-Dynamic Drag*, Barrowman (1967) and
+//! Fleeman (2001).
 //!
 //! The zero-angle-of-attack drag coefficient, on the reference area A_ref = π r_ref², is the
 //! sum of
@@ -88,13 +88,12 @@ pub struct FinSetDrag {
     pub roughness: f64,
 }
 
-/// The bodies of a pod set (OpenRocket's `PodSet`): `count` copies of one body of
-/// revolution beside the main body. OpenRocket 24.12 sums every drag term of a component
-/// once per instance (Niskanen 2009 §3.4 per component, times the instance count): each
-/// pod's skin friction joins the body's (under the rocket's one fineness correction, whose
-/// length and radius span the pods too), its nose and tail pressure drag and the base drag of
-/// its aft end count `count` times, and a pod that starts blunt adds the stagnation drag of
-/// its front face.
+/// The bodies of a pod set (OpenRocket's `PodSet`; docs/physics.md §22): `count` copies of one body
+/// of revolution beside the main body. OpenRocket 24.12 sums every drag term of a component once
+/// per instance (Niskanen 2009 §3.4 per component, times the instance count): each pod's skin
+/// friction joins the body's (under the rocket's one fineness correction, whose length and radius
+/// span the pods too), its nose and tail pressure drag and the base drag of its aft end count
+/// `count` times, and a pod that starts blunt adds the stagnation drag of its front face.
 #[derive(Debug, Clone, PartialEq)]
 pub struct PodDrag {
     /// Its name, for error messages.

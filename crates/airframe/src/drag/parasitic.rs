@@ -1,4 +1,5 @@
-//! Parasitic drag of protuberances (Niskanen 2009, §3.4.5, and OpenRocket's later models).
+//! Parasitic drag of protuberances (Niskanen 2009, §3.4.5, and OpenRocket's later models;
+//! docs/physics.md §20.5).
 //!
 //! - Launch lug (a short open tube beside the body): 0.7 (C_stag + C_base) on its annular
 //!   frontal area (Niskanen eq. 3.96, after Hoerner ch. 16 for a tube in a boundary layer),

@@ -1,5 +1,5 @@
-//! Pressure drag of the body (Niskanen 2009, §3.4.2–§3.4.4): forward-facing faces
-//! (stagnation), nose cones and expanding transitions (shape- and Mach-dependent tables),
+//! Pressure drag of the body (Niskanen 2009, §3.4.2–§3.4.4; docs/physics.md §20.3): forward-facing
+//! faces (stagnation), nose cones and expanding transitions (shape- and Mach-dependent tables),
 //! boattails, and the base.
 //!
 //! - Stagnation pressure of a blunt face, Hoerner (1965) ch. 15 / Niskanen eq. 3.86:

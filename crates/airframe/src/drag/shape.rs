@@ -1,5 +1,6 @@
 //! Profiles of the body's segments of revolution: radius along the axis, wetted area, the
-//! slope at the aft end and the fineness ratio the pressure-drag tables need.
+//! slope at the aft end and the fineness ratio the pressure-drag tables need (docs/physics.md
+//! §20.1).
 //!
 //! The families and their shape parameters are those of Niskanen (2009), §3.1.2 (OpenRocket's
 //! "transition shapes"): conical; secant/tangent ogive (parameter 0…1, 1 = tangent);

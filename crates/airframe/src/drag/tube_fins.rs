@@ -1,5 +1,5 @@
-//! Tube fins: a ring of open tubes along the body (OpenRocket's tube fin set; Niskanen's
-//! method extended in OpenRocket 23.09, `TubeFinSetCalc`), each tube
+//! Tube fins: a ring of open tubes along the body (OpenRocket's tube fin set; Niskanen's method
+//! extended in OpenRocket 23.09, `TubeFinSetCalc`; docs/physics.md §21.2), each tube
 //!
 //! - a normal-force slope from Ribner (1947), "The ring airfoil in nonaxial flow", J. Aero.
 //!   Sci. 14(9), eq. 5: `C_Nα A = 2 π² r_i l · A′ / (1 + A′)`, `A′ = 2 A_R / π`, aspect ratio

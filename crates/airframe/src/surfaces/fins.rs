@@ -2,13 +2,13 @@
 //!
 //! - Single-fin slope: Diederich's planform correlation (NACA TN 2335) as used by Barrowman
 //!   (1967) and Niskanen (2009, §3.2.2), with RocketPy's piecewise Prandtl–Glauert factor β(M)
-//!   (physics.md §7.5).
+//!   (docs/physics.md §7.5).
 //! - Fin-set slope: Niskanen's fin-count factor × the body interference `1 + r_t/(s + r_t)`.
 //!   The factor N/2 is the average over the flow's roll angle θ of Niskanen's (2009, §3.2.2)
 //!   `Σᵢ sin²(θ − φᵢ)` over the fins at roll positions φᵢ; for N ≥ 3 evenly spaced fins the
 //!   sum is N/2 at every θ, for one or two fins it is not ([`FinAerodynamics::roll_factor`]).
 //! - Roll: Barrowman (1967, ch. 3) forcing and damping interference factors `K_f`, `K_d` and the
-//!   roll integral `G = ∫ c(ξ) ξ² dξ` (physics.md §7.6), with RocketPy's `cos δ` on damping.
+//!   roll integral `G = ∫ c(ξ) ξ² dξ` (docs/physics.md §7.6), with RocketPy's `cos δ` on damping.
 //! - Free-form fins: OpenRocket's 40-station span discretisation (Niskanen 2009, §3.2.2) as in
 //!   RocketPy `FreeFormFins`.
 
@@ -161,7 +161,7 @@ pub struct FinAerodynamics {
     damping_factor: f64,
 }
 
-/// The square of RocketPy's compressibility factor β(M) (physics.md §7.5, **\[RP\]**):
+/// The square of RocketPy's compressibility factor β(M) (docs/physics.md §7.5, **\[RP\]**):
 /// `1 − M²` below Mach 0.8, held at `1 − 0.8²` up to Mach 1.1, `M² − 1` above.
 #[inline]
 fn beta_squared(mach: f64) -> f64 {
@@ -199,12 +199,12 @@ fn roll_forcing_interference(tau: f64) -> f64 {
 }
 
 impl FinAerodynamics {
-    /// Single-fin normal-force slope CNα₁(M) on the area `π r_t²` (physics.md §7.5).
+    /// Single-fin normal-force slope CNα₁(M) on the area `π r_t²` (docs/physics.md §7.5).
     #[inline]
     #[must_use]
     pub fn single_fin_cn_alpha(&self, mach: f64) -> f64 {
-        // Diederich's form (physics.md §7.5) `cla·f_d·(A_f/A)·cos Γ_c / (2 + f_d √(1 + (2/f_d)²))`
-        // with `cla = cl_α0/β` and `f_d = 2π AR / (cla cos Γ_c)`: the numerator is the
+        // Diederich's form (docs/physics.md §7.5) `cla·f_d·(A_f/A)·cos Γ_c / (2 + f_d √(1 +
+        // (2/f_d)²))` with `cla = cl_α0/β` and `f_d = 2π AR / (cla cos Γ_c)`: the numerator is the
         // constant `2π AR A_f/A` and `f_d √(1 + (2/f_d)²) = sign(f_d) √(f_d² + 4)` with
         // `f_d² ∝ β²` — one square root and one division per call, equal to rounding.
         let fd_squared = self.diederich_factor_squared * beta_squared(mach);
@@ -405,7 +405,7 @@ fn finish(
     Ok((set, warnings))
 }
 
-/// Builds a trapezoidal fin set (physics.md §7.5, §7.6).
+/// Builds a trapezoidal fin set (docs/physics.md §7.5, §7.6).
 pub(crate) fn trapezoidal(
     name: &str,
     spec: &TrapezoidalFinsSpec,
@@ -480,7 +480,7 @@ pub(crate) fn trapezoidal(
     )
 }
 
-/// Builds an elliptical fin set (RocketPy "Elliptical Fins Equations", physics.md §7.5–7.6).
+/// Builds an elliptical fin set (RocketPy "Elliptical Fins Equations", docs/physics.md §7.5–7.6).
 pub(crate) fn elliptical(
     name: &str,
     spec: &EllipticalFinsSpec,
@@ -733,7 +733,7 @@ mod tests {
     use super::*;
     use std::f64::consts::FRAC_PI_2;
 
-    /// physics.md §7.5: the Calisto fin set WITHOUT airfoil, 0.5° cant.
+    /// docs/physics.md §7.5: the Calisto fin set WITHOUT airfoil, 0.5° cant.
     fn calisto() -> FinSet {
         let spec = TrapezoidalFinsSpec {
             n: 4,
@@ -837,7 +837,7 @@ mod tests {
 
     #[test]
     fn single_fin_slope_is_diederich_s_form_as_rocketpy_writes_it() {
-        // physics.md §7.5 (RocketPy's form): cl_α2D = cl_α0/β, F_D = 2π AR/(cl_α2D cos Γ_c),
+        // docs/physics.md §7.5 (RocketPy's form): cl_α2D = cl_α0/β, F_D = 2π AR/(cl_α2D cos Γ_c),
         // CNα₁ = cl_α2D·F_D·(A_f/A)·cos Γ_c / (2 + F_D √(1 + (2/F_D)²)); the evaluated form
         // (one root, one division) must agree to rounding at every Mach regime of β.
         let a = calisto().aero;
@@ -871,7 +871,7 @@ mod tests {
 
     #[test]
     fn calisto_geometry_matches_physics_md() {
-        // physics.md §7.5 quotes 6-7 significant digits; tolerance is half a unit of the last.
+        // docs/physics.md §7.5 quotes 6-7 significant digits; tolerance is half a unit of the last.
         let f = calisto();
         let a = &f.aero;
         assert!(close(a.fin_area, 9.9e-3, 1e-12));

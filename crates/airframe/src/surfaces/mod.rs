@@ -1,6 +1,6 @@
 //! Aerodynamic surfaces: nose cones, fin sets, tube fin sets and tails.
 //!
-//! Each surface is placed at a reference point of the rocket's user axis (physics.md §2.5:
+//! Each surface is placed at a reference point of the rocket's user axis (docs/physics.md §2.5:
 //! the nose tip, the fin root-chord leading edge, the tail's forward end); its CP lies
 //! `cp_local` aft of that point. [`Surface`] carries what the equations of motion need (CP in
 //! body axes from the CDM, reference area, Mach-dependent coefficients) plus its resolved
@@ -55,11 +55,11 @@ pub struct SurfaceInput {
     pub pod: Option<PodPlacement>,
 }
 
-/// Where the copies of a pod surface sit: OpenRocket's pod set (Niskanen 2009 §3.2 sums the
-/// Barrowman terms per component; OpenRocket 24.12 sums them per instance of a component).
-/// Each copy is the surface on its own pod's axis: the same normal-force slope and axial CP
-/// (OpenRocket takes each instance's CP on the rocket's axis), so the set's slope is `count`
-/// times one copy's. The roll position matters only for a set of one or two fins, whose
+/// Where the copies of a pod surface sit (docs/physics.md §22): OpenRocket's pod set (Niskanen 2009
+/// §3.2 sums the Barrowman terms per component; OpenRocket 24.12 sums them per instance of a
+/// component). Each copy is the surface on its own pod's axis: the same normal-force slope and
+/// axial CP (OpenRocket takes each instance's CP on the rocket's axis), so the set's slope is
+/// `count` times one copy's. The roll position matters only for a set of one or two fins, whose
 /// slope depends on the flow's roll angle ([`FinAerodynamics::roll_factor`]).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct PodPlacement {
@@ -193,7 +193,7 @@ enum Aero {
     Fins(Box<FinAerodynamics>),
 }
 
-/// One aerodynamic surface as the equations of motion use it (physics.md §7.2).
+/// One aerodynamic surface as the equations of motion use it (docs/physics.md §7.2).
 #[derive(Debug, Clone, PartialEq)]
 pub struct Surface {
     /// The user's name for it.
@@ -202,7 +202,7 @@ pub struct Surface {
     pub position: f64,
     /// CP distance aft of the reference point, local frame (m).
     pub cp_local: f64,
-    /// CP in body axes measured from the centre of dry mass, `p` of physics.md §2.5 (m).
+    /// CP in body axes measured from the centre of dry mass, `p` of docs/physics.md §2.5 (m).
     pub cp_body: [f64; 3],
     /// Reference area `π r_s²` of the coefficients (m²), times the number of pods for a pod
     /// surface: the force on all its copies is `q · reference_area · CNα · α`.
@@ -334,7 +334,7 @@ impl Surface {
     }
 
     /// Roll forcing coefficient `C_lf,δ(Mach) · δ` (cant folded in; 0 for non-fins), such
-    /// that the forcing moment is `½ρV² A d · roll_forcing(Mach)` (physics.md §7.6).
+    /// that the forcing moment is `½ρV² A d · roll_forcing(Mach)` (docs/physics.md §7.6).
     #[inline]
     #[must_use]
     pub fn roll_forcing(&self, mach: f64) -> f64 {
@@ -345,7 +345,7 @@ impl Surface {
     }
 
     /// Roll damping coefficient derivative `C_ld,ω(Mach)` (0 for non-fins); the damping
-    /// moment is `½ρV² A d · C_ld,ω · ω3 d / (2V)` (physics.md §7.6).
+    /// moment is `½ρV² A d · C_ld,ω · ω3 d / (2V)` (docs/physics.md §7.6).
     #[inline]
     #[must_use]
     pub fn roll_damping(&self, mach: f64) -> f64 {
@@ -374,7 +374,7 @@ impl Surface {
         2.0 * self.radius
     }
 
-    /// The CP in the rocket's user coordinates, `z_u − csys · cp_local` (physics.md §2.5).
+    /// The CP in the rocket's user coordinates, `z_u − csys · cp_local` (docs/physics.md §2.5).
     #[must_use]
     pub fn cp_user(&self, csys: f64) -> f64 {
         self.position - csys * self.cp_local

@@ -1,7 +1,7 @@
 //! Nose cones: profile, centre of pressure and the effect of a spherical (bluff) tip.
 //!
 //! Normal-force slope `CNα = 2 (r_base / r_ref)²` (Barrowman 1967, slender-body theory; no Mach
-//! dependence as in RocketPy, physics.md §7.3). The CP lies `k·L` aft of the tip, with `k` per
+//! dependence as in RocketPy, docs/physics.md §7.3). The CP lies `k·L` aft of the tip, with `k` per
 //! profile (Barrowman 1967 for cone and ogive; RocketPy `NoseCone` for the others).
 
 use std::f64::consts::PI;
@@ -62,7 +62,7 @@ pub struct NoseConeSpec {
 #[derive(Debug, Clone, PartialEq)]
 pub(crate) struct NoseCone {
     pub kind: NoseKind,
-    /// Effective length (shortened by a bluff tip, physics.md §7.3).
+    /// Effective length (shortened by a bluff tip, docs/physics.md §7.3).
     pub length: f64,
     pub base_radius: f64,
     /// CP distance aft of the tip (m).
@@ -102,7 +102,7 @@ fn profile_radius(kind: NoseKind, length: f64, radius: f64, x: f64) -> f64 {
     }
 }
 
-/// The CP factor `k` of `x_cp = k·L` (physics.md §7.3), with the ogive factor from the
+/// The CP factor `k` of `x_cp = k·L` (docs/physics.md §7.3), with the ogive factor from the
 /// ogive volume `V = π[L ρ² − L³/3 − (ρ − R) ρ² asin(L/ρ)]`, `k = 1 − V/(π R² L)`.
 fn cp_factor(kind: NoseKind, length: f64, radius: f64) -> f64 {
     match kind {
@@ -305,7 +305,7 @@ mod tests {
 
     #[test]
     fn cp_factors_match_physics_table() {
-        // physics.md §7.3
+        // docs/physics.md §7.3
         let cases = [
             (NoseKind::Conical, 2.0 / 3.0),
             (NoseKind::Elliptical, 1.0 / 3.0),

@@ -2,7 +2,7 @@
 //!
 //! `CNα = 2[(r_bottom/r_ref)² − (r_top/r_ref)²]` and the conical-frustum CP
 //! `x_cp = (L/3)[1 + (1 − q)/(1 − q²)]`, `q = r_top/r_bottom` (Barrowman 1967, §3.2;
-//! physics.md §7.4). No Mach dependence, as in RocketPy.
+//! docs/physics.md §7.4). No Mach dependence, as in RocketPy.
 
 use crate::error::{AirframeError, non_negative, positive};
 

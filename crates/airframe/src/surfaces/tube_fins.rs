@@ -1,4 +1,5 @@
-//! Tube fins: `n` open tubes side by side around the body (OpenRocket's tube fin set).
+//! Tube fins: `n` open tubes side by side around the body (OpenRocket's tube fin set;
+//! docs/physics.md §21.1).
 //!
 //! Each tube's normal-force slope is Ribner's ring airfoil (1947, "The ring airfoil in
 //! nonaxial flow", J. Aero. Sci. 14(9), eq. 5), as OpenRocket applies it to one tube,

@@ -1,4 +1,4 @@
-//! RocketPy's 3-DOF point-mass free flight (physics.md §8.5; RocketPy 1.12+ `Flight` with
+//! RocketPy's 3-DOF point-mass free flight (docs/physics.md §8.5; RocketPy 1.12+ `Flight` with
 //! `simulation_mode = "3 DOF"`, `Flight.u_dot_generalized_3dof` in
 //! `rocketpy/simulation/flight.py` of RocketPy 1.13).
 //!
@@ -25,7 +25,8 @@
 //!
 //! ```text
 //! n = a × d;   ω_A = k_w |n| n/|n|   (|n| > 1e-8)
-//!              ω_A = k_w p            (|n| ≤ 1e-8 and a·d < −0.999; p the unit of a × x̂, or a × ŷ)
+//!              ω_A = k_w p            (|n| ≤ 1e-8 and a·d < −0.999; p the unit of a × x̂, or a ×
+//! ŷ)
 //!              ω_A = 0                (aligned)
 //! ė = ½ e ⊗ (0, Kᵀ ω_A)
 //! ```

@@ -14,7 +14,7 @@ use crate::state::State;
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub enum Action {
     /// Deploy recovery device `i` (parachute `i` of the vehicle): after its lag the descent
-    /// goes on under it (physics.md §9.4, §8.4).
+    /// goes on under it (docs/physics.md §9.4, §8.4).
     DeployDevice(usize),
     /// Set control input `index` (`< MAX_CONTROLS`) of the configuration to `value` from this
     /// instant on; a bad index is ignored.
@@ -26,7 +26,7 @@ pub enum Action {
     },
     /// Set control input `index` to `value` from the end of the current integration step
     /// on: the step was integrated with the old value and stands (RocketPy's
-    /// `time_overshoot = true`, physics.md §16.4); the step's later instants are still
+    /// `time_overshoot = true`, docs/physics.md §16.4); the step's later instants are still
     /// sampled, and the last such value set in the step wins.
     SetControlAfterStep {
         /// Control index.
@@ -35,8 +35,9 @@ pub enum Action {
         value: f64,
     },
     /// The body tumbles from this instant on, to its end: a 3-DOF descent under the drag
-    /// area `drag_area` (m²), the equations of a canopy without added mass (physics.md §8.4);
-    /// the tumble drag of a spent stage without recovery (Niskanen 2009, §3.5).
+    /// area `drag_area` (m²), the equations of a canopy without added mass (docs/physics.md §8.4);
+    /// the tumble drag of a spent stage without recovery (Niskanen 2009, §3.5;
+    /// docs/physics.md §23.4).
     Tumble {
         /// Drag coefficient times its area, m².
         drag_area: f64,
@@ -225,7 +226,7 @@ impl Run<'_> {
     }
 
     /// Schedules a triggered parachute: an optional lag phase with the current equations,
-    /// then the parachute phase (physics.md §9.4).
+    /// then the parachute phase (docs/physics.md §9.4).
     fn deploy(&mut self, device: usize, index: usize, phase: &Phase, kind: PhaseKind, t: f64) {
         let Some(spec) = self.parachutes.get(device) else {
             return;

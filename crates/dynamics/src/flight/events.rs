@@ -1,5 +1,5 @@
 //! Events: a scalar of the state whose sign change inside an accepted step is located by one
-//! root routine ([`root`]), and what firing does (physics.md §9.2, §9.3, §9.5). Rail exit,
+//! root routine ([`root`]), and what firing does (docs/physics.md §9.2, §9.3, §9.5). Rail exit,
 //! apogee and impact are the instances checked after every step, in RocketPy's order; burn-out
 //! and `max_time` are time nodes instead (a step stop, the last phase bound).
 
@@ -91,7 +91,7 @@ impl Run<'_> {
         (t, y)
     }
 
-    /// Event checks after an accepted step (physics.md §9.1 step 4): (a) rail exit, (b)
+    /// Event checks after an accepted step (docs/physics.md §9.1 step 4): (a) rail exit, (b)
     /// apogee, (c) impact. Returns the state the next phase starts from when the current
     /// phase ends here; `Ok(None)` when the sampled processes are to be checked next.
     pub(super) fn check_events<F: FnMut(f64, &State) -> State>(

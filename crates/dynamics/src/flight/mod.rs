@@ -1,4 +1,4 @@
-//! Flight phases, events, sampled processes and actions (physics.md §9), RocketPy's
+//! Flight phases, events, sampled processes and actions (docs/physics.md §9), RocketPy's
 //! `Flight.__simulate`.
 //!
 //! The module's files follow the design:
@@ -88,7 +88,7 @@ use crate::state::State;
 /// Which equations of motion a phase integrates.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub enum PhaseKind {
-    /// 1-DOF slide along the rail (physics.md §8.1).
+    /// 1-DOF slide along the rail (docs/physics.md §8.1).
     Rail,
     /// 6-DOF variable-mass flight (§8.2).
     SixDof,
@@ -116,7 +116,7 @@ impl PhaseKind {
     }
 
     /// Whether the phase's equations read the configuration's control inputs (the air
-    /// brakes' level, physics.md §16.1): the free flight, 6-DOF or point mass. The rail's
+    /// brakes' level, docs/physics.md §16.1): the free flight, 6-DOF or point mass. The rail's
     /// equations drop them and a canopy's descent has none.
     #[must_use]
     pub fn reads_controls(&self) -> bool {
@@ -129,7 +129,7 @@ impl PhaseKind {
 pub struct SolutionPoint {
     /// Time, s.
     pub t: f64,
-    /// State (physics.md §3).
+    /// State (docs/physics.md §3).
     pub state: State,
     /// Equations in force for this point (RocketPy assigns a point to the phase with
     /// `t_start < t ≤ t_end`).

@@ -1,4 +1,4 @@
-//! The parachute triggers as sampled processes (physics.md §9.4): an apogee trigger, or a
+//! The parachute triggers as sampled processes (docs/physics.md §9.4): an apogee trigger, or a
 //! barometric height trigger reading the pressure with an AR(1) noise ([`NoiseStream`]).
 
 use karman_model::{AtmosphereModel, ParachuteSpec, TriggerCondition, TriggerKind};
@@ -112,7 +112,7 @@ impl<'a, A: AtmosphereModel> ParachuteTrigger<'a, A> {
     /// the noise at `bound`: the highest possible noisy pressure reads a barometric height at
     /// least the band above the trigger height.
     /// A custom condition at the probe's instant: the noisy pressure `P(z) + noise`, its
-    /// barometric height above ground and the state (physics.md §17).
+    /// barometric height above ground and the state (docs/physics.md §17).
     fn custom(&self, condition: &dyn TriggerCondition, probe: &mut Probe<'_>, noise: f64) -> bool {
         let atm = self.atmosphere;
         let pressure = atm.pressure(probe.z()) + noise;
@@ -168,7 +168,7 @@ impl<A: AtmosphereModel> SampledProcess for ParachuteTrigger<'_, A> {
     ) -> i64 {
         let ([vz_low, vz_high], [z_low, z_high]) = (bounds.vz, bounds.z);
         if matches!(self.trigger, TriggerKind::Custom(_)) {
-            // Sampled at every instant, ascent included (physics.md §17).
+            // Sampled at every instant, ascent included (docs/physics.md §17).
             return next;
         }
         let descending = vz_low <= 0.0 || vz_low.is_nan();

@@ -1,5 +1,5 @@
 //! The integrator policy: which Runge–Kutta pair flies which stretch of a phase (see
-//! [`crate::integrator`] for the measurements behind it).
+//! [`crate::integrator`] for the measurements behind it; docs/physics.md §26.5).
 
 use super::PhaseKind;
 use crate::integrator::{Pair, RungeKutta};

@@ -21,7 +21,7 @@ use crate::state::{State, euler313_to_quaternion};
 /// Where a flight starts.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub(super) enum Start {
-    /// At rest on the rail at `t = 0` (physics.md §2.4).
+    /// At rest on the rail at `t = 0` (docs/physics.md §2.4).
     Rail,
     /// In free flight at `t0` from `state` in `configuration` ([`super::simulate_from`]).
     From {
@@ -83,7 +83,7 @@ pub(super) struct Run<'a> {
     pub sampling: Sampling,
 }
 
-/// The initial attitude on the rail (physics.md §2.4) and the rail travel to the upper
+/// The initial attitude on the rail (docs/physics.md §2.4) and the rail travel to the upper
 /// button (§8.1, RocketPy's `effective_1rl`).
 fn rail_start(
     settings: &FlightSettings,
@@ -321,7 +321,7 @@ pub(super) fn fly<'a, A: AtmosphereModel, V: VehicleModel>(
                     .unwrap_or(f64::INFINITY),
             );
             let status = integ.step()?;
-            // The step that finds the impact is not sampled (physics.md §16.4): in a phase
+            // The step that finds the impact is not sampled (docs/physics.md §16.4): in a phase
             // whose steps are not bounded, a step longer than the bound that reaches the
             // ground is integrated again with bounded steps, so that the instants the last
             // step of the flight leaves unsampled are as few as in the bounded phases.

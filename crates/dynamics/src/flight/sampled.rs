@@ -1,5 +1,5 @@
 //! Sampled processes: discrete processes sampled at a rate during the flight, on the dense
-//! output of the integration steps (RocketPy's overshootable time nodes, physics.md §9.4),
+//! output of the integration steps (RocketPy's overshootable time nodes, docs/physics.md §9.4),
 //! whose samples may return an [`Action`].
 //!
 //! The instants of a process are `j / rate` (`j` an integer), keyed to 1e-7 s as RocketPy's
@@ -47,7 +47,7 @@ impl StepBounds {
     }
 }
 
-/// The dense output of the last accepted step (physics.md §10.3).
+/// The dense output of the last accepted step (docs/physics.md §10.3).
 pub trait DenseOutput {
     /// Component `i` of the state at `t` inside the step.
     fn component(&mut self, t: f64, i: usize) -> f64;
@@ -107,13 +107,13 @@ impl<'s> Probe<'s> {
         *self.vz.get_or_insert_with(|| dense.component(t, 5))
     }
 
-    /// The whole state (physics.md §3).
+    /// The whole state (docs/physics.md §3).
     pub fn state(&mut self) -> State {
         self.dense.state(self.t)
     }
 
     /// The end of the integration step holding the instant: its time and state (RocketPy's
-    /// last stored solution row, `state_history[-1]`, physics.md §16.4).
+    /// last stored solution row, `state_history[-1]`, docs/physics.md §16.4).
     #[must_use]
     pub fn step_end(&self) -> (f64, State) {
         self.dense.step_end()
@@ -138,7 +138,7 @@ pub trait SampledProcess {
         false
     }
     /// Whether the process is sampled over the whole step that holds the apogee. RocketPy
-    /// starts that step's window at the apogee (physics.md §9.4's quirk, harmless for the
+    /// starts that step's window at the apogee (docs/physics.md §9.4's quirk, harmless for the
     /// built-in triggers, which need `v_z < 0`); a condition that may hold on the ascent
     /// (a custom trigger, a controller) is sampled from the step's start, so that its instants
     /// do not depend on where the solver's steps fall. Default: false.
@@ -232,7 +232,7 @@ impl Instants {
 }
 
 impl Run<'_> {
-    /// The sampled processes' instants of the last step (physics.md §9.4, RocketPy's
+    /// The sampled processes' instants of the last step (docs/physics.md §9.4, RocketPy's
     /// `__process_overshootable_nodes`): the first action, with its process and instant.
     ///
     /// Before any instant is evaluated each process is bounded over the step

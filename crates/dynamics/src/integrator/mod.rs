@@ -1,5 +1,6 @@
 //! Adaptive embedded Runge–Kutta integrators with dense output: the Dormand–Prince pairs
-//! DOPRI5 and DOP853, and a Runge–Kutta–Chebyshev method for stiff stretches.
+//! DOPRI5 and DOP853, and a Runge–Kutta–Chebyshev method for stiff stretches (docs/physics.md
+//! §26).
 //!
 //! - **DOPRI5**, the pair RK5(4)7M of Dormand & Prince (1980), *A family of embedded
 //!   Runge–Kutta formulae*, J. Comput. Appl. Math. 6(1), 19–26, as in Hairer, Nørsett &

@@ -301,7 +301,7 @@ fn chebyshev_accuracy_and_dense_output() {
 
 #[test]
 fn zero_derivative_start_grows_steps_geometrically() {
-    // physics.md §10.4: a zero derivative gives a zero error estimate; the controller grows
+    // docs/physics.md §10.4: a zero derivative gives a zero error estimate; the controller grows
     // the step by MAX_FACTOR per step, which the max_step cap must bound.
     for pair in PAIRS {
         let f = |_t: f64, _y: &[f64; 1]| [0.0];

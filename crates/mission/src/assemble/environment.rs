@@ -13,7 +13,7 @@
 //!   0–80 000 m when the notebooks construct the environment (validation README caveat); it
 //!   only sets the default extent of the environment report.
 //! - `[environment.earth_model]` states the latitude and gravity height range RocketPy's
-//!   `Environment()` was built with (physics.md §18): they give the gravity table, the Earth
+//!   `Environment()` was built with (docs/physics.md §18): they give the gravity table, the Earth
 //!   radius (also that of a weather grid's geopotential heights) and the rotation vector.
 
 use crate::schema::{AtmosphereModel, Curve, Datum, SoundingFormat};

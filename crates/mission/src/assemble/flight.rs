@@ -1,7 +1,7 @@
 //! `[flight]` → [`karman_dynamics::FlightSettings`], and [`simulate`]: a whole mission flown
 //! (environment, motor and rocket built and checked, then the flight integrated).
 //!
-//! Defaults are RocketPy 1.13's `Flight` defaults (physics.md §1): inclination 80°, heading
+//! Defaults are RocketPy 1.13's `Flight` defaults (docs/physics.md §1): inclination 80°, heading
 //! 90°, `max_time` 600 s, `rtol` 1e-6, per-state `atol` (1e-3 for positions, velocities and
 //! rates, 1e-6 for the quaternion), unbounded step. The schema already applies them; an
 //! absent `atol` means the per-state default.
@@ -72,7 +72,7 @@ pub fn flight_settings(mission: &Mission, seed: u64) -> FlightSettings {
         && ab.sampling_rate > 0.0
     {
         // Deviation from RocketPy: a level written by the controller acts from the end of
-        // the solver step holding the call (physics.md §16.4); steps at most one sampling
+        // the solver step holding the call (docs/physics.md §16.4); steps at most one sampling
         // interval long keep that delay as short as RocketPy's LSODA steps make it. The
         // bound covers the free flight, where the level is in the equations (§16.1), and the
         // steps whose instants are not sampled (rail exit, the impact); the parachute

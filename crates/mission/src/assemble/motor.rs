@@ -1,5 +1,5 @@
 //! `[motor]` → [`karman_propulsion::Motor`], as RocketPy 1.13's `SolidMotor` / `GenericMotor`
-//! would build it from the same arguments (physics.md §6).
+//! would build it from the same arguments (docs/physics.md §6).
 //!
 //! - `thrust`: a number (constant, sampled over `burn_time`), an inline table (sorted by time,
 //!   stably) or a file — `.eng` (RASP, a `(0, 0)` point prepended), `.rse` (RockSim XML), or

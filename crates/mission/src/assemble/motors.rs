@@ -1,5 +1,6 @@
 //! `[[extra_motors]]`: several motors in one rocket (mission-format.md, "Several motors"), and
-//! [`ThrustCache`], the thrust data of all of a mission's motors read once.
+//! [`ThrustCache`], the thrust data of all of a mission's motors read once (docs/physics.md
+//! §24.2).
 //!
 //! The airframe flies one [`MotorProperties`]; a rocket with motors besides `[motor]` flies
 //! their sum, [`combined`], built once before the flight:
@@ -36,7 +37,7 @@
 //!   as the rocket's aft end (the nozzle on the airframe, the rail length from the nozzle to
 //!   the upper button), so the aftmost exit is the one they need. The 6-DOF equations use the
 //!   nozzle in their variable-mass terms: the lever arm `d_n` from the centre of dry mass and
-//!   the jet-damping gyration `ṁ (r_n²/4 + d_n², r_n²/4 + d_n², r_n²/2)` (physics.md §5.6,
+//! the jet-damping gyration `ṁ (r_n²/4 + d_n²/4, r_n²/4 + d_n²/4, r_n²/2)` (docs/physics.md §5.6,
 //!   Ceotto et al. 2021). With one exit for all motors these are exact when the nozzles end in
 //!   one plane (the usual air start, motor tubes flush with the aft end) up to the `r_n²`
 //!   terms, which, as for a cluster, take the total exit area with the total mass flow rather

@@ -9,11 +9,11 @@
 //!   points);
 //! - the nozzle must lie on the airframe (within one airframe length of the span of its
 //!   surfaces, rail buttons and centre of mass): `rocket.motor_position` otherwise;
-//! - the rail must be longer than the nozzle-to-upper-button distance (physics.md §8.1,
+//! - the rail must be longer than the nozzle-to-upper-button distance (docs/physics.md §8.1,
 //!   RocketPy's effective rail length): `flight.rail_length`;
 //! - winds above [`ABSURD_WIND`] (no wind on Earth comes near): the wind's key;
 //! - the rocket must leave the rail. The rail slide is integrated along the rail with the
-//!   engine's rail equation (physics.md §8.1: thrust, power-on drag in the wind, weight along
+//!   engine's rail equation (docs/physics.md §8.1: thrust, power-on drag in the wind, weight along
 //!   the rail, acceleration clipped at zero) with a fixed step up to burn-out. A rocket still
 //!   on the rail then leaves it only if its speed carries it the rest of the way against
 //!   gravity (a warning; [`coasts_off_rail`], the rule the engine ends such a flight by);

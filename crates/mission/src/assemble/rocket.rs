@@ -26,7 +26,7 @@ use crate::{Mission, MissionError};
 ///
 /// A propellant in parts (a liquid motor whose tanks are on different time grids, a hybrid
 /// motor's grain and tanks) is handed over with them ([`MotorProperties::propellant_parts`]),
-/// which the rocket sums pointwise as RocketPy does (physics.md §15.3–15.4).
+/// which the rocket sums pointwise as RocketPy does (docs/physics.md §15.3–15.4).
 #[must_use]
 pub fn motor_properties(motor: &Motor) -> MotorProperties {
     let (i11, i33) = motor.propellant_inertia();
@@ -89,15 +89,15 @@ pub fn delayed(
     })
 }
 
-/// A cluster of `count` copies of `motor`, lit together, their axes at `radius` from the
-/// rocket's axis (the `[motor]` keys `cluster_count`, `cluster_radius`): thrust, mass flow,
-/// masses and mass moments times `count`, the centres of mass and the exhaust velocity
-/// unchanged. Each inertia is the sum over the copies with the parallel-axis theorem: about
-/// the roll axis `+ m r²` per copy, about each lateral axis `+ m r²/2` (the mean over the two
-/// lateral axes of `m y²` and `m z²`, exact for three or more motors evenly on a ring;
-/// karman's rocket is axisymmetric). The propellant's terms are tabulated on the union of the
-/// nodes of its inertia and mass tables. The nozzle exit radius becomes
-/// [`cluster_exit_radius`]. One motor on the axis is returned unchanged.
+/// A cluster of `count` copies of `motor` (docs/physics.md §24.1), lit together, their axes at
+/// `radius` from the rocket's axis (the `[motor]` keys `cluster_count`, `cluster_radius`): thrust,
+/// mass flow, masses and mass moments times `count`, the centres of mass and the exhaust velocity
+/// unchanged. Each inertia is the sum over the copies with the parallel-axis theorem: about the
+/// roll axis `+ m r²` per copy, about each lateral axis `+ m r²/2` (the mean over the two lateral
+/// axes of `m y²` and `m z²`, exact for three or more motors evenly on a ring; karman's rocket is
+/// axisymmetric). The propellant's terms are tabulated on the union of the nodes of its inertia and
+/// mass tables. The nozzle exit radius becomes [`cluster_exit_radius`]. One motor on the axis is
+/// returned unchanged.
 ///
 /// # Errors
 /// [`karman_math::MathError`] for a propellant table that cannot be rebuilt.

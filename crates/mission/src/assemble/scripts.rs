@@ -1,7 +1,7 @@
 //! The scripts of a mission bound to its flight: trigger expressions and time triggers as the
 //! engine's [`TriggerCondition`]s, and the air-brake controller as a sampled process of the
 //! engine whose deployment level is control input [`AIR_BRAKES_CONTROL`] of the
-//! configuration (physics.md §16.4, §17).
+//! configuration (docs/physics.md §16.4, §17).
 
 use std::sync::Arc;
 

@@ -1,26 +1,26 @@
 //! Multi-stage rockets (mission-format.md, "Stages"): the flight as a tree of bodies.
 //!
-//! `[rocket]` with `[motor]` is the top stage; `[[stages]]` lists the stages below it, the
-//! last one at the bottom. The stack with `k` lower stages flies as one rigid vehicle: the
-//! motor of its bottom stage (the only one that can burn: every stage above ignites after the
-//! separation below it) and, as the airframe "without motor", the bottom stage's airframe
-//! lumped with the whole stack above it at rest, its motors unburnt (masses summed, centres of
-//! mass weighted, inertias moved to the common centre of mass with the parallel-axis theorem,
-//! physics.md §5.3), the surfaces of every member, the stack's own drag curves and the largest
-//! radius of the stack as reference (OpenRocket's reference diameter).
+//! `[rocket]` with `[motor]` is the top stage; `[[stages]]` lists the stages below it, the last one
+//! at the bottom. The stack with `k` lower stages flies as one rigid vehicle: the motor of its
+//! bottom stage (the only one that can burn: every stage above ignites after the separation below
+//! it) and, as the airframe "without motor", the bottom stage's airframe lumped with the whole
+//! stack above it at rest, its motors unburnt (masses summed, centres of mass weighted, inertias
+//! moved to the common centre of mass with the parallel-axis theorem, docs/physics.md §5.3, §5.5,
+//! §23.1), the surfaces of every member, the stack's own drag curves and the largest radius of the
+//! stack as reference (OpenRocket's reference diameter).
 //!
 //! When the bottom stage's separation trigger fires (a sampled process of the engine, as a
-//! parachute trigger without noise), the stack's flight ends ([`Action::SeparateStage`]) and
-//! two bodies fly on from the separation state with [`karman_dynamics::simulate_from`]: the
-//! stack above, whose motor ignites `ignition_delay` s later (its time tables moved there,
+//! parachute trigger without noise), the stack's flight ends ([`Action::SeparateStage`]) and two
+//! bodies fly on from the separation state with [`karman_dynamics::simulate_from`]: the stack
+//! above, whose motor ignites `ignition_delay` s later (its time tables moved there,
 //! [`super::rocket::delayed`]), and the spent stage with its own airframe, motor, drag and
-//! parachutes, to its own impact; one without parachutes tumbles past its apogee, or once it
-//! turns over when it is unstable (`TumbleTrigger`), a point mass under Niskanen's tumble
-//! drag (OpenRocket technical documentation §3.5, `tumble_drag_area`). Each starts at its own
-//! centre of dry mass: the state's position is moved along the rocket axis from the stack's,
-//! its velocity by `ω × r` of that offset (a rigid body). A separation at launch
-//! (`"launch + 0"`) happens on the pad: the stack above launches from the rail, and the stage
-//! stays there (it is not flown).
+//! parachutes, to its own impact; one without parachutes tumbles past its apogee, or once it turns
+//! over when it is unstable (`TumbleTrigger`), a point mass under Niskanen's tumble drag
+//! (OpenRocket technical documentation §3.5, `tumble_drag_area`; docs/physics.md §23.4). Each
+//! starts at its own centre of dry mass: the state's position is moved along the rocket axis from
+//! the stack's, its velocity by `ω × r` of that offset (a rigid body). A separation at launch
+//! (`"launch + 0"`) happens on the pad: the stack above launches from the rail, and the stage stays
+//! there (it is not flown).
 
 use std::sync::Arc;
 
@@ -405,11 +405,11 @@ const TUMBLE_BODY_CD: f64 = 0.56;
 /// planform area (Niskanen, Table 3.4); more fins take the factor of eight.
 const TUMBLE_FIN_EFFICIENCY: [f64; 8] = [0.50, 1.00, 1.50, 1.41, 1.81, 1.73, 1.90, 1.85];
 
-/// The drag area `C_D·A` (m²) of lower stage `index` tumbling to the ground: its
-/// `tumble_drag_area`, or Niskanen's estimate `1.42 Σ η(N) A_fin + 0.56 L d` over the planar
-/// fin sets of the stage (`A_fin` one fin's planform area, `η` the efficiency factor of its
-/// `N` fins) and its body tube of diameter `d` and length `L`, from its fore end (the stage
-/// above's `drag_estimate.body_length`) to its aft end (its own).
+/// The drag area `C_D·A` (m², docs/physics.md §23.4) of lower stage `index` tumbling to the ground:
+/// its `tumble_drag_area`, or Niskanen's estimate `1.42 Σ η(N) A_fin + 0.56 L d` over the planar
+/// fin sets of the stage (`A_fin` one fin's planform area, `η` the efficiency factor of its `N`
+/// fins) and its body tube of diameter `d` and length `L`, from its fore end (the stage above's
+/// `drag_estimate.body_length`) to its aft end (its own).
 ///
 /// # Errors
 /// A located error when the estimate lacks a body length, or gives no positive area.
@@ -478,7 +478,7 @@ fn condition(mission: &Mission, index: usize, burn_out: f64) -> Result<Condition
 
 /// `state` of a rigid body moved from its point at rocket coordinate `from` to the one at
 /// `to` (`csys` the rocket's coordinate sign): position along the rocket axis, velocity by
-/// `ω × r`.
+/// `ω × r` (docs/physics.md §23.3).
 fn moved(state: &State, from: f64, to: f64, csys: f64) -> State {
     let along = csys * (to - from);
     if along == 0.0 {

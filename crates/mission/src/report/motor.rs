@@ -31,7 +31,7 @@ pub struct MotorReport {
     /// Largest thrust sample, N.
     pub max_thrust_n: f64,
     /// Exhaust velocity as RocketPy reports it at burn start, m/s: `I_tot / m_p0`, except for
-    /// liquid motors, whose tanks give `−T/ṁ_tanks` (physics.md §15.5).
+    /// liquid motors, whose tanks give `−T/ṁ_tanks` (docs/physics.md §15.5).
     pub exhaust_velocity_mps: f64,
     /// Sample times, s.
     pub times_s: Vec<f64>,

@@ -4,7 +4,7 @@
 //! These structs are the *file format*, not runtime models: the `build` module turns them into
 //! the physics crates' types. Angles are in degrees here (field names end in `_deg`, the TOML
 //! keys do not); everything else is SI. Defaults that RocketPy 1.13 applies to an omitted
-//! argument (physics.md §1) are filled in by serde where they are plain values, and left as
+//! argument (docs/physics.md §1) are filled in by serde where they are plain values, and left as
 //! `Option` where "absent" selects a different model (e.g. `gravity`: Somigliana).
 //!
 //! Named tables (`[rocket.surfaces.*]`, `[rocket.parachutes.*]`, `[dispersion.vary]`) are
@@ -231,7 +231,8 @@ pub struct EnvironmentSpec {
     /// Launch date and time; must carry an offset or `Z` (weather files need it).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub date: Option<Datetime>,
-    /// Constant gravity, m/s²; absent: WGS-84 Somigliana gravity with height (physics.md §4.3).
+    /// Constant gravity, m/s²; absent: WGS-84 Somigliana gravity with height (docs/physics.md
+    /// §4.3).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub gravity: Option<f64>,
     /// Geodetic datum; absent: RocketPy's default SIRGAS2000.
@@ -249,7 +250,7 @@ pub struct EnvironmentSpec {
     pub earth_model: Option<EarthModelSpec>,
 }
 
-/// `[environment.earth_model]` (physics.md §18).
+/// `[environment.earth_model]` (docs/physics.md §18).
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct EarthModelSpec {
@@ -341,7 +342,7 @@ pub struct MotorSpec {
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub burn_time: Option<BurnTime>,
     /// `[burn_time, total_impulse]`: stretch the curve in time and scale it to this impulse
-    /// (RocketPy `reshape_thrust_curve`, physics.md §6.1).
+    /// (RocketPy `reshape_thrust_curve`, docs/physics.md §6.1).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub reshape_thrust_curve: Option<[f64; 2]>,
     /// Interpolation of the thrust curve; RocketPy default linear.
@@ -366,7 +367,7 @@ pub struct MotorSpec {
     /// Direction of the motor coordinate; RocketPy default nozzle to combustion chamber.
     #[serde(default = "default_nozzle_to_chamber")]
     pub coordinate_system: MotorCoordinateSystem,
-    /// Nozzle design ambient pressure, Pa, for the pressure thrust term (physics.md §6.3);
+    /// Nozzle design ambient pressure, Pa, for the pressure thrust term (docs/physics.md §6.3);
     /// absent: no pressure correction.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub reference_pressure: Option<f64>,
@@ -589,7 +590,7 @@ fn default_true() -> bool {
 }
 
 /// `[rocket.air_brakes]` (RocketPy `Rocket.add_air_brakes` with its controller,
-/// physics.md §16).
+/// docs/physics.md §16).
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct AirBrakesSpec {
@@ -647,7 +648,7 @@ fn default_sampling_rate() -> f64 {
     100.0
 }
 
-/// `[rocket.parachutes.<name>]` (RocketPy `Parachute`; defaults of physics.md §1).
+/// `[rocket.parachutes.<name>]` (RocketPy `Parachute`; defaults of docs/physics.md §1).
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct ParachuteSpec {
@@ -665,7 +666,7 @@ pub struct ParachuteSpec {
     /// RocketPy default (0, 0, 0).
     #[serde(default)]
     pub noise: [f64; 3],
-    /// Canopy radius, m (added mass, physics.md §8.4); absent: RocketPy's default.
+    /// Canopy radius, m (added mass, docs/physics.md §8.4); absent: RocketPy's default.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub radius: Option<f64>,
     /// Canopy height, m; absent: RocketPy's default.
@@ -696,7 +697,7 @@ fn default_max_time_step() -> f64 {
     f64::INFINITY
 }
 
-/// `[flight]` (RocketPy `Flight`; defaults of physics.md §1).
+/// `[flight]` (RocketPy `Flight`; defaults of docs/physics.md §1).
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct FlightSpec {
@@ -717,7 +718,7 @@ pub struct FlightSpec {
     /// Relative tolerance of the integrator; RocketPy default 1e-6.
     #[serde(default = "default_rtol")]
     pub rtol: f64,
-    /// Absolute tolerance; absent: RocketPy's per-state default (physics.md §10.1).
+    /// Absolute tolerance; absent: RocketPy's per-state default (docs/physics.md §10.1).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub atol: Option<Atol>,
     /// Largest integrator step, s; RocketPy default +∞ (`inf` in TOML).
@@ -725,7 +726,7 @@ pub struct FlightSpec {
     pub max_time_step: f64,
     /// `true`: sampled processes (parachute triggers, controllers) look at the solver's free
     /// steps afterwards; `false`: every sampling instant is a hard time node (RocketPy's
-    /// `time_overshoot`, physics.md §16.4); RocketPy default true.
+    /// `time_overshoot`, docs/physics.md §16.4); RocketPy default true.
     #[serde(default = "default_true")]
     pub time_overshoot: bool,
     /// The form of the 6-DOF equations: `"standard"` (default; physically consistent lever
@@ -733,7 +734,7 @@ pub struct FlightSpec {
     #[serde(default)]
     pub equations: karman_dynamics::EquationsForm,
     /// The equations of the free flight: `"6 DOF"` (default) or `"3 DOF"`, RocketPy 1.12+'s
-    /// point mass (physics.md §8.5).
+    /// point mass (docs/physics.md §8.5).
     #[serde(default)]
     pub simulation_mode: karman_dynamics::SimulationMode,
     /// The 3-DOF weathercock coefficient, 1/s (RocketPy's `PointMassRocket.weathercock_coeff`);
@@ -756,7 +757,7 @@ pub struct DispersionSpec {
 }
 
 /// A distribution of `[dispersion.vary]` (mission-format.md "Distributions"; NumPy
-/// `Generator` parameter conventions, physics.md §12.1).
+/// `Generator` parameter conventions, docs/physics.md §12.1).
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(rename_all = "lowercase")]
 pub enum Distribution {

@@ -148,7 +148,7 @@ names! {
 
 names! {
     /// `environment.datum`: the geodetic datum (all share the WGS-84 ellipsoid in RocketPy
-    /// except SAD69 and NAD83's own; see physics.md §4.6).
+    /// except SAD69 and NAD83's own; see docs/physics.md §4.6).
     pub enum Datum ("datum") {
         /// SIRGAS 2000, RocketPy's default.
         Sirgas2000 => ["SIRGAS2000"],

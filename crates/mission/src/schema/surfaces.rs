@@ -129,7 +129,7 @@ pub struct TrapezoidalFinsSpec {
     pub tip_chord: f64,
     /// Position of the root leading edge, rocket coordinates, m.
     pub position: f64,
-    /// Sweep; absent: RocketPy's default geometry when neither key is given (physics.md §7.5).
+    /// Sweep; absent: RocketPy's default geometry when neither key is given (docs/physics.md §7.5).
     pub sweep: Option<Sweep>,
     /// Cant angle, deg; default 0.
     pub cant_angle_deg: f64,

@@ -4,7 +4,7 @@ Build the ``Environment``, the motor (``SolidMotor`` or ``GenericMotor``) and th
 with its surfaces, rail buttons and parachutes as usual, then call
 ``from_rocketpy(env, rocket, rail_length=..., inclination=..., heading=...)`` with the
 arguments that would go to RocketPy's ``Flight``. The result is a :class:`karman.Mission`
-that flies the same model (physics.md follows RocketPy 1.13's conventions one to one), with
+that flies the same model (docs/physics.md follows RocketPy 1.13's conventions one to one), with
 RocketPy 1.13's form of the equations of motion (``flight.equations = "rocketpy_1_13"``).
 
 What the adapter reads (attributes of RocketPy 1.13's objects):
@@ -523,7 +523,7 @@ def _flight(kwargs: dict[str, Any], rocket: Any) -> dict[str, Any]:
     if math.isinf(out.get("max_time_step", 0.0)):
         out.pop("max_time_step")
     # RocketPy's `equations_of_motion="standard"` is the form karman calls "rocketpy_1_13"
-    # (the mass flow -T/v_e whatever the motor, physics.md §15.3): the translated objects fly
+    # (the mass flow -T/v_e whatever the motor, docs/physics.md §15.3): the translated objects fly
     # as RocketPy flies them.
     out["equations"] = "rocketpy_1_13"
     return out
