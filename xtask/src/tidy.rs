@@ -272,7 +272,11 @@ pub fn citation_errors(root: &Path) -> Result<Vec<String>> {
         let Ok(text) = std::fs::read_to_string(&file) else {
             continue;
         };
-        let shown = file.strip_prefix(root).unwrap_or(&file).display().to_string();
+        let shown = file
+            .strip_prefix(root)
+            .unwrap_or(&file)
+            .display()
+            .to_string();
         for c in citations(&text) {
             if !c.qualified {
                 errors.push(format!(
@@ -386,7 +390,10 @@ mod tests {
     #[test]
     fn citations_are_read_with_their_lists_and_ranges() {
         // The file's name is split so that this test's text is not itself a citation.
-        let (file, bare) = (format!("docs/{}.md", "physics"), format!("{}.md", "physics"));
+        let (file, bare) = (
+            format!("docs/{}.md", "physics"),
+            format!("{}.md", "physics"),
+        );
         let text = format!(
             "/// a ({file} §5.3–§5.5, §8.4 / §12.2) b\n\
              //! c {file} §15.3–15.4, §7\n\
@@ -414,7 +421,10 @@ mod tests {
         std::fs::create_dir_all(dir.join("xtask")).expect("temporary folders");
         std::fs::create_dir_all(dir.join("docs")).expect("temporary folders");
         std::fs::write(dir.join(PHYSICS), "## 4. Environment\n### 4.1 ISA\n").expect("write");
-        let (file, bare) = (format!("docs/{}.md", "physics"), format!("{}.md", "physics"));
+        let (file, bare) = (
+            format!("docs/{}.md", "physics"),
+            format!("{}.md", "physics"),
+        );
         std::fs::write(
             src.join("lib.rs"),
             format!("//! ISA ({file} §4.1), gravity ({file} §4.3).\n//! {bare} §4\n"),

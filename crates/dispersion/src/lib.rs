@@ -17,8 +17,8 @@
 //! ];
 //! let study = Study::new(42, 100, inputs, vec!["apogee_m".to_owned()]);
 //! let dir = std::env::temp_dir().join(format!("karman-doc-{}", std::process::id()));
-//! let options = RunOptions { threads: Some(2), progress: ProgressMode::Hidden,
-//! ..Default::default() }; let report = run(&study, &dir, &options, |_index, values: &[f64]| {
+//! let options = RunOptions { threads: Some(2), progress: ProgressMode::Hidden, ..Default::default() };
+//! let report = run(&study, &dir, &options, |_index, values: &[f64]| {
 //!     let (mass, drag_factor) = (values[0], values[1]);
 //!     Ok(Outcome::new(vec![Some(1000.0 / (mass * drag_factor))]))
 //! })?;

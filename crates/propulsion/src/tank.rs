@@ -29,8 +29,7 @@
 //!
 //! ```text
 //! c_l = M(h_l)/V_l,  c_g = [M(h_g) − M(h_l)]/V_g,  c = (c_l m_l + c_g m_g)/(m_l + m_g)
-//! I   = ρ_l [I_x(h_l) − V_l c_l² + V_l (c_l − c)²] + ρ_g [I_x(h_g) − I_x(h_l) − V_g c_g² + V_g
-//! (c_g − c)²]
+//! I   = ρ_l [I_x(h_l) − V_l c_l² + V_l (c_l − c)²] + ρ_g [I_x(h_g) − I_x(h_l) − V_g c_g² + V_g (c_g − c)²]
 //! ```
 //!
 //! (`c_l = bottom` where `V_l < 1e-4 V_total`, `c_g = h_l` where `V_g < 1e-4 V_total`,

@@ -203,8 +203,9 @@ impl FinAerodynamics {
     #[inline]
     #[must_use]
     pub fn single_fin_cn_alpha(&self, mach: f64) -> f64 {
-        // Diederich's form (docs/physics.md §7.5) `cla·f_d·(A_f/A)·cos Γ_c / (2 + f_d √(1 +
-        // (2/f_d)²))` with `cla = cl_α0/β` and `f_d = 2π AR / (cla cos Γ_c)`: the numerator is the
+        // Diederich's form (docs/physics.md §7.5):
+        // `cla·f_d·(A_f/A)·cos Γ_c / (2 + f_d √(1 + (2/f_d)²))`
+        // with `cla = cl_α0/β` and `f_d = 2π AR / (cla cos Γ_c)`: the numerator is the
         // constant `2π AR A_f/A` and `f_d √(1 + (2/f_d)²) = sign(f_d) √(f_d² + 4)` with
         // `f_d² ∝ β²` — one square root and one division per call, equal to rounding.
         let fd_squared = self.diederich_factor_squared * beta_squared(mach);

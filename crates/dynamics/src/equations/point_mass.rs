@@ -25,8 +25,7 @@
 //!
 //! ```text
 //! n = a × d;   ω_A = k_w |n| n/|n|   (|n| > 1e-8)
-//!              ω_A = k_w p            (|n| ≤ 1e-8 and a·d < −0.999; p the unit of a × x̂, or a ×
-//! ŷ)
+//!              ω_A = k_w p            (|n| ≤ 1e-8 and a·d < −0.999; p the unit of a × x̂, or a × ŷ)
 //!              ω_A = 0                (aligned)
 //! ė = ½ e ⊗ (0, Kᵀ ω_A)
 //! ```

@@ -37,9 +37,9 @@
 //!   as the rocket's aft end (the nozzle on the airframe, the rail length from the nozzle to
 //!   the upper button), so the aftmost exit is the one they need. The 6-DOF equations use the
 //!   nozzle in their variable-mass terms: the lever arm `d_n` from the centre of dry mass and
-//! the jet-damping gyration `ṁ (r_n²/4 + d_n²/4, r_n²/4 + d_n²/4, r_n²/2)` (docs/physics.md §5.6,
-//!   Ceotto et al. 2021). With one exit for all motors these are exact when the nozzles end in
-//!   one plane (the usual air start, motor tubes flush with the aft end) up to the `r_n²`
+//!   the jet-damping gyration `ṁ (r_n²/4 + d_n²/4, r_n²/4 + d_n²/4, r_n²/2)` (docs/physics.md
+//!   §5.6, Ceotto et al. 2021). With one exit for all motors these are exact when the nozzles
+//!   end in one plane (the usual air start, motor tubes flush with the aft end) up to the `r_n²`
 //!   terms, which, as for a cluster, take the total exit area with the total mass flow rather
 //!   than each nozzle with its own flow; those are small beside `d_n²` (a few cm² against a
 //!   lever arm of a metre or so).
