@@ -5,9 +5,8 @@
 //! heights (the ISA pressure on 100 even samples, its temperature on the 9 layer bases,
 //! Somigliana gravity on its own samples, a sounding on its levels). Between two consecutive
 //! heights of their union every table is a single piece (a cubic, or a held end value), and
-//! [`karman_math::Piece`] evaluates that piece bit for bit as its table does. An evaluation
-//! of the equations of motion then costs one search with a cursor and a few polynomial
-//! evaluations, instead of one search per grid and a generic table evaluation per quantity.
+//! [`karman_math::Piece`] evaluates that piece bit for bit as its table does, so a query is
+//! one search with a cursor and a polynomial per quantity (docs/performance.md, "Atmosphere").
 
 use karman_math::{Cursor, Extrapolation, Interpolation, Location, Piece, Table1};
 

@@ -1,16 +1,15 @@
 //! The run: every missing sample of a shard flown in parallel, rows written in index order
 //! (docs/physics.md §27.2).
 //!
-//! Workers of a local `rayon` pool claim runs of `CLAIM` consecutive sample positions from a
-//! shared counter, draw the inputs ([`crate::sampling`]), fly the samples and send their
-//! finished rows together to the calling thread, which keeps out-of-order rows in a
-//! `BTreeMap` and appends every row whose predecessors are written, flushing after each
-//! batch. (One message per sample cost a thread wake-up, a write and a condition-variable
-//! signal per flight, about a tenth of a Monte Carlo run's time; a killed run loses at most
-//! the unflushed claims, which the resume flies again.) A worker does not start a claim
-//! reaching more than `WINDOW_PER_THREAD × threads` ahead of the last written row, so memory
-//! stays bounded whatever the number of samples. Because each sample depends only on (seed,
-//! index), `samples.csv` is byte-identical for any thread count and any interruption.
+//! Workers of a local `rayon` pool claim runs of `CLAIM` consecutive sample positions from a shared
+//! counter, draw the inputs ([`crate::sampling`]), fly the samples and send their finished rows
+//! together to the calling thread, which keeps out-of-order rows in a `BTreeMap` and appends every
+//! row whose predecessors are written, flushing after each batch (docs/performance.md, "Monte Carlo
+//! runner"); a killed run loses at most the unflushed claims, which the resume flies again. A
+//! worker does not start a claim reaching more than `WINDOW_PER_THREAD × threads` ahead of the last
+//! written row, so memory stays bounded whatever the number of samples. Because each sample depends
+//! only on (seed, index), `samples.csv` is byte-identical for any thread count and any
+//! interruption.
 //!
 //! The run holds the directory's lock (`study.lock`) from before it reads anything until its
 //! last file is written: a second run on the same directory fails at once and touches nothing.

@@ -26,8 +26,8 @@
 //! reference counted: a clone copies only the sample values (and a polynomial's coefficients),
 //! and tables on the same abscissae ([`Table1::on_same_abscissae`], e.g. the mass, centre of
 //! mass and inertia of a motor on its time grid) share the abscissae and their bucket index
-//! instead of copying and rebuilding them. The values stay a vector, moved in without a copy
-//! (sharing them too made evaluation measurably slower).
+//! instead of copying and rebuilding them. The values stay a vector of the table's own, moved
+//! in without a copy (docs/performance.md, "Tables").
 
 use std::sync::Arc;
 
@@ -235,8 +235,7 @@ impl Guide {
 }
 
 /// The bucket `⌊offset·scale⌋` clamped to `[0, last]`. `as i64` saturates (NaN gives 0), which
-/// keeps the key monotone; it is cheaper than the unsigned conversion, with the same clamped
-/// result.
+/// keeps the key monotone, with the same clamped result as the unsigned conversion.
 #[inline]
 fn bucket(offset: f64, scale: f64, last: usize) -> usize {
     ((offset * scale) as i64).clamp(0, last as i64) as usize
@@ -309,8 +308,8 @@ fn validate(xs: &[f64], ys: &[f64], strict: bool) -> Result<(), MathError> {
     if xs.is_empty() {
         return Err(MathError::TooFewPoints { needed: 1, got: 0 });
     }
-    // Branch-free sweeps (vectorized) accept valid columns at a few instructions a point; the
-    // loop below finds the first offending point of the others.
+    // Folds over every point decide validity; the loop below finds the first offending point
+    // of a column that is not valid.
     let finite = xs
         .iter()
         .zip(ys)
@@ -550,7 +549,7 @@ impl Table1 {
         let k = self.guide.key(self.xs[0], x);
         let (lo, hi) = (self.guide.start[k], self.guide.start[k + 1]);
         // The count of samples below `x`: a scan of a short bucket (the usual one or two
-        // samples of evenly spread abscissae) is faster than a binary search, same count.
+        // samples of evenly spread abscissae), else a binary search; the same count.
         let below = if hi - lo <= 4 {
             let mut i = lo;
             while i < hi && self.xs[i] < x {

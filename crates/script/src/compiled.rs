@@ -1,12 +1,11 @@
 //! The controllers' common subset of Rhai compiled to a tree of Rust values, evaluated with
 //! Rhai's own semantics: the fast path of [`crate::Controller::call`].
 //!
-//! Most controllers are a few statements of floating-point arithmetic on the state, the
-//! environment queries and the air-brake level; Rhai's interpreter spends tens of thousands of
-//! instructions on a call of one (argument arrays built, functions resolved by hash, every
-//! value boxed in a `Dynamic`), more than the flight step that holds it. [`Compiled`] is the
-//! body of `controller_function` translated once, from the AST Rhai parsed and optimised, into
-//! [`Node`]s over slots, and evaluated without the interpreter.
+//! Most controllers are a few statements of floating-point arithmetic on the state, the environment
+//! queries and the air-brake level, which the interpreter would evaluate with boxed values and
+//! functions resolved by hash (docs/performance.md, "Controllers"). [`Compiled`] is the body of
+//! `controller_function` translated once, from the AST Rhai parsed and optimised, into [`Node`]s
+//! over slots, and evaluated without the interpreter.
 //!
 //! The subset: numbers, booleans and `()`; `let`/`const`, assignment and the arithmetic
 //! op-assignments to local variables and to `air_brakes.deployment_level`; `if`/`else` (also

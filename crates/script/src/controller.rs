@@ -14,23 +14,20 @@
 //!
 //! ## Compiled calls
 //!
-//! Rhai's interpreter spends tens of thousands of instructions on one call of a typical
-//! controller (arguments boxed, functions resolved by hash), more than the flight step that
-//! holds it. A script within the controllers' common subset is therefore also compiled, once,
-//! from the AST Rhai parsed and optimised, to a tree evaluated natively with Rhai's semantics:
-//! numbers, booleans, `()` and array literals; `let`/`const`, assignment and arithmetic
+//! A script within the controllers' common subset is also compiled, once (docs/performance.md,
+//! "Controllers"), from the AST Rhai parsed and optimised, to a tree evaluated natively with Rhai's
+//! semantics: numbers, booleans, `()` and array literals; `let`/`const`, assignment and arithmetic
 //! op-assignment of locals and of `air_brakes.deployment_level`; `if`/`else` (also as an
-//! expression) and `return`; the arithmetic, comparison and logical operators (floats as
-//! Rhai's checked build computes them, its relative float comparisons included); `sqrt`,
-//! `exp`, `ln`, `log`, `sin`, `cos`, `tan`, `abs`; `state[i]` and `state_history[-1][i]` at
-//! literal indices; `time`, `sampling_rate`, `global::NAME`, `motor::NAME`; the air-brake
-//! handle's properties and `drag_coefficient`; the environment's `elevation` and queries.
-//! A call the tree cannot decide with certainty (integer arithmetic, a value of an
-//! unexpected type, an index out of range) has had no effect outside it and is made again
-//! by the interpreter, which gives Rhai's result or its located error; a script outside the
-//! subset runs interpreted throughout ([`ControllerScript::interpreted_because`] says why).
-//! Without loops or script-function calls a compiled call is bounded by the tree's size, far
-//! below the operation limit.
+//! expression) and `return`; the arithmetic, comparison and logical operators (floats as Rhai's
+//! checked build computes them, its relative float comparisons included); `sqrt`, `exp`, `ln`,
+//! `log`, `sin`, `cos`, `tan`, `abs`; `state[i]` and `state_history[-1][i]` at literal indices;
+//! `time`, `sampling_rate`, `global::NAME`, `motor::NAME`; the air-brake handle's properties and
+//! `drag_coefficient`; the environment's `elevation` and queries. A call the tree cannot decide
+//! with certainty (integer arithmetic, a value of an unexpected type, an index out of range) has
+//! had no effect outside it and is made again by the interpreter, which gives Rhai's result or its
+//! located error; a script outside the subset runs interpreted throughout
+//! ([`ControllerScript::interpreted_because`] says why). Without loops or script-function calls a
+//! compiled call is bounded by the tree's size, far below the operation limit.
 
 use crate::compiled::{self, Bound, Compiled, Inputs};
 use crate::sandbox;

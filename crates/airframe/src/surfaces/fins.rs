@@ -114,7 +114,7 @@ pub struct FreeFormFinsSpec {
 }
 
 /// Aerodynamic constants of a fin set; every Mach-dependent coefficient is a closed form of
-/// these (cheap enough to evaluate per call, allocation-free).
+/// these, evaluated at each call without allocation (docs/performance.md, "Fins").
 #[derive(Debug, Clone, PartialEq)]
 pub struct FinAerodynamics {
     /// Number of fins N.
@@ -207,7 +207,7 @@ impl FinAerodynamics {
         // `cla·f_d·(A_f/A)·cos Γ_c / (2 + f_d √(1 + (2/f_d)²))`
         // with `cla = cl_α0/β` and `f_d = 2π AR / (cla cos Γ_c)`: the numerator is the
         // constant `2π AR A_f/A` and `f_d √(1 + (2/f_d)²) = sign(f_d) √(f_d² + 4)` with
-        // `f_d² ∝ β²` — one square root and one division per call, equal to rounding.
+        // `f_d² ∝ β²`, equal to the form above to rounding.
         let fd_squared = self.diederich_factor_squared * beta_squared(mach);
         self.lift_numerator / (2.0 + self.diederich_sign * (fd_squared + 4.0).sqrt())
     }

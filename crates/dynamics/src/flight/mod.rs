@@ -232,8 +232,7 @@ pub struct Flight {
     /// equations of the next phase at each phase start (a canopy inflates instantly, so the
     /// deceleration peaks there; RocketPy's LSODA stores its first point a fraction of a
     /// millisecond later, a Runge–Kutta step tens of milliseconds later). Taken from the
-    /// derivatives the integrator evaluates anyway (its FSAL stage at each stored point), so
-    /// it costs nothing extra.
+    /// derivatives the integrator evaluates anyway (its FSAL stage at each stored point).
     pub max_acceleration: f64,
     /// Integration counters.
     pub stats: IntegrationStats,

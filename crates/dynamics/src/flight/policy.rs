@@ -1,5 +1,6 @@
 //! The integrator policy: which Runge–Kutta pair flies which stretch of a phase (see
-//! [`crate::integrator`] for the measurements behind it; docs/physics.md §26.5).
+//! [`crate::integrator`] and docs/physics.md §26.5; the measurements behind it are in
+//! docs/performance.md, "Integrators").
 
 use super::PhaseKind;
 use crate::integrator::{Pair, RungeKutta};

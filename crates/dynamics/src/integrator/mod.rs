@@ -24,23 +24,19 @@
 //!   every 25 steps and after a rejection), the error estimate from the step's ends, the dense
 //!   output is the cubic Hermite interpolant of those ends (DOPRI5's form without `F₃`).
 //!
-//! Which pair where ([`crate::flight`]): DOPRI5 on the rail (steps capped), through the burn
-//! (steps end on every thrust-curve knot) and under parachutes, where a cheaper step wins,
+//! Which pair where ([`crate::flight`], docs/physics.md §26.5; the evaluation counts behind it
+//! are in docs/performance.md, "Integrators"): DOPRI5 on the rail (steps capped), through the
+//! burn (steps end on every thrust-curve knot) and under parachutes, where a cheaper step wins,
 //! until its steps are bounded by the stability of the drag relaxation (`h·2k|v| ≈ 3.3`, the
-//! step's [`RungeKutta::stiffness`] estimate, HNW II §IV.2): the descent then goes on with RKC
-//! (Calisto under its main canopy: DOPRI5 ~1.3 s steps, 4.6 evaluations per second of flight;
-//! RKC steps growing to ~24 s with 5 stages, 0.8 per second). RKC is only second order, so
-//! the transient after a canopy opens stays with DOPRI5 (RKC from the opening needed ~4× its
-//! evaluations there). ODEPACK's LSODA, which RocketPy integrates with, answers the same
-//! stiffness by switching from Adams to BDF formulas. DOP853 for the unpowered 6-DOF flight,
-//! where accuracy sets the step: the attitude quaternion of a rolling rocket turns at half the
-//! roll rate (Calisto: ~9 rad/s), and DOPRI5 needed ~410 steps (2,450 evaluations) for its 22 s
-//! coast at the default tolerances, DOP853 ~100 steps (1,200 evaluations). Where the right-hand
-//! side has kinks (linearly interpolated wind and temperature profiles: a reanalysis or a
-//! sounding) every kink rejects a long step, and DOP853 loses (Astra: 18 % more evaluations
-//! than DOPRI5): the flight hands such a phase back to DOPRI5 once its steps keep being
-//! rejected. Through the burn DOP853 lost on every validation flight (knot stops cap its
-//! steps).
+//! step's [`RungeKutta::stiffness`] estimate, HNW II §IV.2): the descent then goes on with RKC.
+//! RKC is only second order, so the transient after a canopy opens stays with DOPRI5.
+//! ODEPACK's LSODA, which RocketPy integrates with, answers the same stiffness by switching
+//! from Adams to BDF formulas. DOP853 for the unpowered 6-DOF flight, where accuracy sets the
+//! step: the attitude quaternion of a rolling rocket turns at half the roll rate. Where the
+//! right-hand side has kinks (linearly interpolated wind and temperature profiles: a
+//! reanalysis or a sounding) every kink rejects a long step and DOP853 loses: the flight hands
+//! such a phase back to DOPRI5 once its steps keep being rejected. Through the burn the knot
+//! stops cap the steps and DOP853 loses too.
 //!
 //! Both dense outputs share one form, `y₀ + θ(F₀ + (1−θ)(F₁ + θ(F₂ + (1−θ)(F₃ + θ(F₄ + (1−θ)(F₅
 //! + θF₆))))))` with `θ = (t − t₀)/h`, `F₀ = Δy` and `F₁ = h f₀ − Δy` (HNW I, §II.6 and
@@ -50,8 +46,8 @@
 //! |ŷ_i|))` (for DOP853 both embedded errors), the norm of ODEPACK's LSODA (`vmnorm`,
 //! Hindmarsh 1983; Petzold 1983), which RocketPy integrates with: the RMS norm of SciPy's `RK45`
 //! dilutes a velocity error over the thirteen components and lets steps grow past what LSODA
-//! accepts (Calisto: 16 % fewer DOPRI5 steps, but maxima sampled at the stored points drift by
-//! up to 0.16 %). The controller is `h ← h · min(10, max(0.2, 0.9 · err^(−1/(q+1))))` with the
+//! accepts, which moves the maxima sampled at the stored points (docs/performance.md,
+//! "Integrators"). The controller is `h ← h · min(10, max(0.2, 0.9 · err^(−1/(q+1))))` with the
 //! estimator order `q` (no growth right after a rejection), and the initial step comes from the
 //! algorithm of HNW I, §II.4 ("Starting step size"), as in SciPy.
 //!

@@ -244,8 +244,8 @@ where
     }
 
     /// Stage `s`: `k_s = f(t_stage, y + h Σ_j a_j k_j)` with the row `a` of its coupling
-    /// coefficients, summed stage-major (vectorised over the components, each component
-    /// summing its terms in stage order); returns the stage point.
+    /// coefficients, summed stage-major over whole state vectors (each component summing its
+    /// terms in stage order); returns the stage point.
     #[inline(always)]
     pub(super) fn stage(&mut self, s: usize, a: &[f64], h: f64, t_stage: f64) -> [f64; N] {
         let acc = combine(a, &self.k[..s]);
