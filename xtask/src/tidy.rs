@@ -207,16 +207,13 @@ pub fn citations(text: &str) -> Vec<Citation> {
             };
             if next.starts_with('§') {
                 rest = next;
-            } else if range && number(next).is_some() {
-                rest = next;
-                let (section, tail) = number(next).expect("a number");
+            } else if let Some((section, tail)) = number(next).filter(|_| range) {
+                // A range's end without `§`; a list may go on after it.
                 sections.push(section);
-                rest = tail;
-                if !rest.trim_start().starts_with([',', '/']) {
-                    break;
+                match tail.trim_start().strip_prefix([',', '/']) {
+                    Some(after) => rest = skip_gap(after),
+                    None => break,
                 }
-                let t = rest.trim_start();
-                rest = skip_gap(&t[1..]);
             } else {
                 break;
             }
