@@ -310,17 +310,13 @@ mod tests {
 
     #[test]
     fn workspace_follows_the_layering() {
-        let root = Path::new(env!("CARGO_MANIFEST_DIR"))
-            .parent()
-            .expect("workspace root");
+        let root = &crate::workspace_root();
         check_layering(root).expect("layering");
     }
 
     #[test]
     fn every_crate_of_the_workspace_is_listed() {
-        let root = Path::new(env!("CARGO_MANIFEST_DIR"))
-            .parent()
-            .expect("workspace root");
+        let root = &crate::workspace_root();
         let metadata = metadata(root).expect("cargo metadata");
         for p in metadata["packages"].as_array().expect("packages") {
             let name = p["name"].as_str().expect("name");
@@ -369,9 +365,7 @@ mod tests {
 
     #[test]
     fn every_physics_citation_names_a_section() {
-        let root = Path::new(env!("CARGO_MANIFEST_DIR"))
-            .parent()
-            .expect("workspace root");
+        let root = &crate::workspace_root();
         let bad = citation_errors(root).expect("citations read");
         assert!(bad.is_empty(), "bad citations:\n  {}", bad.join("\n  "));
     }
