@@ -12,9 +12,11 @@
 //! - `bench [FILTER]`: run the criterion benchmarks and print their medians.
 //! - `tidy`: repository rules that are not compiler checks (the crate layering of
 //!   ARCHITECTURE.md, read from `cargo metadata`; every `docs/physics.md §N.M` citation
-//!   naming a section of that file).
+//!   naming a section of that file; no circle between the sibling modules of the folders
+//!   `modules.rs` lists).
 
 mod bench;
+mod modules;
 mod python;
 mod tidy;
 mod validate;
@@ -39,7 +41,9 @@ fn run() -> Result<()> {
     let root = workspace_root();
     match args.first().map(String::as_str) {
         Some("ci") => ci(&root),
-        Some("tidy") => tidy::check_layering(&root).and_then(|()| tidy::check_citations(&root)),
+        Some("tidy") => tidy::check_layering(&root)
+            .and_then(|()| tidy::check_citations(&root))
+            .and_then(|()| modules::check_module_circles(&root)),
         Some("validate") => validate::run(&root, &args[1..]),
         Some("bench") => bench::run(&root, &args[1..]),
         _ => {
@@ -94,6 +98,7 @@ fn ci(root: &Path) -> Result<()> {
     )?;
     tidy::check_layering(root)?;
     tidy::check_citations(root)?;
+    modules::check_module_circles(root)?;
     // The API documentation builds without broken links.
     cargo_with(
         root,

@@ -11,8 +11,8 @@
 //! values never depend on them. Nothing here allocates.
 
 use crate::state::{
-    Mat3, State, Vec3, add, cross, dot, inverse, mat_t_vec, mat_vec, norm, quaternion,
-    quaternion_rate, rotation, scale, sub, tensor,
+    Mat3, State, Vec3, Vector, X, Y, add, angular_velocity, cross, derivative, dot, inverse,
+    mat_t_vec, norm, position, quaternion, quaternion_rate, rotation, scale, sub, tensor, velocity,
 };
 use karman_model::{
     Air, AtmosphereModel, BodyFlow, Configuration, Cursor, LocalFlow, MAX_CONTROLS, MassFlowLaw,
@@ -207,12 +207,13 @@ impl<'a, A: AtmosphereModel, V: VehicleModel> Equations<'a, A, V> {
         self.dry_mass
     }
 
-    /// The horizontal wind at height `z`, without a lookup when it is uniform.
+    /// The horizontal wind at time `t` and position `p` ([`AtmosphereModel::wind_at`]),
+    /// without a lookup when it is uniform.
     #[inline]
-    fn wind(&self, z: f64) -> [f64; 2] {
+    fn wind(&self, t: f64, p: Vec3) -> [f64; 2] {
         match self.uniform_wind {
             Some(w) => w,
-            None => self.atmosphere.wind(z),
+            None => self.atmosphere.wind_at(t, p),
         }
     }
 
@@ -235,13 +236,12 @@ impl<'a, A: AtmosphereModel, V: VehicleModel> Equations<'a, A, V> {
         cursors: &mut Cursors,
     ) -> Derivative {
         let (e0, e1, e2, e3) = (u[6], u[7], u[8], u[9]);
-        let z = u[2];
         let atm = self.atmosphere;
         let veh = self.vehicle;
-        let wind = self.wind(z);
+        let wind = self.wind(t, position(u));
         let free = [wind[0] - u[3], wind[1] - u[4], -u[5]];
         let speed = norm(free);
-        let air = atm.air_near(z, &mut cursors.height);
+        let air = atm.air_at(t, position(u), &mut cursors.height);
         let mach = speed / air.speed_of_sound;
         let flow = BodyFlow {
             power_on: true,
@@ -301,7 +301,7 @@ impl<'a, A: AtmosphereModel, V: VehicleModel> Equations<'a, A, V> {
         let v = [u[3], u[4], u[5]];
         let w = [u[10], u[11], u[12]];
         let rho = air.density;
-        let wind = self.wind(z);
+        let wind = self.wind(t, position(u));
         let a = air.speed_of_sound;
         let free = [wind[0] - v[0], wind[1] - v[1], -v[2]];
         let speed = norm(free);
@@ -337,7 +337,12 @@ impl<'a, A: AtmosphereModel, V: VehicleModel> Equations<'a, A, V> {
             let wb = match uniform_wind_body {
                 Some(wb) => wb,
                 None => {
-                    let wc = atm.wind(z + dot(k[2], cp));
+                    let at = [
+                        u[X] + dot(k[0], cp),
+                        u[Y] + dot(k[1], cp),
+                        z + dot(k[2], cp),
+                    ];
+                    let wc = atm.wind_at(t, at);
                     mat_t_vec(k, [wc[0], wc[1], 0.0])
                 }
             };
@@ -371,7 +376,7 @@ impl<'a, A: AtmosphereModel, V: VehicleModel> Equations<'a, A, V> {
         cursors: &mut Cursors,
     ) -> (Vec3, Vec3, f64) {
         let k = rotation(quaternion(u));
-        let air = self.atmosphere.air_near(u[2], &mut cursors.height);
+        let air = self.atmosphere.air_at(t, position(u), &mut cursors.height);
         self.loads(t, u, &k, &air, self.powered(t), configuration, cursors)
     }
 
@@ -388,10 +393,9 @@ impl<'a, A: AtmosphereModel, V: VehicleModel> Equations<'a, A, V> {
     ) -> Derivative {
         let atm = self.atmosphere;
         let veh = self.vehicle;
-        let z = u[2];
-        let v = [u[3], u[4], u[5]];
+        let v = velocity(u);
         let e = quaternion(u);
-        let w = [u[10], u[11], u[12]];
+        let w = angular_velocity(u);
         let k = rotation(e);
 
         // After burn-out c ≡ 0 and nothing changes; a finite-difference c̈ of a spline table
@@ -461,32 +465,27 @@ impl<'a, A: AtmosphereModel, V: VehicleModel> Equations<'a, A, V> {
         let r_cm_dot = [0.0, 0.0, s * c_dot];
         let r_cm_ddot = [0.0, 0.0, s * c_ddot];
 
-        let air = atm.air_near(z, &mut cursors.height);
+        let air = atm.air_at(t, position(u), &mut cursors.height);
         let (force, moment, net_thrust) =
             self.loads(t, u, &k, &air, self.powered(t), configuration, cursors);
-        let weight = mat_t_vec(&k, [0.0, 0.0, -mass * air.gravity]);
+        let weight = Vector([0.0, 0.0, -mass * air.gravity]).by_t(&k);
 
-        let t00 = scale(mass, r_cm);
+        let (w, r_cm) = (Vector(w), Vector(r_cm));
+        let (force_v, moment_v) = (Vector(force), Vector(moment));
+        let t00 = mass * r_cm;
         let (t20, t21) = if coasting {
             // The variable-mass terms t03, t04 and t05 vanish (ṁ = m̈ = ċ = c̈ = T = 0, İ = 0):
             // adding their zeros changes no value, so they are left out.
             (
-                add(add(cross(cross(w, t00), w), weight), force),
-                add(
-                    cross(mat_vec(&inertia, w), w),
-                    sub(moment, cross(weight, r_cm)),
-                ),
+                w.cross(t00).cross(w) + weight + force_v,
+                w.by(&inertia).cross(w) + (moment_v - weight.cross(r_cm)),
             )
         } else {
-            let noz_minus_r = sub(self.nozzle, r_cm);
-            let t03 = sub(scale(2.0 * mdot, noz_minus_r), scale(2.0 * mass, r_cm_dot));
-            let t04 = add(
-                sub(
-                    sub([0.0, 0.0, net_thrust], scale(mass, r_cm_ddot)),
-                    scale(2.0 * mdot, r_cm_dot),
-                ),
-                scale(mddot, noz_minus_r),
-            );
+            let (r_cm_dot, r_cm_ddot) = (Vector(r_cm_dot), Vector(r_cm_ddot));
+            let noz_minus_r = Vector(self.nozzle) - r_cm;
+            let t03 = (2.0 * mdot) * noz_minus_r - (2.0 * mass) * r_cm_dot;
+            let t04 = Vector([0.0, 0.0, net_thrust]) - mass * r_cm_ddot - (2.0 * mdot) * r_cm_dot
+                + mddot * noz_minus_r;
             let mut t05 = inertia_dot;
             for (i, row) in t05.iter_mut().enumerate() {
                 for (j, x) in row.iter_mut().enumerate() {
@@ -494,32 +493,17 @@ impl<'a, A: AtmosphereModel, V: VehicleModel> Equations<'a, A, V> {
                 }
             }
             (
-                add(
-                    add(
-                        add(cross(cross(w, t00), w), cross(w, t03)),
-                        add(t04, weight),
-                    ),
-                    force,
-                ),
-                add(
-                    add(cross(mat_vec(&inertia, w), w), mat_vec(&t05, w)),
-                    sub(moment, cross(weight, r_cm)),
-                ),
+                w.cross(t00).cross(w) + w.cross(t03) + (t04 + weight) + force_v,
+                w.by(&inertia).cross(w) + w.by(&t05) + (moment_v - weight.cross(r_cm)),
             )
         };
-        let rhs = add(t21, cross(t20, r_cm));
-        let w_dot = mat_vec(&i_cm_inv, rhs);
-        let e_dot = quaternion_rate(e, w);
-        let body_acc = sub(scale(inverse_mass, t20), cross(r_cm, w_dot));
-        let v_dot = sub(
-            mat_vec(&k, body_acc),
-            scale(2.0, cross(self.earth_rotation, v)),
-        );
+        let rhs = t21 + t20.cross(r_cm);
+        let w_dot = rhs.by(&i_cm_inv);
+        let e_dot = quaternion_rate(e, w.0);
+        let body_acc = inverse_mass * t20 - r_cm.cross(w_dot);
+        let v_dot = body_acc.by(&k) - 2.0 * Vector(self.earth_rotation).cross(Vector(v));
         Derivative {
-            u_dot: [
-                v[0], v[1], v[2], v_dot[0], v_dot[1], v_dot[2], e_dot[0], e_dot[1], e_dot[2],
-                e_dot[3], w_dot[0], w_dot[1], w_dot[2],
-            ],
+            u_dot: derivative(v, v_dot.0, e_dot, w_dot.0),
             force,
             moment,
             net_thrust,
@@ -533,17 +517,16 @@ impl<'a, A: AtmosphereModel, V: VehicleModel> Equations<'a, A, V> {
     #[must_use]
     pub fn parachute(
         &self,
-        _t: f64,
+        t: f64,
         u: &State,
         canopy: &CanopyState,
         cursors: &mut Cursors,
     ) -> Derivative {
         let atm = self.atmosphere;
-        let z = u[2];
         let v = [u[3], u[4], u[5]];
-        let air = atm.air_near(z, &mut cursors.height);
+        let air = atm.air_at(t, position(u), &mut cursors.height);
         let rho = air.density;
-        let wind = self.wind(z);
+        let wind = self.wind(t, position(u));
         let mass = self.dry_mass;
         let added = canopy.added_mass_coefficient
             * rho

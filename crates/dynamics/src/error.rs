@@ -48,4 +48,18 @@ pub enum DynamicsError {
         /// End of the step, s.
         t1: f64,
     },
+    /// Two outputs of the flight's sampled processes share a name.
+    #[error("two sampled processes publish a signal named `{name}`")]
+    DuplicateSignal {
+        /// The name.
+        name: String,
+    },
+    /// A sampled process asked for a signal or a control channel nobody provides.
+    #[error("no {kind} named `{name}` in this flight")]
+    Unconnected {
+        /// What was asked for: "signal", "control channel".
+        kind: &'static str,
+        /// Its name.
+        name: String,
+    },
 }

@@ -35,8 +35,9 @@ pub mod state;
 
 pub use error::DynamicsError;
 pub use flight::{
-    Action, DenseOutput, Flight, IntegrationStats, ParachuteEvent, PhaseKind, Probe, Record,
-    SampledProcess, SolutionPoint, StepBounds, Termination, simulate, simulate_from, simulate_with,
+    Action, Connections, DenseOutput, Event, Flight, IntegrationStats, ParachuteEvent, PhaseKind,
+    Probe, Record, SampledProcess, Signal, SignalId, Signals, SolutionPoint, StepBounds,
+    Termination, simulate, simulate_from, simulate_with, simulate_with_events,
 };
 pub use karman_model::{
     Air, AtmosphereModel, BodyFlow, Configuration, Cursor, Loads, LocalFlow, MAX_CONTROLS,

@@ -6,14 +6,129 @@
 //! quaternion (body → inertial, never renormalised in the state) and the body-frame angular
 //! velocity.
 
-/// The flight state vector (docs/physics.md §3).
+/// The flight state vector (docs/physics.md §3); its components are named by [`X`]…[`W3`].
 pub type State = [f64; 13];
+
+/// Index of the position's east component `x`, m, in a [`State`].
+pub const X: usize = 0;
+/// Index of the position's north component `y`, m.
+pub const Y: usize = 1;
+/// Index of the height `z`, m above sea level.
+pub const Z: usize = 2;
+/// Index of the velocity's east component `v_x`, m/s.
+pub const VX: usize = 3;
+/// Index of the velocity's north component `v_y`, m/s.
+pub const VY: usize = 4;
+/// Index of the vertical velocity `v_z`, m/s.
+pub const VZ: usize = 5;
+/// Index of the attitude quaternion's scalar part `e0` (`e1`…`e3` follow).
+pub const E0: usize = 6;
+/// Index of the body-frame angular velocity's first component `ω1`, rad/s (`ω2`, `ω3`
+/// follow).
+pub const W1: usize = 10;
+/// Index of the body-frame angular velocity's third component `ω3` (roll), rad/s.
+pub const W3: usize = 12;
+
+/// The position `(x, y, z)` of a state, m.
+#[inline]
+#[must_use]
+pub fn position(u: &State) -> Vec3 {
+    [u[X], u[Y], u[Z]]
+}
+
+/// The velocity `(v_x, v_y, v_z)` of a state, m/s.
+#[inline]
+#[must_use]
+pub fn velocity(u: &State) -> Vec3 {
+    [u[VX], u[VY], u[VZ]]
+}
+
+/// The body-frame angular velocity `(ω1, ω2, ω3)` of a state, rad/s.
+#[inline]
+#[must_use]
+pub fn angular_velocity(u: &State) -> Vec3 {
+    [u[W1], u[W1 + 1], u[W3]]
+}
+
+/// A state derivative from its parts: the velocity (the position's rate), the acceleration,
+/// the quaternion's rate and the angular acceleration.
+#[inline]
+#[must_use]
+pub fn derivative(v: Vec3, v_dot: Vec3, e_dot: [f64; 4], w_dot: Vec3) -> State {
+    [
+        v[0], v[1], v[2], v_dot[0], v_dot[1], v_dot[2], e_dot[0], e_dot[1], e_dot[2], e_dot[3],
+        w_dot[0], w_dot[1], w_dot[2],
+    ]
+}
 
 /// A 3-vector.
 pub type Vec3 = [f64; 3];
 
 /// A 3×3 matrix, row-major.
 pub type Mat3 = [[f64; 3]; 3];
+
+/// A 3-vector with the operators of the equations of motion: `+`, `−`, scaling by `f64`
+/// (`s * a`), [`Vector::cross`], and a matrix product ([`Vector::by`], [`Vector::by_t`]).
+/// Each operator performs exactly the floating-point operations of the function of the same
+/// name ([`add`], [`sub`], [`scale`], [`cross`], [`mat_vec`], [`mat_t_vec`]), in the same
+/// order: an expression written with them gives the same bits.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+#[repr(transparent)]
+pub struct Vector(pub Vec3);
+
+impl Vector {
+    /// Cross product `self × b`.
+    #[inline]
+    #[must_use]
+    pub fn cross(self, b: Self) -> Self {
+        Self(cross(self.0, b.0))
+    }
+
+    /// The product `M self`.
+    #[inline]
+    #[must_use]
+    pub fn by(self, m: &Mat3) -> Self {
+        Self(mat_vec(m, self.0))
+    }
+
+    /// The product `Mᵀ self`.
+    #[inline]
+    #[must_use]
+    pub fn by_t(self, m: &Mat3) -> Self {
+        Self(mat_t_vec(m, self.0))
+    }
+}
+
+impl From<Vec3> for Vector {
+    #[inline]
+    fn from(a: Vec3) -> Self {
+        Self(a)
+    }
+}
+
+impl std::ops::Add for Vector {
+    type Output = Self;
+    #[inline]
+    fn add(self, b: Self) -> Self {
+        Self(add(self.0, b.0))
+    }
+}
+
+impl std::ops::Sub for Vector {
+    type Output = Self;
+    #[inline]
+    fn sub(self, b: Self) -> Self {
+        Self(sub(self.0, b.0))
+    }
+}
+
+impl std::ops::Mul<Vector> for f64 {
+    type Output = Vector;
+    #[inline]
+    fn mul(self, a: Vector) -> Vector {
+        Vector(scale(self, a.0))
+    }
+}
 
 /// Cross product `a × b`.
 #[inline]

@@ -4,4 +4,5 @@ mod mock;
 mod point_mass;
 mod processes;
 mod robustness;
+mod seams;
 mod toy_flights;

@@ -32,11 +32,20 @@ pub trait AtmosphereModel {
     fn dynamic_viscosity(&self, z: f64) -> f64;
     /// Horizontal wind `(east, north)`, m/s.
     fn wind(&self, z: f64) -> [f64; 2];
-    /// The wind when it is the same at every height, bit for bit what
-    /// [`AtmosphereModel::wind`] returns (once): the engine then skips the per-height lookups.
-    /// `None` (the default) when it varies with height.
+    /// The wind when it is the same at every height, time and position, bit for bit what
+    /// [`AtmosphereModel::wind`] and [`AtmosphereModel::wind_at`] return (once): the engine
+    /// then skips the per-height lookups. `None` (the default) when it varies.
     fn uniform_wind(&self) -> Option<[f64; 2]> {
         None
+    }
+    /// The horizontal wind `(east, north)`, m/s, at time `t`, s, and position `position`
+    /// (`(x, y, z)`, m, in the launch frame, `z` above sea level): what the equations of
+    /// motion ask. The default is [`AtmosphereModel::wind`] at the height; a model that
+    /// varies in time or across the launch frame overrides it (and returns `None` from
+    /// [`AtmosphereModel::uniform_wind`]).
+    #[inline]
+    fn wind_at(&self, _t: f64, position: [f64; 3]) -> [f64; 2] {
+        self.wind(position[2])
     }
     /// Gravity, m/s².
     fn gravity(&self, z: f64) -> f64;
@@ -58,6 +67,14 @@ pub trait AtmosphereModel {
     #[inline]
     fn air_near(&self, z: f64, _cursor: &mut Cursor) -> Air {
         self.air(z)
+    }
+    /// The air at time `t`, s, and position `position` (`(x, y, z)`, m, launch frame), with
+    /// the height located from `cursor` as [`AtmosphereModel::air_near`] does: what the
+    /// equations of motion ask. The default is [`AtmosphereModel::air_near`] at the height;
+    /// a model that varies in time or across the launch frame overrides it.
+    #[inline]
+    fn air_at(&self, _t: f64, position: [f64; 3], cursor: &mut Cursor) -> Air {
+        self.air_near(position[2], cursor)
     }
     /// Earth rotation vector in the ENU launch frame, rad/s (once).
     fn earth_rotation_enu(&self) -> [f64; 3];

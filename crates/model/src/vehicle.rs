@@ -183,6 +183,13 @@ pub trait VehicleModel {
         configuration: &Configuration,
         cursor: &mut Cursor,
     ) -> f64;
+    /// The names of the vehicle's control channels, in the order of
+    /// [`Configuration::controls`] (at most [`crate::MAX_CONTROLS`]): channel `i` is control
+    /// input `i`. A process finds a channel by name instead of assuming an index. Default:
+    /// none declared.
+    fn control_channels(&self) -> &[&str] {
+        &[]
+    }
 }
 
 /// The static stability a flight's report reads along the trajectory (docs/physics.md §7.7). It

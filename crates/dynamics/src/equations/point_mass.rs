@@ -37,7 +37,8 @@ use karman_model::{AtmosphereModel, Configuration, VehicleModel};
 
 use super::{Cursors, Derivative, Equations};
 use crate::state::{
-    State, Vec3, cross, dot, mat_t_vec, mat_vec, norm, quaternion, quaternion_rate, rotation, scale,
+    State, Vec3, cross, dot, mat_t_vec, mat_vec, norm, position, quaternion, quaternion_rate,
+    rotation, scale,
 };
 
 /// Weathercock turn rate below which the axis counts as aligned with the wind (RocketPy).
@@ -58,7 +59,6 @@ impl<A: AtmosphereModel, V: VehicleModel> Equations<'_, A, V> {
         configuration: &Configuration,
         cursors: &mut Cursors,
     ) -> Derivative {
-        let z = u[2];
         let v = [u[3], u[4], u[5]];
         let e = quaternion(u);
         let k = rotation(e);
@@ -66,7 +66,7 @@ impl<A: AtmosphereModel, V: VehicleModel> Equations<'_, A, V> {
             Some(coast) if t >= self.burn_out => coast.mass,
             _ => self.vehicle.total_mass(t, &mut cursors.time[1]),
         };
-        let air = self.atmosphere.air_near(z, &mut cursors.height);
+        let air = self.atmosphere.air_at(t, position(u), &mut cursors.height);
         let (force, _, net_thrust) =
             self.loads(t, u, &k, &air, t < self.burn_out, configuration, cursors);
         let weight = mat_t_vec(&k, [0.0, 0.0, -mass * air.gravity]);
@@ -77,7 +77,7 @@ impl<A: AtmosphereModel, V: VehicleModel> Equations<'_, A, V> {
         ];
         let v_dot = mat_vec(&k, [total[0] / mass, total[1] / mass, total[2] / mass]);
         let e_dot = if weathercock > 0.0 {
-            let wind = self.wind(z);
+            let wind = self.wind(t, position(u));
             let free = [wind[0] - v[0], wind[1] - v[1], -v[2]];
             weathercock_rate(e, &k, free, weathercock)
         } else {

@@ -1,10 +1,9 @@
 //! Actions: what a sampled process's sample may do to the flight.
 
-use karman_model::MAX_CONTROLS;
+use karman_model::ParachuteSpec;
 
-use super::phases::{Phase, insert_phase};
-use super::run::Run;
-use super::{ParachuteEvent, PhaseKind, Termination};
+use super::log::{Log, ParachuteEvent, Termination};
+use super::schedule::{Phase, PhaseKind, Schedule};
 use crate::equations::CanopyState;
 use crate::integrator::RungeKutta;
 use crate::state::State;
@@ -43,9 +42,9 @@ pub enum Action {
         drag_area: f64,
     },
     /// Separate stage `stage`: the flight ends here with [`Termination::Separation`], and each
-    /// part goes on with [`super::simulate_from`].
+    /// part goes on with [`crate::simulate_from`].
     SeparateStage(usize),
-    /// Record `value` on the process's channel `channel` ([`super::Flight::records`]); the
+    /// Record `value` on the process's channel `channel` ([`crate::Flight::records`]); the
     /// step goes on.
     Record {
         /// The process's channel number.
@@ -55,20 +54,6 @@ pub enum Action {
     },
     /// End the flight here ([`Termination::Terminated`]).
     Terminate,
-}
-
-/// A value recorded by a sampled process ([`Action::Record`]).
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct Record {
-    /// Sample instant, s.
-    pub t: f64,
-    /// Index of the process (the vehicle's parachute triggers first, then the processes
-    /// given to the flight in their order).
-    pub process: usize,
-    /// The process's channel.
-    pub channel: usize,
-    /// The value.
-    pub value: f64,
 }
 
 /// The first action of a step's samples ([`Run::sample_processes`]).
@@ -87,21 +72,19 @@ pub(super) struct Acted {
     pub control: Option<(usize, f64)>,
 }
 
-impl Run<'_> {
-    /// Stores a recorded value.
-    pub(super) fn record(&mut self, process: usize, channel: usize, value: f64, t: f64) {
-        self.records.push(Record {
-            t,
-            process,
-            channel,
-            value,
-        });
-    }
+/// What an action acts on: the flight's schedule and log, and the vehicle's parachutes
+/// (what [`Action::DeployDevice`] deploys).
+pub(super) struct Target<'r> {
+    pub schedule: &'r mut Schedule,
+    pub log: &'r mut Log,
+    pub parachutes: &'r [ParachuteSpec],
+}
 
+impl Target<'_> {
     /// Carries out the action `acted` inside the last step of phase `index`: the step is cut
     /// at its instant (except for [`Action::SetControlAfterStep`]), and the state the next
     /// phase starts from is returned.
-    pub(super) fn act<F: FnMut(f64, &State) -> State>(
+    pub fn act<F: FnMut(f64, &State) -> State>(
         &mut self,
         integ: &mut RungeKutta<13, F>,
         acted: Acted,
@@ -122,7 +105,7 @@ impl Run<'_> {
             Some((c, value, configuration))
         }) {
             Some((c, value, configuration)) => {
-                self.set_later_controls(index, c, value);
+                self.schedule.set_later_controls(index, c, value);
                 controlled = Phase {
                     configuration,
                     ..*phase
@@ -134,11 +117,8 @@ impl Run<'_> {
         let cut = match action {
             // The step stands: the next phase starts from its end point.
             Action::SetControlAfterStep { .. } => (integ.t(), *integ.y()),
-            _ => self.cut_step(integ, phase, kind, t),
+            _ => self.log.cut_step(integ, phase.configuration, kind, t),
         };
-        if self.processes[p].is_done() {
-            self.active.retain(|&q| q != p);
-        }
         match action {
             Action::DeployDevice(device) => self.deploy(device, index, phase, kind, t),
             Action::SetControl {
@@ -147,9 +127,8 @@ impl Run<'_> {
             } => {
                 let set = |phase: &Phase| phase.configuration.with_control(control, value);
                 if let Some(configuration) = set(phase) {
-                    self.set_later_controls(index, control, value);
-                    insert_phase(
-                        &mut self.phases,
+                    self.schedule.set_later_controls(index, control, value);
+                    self.schedule.insert(
                         index + 1,
                         Phase {
                             t,
@@ -165,11 +144,10 @@ impl Run<'_> {
                 value,
             } => {
                 if let Some(configuration) = phase.configuration.with_control(control, value) {
-                    self.set_later_controls(index, control, value);
+                    self.schedule.set_later_controls(index, control, value);
                     // A phase at the step end, unless the next phase starts there anyway.
-                    if self.phases.get(index + 1).is_none_or(|next| next.t > t) {
-                        insert_phase(
-                            &mut self.phases,
+                    if self.schedule.get(index + 1).is_none_or(|next| next.t > t) {
+                        self.schedule.insert(
                             index + 1,
                             Phase {
                                 t,
@@ -183,27 +161,24 @@ impl Run<'_> {
             }
             Action::Tumble { drag_area } => self.tumble(drag_area, index, phase, t),
             Action::SeparateStage(stage) => {
-                self.separation = Some((t, stage));
+                self.log.separation = Some((t, stage));
                 self.end_flight(index, t, Termination::Separation);
             }
             Action::Terminate => self.end_flight(index, t, Termination::Terminated),
-            Action::Record { channel, value } => self.record(p, channel, value, t),
+            Action::Record { channel, value } => self.log.record(p, channel, value, t),
         }
         cut
     }
 
-    /// The phases already scheduled after phase `index` fly control `control` at `value`.
-    fn set_later_controls(&mut self, index: usize, control: usize, value: f64) {
-        for later in &mut self.phases[index + 1..] {
-            if later.kind.is_some() && control < MAX_CONTROLS {
-                later.configuration.controls[control] = value;
-            }
-        }
+    /// Ends the flight at phase `index` and `t` with `termination`.
+    pub fn end_flight(&mut self, index: usize, t: f64, termination: Termination) {
+        self.schedule.end_at(index, t);
+        self.log.termination = termination;
     }
 
     /// Starts the tumbling descent under `drag_area` at `t` (once: a later tumble is ignored).
     fn tumble(&mut self, drag_area: f64, index: usize, phase: &Phase, t: f64) {
-        if self.tumble.is_some() {
+        if self.log.tumble.is_some() {
             return;
         }
         let canopy = CanopyState {
@@ -212,8 +187,7 @@ impl Run<'_> {
             height: 0.0,
             added_mass_coefficient: 0.0,
         };
-        insert_phase(
-            &mut self.phases,
+        self.schedule.insert(
             index + 1,
             Phase {
                 t,
@@ -222,7 +196,7 @@ impl Run<'_> {
                 clear: true,
             },
         );
-        self.tumble = Some(t);
+        self.log.tumble = Some(t);
     }
 
     /// Schedules a triggered parachute: an optional lag phase with the current equations,
@@ -241,8 +215,7 @@ impl Run<'_> {
         let configuration = phase.configuration.with_deployed(device);
         let mut at = index + 1;
         if lag != 0.0 {
-            insert_phase(
-                &mut self.phases,
+            self.schedule.insert(
                 at,
                 Phase {
                     t,
@@ -253,8 +226,7 @@ impl Run<'_> {
             );
             at += 1;
         }
-        insert_phase(
-            &mut self.phases,
+        self.schedule.insert(
             at,
             Phase {
                 t: t + lag,
@@ -265,7 +237,7 @@ impl Run<'_> {
         );
         // Without lag the parachute phase starts right at the node: it must follow the current
         // phase, which the insertion above guarantees.
-        self.parachute_events.push(ParachuteEvent {
+        self.log.parachute_events.push(ParachuteEvent {
             name,
             trigger_time: t,
             inflation_time: t + lag,

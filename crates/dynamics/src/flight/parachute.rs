@@ -3,8 +3,8 @@
 
 use karman_model::{AtmosphereModel, ParachuteSpec, TriggerCondition, TriggerKind};
 
-use super::Action;
-use super::sampled::{DenseOutput, Probe, SampledProcess, StepBounds};
+use super::actions::Action;
+use super::process::{DenseOutput, Probe, SampledProcess, StepBounds};
 use crate::noise::NoiseStream;
 
 /// Resolution of the height above which a noisy height trigger is out of reach within a step,

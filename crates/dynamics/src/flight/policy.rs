@@ -2,7 +2,7 @@
 //! [`crate::integrator`] and docs/physics.md §26.5; the measurements behind it are in
 //! docs/performance.md, "Integrators").
 
-use super::PhaseKind;
+use super::schedule::PhaseKind;
 use crate::integrator::{Pair, RungeKutta};
 
 /// DOP853 gives way to DOPRI5 for the rest of a phase once more than one in this many of

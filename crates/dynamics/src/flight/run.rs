@@ -1,16 +1,18 @@
-//! The step loop: phases integrated in turn, events and sampled processes checked after
-//! every accepted step.
+//! The engine: a flight is set up ([`Run::new`]: the start, the schedule, the processes
+//! and the events), then its phases are integrated in turn ([`fly`]), the events and then
+//! the sampled processes checked after every accepted step; whatever ends a step early
+//! rolls its last point back to that instant.
 
-use karman_model::{AtmosphereModel, Configuration, ParachuteSpec, VehicleModel};
+use karman_model::{AtmosphereModel, Configuration, ParachuteSpec, VehicleModel, VehicleSetup};
 
+use super::actions::{Acted, Action, Target};
+use super::events::{Event, Events};
+use super::instants::Processes;
+use super::log::{Flight, Log, SolutionPoint};
 use super::parachute::ParachuteTrigger;
-use super::phases::Phase;
 use super::policy::Policy;
-use super::sampled::{Instants, SampledProcess};
-use super::{
-    Flight, IntegrationStats, ParachuteEvent, PhaseKind, Record, SolutionPoint, Termination,
-    acceleration, evaluate,
-};
+use super::process::{Connections, SampledProcess, Signals};
+use super::schedule::{Phase, PhaseKind, Schedule, evaluate};
 use crate::DynamicsError;
 use crate::equations::{CanopyState, Cursors, Equations};
 use crate::integrator::{RungeKutta, StepStatus, Tolerances};
@@ -23,7 +25,7 @@ use crate::state::{State, euler313_to_quaternion};
 pub(super) enum Start {
     /// At rest on the rail at `t = 0` (docs/physics.md §2.4).
     Rail,
-    /// In free flight at `t0` from `state` in `configuration` ([`super::simulate_from`]).
+    /// In free flight at `t0` from `state` in `configuration` ([`crate::simulate_from`]).
     From {
         t0: f64,
         state: State,
@@ -35,7 +37,7 @@ pub(super) enum Start {
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub(super) enum Sampling {
     /// Steps in which no process can act are passed over with bounds
-    /// ([`Run::sample_processes`]).
+    /// ([`Processes::sample`]).
     Bounded,
     /// [`Sampling::Bounded`] with the noise streams drawn at every skipped instant instead of
     /// jumping over them (the tests compare it with [`Sampling::Direct`] bit for bit).
@@ -47,47 +49,31 @@ pub(super) enum Sampling {
     Direct,
 }
 
-/// Mutable bookkeeping of a flight in progress.
-pub(super) struct Run<'a> {
-    pub points: Vec<SolutionPoint>,
-    pub phases: Vec<Phase>,
-    pub rail_exit: Option<(f64, State)>,
-    pub apogee: Option<(f64, State)>,
-    pub impact: Option<(f64, State)>,
-    pub parachute_events: Vec<ParachuteEvent>,
-    pub records: Vec<Record>,
-    pub separation: Option<(f64, usize)>,
-    pub tumble: Option<f64>,
-    pub termination: Termination,
-    /// The vehicle's parachutes (what [`super::Action::DeployDevice`] deploys).
-    pub parachutes: Vec<ParachuteSpec>,
-    /// The sampled processes: the parachute triggers, then the flight's own.
+/// What a flight flies besides the vehicle's parachute triggers: more sampled processes
+/// (sampled after the triggers at the instants they share) and user-defined events.
+#[derive(Default)]
+pub(super) struct Extras<'a> {
     pub processes: Vec<Box<dyn SampledProcess + 'a>>,
-    /// Indices of the processes still sampled, in order.
-    pub active: Vec<usize>,
-    /// The sampling instants of the last step, one range per process that samples it.
-    pub instants: Vec<Instants>,
-    /// The rocket has left the rail (sampling and the apogee and impact checks start).
-    pub off_rail: bool,
-    /// The equations of the free flight after rail exit ([`PhaseKind::free_flight`]).
-    pub free_flight: PhaseKind,
-    /// Rail travel to the upper button, m.
-    pub rail_travel: f64,
-    /// Gravity along the rail at the pad, `g sin i`, m/s² (the coast that decides whether a
-    /// rocket still on the rail at burn-out leaves it).
-    pub rail_gravity: f64,
-    pub elevation: f64,
-    pub burn_out: f64,
-    pub terminate_on_apogee: bool,
-    pub stats: IntegrationStats,
-    pub sampling: Sampling,
+    pub events: Vec<Box<dyn Event + 'a>>,
+}
+
+/// A flight in progress: the schedule of its phases, its log, its processes and their
+/// instants, its events.
+pub(super) struct Run<'a> {
+    schedule: Schedule,
+    log: Log,
+    processes: Processes<'a>,
+    events: Events<'a>,
+    /// The vehicle's parachutes (what [`crate::Action::DeployDevice`] deploys).
+    parachutes: Vec<ParachuteSpec>,
+    sampling: Sampling,
 }
 
 /// The initial attitude on the rail (docs/physics.md §2.4) and the rail travel to the upper
 /// button (§8.1, RocketPy's `effective_1rl`).
 fn rail_start(
     settings: &FlightSettings,
-    setup: &karman_model::VehicleSetup,
+    setup: &VehicleSetup,
     elevation: f64,
 ) -> Result<(State, f64), DynamicsError> {
     let csys = setup.csys;
@@ -143,27 +129,21 @@ fn resumed_kind(
         })
 }
 
-/// Flies a vehicle from `start` with the vehicle's parachute triggers and `extra` processes.
-pub(super) fn fly<'a, A: AtmosphereModel, V: VehicleModel>(
-    atmosphere: &'a A,
-    vehicle: &'a V,
+/// The start time, state, configuration, first phase and rail travel of a flight.
+fn starting_point(
     settings: &FlightSettings,
+    setup: &VehicleSetup,
+    elevation: f64,
     start: Start,
-    extra: Vec<Box<dyn SampledProcess + 'a>>,
-    sampling: Sampling,
-) -> Result<Flight, DynamicsError> {
-    settings.validate()?;
-    let eq = Equations::new(atmosphere, vehicle, settings.equations);
-    let setup = vehicle.setup();
-    let elevation = atmosphere.elevation();
-    let (t0, u0, configuration, kind0, rail_travel) = match start {
+) -> Result<(f64, State, Configuration, PhaseKind, f64), DynamicsError> {
+    match start {
         Start::Rail => {
-            let (u0, travel) = rail_start(settings, &setup, elevation)?;
+            let (u0, travel) = rail_start(settings, setup, elevation)?;
             let configuration = Configuration {
                 controls: setup.initial_controls,
                 ..Configuration::default()
             };
-            (0.0, u0, configuration, PhaseKind::Rail, travel)
+            Ok((0.0, u0, configuration, PhaseKind::Rail, travel))
         }
         Start::From {
             t0,
@@ -183,111 +163,257 @@ pub(super) fn fly<'a, A: AtmosphereModel, V: VehicleModel>(
                 &configuration,
                 PhaseKind::free_flight(settings),
             );
-            (t0, state, configuration, kind, f64::NAN)
+            Ok((t0, state, configuration, kind, f64::NAN))
         }
-    };
-
-    let mut processes: Vec<Box<dyn SampledProcess + 'a>> = Vec::new();
-    for (i, spec) in setup.parachutes.iter().enumerate() {
-        let stream = NoiseStream::new(spec.noise, settings.noise_seed, i as u64);
-        #[cfg(test)]
-        let stream = if sampling == Sampling::BoundedStepwise {
-            stream.stepwise()
-        } else {
-            stream
-        };
-        processes.push(Box::new(ParachuteTrigger::new(
-            atmosphere,
-            i,
-            spec,
-            stream,
-            settings.trigger_band,
-        )));
     }
-    let parachutes = setup.parachutes.len();
-    processes.extend(extra);
-    let active = (0..processes.len())
-        .filter(|&i| processes[i].rate() > 0.0 && !(i < parachutes && configuration.is_deployed(i)))
-        .collect();
-    let mut run = Run {
-        points: vec![SolutionPoint {
-            t: t0,
-            state: u0,
-            phase: kind0,
-            configuration,
-        }],
-        phases: vec![
-            Phase {
-                t: t0,
-                kind: Some(kind0),
-                configuration,
-                clear: false,
-            },
-            Phase::end(settings.max_time),
-        ],
-        rail_exit: None,
-        apogee: None,
-        impact: None,
-        parachute_events: Vec::new(),
-        records: Vec::new(),
-        separation: None,
-        tumble: None,
-        termination: Termination::MaxTime,
-        parachutes: setup.parachutes,
-        processes,
-        active,
-        instants: Vec::new(),
-        off_rail: kind0 != PhaseKind::Rail,
-        free_flight: PhaseKind::free_flight(settings),
-        rail_travel,
-        rail_gravity: atmosphere.gravity(elevation) * settings.inclination_deg.to_radians().sin(),
-        elevation,
-        burn_out: setup.burn_out,
-        terminate_on_apogee: settings.terminate_on_apogee,
-        stats: IntegrationStats::default(),
-        sampling,
-    };
+}
 
-    // Steps end on the knots of the thrust curve during the burn and at burn-out: the
-    // right-hand side has a kink at every knot (linear interpolation) and a jump at burn-out
-    // (thrust and power-on drag stop). An embedded Runge–Kutta error estimate resolves those
-    // poorly (RocketPy's LSODA, with its max-norm and many short steps, absorbs them); with
-    // the steps stopped there the default tolerances give converged apogees.
-    let knots: Vec<f64> = if settings.stop_at_thrust_knots {
-        let (b0, b1) = (setup.burn_start, setup.burn_out);
-        let mut k: Vec<f64> = setup
-            .thrust_knots
-            .iter()
-            .copied()
-            .filter(|&x| b0 < x && x < b1)
-            .collect();
-        k.push(b1);
-        k
+/// The steps stop on the knots of the thrust curve inside the burn and at burn-out (when
+/// [`FlightSettings::stop_at_thrust_knots`]): the right-hand side has a kink at every knot
+/// (linear interpolation) and a jump at burn-out (thrust and power-on drag stop). An
+/// embedded Runge–Kutta error estimate resolves those poorly (RocketPy's LSODA, with its
+/// max-norm and many short steps, absorbs them); with the steps stopped there the default
+/// tolerances give converged apogees.
+fn step_stops(settings: &FlightSettings, setup: &VehicleSetup) -> Vec<f64> {
+    if !settings.stop_at_thrust_knots {
+        return Vec::new();
+    }
+    let (b0, b1) = (setup.burn_start, setup.burn_out);
+    let mut k: Vec<f64> = setup
+        .thrust_knots
+        .iter()
+        .copied()
+        .filter(|&x| b0 < x && x < b1)
+        .collect();
+    k.push(b1);
+    k
+}
+
+/// The largest step of a phase of `kind`.
+fn max_step(settings: &FlightSettings, kind: PhaseKind) -> f64 {
+    if kind == PhaseKind::Rail {
+        settings
+            .max_time_step
+            .min(settings.rail_max_time_step)
+            .min(settings.control_max_time_step)
+    } else if kind.reads_controls() {
+        settings.max_time_step.min(settings.control_max_time_step)
     } else {
-        Vec::new()
-    };
-    let burn_out = setup.burn_out;
-    let mut t = t0;
-    let mut y = u0;
-    let mut index = 0;
-    let mut max_acceleration: f64 = 0.0;
-    // Cursors of the evaluations made outside the integrators (values never depend on them).
-    let mut cursors = Cursors::default();
-    let eq = &eq;
-    while index + 1 < run.phases.len() {
-        let phase = run.phases[index];
-        let Some(kind) = phase.kind else { break };
-        let t_bound = run.phases[index + 1].t;
-        let max_step = if kind == PhaseKind::Rail {
-            settings
-                .max_time_step
-                .min(settings.rail_max_time_step)
-                .min(settings.control_max_time_step)
-        } else if kind.reads_controls() {
-            settings.max_time_step.min(settings.control_max_time_step)
-        } else {
-            settings.max_time_step
+        settings.max_time_step
+    }
+}
+
+impl<'a> Run<'a> {
+    /// Sets a flight up from `start`: the vehicle's parachute triggers then `extra`'s
+    /// processes, connected to each other's signals and the vehicle's control channels.
+    fn new<A: AtmosphereModel, V: VehicleModel>(
+        atmosphere: &'a A,
+        vehicle: &'a V,
+        settings: &FlightSettings,
+        start: Start,
+        extra: Extras<'a>,
+        sampling: Sampling,
+    ) -> Result<Self, DynamicsError> {
+        let setup = vehicle.setup();
+        let elevation = atmosphere.elevation();
+        let (t0, u0, configuration, kind0, rail_travel) =
+            starting_point(settings, &setup, elevation, start)?;
+        let mut list: Vec<Box<dyn SampledProcess + 'a>> = Vec::new();
+        for (i, spec) in setup.parachutes.iter().enumerate() {
+            let stream = NoiseStream::new(spec.noise, settings.noise_seed, i as u64);
+            #[cfg(test)]
+            let stream = if sampling == Sampling::BoundedStepwise {
+                stream.stepwise()
+            } else {
+                stream
+            };
+            list.push(Box::new(ParachuteTrigger::new(
+                atmosphere,
+                i,
+                spec,
+                stream,
+                settings.trigger_band,
+            )));
+        }
+        let parachutes = setup.parachutes.len();
+        list.extend(extra.processes);
+        let signals = Signals::new(list.iter().map(|p| p.outputs()))?;
+        let connections = Connections {
+            signals: &signals,
+            controls: vehicle.control_channels(),
         };
+        for process in &mut list {
+            process.connect(&connections)?;
+        }
+        let active = (0..list.len())
+            .filter(|&i| list[i].rate() > 0.0 && !(i < parachutes && configuration.is_deployed(i)))
+            .collect();
+        let first = Phase {
+            t: t0,
+            kind: Some(kind0),
+            configuration,
+            clear: false,
+        };
+        let events = Events {
+            off_rail: kind0 != PhaseKind::Rail,
+            free_flight: PhaseKind::free_flight(settings),
+            rail_travel,
+            rail_gravity: atmosphere.gravity(elevation)
+                * settings.inclination_deg.to_radians().sin(),
+            elevation,
+            burn_out: setup.burn_out,
+            terminate_on_apogee: settings.terminate_on_apogee,
+            first_record: list.len(),
+            custom: extra.events.into_iter().map(|e| (e, false)).collect(),
+        };
+        Ok(Self {
+            schedule: Schedule::new(first, settings.max_time),
+            log: Log::new(SolutionPoint {
+                t: t0,
+                state: u0,
+                phase: kind0,
+                configuration,
+            }),
+            processes: Processes {
+                list,
+                active,
+                instants: Vec::new(),
+                signals,
+            },
+            events,
+            parachutes: setup.parachutes,
+            sampling,
+        })
+    }
+
+    /// The target of the actions: the schedule, the log and the parachutes.
+    fn target(&mut self) -> Target<'_> {
+        Target {
+            schedule: &mut self.schedule,
+            log: &mut self.log,
+            parachutes: &self.parachutes,
+        }
+    }
+
+    /// After an accepted step of phase `index`: the events, then the user events, then the
+    /// sampled processes, and what acted; the state the next phase starts from when the
+    /// step was cut (or the phase ends there).
+    fn after_step<F: FnMut(f64, &State) -> State>(
+        &mut self,
+        integ: &mut RungeKutta<13, F>,
+        index: usize,
+        phase: &Phase,
+        kind: PhaseKind,
+    ) -> Result<Option<(f64, State)>, DynamicsError> {
+        let mut target = Target {
+            schedule: &mut self.schedule,
+            log: &mut self.log,
+            parachutes: &self.parachutes,
+        };
+        if let Some(event) = self.events.check(&mut target, integ, index, phase, kind)? {
+            return Ok(Some(event));
+        }
+        if let Some(acted) = self.events.check_custom(integ) {
+            if let Action::Record { channel, value } = acted.action {
+                self.log.record(acted.process, channel, value, acted.t);
+            } else {
+                return Ok(Some(self.act(integ, acted, index, phase, kind)));
+            }
+        }
+        // A rocket on the rail has not flown: its vertical speed is ≥ 0 up to round-off
+        // (which could otherwise fire an apogee trigger), so only the processes that ask for
+        // it (controllers) are sampled on the rail.
+        let rail = kind == PhaseKind::Rail;
+        let log = &mut self.log;
+        let acted = match self.sampling {
+            Sampling::Bounded => self.processes.sample(integ, phase, rail, log),
+            #[cfg(test)]
+            Sampling::BoundedStepwise => self.processes.sample(integ, phase, rail, log),
+            #[cfg(test)]
+            Sampling::Direct if rail => None,
+            #[cfg(test)]
+            Sampling::Direct => self.processes.sample_every_instant(integ, phase, log),
+        };
+        Ok(acted.map(|acted| self.act(integ, acted, index, phase, kind)))
+    }
+
+    /// Carries out a sampled process's (or an event's) action.
+    fn act<F: FnMut(f64, &State) -> State>(
+        &mut self,
+        integ: &mut RungeKutta<13, F>,
+        acted: Acted,
+        index: usize,
+        phase: &Phase,
+        kind: PhaseKind,
+    ) -> (f64, State) {
+        let cut = self.target().act(integ, acted, index, phase, kind);
+        if acted.process < self.processes.list.len() {
+            self.processes.retire_if_done(acted.process);
+        }
+        cut
+    }
+}
+
+/// Flies a vehicle from `start` with the vehicle's parachute triggers and `extra`'s
+/// processes and events: the setup ([`Run::new`]), then the phases in turn.
+pub(super) fn fly<'a, A: AtmosphereModel, V: VehicleModel>(
+    atmosphere: &'a A,
+    vehicle: &'a V,
+    settings: &FlightSettings,
+    start: Start,
+    extra: Extras<'a>,
+    sampling: Sampling,
+) -> Result<Flight, DynamicsError> {
+    settings.validate()?;
+    let eq = Equations::new(atmosphere, vehicle, settings.equations);
+    let mut run = Run::new(atmosphere, vehicle, settings, start, extra, sampling)?;
+    let stops = step_stops(settings, &vehicle.setup());
+    let first = run.log.points[0];
+    let (mut t, mut y) = (first.t, first.state);
+    let mut index = 0;
+    while index + 1 < run.schedule.len() {
+        let phase = *run.schedule.get(index).expect("index is in the schedule");
+        let Some(kind) = phase.kind else { break };
+        (t, y) = run.fly_phase(&eq, settings, &stops, index, &phase, kind, (t, y))?;
+        index += 1;
+    }
+    let log = run.log;
+    Ok(Flight {
+        points: log.points,
+        rail_exit: log.rail_exit,
+        apogee: log.apogee,
+        impact: log.impact,
+        parachute_events: log.parachute_events,
+        records: log.records,
+        separation: log.separation,
+        tumble: log.tumble,
+        termination: log.termination,
+        t_final: t,
+        burn_out: run.events.burn_out,
+        elevation: run.events.elevation,
+        noise_seed: settings.noise_seed,
+        equations: settings.equations,
+        max_acceleration: log.max_acceleration,
+        stats: log.stats,
+    })
+}
+
+impl Run<'_> {
+    /// Integrates phase `index` from `(t, y)` to the next phase's start (or to the event or
+    /// action that ends it) and returns where it ended.
+    #[allow(clippy::too_many_arguments)]
+    fn fly_phase<A: AtmosphereModel, V: VehicleModel>(
+        &mut self,
+        eq: &Equations<'_, A, V>,
+        settings: &FlightSettings,
+        stops: &[f64],
+        index: usize,
+        phase: &Phase,
+        kind: PhaseKind,
+        (mut t, mut y): (f64, State),
+    ) -> Result<(f64, State), DynamicsError> {
+        let t_bound = self.schedule.get(index + 1).map_or(f64::INFINITY, |p| p.t);
+        let max_step = max_step(settings, kind);
         // Whether the steps are bounded by `control_max_time_step` (in a descent, from the
         // step that reaches the ground on).
         let mut bounded = max_step <= settings.control_max_time_step;
@@ -303,18 +429,18 @@ pub(super) fn fly<'a, A: AtmosphereModel, V: VehicleModel>(
         let rhs = move |tt: f64, uu: &State| {
             evaluate(eq, &kind, &configuration, tt, uu, &mut rhs_cursors).u_dot
         };
-        let (mut policy, pair) = Policy::new(kind, t, burn_out);
+        let (mut policy, pair) = Policy::new(kind, t, self.events.burn_out);
         let mut integ = RungeKutta::new(pair, rhs, t, y, t_bound, tol)?;
-        run.stats.phases += 1;
+        self.log.stats.phases += 1;
         // The phase's equations at its first point (the last point of the previous phase).
-        max_acceleration = max_acceleration.max(acceleration(integ.f()));
+        self.log.acceleration(integ.f());
         loop {
             if let Some(pair) = policy.switch(&integ, t, t_bound) {
-                run.stats.add(&integ);
+                self.log.stats.add(&integ);
                 integ = RungeKutta::new(pair, integ.into_rhs(), t, y, t_bound, tol)?;
             }
             integ.set_stop(
-                knots
+                stops
                     .iter()
                     .copied()
                     .find(|&k| k > t)
@@ -326,11 +452,11 @@ pub(super) fn fly<'a, A: AtmosphereModel, V: VehicleModel>(
             // ground is integrated again with bounded steps, so that the instants the last
             // step of the flight leaves unsampled are as few as in the bounded phases.
             if !bounded
-                && run.off_rail
-                && integ.y()[2] < run.elevation
+                && self.events.off_rail
+                && integ.y()[2] < self.events.elevation
                 && integ.last_step() > settings.control_max_time_step
             {
-                run.stats.add(&integ);
+                self.log.stats.add(&integ);
                 tol.max_step = max_step.min(settings.control_max_time_step);
                 let pair = integ.pair();
                 integ = RungeKutta::new(pair, integ.into_rhs(), t, y, t_bound, tol)?;
@@ -340,65 +466,28 @@ pub(super) fn fly<'a, A: AtmosphereModel, V: VehicleModel>(
             policy.accepted(&integ);
             t = integ.t();
             y = *integ.y();
-            run.points.push(SolutionPoint {
+            self.log.points.push(SolutionPoint {
                 t,
                 state: y,
                 phase: kind,
                 configuration,
             });
-            let outcome = match run.check_events(&mut integ, index, &phase, kind)? {
-                Some(event) => Some(event),
-                None => {
-                    // A rocket on the rail has not flown: its vertical speed is ≥ 0 up to
-                    // round-off (which could otherwise fire an apogee trigger), so only the
-                    // processes that ask for it (controllers) are sampled on the rail.
-                    let rail = kind == PhaseKind::Rail;
-                    let acted = match run.sampling {
-                        Sampling::Bounded => run.sample_processes(&mut integ, &phase, rail),
-                        #[cfg(test)]
-                        Sampling::BoundedStepwise => run.sample_processes(&mut integ, &phase, rail),
-                        #[cfg(test)]
-                        Sampling::Direct if rail => None,
-                        #[cfg(test)]
-                        Sampling::Direct => run.sample_every_instant(&mut integ, &phase),
-                    };
-                    acted.map(|acted| run.act(&mut integ, acted, index, &phase, kind))
-                }
-            };
-            if let Some((t_event, y_event)) = outcome {
+            if let Some((t_event, y_event)) = self.after_step(&mut integ, index, phase, kind)? {
                 // The step's end point was replaced by the event's.
+                let mut cursors = Cursors::default();
                 let u_dot = evaluate(eq, &kind, &configuration, t_event, &y_event, &mut cursors);
-                max_acceleration = max_acceleration.max(acceleration(&u_dot.u_dot));
+                self.log.acceleration(&u_dot.u_dot);
                 t = t_event;
                 y = y_event;
                 break;
             }
             // The FSAL stage is the derivative at the stored end point.
-            max_acceleration = max_acceleration.max(acceleration(integ.f()));
+            self.log.acceleration(integ.f());
             if status == StepStatus::Finished {
                 break;
             }
         }
-        run.stats.add(&integ);
-        index += 1;
+        self.log.stats.add(&integ);
+        Ok((t, y))
     }
-
-    Ok(Flight {
-        points: run.points,
-        rail_exit: run.rail_exit,
-        apogee: run.apogee,
-        impact: run.impact,
-        parachute_events: run.parachute_events,
-        records: run.records,
-        separation: run.separation,
-        tumble: run.tumble,
-        termination: run.termination,
-        t_final: t,
-        burn_out,
-        elevation,
-        noise_seed: settings.noise_seed,
-        equations: settings.equations,
-        max_acceleration,
-        stats: run.stats,
-    })
 }

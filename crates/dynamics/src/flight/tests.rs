@@ -4,16 +4,18 @@
 use karman_model::{ParachuteSpec, TriggerKind};
 
 use super::actions::Acted;
-use super::phases::Phase;
-use super::run::{Run, Sampling, Start, fly};
-use super::sampled::{Probe, node_key};
-use super::{Flight, IntegrationStats, acceleration, evaluate};
+use super::instants::{Processes, node_key};
+use super::log::{Log, acceleration};
+use super::process::Probe;
+use super::run::{Extras, Sampling, Start, fly};
+use super::schedule::Phase;
+use super::{Flight, IntegrationStats, evaluate};
 use crate::equations::{Cursors, Equations};
 use crate::integrator::RungeKutta;
 use crate::settings::FlightSettings;
 use crate::state::State;
 
-impl Run<'_> {
+impl Processes<'_> {
     /// The reference the bounded sampling must agree with: every instant of every active
     /// process collected into a node list, sorted, grouped by key and evaluated in order
     /// ([`super::SampledProcess::sample_directly`], every noisy stream drawn at each of its
@@ -22,16 +24,16 @@ impl Run<'_> {
         &mut self,
         integ: &mut RungeKutta<13, F>,
         phase: &Phase,
+        log: &mut Log,
     ) -> Option<Acted> {
         if self.active.is_empty() {
             return None;
         }
-        let n = self.points.len();
-        let (t_start, t_end) = (self.points[n - 2].t, self.points[n - 1].t);
+        let (t_start, t_end) = log.last_step();
         let (k_start, k_end) = (node_key(t_start), node_key(t_end));
         let mut nodes: Vec<(f64, usize)> = Vec::new();
         for &p in &self.active {
-            let interval = 1.0 / self.processes[p].rate();
+            let interval = 1.0 / self.list[p].rate();
             let j0 = (t_start / interval).floor() as i64 - 1;
             let j1 = (t_end / interval).ceil() as i64 + 1;
             for j in j0..=j1 {
@@ -60,8 +62,9 @@ impl Run<'_> {
                 .iter()
                 .find(|m| node_key(m.0) == key)
                 .map_or(t, |m| m.0);
-            let mut probe = Probe::new(t_node, integ);
-            if let Some(action) = self.processes[p].sample_directly(&mut probe) {
+            let mut probe = Probe::new(t_node, integ, &mut self.signals);
+            probe.sampling(p);
+            if let Some(action) = self.list[p].sample_directly(&mut probe) {
                 return Some(Acted {
                     process: p,
                     action,
@@ -120,7 +123,7 @@ fn fly_with(parachutes: Vec<ParachuteSpec>, seed: u64, sampling: Sampling) -> Fl
         &rocket(parachutes),
         &settings,
         Start::Rail,
-        Vec::new(),
+        Extras::default(),
         sampling,
     )
     .expect("flies")

@@ -97,4 +97,34 @@ where
         let inner = r[0][i] + theta1 * inner;
         y0 + theta * inner
     }
+
+    /// Component `i` of the time derivative of [`RungeKutta::dense`] at `t`: the Horner
+    /// nest of [`RungeKutta::dense_component`] differentiated level by level in `θ`
+    /// (`d/dθ` of `a + s(θ) p(θ)` is `s′ p + s p′`, with `s = θ` or `1 − θ`), divided by
+    /// `h`. At the step's ends it equals the right-hand side there (`f₀`, `f₁`) up to
+    /// round-off: `F₀ + F₁ = h f₀` and `F₀ − F₁ − F₂ = h f₁` for both pairs.
+    #[inline]
+    pub fn dense_derivative_component(&mut self, t: f64, i: usize) -> f64 {
+        let h = self.h_last;
+        if h <= 0.0 {
+            return self.f[i];
+        }
+        let theta = (t - self.t_old) / h;
+        let theta1 = 1.0 - theta;
+        let pair = self.pair;
+        let r = self.dense_rows();
+        // (value, d/dθ) of each level, innermost first.
+        let (p, dp) = match pair {
+            Pair::Dopri5 | Pair::Rkc2 => (r[3][i], 0.0),
+            Pair::Dop853 => {
+                let (p, dp) = (r[5][i] + theta * r[6][i], r[6][i]);
+                let (p, dp) = (r[4][i] + theta1 * p, -p + theta1 * dp);
+                (r[3][i] + theta * p, p + theta * dp)
+            }
+        };
+        let (p, dp) = (r[2][i] + theta1 * p, -p + theta1 * dp);
+        let (p, dp) = (r[1][i] + theta * p, p + theta * dp);
+        let (p, dp) = (r[0][i] + theta1 * p, -p + theta1 * dp);
+        (p + theta * dp) / h
+    }
 }

@@ -118,6 +118,57 @@ fn harmonic_oscillator_dense_output_is_accurate() {
 }
 
 #[test]
+fn dense_derivative_is_the_slope_of_the_dense_output() {
+    // y'' = −y: the interpolant's slope equals the right-hand side at both step ends, the
+    // central difference of the dense output inside, and cos/−sin to the tolerance level.
+    for pair in PAIRS {
+        let f = |_t: f64, y: &[f64; 2]| [y[1], -y[0]];
+        let mut rk = RungeKutta::new(pair, f, 0.0, [0.0, 1.0], 6.0, tol(1e-8, 1e-10)).unwrap();
+        let mut worst: f64 = 0.0;
+        loop {
+            let status = rk.step().unwrap();
+            let (t0, t1, h) = (rk.t_old(), rk.t(), rk.last_step());
+            let (f0, f1) = (*rk.f_old(), *rk.f());
+            for i in 0..2 {
+                let (d0, d1) = (
+                    rk.dense_derivative_component(t0, i),
+                    rk.dense_derivative_component(t1, i),
+                );
+                assert!(
+                    (d0 - f0[i]).abs() < 1e-12,
+                    "{pair:?} start: {d0} vs {}",
+                    f0[i]
+                );
+                assert!(
+                    (d1 - f1[i]).abs() < 1e-12,
+                    "{pair:?} end: {d1} vs {}",
+                    f1[i]
+                );
+            }
+            for k in 1..4 {
+                let t = t0 + h * f64::from(k) / 4.0;
+                // The difference's truncation error is O(dt²), its round-off O(ε/dt).
+                let dt = 1e-3 * h;
+                let bound = 1e-7 + 1e-14 / dt;
+                let slope = [0, 1].map(|i| rk.dense_derivative_component(t, i));
+                for (i, s) in slope.iter().enumerate() {
+                    let fd = (rk.dense_component(t + dt, i) - rk.dense_component(t - dt, i))
+                        / (2.0 * dt);
+                    assert!((s - fd).abs() < bound, "{pair:?} at {t}: {s} vs {fd}");
+                }
+                worst = worst
+                    .max((slope[0] - t.cos()).abs())
+                    .max((slope[1] + t.sin()).abs());
+            }
+            if status == StepStatus::Finished {
+                break;
+            }
+        }
+        assert!(worst < 1e-4, "{pair:?}: derivative error {worst}");
+    }
+}
+
+#[test]
 fn dop853_dense_output_costs_three_evaluations_once_per_step() {
     let f = |_t: f64, y: &[f64; 2]| [y[1], -y[0]];
     let mut rk = RungeKutta::new(Pair::Dop853, f, 0.0, [0.0, 1.0], 10.0, tol(1e-8, 1e-10)).unwrap();
