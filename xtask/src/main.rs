@@ -67,11 +67,41 @@ fn cargo(root: &Path, args: &[&str]) -> Result<()> {
     cargo_with(root, args, &[])
 }
 
+/// A command for a child process of xtask, without the variables `cargo run` set for xtask
+/// itself: its manifest and package figures describe the xtask crate, not the child's, and a
+/// child cargo that inherited them would see a changed environment in every build script that
+/// watches one (`CARGO_MANIFEST_DIR`), rebuilding what a plain `cargo build` had built.
+/// `CARGO` (the path of the cargo that runs us) is kept.
+pub(crate) fn child_command(program: impl AsRef<std::ffi::OsStr>) -> Command {
+    let mut command = Command::new(program);
+    for (key, _) in std::env::vars_os() {
+        let key = key.to_string_lossy();
+        if is_cargo_run_variable(&key) {
+            command.env_remove(key.as_ref());
+        }
+    }
+    command
+}
+
+/// Whether `key` is one of the variables cargo sets for the binary it runs (the cargo book,
+/// "Environment variables Cargo sets for crates").
+fn is_cargo_run_variable(key: &str) -> bool {
+    key.starts_with("CARGO_PKG_")
+        || matches!(
+            key,
+            "CARGO_MANIFEST_DIR"
+                | "CARGO_MANIFEST_PATH"
+                | "CARGO_CRATE_NAME"
+                | "CARGO_BIN_NAME"
+                | "CARGO_PRIMARY_PACKAGE"
+        )
+}
+
 /// [`cargo`] with extra environment variables.
 fn cargo_with(root: &Path, args: &[&str], envs: &[(&str, &str)]) -> Result<()> {
     let cargo = std::env::var("CARGO").unwrap_or_else(|_| "cargo".to_owned());
     eprintln!("xtask: cargo {}", args.join(" "));
-    let status = Command::new(&cargo)
+    let status = child_command(&cargo)
         .args(args)
         .envs(envs.iter().copied())
         .current_dir(root)
@@ -83,44 +113,114 @@ fn cargo_with(root: &Path, args: &[&str], envs: &[(&str, &str)]) -> Result<()> {
     Ok(())
 }
 
+/// One step of `ci`: its name and what it runs.
+type Step<'a> = (&'static str, Box<dyn Fn() -> Result<()> + 'a>);
+
+/// Everything CI checks, step by step: each step is named when it starts and timed when it
+/// ends; a failed step does not stop the later ones (a formatting slip should not hide a
+/// failing test), and the run ends with one verdict line and fails if any step failed.
 fn ci(root: &Path) -> Result<()> {
-    cargo(root, &["fmt", "--all", "--", "--check"])?;
-    cargo(
-        root,
-        &[
-            "clippy",
-            "--workspace",
-            "--all-targets",
-            "--",
-            "-D",
-            "warnings",
-        ],
-    )?;
-    tidy::check_layering(root)?;
-    tidy::check_citations(root)?;
-    modules::check_module_circles(root)?;
-    // The API documentation builds without broken links.
-    cargo_with(
-        root,
-        &["doc", "--workspace", "--no-deps"],
-        &[("RUSTDOCFLAGS", "-D warnings")],
-    )?;
     // Property tests explore random cases when developers run `cargo test`; CI replays a
     // fixed seed (unless one is given) so that a landing never depends on the draw.
     let seed = std::env::var("PROPTEST_RNG_SEED").unwrap_or_else(|_| "20261123".to_owned());
-    cargo_with(
-        root,
-        &["test", "--workspace"],
-        &[("PROPTEST_RNG_SEED", &seed)],
-    )?;
-    // The network feature (`fetch`, on by default in the binary, so the workspace build above
-    // compiled and tested it) is tested against loopback servers only.
-    python::test_package(root)?;
-    // The release validation run; with `CI` set an unavailable folder fails (as the tests do).
-    match karman_validation::locate() {
-        Ok(_) => validate::run(root, &[])?,
-        Err(e) if karman_validation::in_ci() => bail!("{e} (CI is set: the validation must run)"),
-        Err(e) => eprintln!("xtask: validation skipped: {e}"),
+    let steps: Vec<Step> = vec![
+        (
+            "format",
+            Box::new(|| cargo(root, &["fmt", "--all", "--", "--check"])),
+        ),
+        (
+            "clippy",
+            Box::new(|| {
+                cargo(
+                    root,
+                    &[
+                        "clippy",
+                        "--workspace",
+                        "--all-targets",
+                        "--",
+                        "-D",
+                        "warnings",
+                    ],
+                )
+            }),
+        ),
+        (
+            "tidy",
+            Box::new(|| {
+                tidy::check_layering(root)?;
+                tidy::check_citations(root)?;
+                modules::check_module_circles(root)
+            }),
+        ),
+        // The API documentation builds without broken links.
+        (
+            "docs",
+            Box::new(|| {
+                cargo_with(
+                    root,
+                    &["doc", "--workspace", "--no-deps"],
+                    &[("RUSTDOCFLAGS", "-D warnings")],
+                )
+            }),
+        ),
+        // The network feature (`fetch`, on by default in the binary, so the workspace build
+        // compiles and tests it) is tested against loopback servers only.
+        (
+            "tests",
+            Box::new(|| {
+                cargo_with(
+                    root,
+                    &["test", "--workspace"],
+                    &[("PROPTEST_RNG_SEED", &seed)],
+                )
+            }),
+        ),
+        ("python", Box::new(|| python::test_package(root))),
+        // The release validation run; with `CI` set an unavailable folder fails (as the
+        // tests do).
+        (
+            "validation",
+            Box::new(|| match karman_validation::locate() {
+                Ok(_) => validate::run(root, &[]),
+                Err(e) if karman_validation::in_ci() => {
+                    bail!("{e} (CI is set: the validation must run)")
+                }
+                Err(e) => {
+                    eprintln!("xtask: validation skipped: {e}");
+                    Ok(())
+                }
+            }),
+        ),
+    ];
+    let started = std::time::Instant::now();
+    let total = steps.len();
+    let mut failed = Vec::new();
+    for (i, (name, step)) in steps.iter().enumerate() {
+        eprintln!("xtask ci: [{}/{total}] {name} ...", i + 1);
+        let t = std::time::Instant::now();
+        let result = step();
+        let secs = t.elapsed().as_secs_f64();
+        match result {
+            Ok(()) => eprintln!("xtask ci: [{}/{total}] {name} passed in {secs:.0} s", i + 1),
+            Err(e) => {
+                eprintln!(
+                    "xtask ci: [{}/{total}] {name} FAILED in {secs:.0} s: {e:#}",
+                    i + 1
+                );
+                failed.push(*name);
+            }
+        }
     }
-    Ok(())
+    let verdict = format!(
+        "{} passed, {} failed in {:.0} s",
+        total - failed.len(),
+        failed.len(),
+        started.elapsed().as_secs_f64()
+    );
+    if failed.is_empty() {
+        eprintln!("xtask ci: {verdict}");
+        Ok(())
+    } else {
+        bail!("{verdict} (failed: {})", failed.join(", "))
+    }
 }

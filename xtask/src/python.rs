@@ -5,7 +5,6 @@
 
 use std::ffi::OsStr;
 use std::path::Path;
-use std::process::Command;
 use std::time::Instant;
 
 use anyhow::{Context, Result, bail};
@@ -18,7 +17,7 @@ const REQUIREMENTS: &[&str] = &["maturin>=1.9.4,<2", "pytest", "numpy", "rocketp
 /// Runs `program args...` in `root`, failing on a non-zero exit.
 fn run(root: &Path, program: &Path, args: &[&str], envs: &[(&str, &OsStr)]) -> Result<()> {
     eprintln!("xtask: {} {}", program.display(), args.join(" "));
-    let status = Command::new(program)
+    let status = crate::child_command(program)
         .args(args)
         .envs(envs.iter().copied())
         .current_dir(root)

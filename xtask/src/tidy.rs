@@ -3,7 +3,6 @@
 
 use std::collections::BTreeSet;
 use std::path::{Path, PathBuf};
-use std::process::Command;
 
 use anyhow::{Context, Result, bail};
 
@@ -83,7 +82,7 @@ pub fn violations(edges: &BTreeSet<(String, String)>) -> Vec<String> {
 /// `cargo metadata --no-deps` of the workspace at `root`, as JSON.
 fn metadata(root: &Path) -> Result<serde_json::Value> {
     let cargo = std::env::var("CARGO").unwrap_or_else(|_| "cargo".to_owned());
-    let out = Command::new(cargo)
+    let out = crate::child_command(cargo)
         .args([
             "metadata",
             "--format-version",
