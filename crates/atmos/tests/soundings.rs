@@ -7,8 +7,7 @@ use karman_math::PhysicalConstants;
 
 #[test]
 fn jokioinen_sounding_builds_an_environment() {
-    let Some(shared) = shared_dir() else {
-        println!("jokioinen_sounding_builds_an_environment: skipped (no shared data)");
+    let Some(shared) = shared_dir("jokioinen_sounding_builds_an_environment") else {
         return;
     };
     let path = shared.join("data/weather/wyoming_02963_2006-04-10T12Z.txt");

@@ -143,13 +143,24 @@ fn sounding_and_bad_sounding_through_the_mission() {
     let Some(dir) = crate::common::validation_dir() else {
         return;
     };
-    // The sounding is part of the project's shared data beside the repository, not of it.
-    let wyoming = PathBuf::from(env!("CARGO_MANIFEST_DIR"))
-        .join("../../../shared/data/weather/wyoming_02963_2006-04-10T12Z.txt");
-    if !wyoming.is_file() {
-        println!("sounding_and_bad_sounding_through_the_mission: skipped, no {wyoming:?}");
-        return;
-    }
+    // A sounding in the University of Wyoming's text layout, written by the test (three
+    // mandatory levels; the 850 hPa one is the level asserted below).
+    let wyoming =
+        std::env::temp_dir().join(format!("karman-sounding-{}-02963.txt", std::process::id()));
+    let rows = [
+        "02963 Synthetic Observations at 12Z 10 Apr 2006",
+        "",
+        "-----------------------------------------------------------------------------",
+        "   PRES   HGHT   TEMP   DWPT   RELH   MIXR   DRCT   SKNT   THTA   THTE   THTV",
+        "    hPa     m      C      C      %    g/kg    deg   knot     K      K      K",
+        "-----------------------------------------------------------------------------",
+        "  992.0    103    1.6    0.8     94   4.11    240      5  275.4  286.7  276.1",
+        "  850.0   1325   -6.5  -10.0     76   2.11    280      3  279.3  285.5  279.7",
+        "  700.0   2813  -17.5  -24.5     54   0.76    290     13  283.1  285.5  283.2",
+        "  500.0   5240  -36.9  -42.9     54   0.17    245      9  288.0  288.6  288.0",
+        "",
+    ];
+    std::fs::write(&wyoming, rows.join("\n")).expect("temporary sounding written");
     let file = format!(
         "environment.atmosphere.file={:?}",
         wyoming.display().to_string()
@@ -187,4 +198,5 @@ fn sounding_and_bad_sounding_through_the_mission() {
         chain.contains("environment.atmosphere") && chain.contains("mission.toml"),
         "{chain}"
     );
+    let _ = std::fs::remove_file(&wyoming);
 }
