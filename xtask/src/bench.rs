@@ -19,7 +19,7 @@ pub fn run(root: &Path, args: &[String]) -> Result<()> {
     // File times have a coarse resolution on some systems: a second of slack.
     let started = std::time::SystemTime::now() - std::time::Duration::from_secs(1);
     crate::cargo(root, &cargo_args)?;
-    let dir = root.join("target/criterion");
+    let dir = crate::target_dir(root).join("criterion");
     let mut found = Vec::new();
     collect(&dir, &mut found)?;
     found.retain(|path| {

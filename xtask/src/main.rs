@@ -62,6 +62,14 @@ fn workspace_root() -> PathBuf {
         .map_or_else(|| PathBuf::from("."), Path::to_path_buf)
 }
 
+/// Cargo's target directory: `CARGO_TARGET_DIR` when set (relative to `root`), else
+/// `root/target`.
+fn target_dir(root: &Path) -> PathBuf {
+    std::env::var_os("CARGO_TARGET_DIR")
+        .filter(|d| !d.is_empty())
+        .map_or_else(|| root.join("target"), |d| root.join(d))
+}
+
 /// Runs `cargo` with `args` in `root`, failing on a non-zero exit.
 fn cargo(root: &Path, args: &[&str]) -> Result<()> {
     cargo_with(root, args, &[])

@@ -36,7 +36,7 @@ fn run(root: &Path, program: &Path, args: &[&str], envs: &[(&str, &OsStr)]) -> R
 /// Builds the package into a fresh `target/venv` and runs its pytest suite.
 pub fn test_package(root: &Path) -> Result<()> {
     let started = Instant::now();
-    let venv = root.join("target").join("venv");
+    let venv = crate::target_dir(root).join("venv");
     let python3 = std::env::var_os("PYTHON").unwrap_or_else(|| "python3".into());
     run(
         root,
@@ -87,7 +87,7 @@ pub fn test_package(root: &Path) -> Result<()> {
         &["build", "--quiet", "--package", "karman"],
         &[],
     )?;
-    let cli = root.join("target").join("debug").join("karman");
+    let cli = crate::target_dir(root).join("debug").join("karman");
     run(
         root,
         &python,

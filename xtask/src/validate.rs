@@ -127,8 +127,8 @@ pub fn run(root: &Path, args: &[String]) -> Result<()> {
     };
     let folder = karman_validation::open(&data)?;
     crate::cargo(root, &["build", "--release", "--package", "karman"])?;
-    let exe = root.join("target/release/karman");
-    let out = root.join("target/validation");
+    let exe = crate::target_dir(root).join("release/karman");
+    let out = crate::target_dir(root).join("validation");
     std::fs::create_dir_all(&out)?;
     let mut flights = Vec::new();
     for flight in &folder.flights {
@@ -176,7 +176,7 @@ pub fn run(root: &Path, args: &[String]) -> Result<()> {
 fn run_openrocket(root: &Path, dir: &Path) -> Result<()> {
     let (report, failures) = openrocket_report(dir)?;
     print!("{report}");
-    let out = root.join("target/validation");
+    let out = crate::target_dir(root).join("validation");
     std::fs::create_dir_all(&out)?;
     write_atomic(&out.join("openrocket.md"), report.as_bytes())?;
     eprintln!(

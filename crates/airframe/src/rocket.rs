@@ -112,6 +112,11 @@ pub struct Rocket {
     air_brakes: Option<AirBrakes>,
 }
 
+/// How far a fin root may run past the nozzle exit before it is worth a warning, as a
+/// fraction of the root chord (rounding in a hand-written mission; a fraction, so that the
+/// rule holds in any unit system).
+const FIN_OVERHANG_ALLOWED: f64 = 0.01;
+
 impl Rocket {
     /// Builds the rocket with `motor` at `inputs.motor_position`, inputs in SI.
     ///
@@ -250,7 +255,8 @@ impl Rocket {
         Ok(rocket)
     }
 
-    /// Warns about surfaces outside the body or wider than the rocket radius.
+    /// Warns about surfaces outside the body, overhanging its tail or wider than the rocket
+    /// radius.
     fn check_layout(&mut self) {
         let csys = self.csys;
         let cdm = self.mass.cdm;
@@ -283,6 +289,17 @@ impl Rocket {
                     s.name,
                     nozzle - front
                 ));
+            } else if let Geometry::Fins { root_chord, .. } = s.geometry {
+                // The root is attached to the body: a root running past the tail (the nozzle
+                // exit, the aftmost point of the airframe) is a fin hanging in the air.
+                let overhang = nozzle - (front - root_chord);
+                if overhang > FIN_OVERHANG_ALLOWED * root_chord {
+                    self.warnings.push(format!(
+                        "{}: the fin root runs {overhang:.4} m past the tail (the nozzle exit), \
+                         where there is no body to hold it",
+                        s.name
+                    ));
+                }
             }
             let widest = match s.geometry {
                 Geometry::Fins { body_radius, .. } | Geometry::TubeFins { body_radius, .. } => {

@@ -157,6 +157,22 @@ fn surfaces_outside_the_body_are_warnings() {
         "{:?}",
         r.warnings()
     );
+    // Fins whose 0.1 m root starts 0.02 m ahead of the nozzle exit hang 0.08 m past the tail.
+    let nozzle = Rocket::new(inputs(vec![nose(1.0)]), small_motor())
+        .expect("flyable")
+        .nozzle_position();
+    let r = Rocket::new(
+        inputs(vec![nose(1.0), fins(nozzle + 0.02, 0.08, 0.05)]),
+        small_motor(),
+    )
+    .expect("flyable");
+    assert!(
+        r.warnings()
+            .iter()
+            .any(|w| w.contains("fin root runs 0.0800 m past the tail")),
+        "{:?}",
+        r.warnings()
+    );
     let mut wide = nose(1.0);
     if let SurfaceSpec::Nose(n) = &mut wide.spec {
         n.base_radius = Some(0.08);

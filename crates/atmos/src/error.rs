@@ -68,11 +68,12 @@ pub enum AtmosError {
         message: String,
     },
     /// A download failed or returned something unusable (feature `fetch`).
-    #[error("{service}: request {request} failed: {message}")]
+    #[error("{service}: {message} (request: {request})")]
     Download {
         /// The service ("Open-Meteo", "GFS (THREDDS NCSS)", "University of Wyoming").
         service: String,
-        /// The request: the address with its query.
+        /// The request: the address with its query, shortened to 240 characters for a
+        /// one-line message.
         request: String,
         /// What went wrong (timeout, HTTP status, a body cut short or in another format).
         message: String,

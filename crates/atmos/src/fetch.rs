@@ -209,9 +209,10 @@ impl Fetcher {
             .build()
             .map(|r| r.url().to_string())
             .unwrap_or_else(|_| url.clone());
+        let shown = shorten(&full, REQUEST_SHOWN);
         let fail = |message: String| AtmosError::Download {
             service: service.title().into(),
-            request: full.clone(),
+            request: shown.clone(),
             message,
         };
         let seconds = self.timeout.as_secs_f64();
@@ -219,11 +220,11 @@ impl Fetcher {
             if e.is_timeout() {
                 format!("no complete answer within {seconds} s (timeout)")
             } else if e.is_connect() {
-                format!("cannot connect: {}", error_chain(e))
+                format!("cannot connect: {}", cause_chain(e))
             } else if reading || e.is_body() || e.is_decode() {
-                format!("the answer was cut short: {}", error_chain(e))
+                format!("the answer was cut short: {}", cause_chain(e))
             } else {
-                error_chain(e)
+                cause_chain(e)
             }
         };
         let response = self
@@ -413,6 +414,28 @@ fn reason(body: &[u8]) -> Option<String> {
 }
 
 /// An error with its sources, `a: b: c`.
+/// How much of a request's address an error message shows: an Open-Meteo query naming every
+/// pressure level runs to kilobytes, and the message is one line a person reads.
+const REQUEST_SHOWN: usize = 240;
+
+/// `text` cut to `limit` characters, an ellipsis marking the cut.
+fn shorten(text: &str, limit: usize) -> String {
+    match text.char_indices().nth(limit) {
+        Some((at, _)) => format!("{}…", &text[..at]),
+        None => text.to_owned(),
+    }
+}
+
+/// The causes of a transport error, innermost last, without the top error's own text
+/// (reqwest's names the address, which the message gives once, after the cause); the top
+/// text when there is no cause.
+fn cause_chain(e: &reqwest::Error) -> String {
+    match std::error::Error::source(e) {
+        Some(source) => error_chain(source),
+        None => e.to_string(),
+    }
+}
+
 fn error_chain(e: &dyn std::error::Error) -> String {
     let mut text = e.to_string();
     let mut source = e.source();

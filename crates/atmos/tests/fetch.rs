@@ -313,6 +313,27 @@ fn failure(service: Service, mode: Mode, body: Vec<u8>) -> String {
     text
 }
 
+/// Offline (nothing listens at the address): one line, the cause first, the address once.
+#[test]
+fn an_unreachable_service_is_one_line_with_the_cause_first() {
+    let listener = std::net::TcpListener::bind("127.0.0.1:0").expect("a free port");
+    let base = format!("http://{}", listener.local_addr().expect("address"));
+    drop(listener);
+    let e = fetcher(&base)
+        .fetch(&request(Service::OpenMeteo, launch(Service::OpenMeteo)))
+        .expect_err("nothing listens");
+    let text = e.to_string();
+    assert!(!text.contains('\n'), "{text}");
+    assert_eq!(text.matches(&base).count(), 1, "{text}");
+    let cause = text.find("cannot connect").expect("the cause is named");
+    assert!(cause < text.find(&base).expect("the request"), "{text}");
+    assert!(
+        text.chars().count() < 600,
+        "{} characters: {text}",
+        text.len()
+    );
+}
+
 #[test]
 fn failures_name_the_service_and_the_request() {
     for (service, _) in Service::ALL.map(|(n, s)| (s, n)) {

@@ -112,3 +112,37 @@ fn malformed_set_is_a_usage_error() {
     assert_eq!(output.status.code(), Some(2), "{text}");
     assert!(text.contains("expected PATH=VALUE"), "{text}");
 }
+
+/// A radius typed in millimetres (28.5 m) and fins hanging 0.1 m past the tail: flyable, so
+/// `check` passes, with a warning naming the key or the surface.
+#[test]
+fn check_warns_on_implausible_sizes_and_overhanging_fins() {
+    let example = example();
+    let mission = example.to_str().expect("UTF-8 path");
+    let output = karman(&["check", mission, "--set", "rocket.radius=28.5"]);
+    let text = stderr(&output);
+    assert!(
+        text.contains("`rocket.radius`: 28.5 m is outside the range"),
+        "{text}"
+    );
+    assert_eq!(output.status.code(), Some(0), "{text}");
+    let output = karman(&["check", mission]);
+    assert!(
+        !stderr(&output).contains("past the tail"),
+        "{}",
+        stderr(&output)
+    );
+    // The example's fins (0.15 m root) moved from 1.42 m to 1.55 m from the nose tip end
+    // 0.10 m behind its tail at 1.60 m.
+    let output = karman(&[
+        "check",
+        mission,
+        "--set",
+        "rocket.surfaces.fins.position=1.55",
+    ]);
+    let text = stderr(&output);
+    assert!(
+        text.contains("fins: the fin root runs 0.1000 m past the tail"),
+        "{text}"
+    );
+}

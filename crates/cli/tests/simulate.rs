@@ -253,6 +253,24 @@ fn two_stage_arg() -> String {
         .to_string()
 }
 
+/// The table a person reads: figures to 0.1 m, 0.01 s, 0.1 m/s, 0.01 calibre and 1 Pa, no
+/// solver line; `--verbose` adds it.
+#[test]
+fn the_summary_table_rounds_to_meaningful_figures() {
+    let output = karman(&["simulate", &example_arg()]);
+    assert!(output.status.success(), "{}", stderr(&output));
+    let text = String::from_utf8(output.stdout).expect("utf-8");
+    assert!(!text.contains("Integration:"), "{text}");
+    insta::assert_snapshot!("example_report", text);
+    let output = karman(&["simulate", &example_arg(), "--verbose"]);
+    assert!(output.status.success(), "{}", stderr(&output));
+    let text = String::from_utf8(output.stdout).expect("utf-8");
+    assert!(
+        text.contains("Integration: ") && text.contains("right-hand-side evaluations"),
+        "{text}"
+    );
+}
+
 #[test]
 fn a_two_stage_flight_reports_both_bodies_and_one_timeline() {
     let output = karman(&["simulate", &two_stage_arg()]);

@@ -343,6 +343,16 @@ impl Flight {
     }
 }
 
+/// Decimals a person reads for a figure of `unit`: 0.1 m, 0.01 s, 0.1 m/s, 0.01 calibre, 1 Pa
+/// (full precision stays in the JSON summary).
+fn decimals(unit: &str) -> usize {
+    match unit {
+        "m" | "m/s" | "m/s²" => 1,
+        "Pa" => 0,
+        _ => 2,
+    }
+}
+
 /// Writes one aligned `label  value unit` row; `None` prints as `—`.
 fn row(
     f: &mut std::fmt::Formatter<'_>,
@@ -351,8 +361,12 @@ fn row(
     unit: &str,
 ) -> std::fmt::Result {
     match value {
-        Some(v) => writeln!(f, "  {label:<32}{v:>14.4} {unit}"),
-        None => writeln!(f, "  {label:<32}{:>14} {unit}", "—"),
+        Some(v) => writeln!(
+            f,
+            "  {label:<32}{v:>12.prec$} {unit}",
+            prec = decimals(unit)
+        ),
+        None => writeln!(f, "  {label:<32}{:>12} {unit}", "—"),
     }
 }
 
@@ -408,8 +422,16 @@ impl std::fmt::Display for Summary {
         row(f, "impact y (north)", self.impact_y_m, "m")?;
         row(f, "impact velocity", self.impact_velocity_mps, "m/s")?;
         writeln!(f, "Events")?;
+        // The label column widens for long event names (parachute names are the user's).
+        let width = self
+            .events
+            .iter()
+            .map(|e| e.name.chars().count() + 2)
+            .max()
+            .unwrap_or(0)
+            .max(32);
         for e in &self.events {
-            writeln!(f, "  {:<32}{:>14.4} s", e.name, e.time_s)?;
+            writeln!(f, "  {:<width$}{:>12.2} s", e.name, e.time_s)?;
         }
         Ok(())
     }

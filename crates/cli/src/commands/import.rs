@@ -22,7 +22,12 @@ pub struct ImportArgs {
     #[arg(long = "motor", value_name = "FILE|DIR")]
     pub motors: Vec<PathBuf>,
     /// Where to write the mission.
-    #[arg(short = 'o', long = "output", value_name = "MISSION.toml")]
+    #[arg(
+        short = 'o',
+        long = "out",
+        alias = "output",
+        value_name = "MISSION.toml"
+    )]
     pub output: PathBuf,
 }
 

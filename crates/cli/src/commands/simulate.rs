@@ -1,7 +1,8 @@
 //! `karman simulate MISSION [--json] [--out DIR]`: fly a mission once.
 //!
 //! Warnings about the mission (physical sanity, odd data files) go to stderr. Without `--json`
-//! a readable summary (RocketPy's `flight.info()`); with `--json` the summary object of the
+//! a readable summary (RocketPy's `flight.info()`, figures rounded to what is meaningful;
+//! `--verbose` adds the integrator's work); with `--json` the summary object of the
 //! mission contract with the warnings under `warnings` (and, with air brakes, the controller's
 //! record under `controller`). `--out DIR` writes `summary.json`, `trajectory.csv` (every
 //! post-processed series, units in the header), `controller.json` (with air brakes: the level
@@ -45,6 +46,9 @@ pub struct SimulateArgs {
     /// Seed of the parachute-trigger pressure noise (recorded in summary.json).
     #[arg(long, default_value_t = 0)]
     pub seed: u64,
+    /// Also print the integrator's work (steps, rejections, evaluations, phases).
+    #[arg(long, short)]
+    pub verbose: bool,
 }
 
 /// Flies the mission and prints or writes the results.
@@ -68,16 +72,18 @@ pub fn run(args: &SimulateArgs) -> Result<()> {
     } else {
         writeln!(out, "{summary}")?;
         let stats = run.flight.stats;
-        writeln!(
-            out,
-            "Integration: {} steps ({} rejected, {} Runge–Kutta–Chebyshev), {} right-hand-side \
+        if args.verbose {
+            writeln!(
+                out,
+                "Integration: {} steps ({} rejected, {} Runge–Kutta–Chebyshev), {} right-hand-side \
              evaluations, {} phases",
-            stats.steps,
-            stats.rejected_steps,
-            stats.chebyshev_steps,
-            stats.evaluations,
-            stats.phases
-        )?;
+                stats.steps,
+                stats.rejected_steps,
+                stats.chebyshev_steps,
+                stats.evaluations,
+                stats.phases
+            )?;
+        }
     }
     if let Some(dir) = &args.out {
         write_outputs(

@@ -22,7 +22,8 @@
 //!   rail", blamed on `motor.thrust` (or on the wind when the thrust alone would lift it).
 //!
 //! Warnings (flyable, but a range-safety officer would ask): the rocket's own
-//! ([`karman_airframe::Rocket::warnings`]), the thrust file's, no fins, a negative static
+//! ([`karman_airframe::Rocket::warnings`]: surfaces outside the body or overhanging the tail),
+//! a radius outside [`PLAUSIBLE_RADIUS`], the thrust file's, no fins, a negative static
 //! margin at any time of the powered flight (RocketPy 1.13 warns as well), a thrust-to-weight
 //! ratio below 1 at rail exit, pressure rising with height, weather-data heights that are not
 //! monotonic through the levels, strong winds.
@@ -146,11 +147,29 @@ pub(crate) fn checked_models(
         warnings.extend(data.warnings.iter().map(|w| format!("`motor.thrust`: {w}")));
     }
     warnings.extend(rocket.warnings().iter().map(|w| format!("`rocket`: {w}")));
+    check_size(&rocket, &mut warnings);
     check_atmosphere(mission, environment, &mut warnings)?;
     check_layout(mission, &rocket, &settings)?;
     check_rail(mission, environment, &rocket, &settings, &mut warnings)?;
     check_stability(&rocket, &mut warnings);
     Ok((motor, rocket, settings, warnings))
+}
+
+/// Radii of the rockets karman is for, m: from a 10 mm minimum-diameter model to a 1 m
+/// sounding rocket (Black Brant's is 0.44 m in diameter, VSB-30's 0.56 m). A radius outside
+/// is flown, with a warning: it is usually a diameter, or a length in millimetres.
+pub const PLAUSIBLE_RADIUS: [f64; 2] = [0.005, 0.5];
+
+/// Warns about a rocket radius outside [`PLAUSIBLE_RADIUS`], naming `rocket.radius`.
+fn check_size(rocket: &Rocket, warnings: &mut Vec<String>) {
+    let [low, high] = PLAUSIBLE_RADIUS;
+    let radius = rocket.radius();
+    if !(low..=high).contains(&radius) {
+        warnings.push(format!(
+            "`rocket.radius`: {radius} m is outside the range of hobby and sounding rockets \
+             ({low} m to {high} m); is it a diameter, or in millimetres?"
+        ));
+    }
 }
 
 /// A launch check that failed, as a plain message (the key goes to [`Mission::model_error`]).
