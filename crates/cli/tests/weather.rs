@@ -400,6 +400,20 @@ fn service_failures_are_clear_errors() {
         "{}",
         stderr(&output)
     );
+    // The station goes with Wyoming: each misuse says which way round.
+    let wyoming = [
+        "weather", "fetch", "--source", "wyoming", "--lat", &lat, "--lon", &lon,
+    ];
+    let message = failure(&[&wyoming[..], &["--date", DATE, "-o", text(&out)]].concat());
+    assert!(
+        message.contains("--source wyoming needs --station ID"),
+        "{message}"
+    );
+    let message = failure(&[&args[..], &["--station", "02963"]].concat());
+    assert!(
+        message.contains("--station 02963 is for --source wyoming only"),
+        "{message}"
+    );
     // Missions read offline: a missing file is a plain error that suggests nothing remote.
     let m = mission(
         "offline",

@@ -360,13 +360,14 @@ fn row(
     value: Option<f64>,
     unit: &str,
 ) -> std::fmt::Result {
+    let gap = if unit.is_empty() { "" } else { " " };
     match value {
         Some(v) => writeln!(
             f,
-            "  {label:<32}{v:>12.prec$} {unit}",
+            "  {label:<32}{v:>12.prec$}{gap}{unit}",
             prec = decimals(unit)
         ),
-        None => writeln!(f, "  {label:<32}{:>12} {unit}", "—"),
+        None => writeln!(f, "  {label:<32}{:>12}{gap}{unit}", "—"),
     }
 }
 

@@ -218,8 +218,16 @@ fn fetch(args: &FetchArgs) -> Result<()> {
     if args.ensemble && service != Service::OpenMeteo {
         bail!("--ensemble is for --source open-meteo");
     }
-    if args.station.is_some() != (service == Service::Wyoming) {
-        bail!("--station goes with --source wyoming, and only with it");
+    match (&args.station, service == Service::Wyoming) {
+        (None, true) => bail!(
+            "--source wyoming needs --station ID (the sounding station: a WMO number such as \
+             72476, or an ICAO id)"
+        ),
+        (Some(station), false) => bail!(
+            "--station {station} is for --source wyoming only (the other sources answer for \
+             --lat and --lon)"
+        ),
+        _ => {}
     }
     let request = Request {
         service,
