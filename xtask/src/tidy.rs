@@ -30,7 +30,8 @@ pub const ALLOWED: &[(&str, &[&str])] = &[
             "karman-script",
         ],
     ),
-    ("karman", &["karman-mission"]),
+    ("karman-flightlog", &["karman-math"]),
+    ("karman", &["karman-mission", "karman-flightlog"]),
     ("karman-python", &["karman-mission"]),
     ("karman-validation", &[]),
     (

@@ -5,6 +5,7 @@ mod common;
 mod corpus;
 mod import;
 mod inspect;
+mod log;
 mod montecarlo;
 mod simulate;
 mod sweep;

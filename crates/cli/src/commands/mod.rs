@@ -3,6 +3,7 @@
 mod check;
 mod import;
 mod inspect;
+mod log;
 mod merge;
 mod montecarlo;
 mod simulate;
@@ -35,6 +36,9 @@ pub enum Command {
     /// Fly the mission with one input set to each of several values: a table of summaries
     /// and one SVG per chosen series with the variants overlaid.
     Sweep(sweep::SweepArgs),
+    /// Altimeter and flight-computer logs: `show` reads one (format detected from its
+    /// content) and prints liftoff, apogee, velocity, events and warnings.
+    Log(log::LogArgs),
     /// Launch-day weather: download a forecast or sounding once (`fetch`), print and plot
     /// the profile a weather file gives (`show`).
     Weather(weather::WeatherArgs),
@@ -112,5 +116,6 @@ pub fn run(command: Command) -> anyhow::Result<()> {
         Command::Merge(args) => merge::run(&args),
         Command::Sweep(args) => sweep::run(&args),
         Command::Weather(args) => weather::run(&args),
+        Command::Log(args) => log::run(&args),
     }
 }

@@ -1,0 +1,199 @@
+//! `karman log show FILE [--format NAME] [--mapping SPEC] [--json]`: read an altimeter or
+//! flight-computer log with karman-flightlog and print what it says: format and device,
+//! sample count and rate, liftoff (on the device's clock), apogee above ground and its time
+//! from liftoff, the highest vertical velocity, the events, and every warning of the reading
+//! rules. `--json` prints one object with the keys `format`, `device`, `samples`,
+//! `sample_rate_hz`, `velocity_source`, `liftoff_time_s`, `apogee_agl_m`, `apogee_time_s`,
+//! `max_vertical_velocity_mps`, `events` (each `kind`, `time_s`, `source`), `reported`,
+//! `metadata` and `warnings`.
+
+use anyhow::{Context, Result};
+use clap::{Args, Subcommand};
+use karman_flightlog::{
+    ColumnMapping, EventSource, FlightLog, Format, ReadOptions, VelocitySource,
+};
+use serde_json::{Value, json};
+use std::io::Write;
+use std::path::PathBuf;
+
+/// `karman log` subcommands.
+#[derive(Debug, Subcommand)]
+pub enum LogCommand {
+    /// Read a log and print its flight: format, device, samples, liftoff, apogee, maximum
+    /// vertical velocity, events and warnings.
+    Show(ShowArgs),
+}
+
+/// Arguments of `karman log`.
+#[derive(Debug, Args)]
+pub struct LogArgs {
+    #[command(subcommand)]
+    pub command: LogCommand,
+}
+
+/// How a log is read: shared by `log show` and `compare`.
+#[derive(Debug, Args)]
+pub struct ReadArgs {
+    /// The format instead of detecting it: altusmetrum, raven-fip, blueraven,
+    /// perfectflite-pf2, stratologger-txt, rrc3, eggtimer, cats-vega.
+    #[arg(long, value_name = "NAME")]
+    pub format: Option<String>,
+    /// Read as a generic CSV through a column mapping, e.g. `time=ts,altitude=alt_ft:ft`
+    /// (keys time, altitude, altitude_msl, pressure, velocity, acceleration, temperature,
+    /// latitude, longitude, gnss_altitude; units m, ft, s, ms, m/s, ft/s, g, m/s2, Pa, hPa,
+    /// atm, C, F, K).
+    #[arg(long, value_name = "SPEC")]
+    pub mapping: Option<String>,
+}
+
+impl ReadArgs {
+    /// The reading options these arguments name.
+    pub fn options(&self) -> Result<ReadOptions> {
+        let format = self
+            .format
+            .as_deref()
+            .map(str::parse::<Format>)
+            .transpose()?;
+        let mapping = self
+            .mapping
+            .as_deref()
+            .map(ColumnMapping::parse)
+            .transpose()?;
+        Ok(ReadOptions { format, mapping })
+    }
+
+    /// Reads the log at `path`.
+    pub fn read(&self, path: &std::path::Path) -> Result<FlightLog> {
+        let options = self.options()?;
+        karman_flightlog::read_with(path, &options)
+            .with_context(|| format!("cannot read the flight log {}", path.display()))
+    }
+}
+
+/// Arguments of `karman log show`.
+#[derive(Debug, Args)]
+pub struct ShowArgs {
+    /// The log file.
+    #[arg(value_name = "FILE")]
+    pub file: PathBuf,
+    #[command(flatten)]
+    pub read: ReadArgs,
+    /// Print one JSON object instead of the text summary.
+    #[arg(long)]
+    pub json: bool,
+}
+
+/// Runs `karman log`.
+pub fn run(args: &LogArgs) -> Result<()> {
+    match &args.command {
+        LogCommand::Show(show) => run_show(show),
+    }
+}
+
+/// The JSON object of a log (`log show --json`).
+pub fn log_json(log: &FlightLog) -> Value {
+    let apogee = log.apogee();
+    let (vmax, vmax_time) = log.max_vertical_velocity();
+    let events: Vec<Value> = log
+        .events
+        .iter()
+        .map(|e| {
+            json!({
+                "kind": e.kind.name(),
+                "time_s": e.time_s,
+                "source": match e.source {
+                    EventSource::Device => "device",
+                    EventSource::Derived => "derived",
+                },
+            })
+        })
+        .collect();
+    json!({
+        "format": log.format.name(),
+        "device": log.device,
+        "samples": log.samples.len(),
+        "sample_rate_hz": log.median_rate_hz(),
+        "velocity_source": match log.velocity_source {
+            VelocitySource::Device => "device",
+            VelocitySource::Derivative => "derivative",
+        },
+        "liftoff_time_s": log.liftoff_device_time_s,
+        "apogee_agl_m": apogee.altitude_agl_m,
+        "apogee_time_s": apogee.time_s,
+        "max_vertical_velocity_mps": vmax,
+        "max_vertical_velocity_time_s": vmax_time,
+        "events": events,
+        "reported": {
+            "apogee_agl_m": log.reported.apogee_agl_m,
+            "ground_elevation_m": log.reported.ground_elevation_m,
+            "max_velocity_mps": log.reported.max_velocity_mps,
+        },
+        "metadata": log.metadata,
+        "warnings": log.warnings,
+    })
+}
+
+fn run_show(args: &ShowArgs) -> Result<()> {
+    let log = args.read.read(&args.file)?;
+    let mut out = std::io::stdout().lock();
+    if args.json {
+        writeln!(out, "{}", serde_json::to_string_pretty(&log_json(&log))?)?;
+        return Ok(());
+    }
+    let apogee = log.apogee();
+    let (vmax, vmax_time) = log.max_vertical_velocity();
+    let first = log.samples.first().map_or(0.0, |s| s.time_s);
+    let last = log.samples.last().map_or(0.0, |s| s.time_s);
+    writeln!(out, "file:      {}", args.file.display())?;
+    writeln!(out, "format:    {}", log.format)?;
+    writeln!(out, "device:    {}", log.device)?;
+    writeln!(
+        out,
+        "samples:   {} at {:.1} Hz (median), {first:.2} s to {last:.2} s from liftoff",
+        log.samples.len(),
+        log.median_rate_hz()
+    )?;
+    writeln!(
+        out,
+        "liftoff:   {:.3} s on the device's clock",
+        log.liftoff_device_time_s
+    )?;
+    writeln!(
+        out,
+        "apogee:    {:.2} m AGL at {:.2} s",
+        apogee.altitude_agl_m, apogee.time_s
+    )?;
+    if let Some(reported) = log.reported.apogee_agl_m {
+        writeln!(out, "           (the device reports {reported:.2} m)")?;
+    }
+    let source = match log.velocity_source {
+        VelocitySource::Device => "device",
+        VelocitySource::Derivative => "derivative of the altitude",
+    };
+    writeln!(
+        out,
+        "max vertical velocity: {vmax:.2} m/s at {vmax_time:.2} s ({source})"
+    )?;
+    writeln!(out, "events:")?;
+    for e in &log.events {
+        let source = match e.source {
+            EventSource::Device => "device",
+            EventSource::Derived => "derived",
+        };
+        writeln!(
+            out,
+            "  {:<8} {:>9.2} s  ({source})",
+            e.kind.name(),
+            e.time_s
+        )?;
+    }
+    if log.warnings.is_empty() {
+        writeln!(out, "warnings:  none")?;
+    } else {
+        writeln!(out, "warnings:")?;
+        for w in &log.warnings {
+            writeln!(out, "  {w}")?;
+        }
+    }
+    Ok(())
+}

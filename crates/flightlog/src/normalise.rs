@@ -1,0 +1,439 @@
+//! From a [`Raw`] log on the device's clock to a [`FlightLog`] on the time axis from liftoff.
+//! The rules are those of the crate documentation, in this order: clock order, height above
+//! ground, glitch rows, velocity, liftoff, events.
+
+use crate::error::FlightLogError;
+use crate::log::{Event, EventKind, EventSource, FlightLog, Gnss, Sample, VelocitySource};
+use crate::raw::{AltitudeKind, Raw, RawSample};
+use crate::units::pressure_height;
+use std::cmp::Ordering;
+
+/// Height above ground the climb must pass to count as a flight, m.
+pub const LIFTOFF_HEIGHT_M: f64 = 10.0;
+/// The climb must still be going this long after the threshold crossing, s…
+pub const RISE_CHECK_S: f64 = 1.0;
+/// … by at least this much more height, m.
+pub const RISE_GAIN_M: f64 = 10.0;
+/// Heights above this are never the ground in the back-off to the start of the rise, m.
+pub const GROUND_BAND_M: f64 = 1.5;
+/// With an accelerometer, liftoff is where the acceleration first exceeds the pad's by this
+/// (2 g), m/s².
+pub const LIFTOFF_ACCELERATION_MPS2: f64 = 2.0 * 9.80665;
+/// Longest back-off from the threshold crossing to the start of the rise, s.
+pub const BACKOFF_MAX_S: f64 = 2.0;
+/// The ground level of MSL and pressure logs: the mean over the first this many seconds, s.
+pub const GROUND_WINDOW_S: f64 = 0.5;
+/// A step between kept samples faster than this is a glitch, m/s (above any amateur
+/// rocket's speed)…
+pub const GLITCH_SPEED_MPS: f64 = 1500.0;
+/// … plus this allowance for samples very close in time, m.
+pub const GLITCH_MARGIN_M: f64 = 5.0;
+/// After this many consecutive glitch rows, the next row is accepted as the new level.
+pub const GLITCH_RUN: usize = 5;
+/// Half-width of the least-squares window of the derivative velocity, s.
+pub const VELOCITY_HALF_WINDOW_S: f64 = 0.5;
+/// At most this many neighbours on each side enter that window (bounds the work per sample).
+pub const VELOCITY_MAX_NEIGHBOURS: usize = 50;
+/// Landing: the first sample after apogee at or below this height, m AGL.
+pub const LANDING_HEIGHT_M: f64 = 5.0;
+/// Samples before the climb lower than minus this are reported, m.
+pub const NEGATIVE_REPORT_M: f64 = 10.0;
+
+/// A count of affected rows and the first one's line.
+#[derive(Default)]
+struct Tally {
+    count: usize,
+    first_line: usize,
+}
+
+impl Tally {
+    fn add(&mut self, line: usize) {
+        if self.count == 0 {
+            self.first_line = line;
+        }
+        self.count += 1;
+    }
+}
+
+/// Keeps the samples whose time is later than the last kept one; the others (repeated
+/// times, a clock going back) are dropped and reported.
+fn clock_order(samples: Vec<RawSample>, warnings: &mut Vec<String>) -> Vec<RawSample> {
+    let mut kept: Vec<RawSample> = Vec::with_capacity(samples.len());
+    let mut repeated = Tally::default();
+    let mut backwards = Tally::default();
+    for s in samples {
+        if let Some(last) = kept.last() {
+            match s.time.partial_cmp(&last.time) {
+                Some(Ordering::Greater) => {}
+                Some(Ordering::Equal) => {
+                    repeated.add(s.line);
+                    continue;
+                }
+                _ => {
+                    backwards.add(s.line);
+                    continue;
+                }
+            }
+        }
+        kept.push(s);
+    }
+    if repeated.count > 0 {
+        warnings.push(format!(
+            "{} row(s) repeat the time of the row before and were dropped (first at line {})",
+            repeated.count, repeated.first_line
+        ));
+    }
+    if backwards.count > 0 {
+        warnings.push(format!(
+            "{} row(s) with a clock going back were dropped (first at line {})",
+            backwards.count, backwards.first_line
+        ));
+    }
+    kept
+}
+
+/// The mean of `value` over the samples in the first [`GROUND_WINDOW_S`].
+fn ground_level(samples: &[RawSample], value: impl Fn(&RawSample) -> f64) -> f64 {
+    let t0 = samples[0].time;
+    let mut sum = 0.0;
+    let mut n = 0.0;
+    for s in samples
+        .iter()
+        .take_while(|s| s.time - t0 <= GROUND_WINDOW_S)
+    {
+        sum += value(s);
+        n += 1.0;
+    }
+    sum / n
+}
+
+/// Drops glitch rows: a sample whose height differs from the last kept one by more than
+/// [`GLITCH_SPEED_MPS`]·Δt + [`GLITCH_MARGIN_M`]. After [`GLITCH_RUN`] glitches in a row the
+/// next sample is accepted as a new level (reported).
+fn drop_glitches(
+    samples: Vec<(RawSample, f64)>,
+    warnings: &mut Vec<String>,
+) -> Vec<(RawSample, f64)> {
+    let mut kept: Vec<(RawSample, f64)> = Vec::with_capacity(samples.len());
+    let mut glitches = Tally::default();
+    let mut run = 0;
+    for (s, h) in samples {
+        if let Some((last, last_h)) = kept.last() {
+            let dt = s.time - last.time;
+            if (h - last_h).abs() > GLITCH_SPEED_MPS * dt + GLITCH_MARGIN_M {
+                if run < GLITCH_RUN {
+                    run += 1;
+                    glitches.add(s.line);
+                    continue;
+                }
+                warnings.push(format!(
+                    "line {}: after {GLITCH_RUN} glitch rows the altitude {h:.1} m is taken as \
+                     the new level",
+                    s.line
+                ));
+            }
+        }
+        run = 0;
+        kept.push((s, h));
+    }
+    if glitches.count > 0 {
+        warnings.push(format!(
+            "{} glitch row(s) dropped: altitude jumps faster than {GLITCH_SPEED_MPS} m/s from \
+             the row before (first at line {})",
+            glitches.count, glitches.first_line
+        ));
+    }
+    kept
+}
+
+/// The centred least-squares slope of `h` over `t` at each sample, within
+/// ±[`VELOCITY_HALF_WINDOW_S`] and at most [`VELOCITY_MAX_NEIGHBOURS`] samples each side.
+pub(crate) fn derivative(t: &[f64], h: &[f64]) -> Vec<f64> {
+    let n = t.len();
+    let mut out = Vec::with_capacity(n);
+    for i in 0..n {
+        let mut lo = i;
+        while lo > 0
+            && i - (lo - 1) <= VELOCITY_MAX_NEIGHBOURS
+            && t[i] - t[lo - 1] <= VELOCITY_HALF_WINDOW_S
+        {
+            lo -= 1;
+        }
+        let mut hi = i;
+        while hi + 1 < n
+            && hi + 1 - i <= VELOCITY_MAX_NEIGHBOURS
+            && t[hi + 1] - t[i] <= VELOCITY_HALF_WINDOW_S
+        {
+            hi += 1;
+        }
+        // At the ends, or with sparse samples, take at least the next neighbour.
+        if lo == hi {
+            if hi + 1 < n {
+                hi += 1;
+            } else {
+                lo = lo.saturating_sub(1);
+            }
+        }
+        let count = (hi - lo + 1) as f64;
+        let mean_t = t[lo..=hi].iter().sum::<f64>() / count;
+        let mean_h = h[lo..=hi].iter().sum::<f64>() / count;
+        let mut stt = 0.0;
+        let mut sth = 0.0;
+        for j in lo..=hi {
+            stt += (t[j] - mean_t) * (t[j] - mean_t);
+            sth += (t[j] - mean_t) * (h[j] - mean_h);
+        }
+        out.push(if stt > 0.0 { sth / stt } else { 0.0 });
+    }
+    out
+}
+
+/// The index of the liftoff sample and of the threshold crossing, by the crate's rule, or
+/// `None`.
+fn liftoff(t: &[f64], h: &[f64], accel: &[Option<f64>]) -> Option<(usize, usize)> {
+    let n = t.len();
+    let mut k = 0;
+    for i in 0..n {
+        if h[i] < LIFTOFF_HEIGHT_M {
+            continue;
+        }
+        k = k.max(i);
+        while k < n && t[k] < t[i] + RISE_CHECK_S {
+            k += 1;
+        }
+        if k < n && h[k] > h[i] + RISE_GAIN_M {
+            // With an accelerometer: the first sample of the 2 s before the crossing whose
+            // acceleration exceeds the pad's by LIFTOFF_ACCELERATION_MPS2.
+            let pad: Vec<f64> = accel
+                .iter()
+                .zip(t)
+                .take_while(|(_, ti)| **ti - t[0] <= GROUND_WINDOW_S)
+                .filter_map(|(a, _)| *a)
+                .collect();
+            if !pad.is_empty() {
+                let pad = pad.iter().sum::<f64>() / pad.len() as f64;
+                let from = t.partition_point(|&ti| ti < t[i] - BACKOFF_MAX_S);
+                if let Some(j) = (from..=i)
+                    .find(|&j| accel[j].is_some_and(|a| a - pad > LIFTOFF_ACCELERATION_MPS2))
+                {
+                    return Some((j, i));
+                }
+            }
+            let mut j = i;
+            while j > 0
+                && (h[j - 1] < h[j] || h[j - 1] > GROUND_BAND_M)
+                && t[i] - t[j - 1] <= BACKOFF_MAX_S
+            {
+                j -= 1;
+            }
+            return Some((j, i));
+        }
+    }
+    None
+}
+
+/// The acceleration of a separate channel at time `t`, linear between its samples, while
+/// `t` lies within it; `cursor` only moves forward (times come in order).
+fn channel_at(channel: &[(f64, f64)], cursor: &mut usize, t: f64) -> Option<f64> {
+    let first = channel.first()?;
+    let last = channel.last()?;
+    if t < first.0 || t > last.0 {
+        return None;
+    }
+    while *cursor + 1 < channel.len() && channel[*cursor + 1].0 < t {
+        *cursor += 1;
+    }
+    let (t0, a0) = channel[*cursor];
+    let Some(&(t1, a1)) = channel.get(*cursor + 1) else {
+        return Some(a0);
+    };
+    let w = if t1 > t0 {
+        ((t - t0) / (t1 - t0)).clamp(0.0, 1.0)
+    } else {
+        0.0
+    };
+    Some(a0 + w * (a1 - a0))
+}
+
+/// Normalises a raw log by the crate's rules.
+pub(crate) fn normalise(mut raw: Raw) -> Result<FlightLog, FlightLogError> {
+    let mut warnings = std::mem::take(&mut raw.warnings);
+    let samples = clock_order(std::mem::take(&mut raw.samples), &mut warnings);
+    if samples.is_empty() {
+        return Err(FlightLogError::NoSamples { file: raw.file });
+    }
+    // Height above ground.
+    let heights: Vec<(RawSample, f64)> = match raw.altitude {
+        AltitudeKind::Agl => samples
+            .into_iter()
+            .map(|s| {
+                let h = s.altitude;
+                (s, h)
+            })
+            .collect(),
+        AltitudeKind::Msl => {
+            let ground = ground_level(&samples, |s| s.altitude);
+            raw.metadata
+                .insert("ground_elevation_m".into(), format!("{ground:.2}"));
+            raw.reported.ground_elevation_m.get_or_insert(ground);
+            samples
+                .into_iter()
+                .map(|s| {
+                    let h = s.altitude - ground;
+                    (s, h)
+                })
+                .collect()
+        }
+        AltitudeKind::Pressure => {
+            let ground = ground_level(&samples, |s| s.altitude);
+            raw.metadata
+                .insert("ground_pressure_pa".into(), format!("{ground:.1}"));
+            samples
+                .into_iter()
+                .map(|s| {
+                    let h = pressure_height(s.altitude, ground);
+                    (s, h)
+                })
+                .collect()
+        }
+    };
+    let kept = drop_glitches(heights, &mut warnings);
+    let t: Vec<f64> = kept.iter().map(|(s, _)| s.time).collect();
+    let h: Vec<f64> = kept.iter().map(|(_, h)| *h).collect();
+    // Separate acceleration channel, kept in clock order.
+    let mut channel: Vec<(f64, f64)> = Vec::with_capacity(raw.acceleration_channel.len());
+    let mut channel_dropped = 0;
+    for &(ct, a) in &raw.acceleration_channel {
+        if channel.last().is_none_or(|&(lt, _)| ct > lt) {
+            channel.push((ct, a));
+        } else {
+            channel_dropped += 1;
+        }
+    }
+    if channel_dropped > 0 {
+        warnings.push(format!(
+            "{channel_dropped} acceleration-channel sample(s) with a clock not going forward dropped"
+        ));
+    }
+    let mut cursor = 0;
+    let accel: Vec<Option<f64>> = kept
+        .iter()
+        .map(|(s, _)| {
+            s.acceleration
+                .or_else(|| channel_at(&channel, &mut cursor, s.time))
+        })
+        .collect();
+    let Some((start, crossing)) = liftoff(&t, &h, &accel) else {
+        return Err(FlightLogError::NoLiftoff {
+            file: raw.file,
+            threshold_m: LIFTOFF_HEIGHT_M,
+            max_altitude_m: h.iter().copied().fold(f64::NEG_INFINITY, f64::max),
+        });
+    };
+    if crossing == 0 {
+        warnings.push(format!(
+            "the log starts above {LIFTOFF_HEIGHT_M} m AGL: liftoff is taken as its first sample"
+        ));
+    }
+    let t_liftoff = t[start];
+    let below: Vec<usize> = (0..crossing)
+        .filter(|&i| h[i] < -NEGATIVE_REPORT_M)
+        .collect();
+    if let Some(&lowest) = below.iter().min_by(|&&a, &&b| h[a].total_cmp(&h[b])) {
+        warnings.push(format!(
+            "{} sample(s) before the climb read below -{NEGATIVE_REPORT_M} m AGL (lowest {:.1} m \
+             at {:.2} s from liftoff, line {}): kept as recorded",
+            below.len(),
+            h[lowest],
+            t[lowest] - t_liftoff,
+            kept[lowest].0.line
+        ));
+    }
+    // Velocity: the device's where it has one, else the derivative.
+    let has_device_velocity = kept.iter().any(|(s, _)| s.velocity.is_some());
+    let slope = derivative(&t, &h);
+    let velocity_source = if has_device_velocity {
+        VelocitySource::Device
+    } else {
+        VelocitySource::Derivative
+    };
+    let out: Vec<Sample> = kept
+        .iter()
+        .zip(&slope)
+        .zip(&accel)
+        .map(|(((s, height), slope), acceleration)| Sample {
+            time_s: s.time - t_liftoff,
+            altitude_agl_m: *height,
+            vertical_velocity_mps: s.velocity.unwrap_or(*slope),
+            acceleration_mps2: *acceleration,
+            pressure_pa: s.pressure,
+            temperature_k: s.temperature,
+            gnss: match (s.latitude, s.longitude) {
+                (Some(latitude_deg), Some(longitude_deg)) => Some(Gnss {
+                    latitude_deg,
+                    longitude_deg,
+                    altitude_m: s.gnss_altitude,
+                }),
+                _ => None,
+            },
+        })
+        .collect();
+    // Events.
+    let mut apogee = start;
+    for i in start..h.len() {
+        if h[i] > h[apogee] {
+            apogee = i;
+        }
+    }
+    let device = |kind: EventKind| {
+        raw.device_events
+            .iter()
+            .find(|e| e.kind == kind)
+            .map(|e| Event {
+                kind,
+                time_s: e.time - t_liftoff,
+                source: EventSource::Device,
+            })
+    };
+    let derived = |kind: EventKind, i: usize| Event {
+        kind,
+        time_s: t[i] - t_liftoff,
+        source: EventSource::Derived,
+    };
+    let mut events = vec![derived(EventKind::Launch, start)];
+    let burnout = device(EventKind::Burnout).or_else(|| {
+        let i = (start..=apogee).max_by(|&a, &b| {
+            out[a]
+                .vertical_velocity_mps
+                .total_cmp(&out[b].vertical_velocity_mps)
+        })?;
+        Some(derived(EventKind::Burnout, i))
+    });
+    events.extend(burnout);
+    events.push(derived(EventKind::Apogee, apogee));
+    events.extend(device(EventKind::Drogue));
+    events.extend(device(EventKind::Main));
+    let landing = device(EventKind::Landing).or_else(|| {
+        let i = (apogee..h.len()).find(|&i| h[i] <= LANDING_HEIGHT_M)?;
+        Some(derived(EventKind::Landing, i))
+    });
+    match landing {
+        Some(e) => events.push(e),
+        None => warnings.push(format!(
+            "the log ends before landing (last altitude {:.1} m AGL)",
+            h[h.len() - 1]
+        )),
+    }
+    events.sort_by(|a, b| a.time_s.total_cmp(&b.time_s));
+    Ok(FlightLog {
+        format: raw.format,
+        device: raw.device,
+        samples: out,
+        velocity_source,
+        liftoff_device_time_s: t_liftoff,
+        events,
+        reported: raw.reported,
+        metadata: raw.metadata,
+        warnings,
+    })
+}
