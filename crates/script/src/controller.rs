@@ -10,7 +10,11 @@
 //!
 //! The scripts run sandboxed ([`crate::sandbox`]): no file, network, clock or module access,
 //! and every call is bounded in operations, call depth and data size, so a runaway script ends
-//! its flight with a located [`ScriptError`] instead of hanging.
+//! its flight with a located [`ScriptError`] instead of hanging. A flight is bounded too: its
+//! interpreted calls together run at most [`sandbox::MAX_FLIGHT_OPERATIONS`] operations, and
+//! what they return is kept (the record) up to [`sandbox::MAX_RECORD_VALUES`] values, each
+//! nested at most [`sandbox::MAX_RECORD_DEPTH`] deep; past either budget the call is an error
+//! naming the script file and the budget.
 //!
 //! ## Compiled calls
 //!
@@ -37,7 +41,7 @@ use rhai::{
 use std::fmt;
 use std::path::{Path, PathBuf};
 use std::sync::Arc;
-use std::sync::atomic::{AtomicU64, Ordering};
+use std::sync::atomic::{AtomicU8, AtomicU64, Ordering};
 use thiserror::Error;
 
 /// The function a controller script defines.
@@ -94,10 +98,7 @@ fn runtime(file: &Path, function: Option<(usize, usize)>, error: &EvalAltResult)
         }
     }
     let message = match innermost {
-        EvalAltResult::ErrorTooManyOperations(_) => format!(
-            "the controller exceeded {} operations in one call (an endless loop?)",
-            sandbox::MAX_OPERATIONS
-        ),
+        EvalAltResult::ErrorTooManyOperations(_) => call_budget(),
         other => other.to_string(),
     };
     let mut error = located(file, position, message);
@@ -106,6 +107,147 @@ fn runtime(file: &Path, function: Option<(usize, usize)>, error: &EvalAltResult)
         error.message = format!("in `{CONTROLLER_FUNCTION}`: {}", error.message);
     }
     error
+}
+
+/// No budget exceeded.
+const WITHIN: u8 = 0;
+/// The current call exceeded [`sandbox::MAX_OPERATIONS`].
+const CALL_BUDGET: u8 = 1;
+/// The flight's calls exceeded [`sandbox::MAX_FLIGHT_OPERATIONS`].
+const FLIGHT_BUDGET: u8 = 2;
+
+/// The operations of a flight's interpreted calls, counted one by one by the engine's
+/// progress callback. Rhai counts operations itself, but a closure a native function calls
+/// (a `sort` comparator) counts on a copy of that count and its limit error is discarded by
+/// the native function, so an endless comparator would run to the per-call limit once per
+/// comparison and the call would succeed; this count sees every operation, and once past a
+/// budget the callback stops each further one (every later comparison included) and the call
+/// is reported as over the budget whatever Rhai returns.
+#[derive(Debug)]
+struct Meter {
+    /// The flight's budget of operations, [`sandbox::MAX_FLIGHT_OPERATIONS`] unless
+    /// [`Controller::with_operation_budget`] set another.
+    budget: AtomicU64,
+    /// Operations of the current call.
+    call: AtomicU64,
+    /// Operations of the flight's finished calls.
+    flight: AtomicU64,
+    /// The budget the current call exceeded: [`WITHIN`], [`CALL_BUDGET`] or
+    /// [`FLIGHT_BUDGET`].
+    exceeded: AtomicU8,
+}
+
+impl Meter {
+    /// The progress callback's step: counts one operation, and refuses it past a budget.
+    fn operation(&self) -> Option<Dynamic> {
+        let call = self.call.fetch_add(1, Ordering::Relaxed) + 1;
+        let exceeded = if call > sandbox::MAX_OPERATIONS {
+            CALL_BUDGET
+        } else if self.flight.load(Ordering::Relaxed) + call > self.budget.load(Ordering::Relaxed) {
+            FLIGHT_BUDGET
+        } else {
+            return None;
+        };
+        self.exceeded.store(exceeded, Ordering::Relaxed);
+        Some(Dynamic::UNIT)
+    }
+
+    fn new() -> Self {
+        Meter {
+            budget: AtomicU64::new(sandbox::MAX_FLIGHT_OPERATIONS),
+            call: AtomicU64::new(0),
+            flight: AtomicU64::new(0),
+            exceeded: AtomicU8::new(WITHIN),
+        }
+    }
+
+    /// Starts a call.
+    fn start(&self) {
+        self.call.store(0, Ordering::Relaxed);
+        self.exceeded.store(WITHIN, Ordering::Relaxed);
+    }
+
+    /// Ends a call: adds its operations to the flight's, and returns the budget it exceeded.
+    fn finish(&self) -> u8 {
+        self.flight
+            .fetch_add(self.call.load(Ordering::Relaxed), Ordering::Relaxed);
+        self.exceeded.load(Ordering::Relaxed)
+    }
+}
+
+/// The result of a metered call: `result` unless the call exceeded a budget (`exceeded`, of
+/// `meter`), which is then the error, located where Rhai stopped or at `function`.
+fn metered<T>(
+    file: &Path,
+    function: Option<(usize, usize)>,
+    meter: &Meter,
+    result: Result<T, Box<EvalAltResult>>,
+) -> Result<T, ScriptError> {
+    let exceeded = meter.finish();
+    let message = match exceeded {
+        CALL_BUDGET => call_budget(),
+        FLIGHT_BUDGET => format!(
+            "the controller exceeded its budget of {} operations per flight (at most {} per \
+             call); make each call do less work",
+            meter.budget.load(Ordering::Relaxed),
+            sandbox::MAX_OPERATIONS
+        ),
+        _ => return result.map_err(|e| runtime(file, function, &e)),
+    };
+    let mut error = match &result {
+        Err(e) => runtime(file, function, e),
+        Ok(_) => ScriptError {
+            file: file.to_owned(),
+            position: function,
+            message: String::new(),
+        },
+    };
+    error.message = if error.position == function {
+        format!("in `{CONTROLLER_FUNCTION}`: {message}")
+    } else {
+        message
+    };
+    Err(error)
+}
+
+/// The size of `value` as the record's budget counts it ([`sandbox::MAX_RECORD_VALUES`]): one
+/// per number, boolean, `()`, array and map entry, one per 16 bytes of a string or blob; `None`
+/// when it nests deeper than [`sandbox::MAX_RECORD_DEPTH`] (below `depth` levels already).
+fn record_size(value: &Dynamic, depth: usize) -> Option<u64> {
+    if depth > sandbox::MAX_RECORD_DEPTH {
+        return None;
+    }
+    if let Some(array) = value.read_lock::<Array>() {
+        let mut size = 1;
+        for item in array.iter() {
+            size += record_size(item, depth + 1)?;
+        }
+        return Some(size);
+    }
+    if let Some(map) = value.read_lock::<Map>() {
+        let mut size = 1;
+        for (key, item) in map.iter() {
+            size += key.len() as u64 / 16 + record_size(item, depth + 1)?;
+        }
+        return Some(size);
+    }
+    if let Some(blob) = value.read_lock::<rhai::Blob>() {
+        return Some(1 + blob.len() as u64 / 16);
+    }
+    if value.is_string() {
+        let bytes = value.clone().into_immutable_string().map_or(0, |s| s.len());
+        return Some(1 + bytes as u64 / 16);
+    }
+    Some(1)
+}
+
+/// The message of a call past [`sandbox::MAX_OPERATIONS`].
+fn call_budget() -> String {
+    format!(
+        "the controller exceeded {} operations in one call (an endless loop, perhaps in a \
+         `sort` comparator?)",
+        sandbox::MAX_OPERATIONS
+    )
 }
 
 /// Line and column of the definition `fn controller_function` in `source`.
@@ -378,7 +520,11 @@ pub struct Controller {
     air_brakes: AirBrakesHandle,
     environment: EnvironmentHandle,
     observed: Vec<Dynamic>,
+    /// The size of `observed` as its budget counts it ([`record_size`]).
+    observed_size: u64,
     levels: Vec<LevelRecord>,
+    /// The operations of the interpreted calls, and the budgets they exceeded.
+    meter: Arc<Meter>,
     /// The scope the calls run in, kept between calls for its storage: a call pushes the
     /// arguments and its local variables and the scope is rewound to empty after it.
     scope: Scope<'static>,
@@ -420,12 +566,15 @@ impl Controller {
                 });
             }
         }
+        let meter = Arc::new(Meter::new());
+        let counter = Arc::clone(&meter);
+        engine.on_progress(move |_| counter.operation());
         // The top-level statements run once per flight; the constants they leave are what
         // `global::NAME` reads inside functions, the mission's values replacing the script's.
         let mut scope = Scope::new();
-        engine
-            .run_ast_with_scope(&mut scope, &script.ast)
-            .map_err(|e| runtime(&script.file, None, &e))?;
+        meter.start();
+        let result = engine.run_ast_with_scope(&mut scope, &script.ast);
+        metered(&script.file, None, &meter, result)?;
         let mut globals = Module::new();
         for (name, constant, value) in scope.iter() {
             if constant {
@@ -451,7 +600,7 @@ impl Controller {
             setup: setup.air_brakes,
         };
         air_brakes.set_level(air_brakes.setup.initial_level);
-        let observed = setup
+        let observed: Vec<Dynamic> = setup
             .initial_observed_variables
             .map(|values| {
                 values
@@ -471,12 +620,25 @@ impl Controller {
             sampling_rate: setup.sampling_rate,
             air_brakes,
             environment: EnvironmentHandle(setup.environment),
+            observed_size: observed
+                .iter()
+                .map(|v| record_size(v, 0).unwrap_or(0))
+                .sum(),
             observed,
             levels: Vec::new(),
+            meter,
             scope: Scope::new(),
             fast,
             compiled_calls: 0,
         })
+    }
+
+    /// This controller with a budget of `operations` for its flight's interpreted calls
+    /// instead of [`sandbox::MAX_FLIGHT_OPERATIONS`] (the per-call limit still applies).
+    #[must_use]
+    pub fn with_operation_budget(self, operations: u64) -> Self {
+        self.meter.budget.store(operations, Ordering::Relaxed);
+        self
     }
 
     /// Calls per second.
@@ -524,20 +686,47 @@ impl Controller {
             if let Ok((returned, level)) = fast.call(&inputs, self.air_brakes.level()) {
                 self.air_brakes.set_level(level);
                 self.compiled_calls += 1;
-                return Ok(self.recorded(time, returned));
+                return self.recorded(time, returned);
             }
         }
         self.interpret(time, state, last_row)
     }
 
     /// The record of a call that returned `returned`: the level it left.
-    fn recorded(&mut self, time: f64, returned: Dynamic) -> f64 {
+    ///
+    /// # Errors
+    /// [`ScriptError`] at the definition of `controller_function` when `returned` nests
+    /// deeper than [`sandbox::MAX_RECORD_DEPTH`] or the record would exceed
+    /// [`sandbox::MAX_RECORD_VALUES`]; the record is left as it was.
+    fn recorded(&mut self, time: f64, returned: Dynamic) -> Result<f64, ScriptError> {
         if !returned.is_unit() {
+            let fail = |message: String| ScriptError {
+                file: self.file.clone(),
+                position: self.definition,
+                message: format!("in `{CONTROLLER_FUNCTION}`: {message}"),
+            };
+            let Some(size) = record_size(&returned, 0) else {
+                return Err(fail(format!(
+                    "the call at t = {time} s returned arrays or maps nested deeper than {} levels",
+                    sandbox::MAX_RECORD_DEPTH
+                )));
+            };
+            let total = self.observed_size.saturating_add(size);
+            if total > sandbox::MAX_RECORD_VALUES {
+                return Err(fail(format!(
+                    "the values the controller returned exceed the record's budget of {} values \
+                     per flight at t = {time} s (call {}, which returned {size}); every value \
+                     returned is kept for the whole flight, so return only what must be kept",
+                    sandbox::MAX_RECORD_VALUES,
+                    self.levels.len() + 1
+                )));
+            }
+            self.observed_size = total;
             self.observed.push(returned);
         }
         let level = self.air_brakes.level();
         self.levels.push(LevelRecord { time, level });
-        level
+        Ok(level)
     }
 
     /// [`Controller::call`] in Rhai's interpreter.
@@ -570,17 +759,16 @@ impl Controller {
         if self.parameters >= 8 {
             args.push(Dynamic::from(self.environment.clone()));
         }
-        let returned = self
-            .engine
-            .call_fn_with_options::<Dynamic>(
-                CallFnOptions::new().eval_ast(false).rewind_scope(true),
-                &mut self.scope,
-                &self.ast,
-                CONTROLLER_FUNCTION,
-                args,
-            )
-            .map_err(|e| runtime(&self.file, self.definition, &e))?;
-        Ok(self.recorded(time, returned))
+        self.meter.start();
+        let result = self.engine.call_fn_with_options::<Dynamic>(
+            CallFnOptions::new().eval_ast(false).rewind_scope(true),
+            &mut self.scope,
+            &self.ast,
+            CONTROLLER_FUNCTION,
+            args,
+        );
+        let returned = metered(&self.file, self.definition, &self.meter, result)?;
+        self.recorded(time, returned)
     }
 
     /// What the controller recorded so far.

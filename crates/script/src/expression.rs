@@ -8,7 +8,15 @@
 //! `abs`, `sqrt`, `min` and `max`. Rhai's precedence: unary operators bind tightest, then
 //! `* /`, `+ -`, one comparison, `&&`, `||`. Numbers and booleans never mix, and the whole
 //! expression is a boolean; both are checked when the expression is parsed, so evaluation
-//! cannot fail. Arithmetic is IEEE 754: a division by zero gives ±inf or NaN.
+//! cannot fail. Arithmetic is IEEE 754: a division by zero gives ±inf or NaN; a literal
+//! must be finite (`1e400` is refused, not read as infinity).
+//!
+//! Parsing and evaluation recurse, so the expression's depth is bounded by [`MAX_DEPTH`]:
+//! at most that many nested parentheses, unary operators and function calls, and an
+//! expression tree at most that many operators tall (a chain `a + b + c` is two levels, as
+//! it evaluates as `(a + b) + c`). A deeper text is an error at the token that crosses the
+//! limit, never a stack overflow. Values quoted back in errors are cut to
+//! [`QUOTED_CHARS`] characters.
 //!
 //! ```
 //! use karman_script::{Expression, TriggerInputs};
@@ -29,6 +37,14 @@ use thiserror::Error;
 pub const STATE_NAMES: [&str; 13] = [
     "x", "y", "z", "vx", "vy", "vz", "e0", "e1", "e2", "e3", "wx", "wy", "wz",
 ];
+
+/// The deepest nesting an expression may have: parentheses, unary operators and function
+/// calls inside one another, and the height of its operator tree.
+pub const MAX_DEPTH: usize = 64;
+
+/// The most characters of a literal or name an error quotes; a longer one is cut and its
+/// length stated.
+pub const QUOTED_CHARS: usize = 32;
 
 /// What a trigger expression reads at one sampling instant.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -140,8 +156,9 @@ impl Expression {
             tokens: &tokens,
             next: 0,
             end: text.chars().count() + 1,
+            depth: 0,
         };
-        let (root, ty) = parser.or()?;
+        let (root, ty, _) = parser.or()?;
         if let Some(token) = parser.peek() {
             return Err(error(token.column, "unexpected text after the expression"));
         }
@@ -247,6 +264,30 @@ fn is_boolean(node: &Node) -> bool {
     }
 }
 
+/// `text` as an error quotes it: at most [`QUOTED_CHARS`] characters, control characters
+/// escaped, and the length of what was cut.
+fn quoted(text: &str) -> String {
+    let count = text.chars().count();
+    let head: String = text.chars().take(QUOTED_CHARS).collect();
+    let head = head.escape_debug().to_string();
+    if count > QUOTED_CHARS {
+        format!("{head}… ({count} characters)")
+    } else {
+        head
+    }
+}
+
+/// The error of a text nested deeper than [`MAX_DEPTH`].
+fn too_deep(column: usize) -> ExpressionError {
+    error(
+        column,
+        format!(
+            "the expression nests deeper than {MAX_DEPTH} levels (parentheses, unary \
+             operators, function calls and chained operators each count)"
+        ),
+    )
+}
+
 fn error(column: usize, message: impl Into<String>) -> ExpressionError {
     ExpressionError {
         column,
@@ -307,6 +348,7 @@ fn tokenize(text: &str) -> Result<Vec<Token>, ExpressionError> {
         } else {
             let rest: String = chars[i..chars.len().min(i + 2)].iter().collect();
             let Some(symbol) = SYMBOLS.iter().find(|s| rest.starts_with(**s)) else {
+                let c = c.escape_debug();
                 return Err(error(column, format!("`{c}` is not part of the language")));
             };
             i += symbol.chars().count();
@@ -323,7 +365,10 @@ fn tokenize(text: &str) -> Result<Vec<Token>, ExpressionError> {
 /// exponent `e[+-]digits` (at least one of the two, so that Rhai reads a float, not an
 /// integer).
 fn float_literal(literal: &str, column: usize) -> Result<f64, ExpressionError> {
-    let bad = |why: &str| error(column, format!("`{literal}` is not a float literal: {why}"));
+    let bad = |why: &str| {
+        let literal = quoted(literal);
+        error(column, format!("`{literal}` is not a float literal: {why}"))
+    };
     let digits = |s: &str| !s.is_empty() && s.bytes().all(|b| b.is_ascii_digit());
     let (mantissa, exponent) = match literal.find(['e', 'E']) {
         Some(at) => (&literal[..at], Some(&literal[at + 1..])),
@@ -350,14 +395,25 @@ fn float_literal(literal: &str, column: usize) -> Result<f64, ExpressionError> {
     if fraction.is_none() && exponent.is_none() {
         return Err(bad("integers are not numbers here; write 5.0"));
     }
-    literal.parse().map_err(|_| bad("cannot read it"))
+    let value: f64 = literal.parse().map_err(|_| bad("cannot read it"))?;
+    if value.is_finite() {
+        Ok(value)
+    } else {
+        Err(bad("it is beyond the largest float, 1.8e308"))
+    }
 }
+
+/// A parsed sub-expression: its node, its type and the height of its operator tree (1 for
+/// a literal or a variable).
+type Parsed = (Node, Type, usize);
 
 struct Parser<'t> {
     tokens: &'t [Token],
     next: usize,
     /// Column just past the text, for errors at its end.
     end: usize,
+    /// How many parentheses, unary operators and calls enclose the current token.
+    depth: usize,
 }
 
 impl Parser<'_> {
@@ -383,6 +439,16 @@ impl Parser<'_> {
         }
     }
 
+    /// Enters one more level of nesting at `column`, or refuses past [`MAX_DEPTH`]; the
+    /// caller leaves it with `self.depth -= 1` once the nested part is parsed.
+    fn enter(&mut self, column: usize) -> Result<(), ExpressionError> {
+        if self.depth >= MAX_DEPTH {
+            return Err(too_deep(column));
+        }
+        self.depth += 1;
+        Ok(())
+    }
+
     fn expect(&mut self, wanted: &'static str) -> Result<(), ExpressionError> {
         self.symbol(&[wanted])
             .map(|_| ())
@@ -394,38 +460,46 @@ impl Parser<'_> {
         &mut self,
         ops: &[&'static str],
         operand: Type,
-        next: fn(&mut Self) -> Result<(Node, Type), ExpressionError>,
-    ) -> Result<(Node, Type), ExpressionError> {
+        next: fn(&mut Self) -> Result<Parsed, ExpressionError>,
+    ) -> Result<Parsed, ExpressionError> {
         let column = self.column();
-        let (mut node, mut ty) = next(self)?;
-        while let Some((op, _)) = self.symbol(ops) {
+        let (mut node, mut ty, mut height) = next(self)?;
+        while let Some((op, at)) = self.symbol(ops) {
             check(ty, operand, column, op)?;
             let right_column = self.column();
-            let (right, right_ty) = next(self)?;
+            let (right, right_ty, right_height) = next(self)?;
             check(right_ty, operand, right_column, op)?;
+            height = height.max(right_height) + 1;
+            if height > MAX_DEPTH {
+                return Err(too_deep(at));
+            }
             node = Node::Binary(binary(op), Box::new(node), Box::new(right));
             ty = operand;
         }
-        Ok((node, ty))
+        Ok((node, ty, height))
     }
 
-    fn or(&mut self) -> Result<(Node, Type), ExpressionError> {
+    fn or(&mut self) -> Result<Parsed, ExpressionError> {
         self.chain(&["||"], Type::Boolean, Self::and)
     }
 
-    fn and(&mut self) -> Result<(Node, Type), ExpressionError> {
+    fn and(&mut self) -> Result<Parsed, ExpressionError> {
         self.chain(&["&&"], Type::Boolean, Self::comparison)
     }
 
-    fn comparison(&mut self) -> Result<(Node, Type), ExpressionError> {
+    fn comparison(&mut self) -> Result<Parsed, ExpressionError> {
         const OPS: [&str; 6] = ["<", "<=", ">", ">=", "==", "!="];
         let column = self.column();
-        let (left, left_ty) = self.sum()?;
+        let (left, left_ty, left_height) = self.sum()?;
         let Some((op, at)) = self.symbol(&OPS) else {
-            return Ok((left, left_ty));
+            return Ok((left, left_ty, left_height));
         };
         let right_column = self.column();
-        let (right, right_ty) = self.sum()?;
+        let (right, right_ty, right_height) = self.sum()?;
+        let height = left_height.max(right_height) + 1;
+        if height > MAX_DEPTH {
+            return Err(too_deep(at));
+        }
         if matches!(op, "==" | "!=") {
             if left_ty != right_ty {
                 return Err(error(
@@ -446,43 +520,52 @@ impl Parser<'_> {
         Ok((
             Node::Binary(binary(op), Box::new(left), Box::new(right)),
             Type::Boolean,
+            height,
         ))
     }
 
-    fn sum(&mut self) -> Result<(Node, Type), ExpressionError> {
+    fn sum(&mut self) -> Result<Parsed, ExpressionError> {
         self.chain(&["+", "-"], Type::Number, Self::product)
     }
 
-    fn product(&mut self) -> Result<(Node, Type), ExpressionError> {
+    fn product(&mut self) -> Result<Parsed, ExpressionError> {
         self.chain(&["*", "/"], Type::Number, Self::unary)
     }
 
-    fn unary(&mut self) -> Result<(Node, Type), ExpressionError> {
-        if let Some((op, _)) = self.symbol(&["-", "!"]) {
+    fn unary(&mut self) -> Result<Parsed, ExpressionError> {
+        if let Some((op, at)) = self.symbol(&["-", "!"]) {
+            self.enter(at)?;
             let column = self.column();
-            let (inner, ty) = self.unary()?;
+            let (inner, ty, height) = self.unary()?;
+            self.depth -= 1;
+            let height = height + 1;
+            if height > MAX_DEPTH {
+                return Err(too_deep(at));
+            }
             return Ok(if op == "-" {
                 check(ty, Type::Number, column, "unary -")?;
-                (Node::Negate(Box::new(inner)), Type::Number)
+                (Node::Negate(Box::new(inner)), Type::Number, height)
             } else {
                 check(ty, Type::Boolean, column, "!")?;
-                (Node::Not(Box::new(inner)), Type::Boolean)
+                (Node::Not(Box::new(inner)), Type::Boolean, height)
             });
         }
         self.primary()
     }
 
-    fn primary(&mut self) -> Result<(Node, Type), ExpressionError> {
+    fn primary(&mut self) -> Result<Parsed, ExpressionError> {
         let column = self.column();
         let Some(token) = self.peek().cloned() else {
             return Err(error(self.end, "the expression ends too early"));
         };
         self.next += 1;
         match token.kind {
-            TokenKind::Number(value) => Ok((Node::Number(value), Type::Number)),
+            TokenKind::Number(value) => Ok((Node::Number(value), Type::Number, 1)),
             TokenKind::Symbol("(") => {
+                self.enter(column)?;
                 let inner = self.or()?;
                 self.expect(")")?;
+                self.depth -= 1;
                 Ok(inner)
             }
             TokenKind::Symbol(s) => Err(error(column, format!("unexpected `{s}`"))),
@@ -490,18 +573,19 @@ impl Parser<'_> {
         }
     }
 
-    fn name(&mut self, name: &str, column: usize) -> Result<(Node, Type), ExpressionError> {
+    fn name(&mut self, name: &str, column: usize) -> Result<Parsed, ExpressionError> {
         match name {
-            "true" => return Ok((Node::Boolean(true), Type::Boolean)),
-            "false" => return Ok((Node::Boolean(false), Type::Boolean)),
-            "p" => return Ok((Node::Variable(PRESSURE), Type::Number)),
-            "h" => return Ok((Node::Variable(HEIGHT), Type::Number)),
+            "true" => return Ok((Node::Boolean(true), Type::Boolean, 1)),
+            "false" => return Ok((Node::Boolean(false), Type::Boolean, 1)),
+            "p" => return Ok((Node::Variable(PRESSURE), Type::Number, 1)),
+            "h" => return Ok((Node::Variable(HEIGHT), Type::Number, 1)),
             _ => {}
         }
         if let Some(index) = STATE_NAMES.iter().position(|n| *n == name) {
-            return Ok((Node::Variable(index + 2), Type::Number));
+            return Ok((Node::Variable(index + 2), Type::Number, 1));
         }
         let Some((function, arity)) = Function::named(name) else {
+            let name = quoted(name);
             return Err(error(
                 column,
                 format!(
@@ -511,24 +595,38 @@ impl Parser<'_> {
             ));
         };
         self.expect("(")?;
+        self.enter(column)?;
         let mut args = Vec::with_capacity(arity);
+        let mut height = 1;
         loop {
             let arg_column = self.column();
-            let (arg, ty) = self.or()?;
+            let (arg, ty, arg_height) = self.or()?;
             check(ty, Type::Number, arg_column, name)?;
             args.push(arg);
+            height = height.max(arg_height + 1);
+            if height > MAX_DEPTH {
+                return Err(too_deep(column));
+            }
             if self.symbol(&[","]).is_none() {
                 break;
             }
+            // Stop at the first argument past the arity rather than collecting thousands.
+            if args.len() == arity {
+                return Err(error(
+                    column,
+                    format!("`{name}` takes {arity} argument(s), got more"),
+                ));
+            }
         }
         self.expect(")")?;
+        self.depth -= 1;
         if args.len() != arity {
             return Err(error(
                 column,
                 format!("`{name}` takes {arity} argument(s), got {}", args.len()),
             ));
         }
-        Ok((Node::Call(function, args), Type::Number))
+        Ok((Node::Call(function, args), Type::Number, height))
     }
 }
 

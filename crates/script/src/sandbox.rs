@@ -1,8 +1,12 @@
 //! The Rhai engine scripts run in: the standard library without clock (`no_time`), no module
 //! resolver (`import` fails), `eval` disabled, `print`/`debug` discarded, strict variables (an
 //! undefined name is a compile error), and limits on every call so that no script can hang or
-//! exhaust memory. What the engine adds: the `motor` module, and the `AirBrakes` and
-//! `Environment` types of the controller's arguments.
+//! exhaust memory; across the calls of one flight, a budget of interpreted operations
+//! ([`MAX_FLIGHT_OPERATIONS`]) and of recorded values ([`MAX_RECORD_VALUES`]). The operations
+//! are also counted by the controller itself, through the engine's progress callback, because
+//! Rhai's own count runs on a copy inside a closure called by a native function (a `sort`
+//! comparator) and its limit error is discarded there. What the engine adds: the `motor`
+//! module, and the `AirBrakes` and `Environment` types of the controller's arguments.
 
 use crate::controller::{AirBrakesHandle, EnvironmentHandle};
 use rhai::module_resolvers::DummyModuleResolver;
@@ -12,6 +16,20 @@ use std::sync::OnceLock;
 
 /// Operations one call may run (an operation is roughly one expression node or statement).
 pub const MAX_OPERATIONS: u64 = 1_000_000;
+/// Operations the interpreted calls of one flight may run together: a hundred calls at the
+/// per-call limit, so that a loop just under that limit ends the flight within seconds
+/// instead of running for tens of minutes, while a controller of a few thousand operations
+/// a call at 100 Hz still flies for minutes (10⁴ calls × 10⁴ operations = 10⁸). Compiled
+/// calls (module `controller`, "Compiled calls") are bounded by their tree and not counted.
+pub const MAX_FLIGHT_OPERATIONS: u64 = 100_000_000;
+/// Values the record of one flight (`observed_variables`, every non-`()` value the calls
+/// returned) may hold, counting each number, boolean, array and map entry as one value and a
+/// string or blob as one per 16 bytes: 32 MiB as Rhai values (16 bytes each), up to twice
+/// that with the spare capacity of growing arrays, and as much again once converted to JSON
+/// at the end of the flight (tests/hostile.rs measures the peak of such a flight).
+pub const MAX_RECORD_VALUES: u64 = 2_000_000;
+/// Nesting of arrays and maps in one returned value.
+pub const MAX_RECORD_DEPTH: usize = 32;
 /// Depth of nested function calls.
 pub const MAX_CALL_LEVELS: usize = 48;
 /// Nesting depth of expressions, at the top level and inside functions.

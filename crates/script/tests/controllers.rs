@@ -39,7 +39,7 @@ impl EnvironmentQuery for Air {
     }
 }
 
-fn setup(clamp: bool) -> ControllerSetup {
+pub(crate) fn setup(clamp: bool) -> ControllerSetup {
     ControllerSetup {
         sampling_rate: 10.0,
         air_brakes: AirBrakesSetup {
@@ -57,20 +57,20 @@ fn setup(clamp: bool) -> ControllerSetup {
     }
 }
 
-fn compile(source: &str) -> Result<ControllerScript, ScriptError> {
+pub(crate) fn compile(source: &str) -> Result<ControllerScript, ScriptError> {
     ControllerScript::compile(Path::new("brakes.rhai"), source)
 }
 
-fn controller(source: &str, clamp: bool) -> Controller {
+pub(crate) fn controller(source: &str, clamp: bool) -> Controller {
     let script = compile(source).unwrap_or_else(|e| panic!("{e}"));
     Controller::new(&script, setup(clamp)).expect("controller")
 }
 
-const STATE: [f64; 13] = [
+pub(crate) const STATE: [f64; 13] = [
     1.0, 2.0, 1107.0, 4.0, 5.0, 6.0, 1.0, 0.0, 0.0, 0.0, 0.1, 0.2, 0.3,
 ];
 
-fn row(t: f64) -> [f64; 14] {
+pub(crate) fn row(t: f64) -> [f64; 14] {
     let mut row = [0.0; 14];
     row[0] = t;
     row[1..].copy_from_slice(&STATE);

@@ -3,3 +3,4 @@
 mod compiled;
 mod controllers;
 mod expressions;
+mod hostile;
