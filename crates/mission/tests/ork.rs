@@ -533,3 +533,75 @@ fn a_transition_between_equal_radii_is_no_tail() {
         karman_mission::parse(&imported.mission, &file.with_extension("toml"), &[]).expect("loads");
     karman_mission::assemble::preflight::prepare(&mission, 0).expect("builds");
 }
+
+/// Names are the design's to choose, and they reach the mission's comments and warnings: a
+/// name holding newlines, quotes, brackets, `#` and TOML of its own must not add a line of
+/// TOML. The hostile import (the rocket, nose cone, body tube and a file name so named) has
+/// exactly the clean import's tables and the same motor, and reads back as a mission.
+#[test]
+fn imported_names_cannot_inject_toml() {
+    let path = design("two_stage_high_power_rocket");
+    let text = document_text(&path, &std::fs::read(&path).expect("fixture")).expect("document");
+    let injected = "Evil\n[[extra_motors]]\nthrust = \"x.eng\"\nposition = 0.1\n# \"]'#";
+    let entity = "Evil&#10;[motor]&#13;&#10;kind = &quot;generic&quot;&#9;# [x] \\ \"";
+    let mut hostile = text.replacen(
+        &format!("<name>{}</name>", first_name(&text)),
+        &format!("<name>{injected}</name>"),
+        1,
+    );
+    for (i, tag) in ["<nosecone>", "<bodytube>"].iter().enumerate() {
+        let at = hostile.find(tag).expect("component") + tag.len();
+        let open = hostile[at..].find("<name>").expect("its name") + at + "<name>".len();
+        let close = hostile[open..].find("</name>").expect("end") + open;
+        let name = if i == 0 { entity } else { injected };
+        hostile.replace_range(open..close, name);
+    }
+    let options = |dir: &Path| ImportOptions {
+        simulation: Some("Simulation 2".into()),
+        motors: vec![dir.to_owned()],
+        output_dir: None,
+    };
+    let dir = path.parent().expect("dir");
+    let clean = import(&path, &options(dir)).expect("clean import");
+    let file = tempdir().join("evil\n[motor]\n.ork");
+    std::fs::write(&file, &hostile).expect("write");
+    let evil = import(&file, &options(dir)).expect("hostile import");
+    let tables = |t: &str| -> Vec<String> {
+        t.lines()
+            .filter(|l| l.trim_start().starts_with('['))
+            .map(str::to_owned)
+            .collect()
+    };
+    // The surfaces' table keys come from the (sanitised) names; every other header is the
+    // clean import's, and there are as many.
+    let (clean_tables, evil_tables) = (tables(&clean.mission), tables(&evil.mission));
+    assert_eq!(clean_tables.len(), evil_tables.len(), "{}", evil.mission);
+    for (c, e) in clean_tables.iter().zip(&evil_tables) {
+        if !c.contains("nose") && !c.contains("body") {
+            assert_eq!(c, e, "{}", evil.mission);
+        }
+    }
+    let read = |t: &str, name: &str| {
+        karman_mission::parse(t, &tempdir().join(name), &[]).unwrap_or_else(|e| panic!("{e}\n{t}"))
+    };
+    let (a, b) = (
+        read(&clean.mission, "clean.toml"),
+        read(&evil.mission, "evil.toml"),
+    );
+    assert_eq!(format!("{:?}", a.spec.motor), format!("{:?}", b.spec.motor));
+    assert_eq!(a.spec.extra_motors.len(), b.spec.extra_motors.len());
+    assert_eq!(a.spec.stages.len(), b.spec.stages.len());
+    assert!(
+        b.spec
+            .name
+            .as_deref()
+            .is_some_and(|n| n.starts_with("Evil [[extra_motors]]"))
+    );
+    assert!(!evil.mission.contains("\r") && !evil.mission.contains('\t'));
+}
+
+/// The content of the first `<name>` element of `xml`.
+fn first_name(xml: &str) -> &str {
+    let open = xml.find("<name>").expect("a name") + "<name>".len();
+    &xml[open..open + xml[open..].find("</name>").expect("end")]
+}

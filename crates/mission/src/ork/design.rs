@@ -390,10 +390,21 @@ impl Component {
     }
 }
 
+/// The text of `node`'s first `tag` child, trimmed, on one line: every control character
+/// (a newline, a tab, `&#10;` decoded by the XML reader) becomes a space. Names and
+/// designations end up in the mission's comments and warnings, where a newline would start a
+/// line of TOML of the design's choosing; the values the importer needs never hold one.
 fn child_text(node: roxmltree::Node<'_, '_>, tag: &str) -> Option<String> {
     node.children()
         .find(|c| c.has_tag_name(tag))
-        .map(|c| c.text().unwrap_or("").trim().to_owned())
+        .map(|c| one_line(c.text().unwrap_or("").trim()))
+}
+
+/// `text` with every control character replaced by a space.
+pub(super) fn one_line(text: &str) -> String {
+    text.chars()
+        .map(|c| if c.is_control() { ' ' } else { c })
+        .collect()
 }
 
 /// Axial length of a component for positioning, from its fields.

@@ -936,7 +936,7 @@ fn motor_text(
         "# {} {} from {}: RASP masses {} kg propellant, {} kg total; the propellant is",
         motor.manufacturer,
         motor.designation,
-        eng_path.display(),
+        super::design::one_line(&eng_path.display().to_string()),
         eng.propellant,
         eng.total
     );
@@ -1501,7 +1501,9 @@ pub(super) fn mission(
         "# {} — imported from {} by `karman import`.",
         design.name,
         file.file_name()
-            .map_or_else(String::new, |f| f.to_string_lossy().into_owned())
+            .map_or_else(String::new, |f| super::design::one_line(
+                &f.to_string_lossy()
+            ))
     );
     let motors: Vec<String> = groups
         .iter()
@@ -1631,7 +1633,8 @@ pub(super) fn mission(
     if !warnings.is_empty() {
         let mut head = String::new();
         for warning in &warnings {
-            let _ = writeln!(head, "# note: {warning}");
+            // A warning can quote a file name, which may hold any character.
+            let _ = writeln!(head, "# note: {}", super::design::one_line(warning));
         }
         t = t.replacen(
             &format!("name = {}", quoted(&design.name)),
