@@ -7,7 +7,6 @@ use crate::common::{flight_name, load_reference, validation_missions};
 use karman_mission::assemble::environment::build_environment;
 use karman_mission::report::environment::{EnvironmentReport, environment_report};
 use serde_json::Value;
-use std::path::PathBuf;
 
 fn column(reference: &Value, key: &str) -> Vec<f64> {
     reference["environment"][key]
