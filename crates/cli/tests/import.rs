@@ -109,3 +109,43 @@ fn inspect_reports_openrocket_stability_at_rail_exit() {
     let text = String::from_utf8_lossy(&output.stdout);
     assert!(text.contains("At rail exit: CP 1.76"), "{text}");
 }
+
+/// `import X.ork -o X.ork` is refused and leaves the design as it was; a `--motor` path that
+/// does not exist is an error naming it.
+#[test]
+fn import_refuses_to_overwrite_the_design_and_a_missing_motor_path() {
+    let dir = Path::new(env!("CARGO_TARGET_TMPDIR")).join("karman-cli/import-refusals");
+    std::fs::create_dir_all(&dir).expect("scratch folder");
+    let copy = dir.join("design.ork");
+    std::fs::copy(design("a_simple_model_rocket"), &copy).expect("copy");
+    let before = std::fs::read(&copy).expect("read");
+    let path = copy.to_str().expect("utf-8");
+    let output = karman(&["import", path, "-o", path]);
+    assert_eq!(output.status.code(), Some(1), "{}", stderr(&output));
+    assert!(
+        stderr(&output).contains("that is the design being imported"),
+        "{}",
+        stderr(&output)
+    );
+    assert_eq!(
+        std::fs::read(&copy).expect("read"),
+        before,
+        "the design is untouched"
+    );
+    let mission = dir.join("m.toml");
+    let output = karman(&[
+        "import",
+        path,
+        "--motor",
+        "/no/such/motors",
+        "-o",
+        mission.to_str().expect("utf-8"),
+    ]);
+    assert_eq!(output.status.code(), Some(1), "{}", stderr(&output));
+    assert!(
+        stderr(&output).contains("--motor /no/such/motors: no such file or folder"),
+        "{}",
+        stderr(&output)
+    );
+    assert!(!mission.exists());
+}

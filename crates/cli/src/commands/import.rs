@@ -4,7 +4,7 @@
 use std::io::Write;
 use std::path::PathBuf;
 
-use anyhow::{Context, Result};
+use anyhow::{Context, Result, bail};
 use clap::Args;
 use karman_mission::ork::{ImportOptions, import};
 
@@ -32,7 +32,23 @@ pub struct ImportArgs {
 }
 
 /// Reads the design and writes the mission.
+///
+/// Refused before anything is read: a `--motor` path that does not exist (a typo would
+/// otherwise only show as a motor not found), and an output that is the design itself
+/// (`import X.ork -o X.ork` would replace the design with its mission).
 pub fn run(args: &ImportArgs) -> Result<()> {
+    for motor in &args.motors {
+        if !motor.exists() {
+            bail!("--motor {}: no such file or folder", motor.display());
+        }
+    }
+    let same = |a: &std::path::Path, b: &std::path::Path| matches!((a.canonicalize(), b.canonicalize()), (Ok(a), Ok(b)) if a == b);
+    if same(&args.design, &args.output) {
+        bail!(
+            "-o {}: that is the design being imported; name another file for the mission",
+            args.output.display()
+        );
+    }
     let options = ImportOptions {
         simulation: args.simulation.clone(),
         motors: args.motors.clone(),
