@@ -605,3 +605,48 @@ fn first_name(xml: &str) -> &str {
     let open = xml.find("<name>").expect("a name") + "<name>".len();
     &xml[open..open + xml[open..].find("</name>").expect("end")]
 }
+
+/// Walls thicker than their radius (a shoulder's, a body tube's) fill the part instead of
+/// reaching a `clamp` with its bounds crossed; a negative shoulder radius is an error naming
+/// the element.
+#[test]
+fn walls_thicker_than_their_radius_fill_the_part() {
+    let text = simple_xml();
+    let import_text = |xml: &str, name: &str| {
+        let file = tempdir().join(name);
+        std::fs::write(&file, xml).expect("write");
+        let options = ImportOptions {
+            motors: vec![
+                design("a_simple_model_rocket")
+                    .parent()
+                    .expect("dir")
+                    .to_owned(),
+            ],
+            ..ImportOptions::default()
+        };
+        import(&file, &options)
+    };
+    let thick = text.replacen(
+        "<aftshoulderthickness>0.002</aftshoulderthickness>",
+        "<aftshoulderthickness>0.5</aftshoulderthickness>",
+        1,
+    );
+    assert_ne!(thick, text, "the fixture has the shoulder");
+    import_text(&thick, "thick_shoulder.ork").expect("a filled shoulder imports");
+    let at = text.find("<bodytube>").expect("a body tube");
+    let open = text[at..].find("<thickness>").expect("its wall") + at;
+    let close = text[open..].find("</thickness>").expect("end") + open + "</thickness>".len();
+    let mut solid = text.clone();
+    solid.replace_range(open..close, "<thickness>3.0</thickness>");
+    import_text(&solid, "thick_tube.ork").expect("a filled tube imports");
+    let negative = text.replacen(
+        "<aftshoulderradius>0.0115</aftshoulderradius>",
+        "<aftshoulderradius>-0.0115</aftshoulderradius>",
+        1,
+    );
+    let e = import_text(&negative, "negative_shoulder.ork").expect_err("negative radius");
+    assert!(
+        e.to_string().contains("aftshoulderradius") && e.to_string().contains("negative"),
+        "{e}"
+    );
+}

@@ -65,8 +65,11 @@ impl MassProps {
 }
 
 /// A hollow cylinder of radii `ro` > `ri`, length `l`, density `rho`, forward end at `x`.
+/// Radii out of order meet the nearest solid: a negative outer radius is none, an inner
+/// radius below zero (a wall thicker than the radius) is a filled cylinder.
 fn tube(x: f64, l: f64, ro: f64, ri: f64, rho: f64) -> MassProps {
-    let ri = ri.clamp(0.0, ro);
+    let ro = ro.max(0.0);
+    let ri = ri.max(0.0).min(ro);
     let m = rho * PI * (ro * ro - ri * ri) * l;
     MassProps {
         mass: m,
@@ -290,11 +293,24 @@ fn own(
                 if l <= 0.0 {
                     continue;
                 }
-                let r = c.num_or(&format!("{end}shoulderradius"), 0.0)?;
-                let ts = match c.text(&format!("{end}shoulderthickness")) {
+                let radius_key = format!("{end}shoulderradius");
+                let thickness_key = format!("{end}shoulderthickness");
+                let r = c.num_or(&radius_key, 0.0)?;
+                if r < 0.0 {
+                    return Err(c.value_error(&radius_key, &format!("{r} must not be negative")));
+                }
+                let ts = match c.text(&thickness_key) {
                     Some("filled") => r,
-                    _ => c.num_or(&format!("{end}shoulderthickness"), 0.0)?,
+                    _ => c.num_or(&thickness_key, 0.0)?,
                 };
+                if ts < 0.0 {
+                    return Err(
+                        c.value_error(&thickness_key, &format!("{ts} must not be negative"))
+                    );
+                }
+                // A wall thicker than the shoulder's radius fills it (OpenRocket clamps the
+                // thickness to the radius the same way).
+                let ts = ts.min(r);
                 let start = if end == "aft" { at } else { at - l };
                 p = p.add(tube(start, l, r, r - ts, rho));
                 if c.text(&format!("{end}shouldercapped")) == Some("true") {
