@@ -650,3 +650,38 @@ fn walls_thicker_than_their_radius_fill_the_part() {
         "{e}"
     );
 }
+
+/// A component tree 5,000 deep (inner tubes inside inner tubes) is an error naming the depth
+/// limit, not a stack overflow; 20 deep still reads.
+#[test]
+fn a_component_tree_too_deep_is_an_error() {
+    let text = simple_xml();
+    let nested = |depth: usize| {
+        let tube = "<innertube><name>t</name><length>0.01</length><outerradius>0.005</outerradius>\
+                    <thickness>0.001</thickness><material type=\"bulk\" density=\"1000\">x</material>\
+                    <subcomponents>";
+        let at = text.find("<bodytube>").expect("a body tube");
+        let subs =
+            text[at..].find("<subcomponents>").expect("its parts") + at + "<subcomponents>".len();
+        let mut xml = String::with_capacity(text.len() + depth * 300);
+        xml.push_str(&text[..subs]);
+        for _ in 0..depth {
+            xml.push_str(tube);
+        }
+        for _ in 0..depth {
+            xml.push_str("</subcomponents></innertube>");
+        }
+        xml.push_str(&text[subs..]);
+        xml
+    };
+    let deep = nested(5000);
+    let e = match Design::parse(Path::new("deep.ork"), &deep) {
+        Ok(_) => panic!("a 5,000-deep tree parsed"),
+        Err(e) => e.to_string(),
+    };
+    assert!(
+        e.contains("deep.ork") && e.contains("nested more than 64 deep"),
+        "{e}"
+    );
+    Design::parse(Path::new("twenty.ork"), &nested(20)).expect("20 deep reads");
+}

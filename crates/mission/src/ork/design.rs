@@ -526,6 +526,9 @@ impl Design {
 
 /// Reads one component element and its sub-components; `parent` is the parent's (top,
 /// length) and `previous` the end of the previous body sibling (for `after` placement).
+/// How deep components may nest inside each other (stage, body tube, inner tube, ring, …).
+pub const MAX_COMPONENT_DEPTH: usize = 64;
+
 fn component(
     file: &Path,
     node: roxmltree::Node<'_, '_>,
@@ -539,6 +542,15 @@ fn component(
         component: name.clone(),
         what,
     };
+    // The tree is walked recursively (here, in `Component::walk` and the mass model): a
+    // crafted design nested thousands deep must end in an error, not overflow the stack.
+    // Each component level is two XML levels (the element and its `<subcomponents>`).
+    if node.ancestors().nth(2 * MAX_COMPONENT_DEPTH + 4).is_some() {
+        return Err(unsupported(format!(
+            "components nested more than {MAX_COMPONENT_DEPTH} deep (OpenRocket's own \
+             designs nest a handful)"
+        )));
+    }
     let Some(kind) = Kind::from_tag(tag) else {
         let what = match tag {
             "parallelstage" => "a parallel booster set (side boosters with motors of their \

@@ -43,7 +43,9 @@ use std::path::{Path, PathBuf};
 
 use thiserror::Error;
 
-pub use design::{Component, Design, Kind, MotorRef, SeparationRef, Simulation};
+pub use design::{
+    Component, Design, Kind, MAX_COMPONENT_DEPTH, MotorRef, SeparationRef, Simulation,
+};
 
 /// Errors of the `.ork` reader; each names the file and, where there is one, the component.
 #[derive(Debug, Error)]
