@@ -685,3 +685,39 @@ fn a_component_tree_too_deep_is_an_error() {
     );
     Design::parse(Path::new("twenty.ork"), &nested(20)).expect("20 deep reads");
 }
+
+/// A zip bomb (an entry that inflates past [`MAX_DOCUMENT_BYTES`]) stops at the cap with an
+/// error; a file that is not a regular file (`/dev/zero`, which never ends) is refused before
+/// it is read.
+#[test]
+fn a_zip_bomb_and_a_device_are_refused() {
+    use karman_mission::ork::{MAX_DOCUMENT_BYTES, read_document};
+    use std::io::Write;
+    let file = tempdir().join("bomb.ork");
+    let mut zip = zip::ZipWriter::new(std::fs::File::create(&file).expect("create"));
+    let deflated = zip::write::SimpleFileOptions::default()
+        .compression_method(zip::CompressionMethod::Deflated);
+    zip.start_file("rocket.ork", deflated).expect("entry");
+    let block = vec![b' '; 1 << 20];
+    for _ in 0..=(MAX_DOCUMENT_BYTES >> 20) {
+        zip.write_all(&block).expect("write");
+    }
+    zip.finish().expect("finish");
+    let size = std::fs::metadata(&file).expect("size").len();
+    assert!(
+        size < MAX_DOCUMENT_BYTES / 100,
+        "the bomb is small: {size} bytes"
+    );
+    let e = read_document(&file).expect_err("too large").to_string();
+    assert!(
+        e.contains("bomb.ork") && e.contains("decompressed") && e.contains("MiB"),
+        "{e}"
+    );
+    let e = read_document(Path::new("/dev/zero"))
+        .expect_err("a device")
+        .to_string();
+    assert!(
+        e.contains("/dev/zero") && e.contains("not a regular file"),
+        "{e}"
+    );
+}

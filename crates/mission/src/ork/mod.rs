@@ -154,13 +154,45 @@ pub struct Imported {
 /// itself when it is XML.
 ///
 /// # Errors
-/// [`OrkError::Read`], [`OrkError::Container`].
+/// [`OrkError::Read`]; [`OrkError::Container`] also for a file that is not a regular file
+/// or a document larger than [`MAX_DOCUMENT_BYTES`] (decompressed).
 pub fn read_document(file: &Path) -> Result<String, OrkError> {
-    let bytes = std::fs::read(file).map_err(|source| OrkError::Read {
+    use std::io::Read;
+    let read_error = |source| OrkError::Read {
         file: file.to_owned(),
         source,
-    })?;
+    };
+    // Only a regular file: a FIFO would block forever and `/dev/zero` never ends.
+    let meta = std::fs::metadata(file).map_err(read_error)?;
+    if !meta.is_file() {
+        return Err(OrkError::Container {
+            file: file.to_owned(),
+            reason: "not a regular file".to_owned(),
+        });
+    }
+    let mut bytes = Vec::new();
+    std::fs::File::open(file)
+        .and_then(|f| f.take(MAX_DOCUMENT_BYTES + 1).read_to_end(&mut bytes))
+        .map_err(read_error)?;
+    if bytes.len() as u64 > MAX_DOCUMENT_BYTES {
+        return Err(too_large(file, "the file"));
+    }
     document_text(file, &bytes)
+}
+
+/// The largest design document read, compressed or not, in bytes (64 MiB; OpenRocket's
+/// example designs are tens of kilobytes, the largest with decals a few megabytes): a zip
+/// bomb stops here instead of filling memory.
+pub const MAX_DOCUMENT_BYTES: u64 = 64 << 20;
+
+fn too_large(file: &Path, what: &str) -> OrkError {
+    OrkError::Container {
+        file: file.to_owned(),
+        reason: format!(
+            "{what} is larger than {} MiB, far beyond any design",
+            MAX_DOCUMENT_BYTES >> 20
+        ),
+    }
 }
 
 /// The document text of `.ork` bytes (see [`read_document`]).
@@ -189,11 +221,16 @@ pub fn document_text(file: &Path, bytes: &[u8]) -> Result<String, OrkError> {
         let mut entry = archive
             .by_name(name)
             .map_err(|e| container(format!("cannot open {name} in the archive ({e})")))?;
-        let mut text = String::new();
-        entry
-            .read_to_string(&mut text)
-            .map_err(|e| container(format!("{name} in the archive is not UTF-8 text ({e})")))?;
-        Ok(text)
+        let mut raw = Vec::new();
+        (&mut entry)
+            .take(MAX_DOCUMENT_BYTES + 1)
+            .read_to_end(&mut raw)
+            .map_err(|e| container(format!("cannot read {name} in the archive ({e})")))?;
+        if raw.len() as u64 > MAX_DOCUMENT_BYTES {
+            return Err(too_large(file, &format!("{name} decompressed")));
+        }
+        String::from_utf8(raw)
+            .map_err(|e| container(format!("{name} in the archive is not UTF-8 text ({e})")))
     } else if bytes.starts_with(&[0x1f, 0x8b]) {
         Err(container(
             "a gzip-compressed document (OpenRocket before 15.03); open and save it in a \
