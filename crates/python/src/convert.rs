@@ -2,14 +2,35 @@
 //! `set`), JSON-shaped reports → Python objects (lists of numbers as numpy arrays).
 
 use numpy::PyArray1;
-use pyo3::exceptions::{PyRuntimeError, PyTypeError};
+use pyo3::exceptions::{PyRuntimeError, PyTypeError, PyValueError};
 use pyo3::prelude::*;
 use pyo3::types::{PyBool, PyDict, PyFloat, PyInt, PyList, PyString, PyTuple};
+
+/// How deep dicts and lists may nest in a value given to the mission (a mission nests a few
+/// levels; the limit keeps a self-referencing dict or a crafted deep one from exhausting the
+/// stack, which would take the interpreter down with it).
+pub const MAX_NESTING: usize = 64;
 
 /// A Python value as a TOML value: `bool`, `int`, `float`, `str`, `datetime`-like objects
 /// (their ISO text, as a TOML datetime), sequences (lists, tuples, numpy arrays) and
 /// mappings with string keys. `at` names the place in messages (`rocket.mass`).
+///
+/// # Errors
+/// `TypeError` for a value of another kind, `ValueError` for one nested more than
+/// [`MAX_NESTING`] deep (a dict or list that contains itself never ends).
 pub fn to_toml(value: &Bound<'_, PyAny>, at: &str) -> PyResult<toml::Value> {
+    to_toml_nested(value, at, 0)
+}
+
+/// [`to_toml`] of a value `depth` levels inside the one given.
+fn to_toml_nested(value: &Bound<'_, PyAny>, at: &str, depth: usize) -> PyResult<toml::Value> {
+    if depth > MAX_NESTING {
+        let shown: String = at.chars().take(120).collect();
+        return Err(PyValueError::new_err(format!(
+            "`{shown}…`: nested more than {MAX_NESTING} levels deep (a dict or list that \
+             contains itself?)"
+        )));
+    }
     if value.is_instance_of::<PyBool>() {
         return Ok(toml::Value::Boolean(value.extract()?));
     }
@@ -45,7 +66,7 @@ pub fn to_toml(value: &Bound<'_, PyAny>, at: &str) -> PyResult<toml::Value> {
             if item.is_none() {
                 continue;
             }
-            table.insert(key, to_toml(&item, &inner)?);
+            table.insert(key, to_toml_nested(&item, &inner, depth + 1)?);
         }
         return Ok(toml::Value::Table(table));
     }
@@ -61,13 +82,13 @@ pub fn to_toml(value: &Bound<'_, PyAny>, at: &str) -> PyResult<toml::Value> {
     if value.is_instance_of::<PyList>() || value.is_instance_of::<PyTuple>() {
         let mut array = Vec::new();
         for (i, item) in value.try_iter()?.enumerate() {
-            array.push(to_toml(&item?, &format!("{at}[{i}]"))?);
+            array.push(to_toml_nested(&item?, &format!("{at}[{i}]"), depth + 1)?);
         }
         return Ok(toml::Value::Array(array));
     }
     // numpy arrays and scalars: their plain Python form.
     if value.hasattr("tolist")? {
-        return to_toml(&value.call_method0("tolist")?, at);
+        return to_toml_nested(&value.call_method0("tolist")?, at, depth + 1);
     }
     let kind = value.get_type().name()?;
     Err(PyTypeError::new_err(format!(

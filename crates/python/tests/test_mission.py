@@ -101,3 +101,25 @@ def test_inspect_gives_arrays(example):
     environment = report["environment"]
     arrays = [v for v in environment.values() if hasattr(v, "shape")]
     assert arrays and all(a.shape == (3,) for a in arrays)
+
+
+def test_a_self_referencing_or_deep_dict_is_an_exception_not_a_crash(example):
+    """A dict that contains itself, or one nested 10,000 deep, raises ValueError naming the
+    depth limit instead of exhausting the stack; so does `set` of such a value."""
+    looped = example.to_dict()
+    looped["rocket"]["loop"] = looped
+    with pytest.raises(ValueError, match="nested more than 64 levels deep"):
+        karman.Mission.from_dict(looped, path=EXAMPLE)
+    deep = example.to_dict()
+    inner = deep["rocket"]
+    for _ in range(10_000):
+        inner["x"] = {}
+        inner = inner["x"]
+    with pytest.raises(ValueError, match="nested more than 64 levels deep"):
+        karman.Mission.from_dict(deep, path=EXAMPLE)
+    cycle = []
+    cycle.append(cycle)
+    with pytest.raises(ValueError, match="nested more than 64 levels deep"):
+        example.set("rocket.mass", cycle)
+    # An ordinary mission still converts.
+    assert karman.Mission.from_dict(example.to_dict(), path=EXAMPLE).to_toml() == example.to_toml()
