@@ -4,7 +4,7 @@
 
 use crate::error::FlightLogError;
 use crate::log::{Event, EventKind, EventSource, FlightLog, Gnss, Sample, VelocitySource};
-use crate::raw::{AltitudeKind, Raw, RawSample};
+use crate::raw::{AltitudeKind, Raw, RawSample, Tally};
 use crate::units::pressure_height;
 use std::cmp::Ordering;
 
@@ -38,22 +38,6 @@ pub const VELOCITY_MAX_NEIGHBOURS: usize = 50;
 pub const LANDING_HEIGHT_M: f64 = 5.0;
 /// Samples before the climb lower than minus this are reported, m.
 pub const NEGATIVE_REPORT_M: f64 = 10.0;
-
-/// A count of affected rows and the first one's line.
-#[derive(Default)]
-struct Tally {
-    count: usize,
-    first_line: usize,
-}
-
-impl Tally {
-    fn add(&mut self, line: usize) {
-        if self.count == 0 {
-            self.first_line = line;
-        }
-        self.count += 1;
-    }
-}
 
 /// Keeps the samples whose time is later than the last kept one; the others (repeated
 /// times, a clock going back) are dropped and reported.

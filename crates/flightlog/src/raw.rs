@@ -129,15 +129,16 @@ impl Raw {
     }
 }
 
-/// Counts of a skipped kind of row: how many, and the first line.
+/// Counts of a skipped or mended kind of row: how many, and the first line (shared by the
+/// reading and the normalising rules' warnings).
 #[derive(Default)]
-struct Tally {
-    count: usize,
-    first_line: usize,
+pub(crate) struct Tally {
+    pub(crate) count: usize,
+    pub(crate) first_line: usize,
 }
 
 impl Tally {
-    fn add(&mut self, line: usize) {
+    pub(crate) fn add(&mut self, line: usize) {
         if self.count == 0 {
             self.first_line = line;
         }
