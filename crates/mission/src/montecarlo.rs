@@ -48,7 +48,7 @@ use crate::assemble::scripts::{ControllerEnvironment, compile_controller};
 use crate::assemble::stages;
 use crate::paths::{self, DerivedKnob, Input};
 use crate::schema::{AirBrakesCurve, Curve, Distribution, MissionSpec};
-use crate::{Mission, MissionError};
+use crate::{Mission, MissionError, validate};
 use karman_airframe::{AirBrakesDrag, Rocket};
 use karman_atmos::Environment;
 use karman_dispersion::sampling::flight_seed;
@@ -548,6 +548,7 @@ impl MonteCarlo {
     /// an error is the whole message chain.
     pub fn fly(&self, index: u64, values: &[f64]) -> Result<Outcome, String> {
         let (spec, [factor, offset_deg], drag) = self.sample_spec(values)?;
+        drawn_in_range(&spec, &self.mission.dir)?;
         let mission = Mission {
             path: self.mission.path.clone(),
             dir: self.mission.dir.clone(),
@@ -599,6 +600,25 @@ impl MonteCarlo {
             Some((kind, message)) => Outcome::ended(values, kind, message),
         })
     }
+}
+
+/// A sample's mission must pass the range checks of a mission file and `--set`
+/// ([`validate::validate_drawn`]): a draw outside them (a negative trigger height, a
+/// relative tolerance of 0.5, a sampling rate of 1e10 Hz) fails the sample with every
+/// offending key and value named, instead of flying a flight the file would be refused for.
+fn drawn_in_range(spec: &MissionSpec, dir: &std::path::Path) -> Result<(), String> {
+    let problems = validate::validate_drawn(spec, dir);
+    if problems.is_empty() {
+        return Ok(());
+    }
+    let listed: Vec<String> = problems
+        .iter()
+        .map(|(key, kind)| format!("{key}: {kind}"))
+        .collect();
+    Err(format!(
+        "a drawn value is out of range: {}",
+        listed.join("; ")
+    ))
 }
 
 impl MonteCarlo {
@@ -946,6 +966,34 @@ mod tests {
         let heavier = [0.5, 1.0, 1.0, 85.0, 0.0, 1.0, 1.2];
         let apogee = |o: &Outcome| o.values()[0].expect("apogee");
         assert!(apogee(&mc.fly(4, &heavier).expect("flight")) < apogee(&outcome));
+    }
+
+    #[test]
+    fn a_draw_out_of_range_fails_its_sample_with_the_key_and_value() {
+        let mission = mission(
+            "\"flight.rtol\" = { std = 1e-7 }\n\
+             \"rocket.parachutes.main.sampling_rate\" = { std = 1 }\n\
+             \"rocket.parachutes.main.trigger\" = { std = 10 }\n",
+        );
+        let mc = MonteCarlo::new(&mission, StudyOverrides::default()).expect("study");
+        let nominal = [mission.spec.flight.rtol, 100.0, 200.0];
+        assert!(mc.fly(0, &nominal).is_ok(), "in-range draws fly");
+        // The audit's cases: a tolerance that lets the states turn to NaN, a sampling rate
+        // that multiplies the instants without bound, a trigger below the ground.
+        for (values, key, value) in [
+            ([0.5, 100.0, 200.0], "flight.rtol", "0.5"),
+            ([nominal[0], 1e10, 200.0], "rocket.parachutes.main.sampling_rate", "10000000000"),
+            ([nominal[0], 100.0, -5.0], "rocket.parachutes.main.trigger", "-5"),
+        ] {
+            let message = mc.fly(0, &values).expect_err("out of range");
+            assert!(
+                message.starts_with("a drawn value is out of range: ")
+                    && message.contains(&format!("{key}: {value} is out of range")),
+                "{message}"
+            );
+        }
+        let message = mc.fly(0, &[0.5, 1e10, -5.0]).expect_err("out of range");
+        assert_eq!(message.matches("is out of range: must").count(), 3, "{message}");
     }
 
     #[test]

@@ -44,25 +44,47 @@ const THRUST_EXTENSIONS: &[&str] = &["eng", "rse", "csv", "txt"];
 /// Extensions of a netCDF weather grid.
 const GRID_EXTENSIONS: &[&str] = &["nc", "nc4", "netcdf"];
 
-struct Checker<'a, 'd> {
-    doc: &'a Document<'d>,
+struct Checker<'a> {
     dir: &'a Path,
     /// `--fetch` is about to download the atmosphere file a `source` names: it need not
     /// exist yet.
     fetching: bool,
-    problems: Vec<Problem>,
+    /// Whether data files are read and checked. Off for a Monte Carlo sample: its files are
+    /// the nominal mission's, read and checked when the mission was loaded, and a sample's
+    /// drawn curves are inline points (checked without reading anything).
+    data: bool,
+    /// Each problem by its whole dotted key, located by the caller.
+    problems: Vec<(String, ProblemKind)>,
     /// While a `[[stages]]` entry is checked with the `[rocket]` and `[motor]` checks: its
     /// dotted path (`stages.0`), put before the keys they report.
     stage: Option<String>,
 }
 
-impl Checker<'_, '_> {
+impl Checker<'_> {
+    fn new(dir: &Path, fetching: bool, data: bool) -> Checker<'_> {
+        Checker {
+            dir,
+            fetching,
+            data,
+            problems: Vec::new(),
+            stage: None,
+        }
+    }
+
     fn report(&mut self, key: &str, kind: ProblemKind) {
-        let problem = match &self.stage {
-            Some(stage) => self.doc.problem(&format!("{stage}.{key}"), kind),
-            None => self.doc.problem(key, kind),
+        let key = match &self.stage {
+            Some(stage) => format!("{stage}.{key}"),
+            None => key.to_owned(),
         };
-        self.problems.push(problem);
+        self.problems.push((key, kind));
+    }
+
+    /// The problems found so far, located in `doc`.
+    fn take_located(&mut self, doc: &Document<'_>) -> Vec<Problem> {
+        self.problems
+            .drain(..)
+            .map(|(key, kind)| doc.problem(&key, kind))
+            .collect()
     }
 
     /// `value` must satisfy `ok`, described by `expected`.
@@ -105,6 +127,9 @@ impl Checker<'_, '_> {
 
     /// A data file must exist and have one of `extensions` (any, if empty).
     fn file(&mut self, key: &str, path: &Path, extensions: &'static [&'static str]) {
+        if !self.data {
+            return;
+        }
         let resolved = self.dir.join(path);
         if let Err(source) = std::fs::metadata(&resolved) {
             self.report(
@@ -144,6 +169,9 @@ impl Checker<'_, '_> {
         interpolation: Interpolation,
         extrapolation: Extrapolation,
     ) {
+        if !self.data && curve.file_path(self.dir).is_some() {
+            return;
+        }
         match crate::curves::check(curve, self.dir, interpolation, extrapolation) {
             Ok(()) => {}
             Err(kind) => self.report(key, kind),
@@ -158,19 +186,32 @@ pub(crate) fn validate(
     dir: &Path,
     fetching: bool,
 ) -> Vec<Problem> {
-    let mut c = Checker {
-        doc,
-        dir,
-        fetching,
-        problems: Vec::new(),
-        stage: None,
-    };
+    let mut c = Checker::new(dir, fetching, true);
     environment(&mut c, spec);
     motor(&mut c, spec);
     rocket(&mut c, spec);
     air_brakes(&mut c, spec);
     flight(&mut c, spec);
-    dispersion(&mut c, spec);
+    let mut problems = c.take_located(doc);
+    problems.extend(dispersion(spec, doc));
+    stages(&mut c, spec);
+    extra_motors(&mut c, spec);
+    problems.extend(c.take_located(doc));
+    problems
+}
+
+/// The checks of [`validate`] on a Monte Carlo sample's mission (`spec`, the nominal mission
+/// with the sample's drawn values applied), without reading data files: the same ranges as
+/// the file and `--set` get, so that a draw outside them fails its sample instead of flying
+/// it. Each problem by its dotted key. The `[dispersion]` table is the study's, not the
+/// sample's, and is not checked again.
+pub(crate) fn validate_drawn(spec: &MissionSpec, dir: &Path) -> Vec<(String, ProblemKind)> {
+    let mut c = Checker::new(dir, false, false);
+    environment(&mut c, spec);
+    motor(&mut c, spec);
+    rocket(&mut c, spec);
+    air_brakes(&mut c, spec);
+    flight(&mut c, spec);
     stages(&mut c, spec);
     extra_motors(&mut c, spec);
     c.problems
@@ -179,7 +220,7 @@ pub(crate) fn validate(
 /// The `[[extra_motors]]` entries: each motor with the checks of `[motor]`, its ignition
 /// delay, and what a combination of motors needs (linear thrust curves, no pressure-thrust
 /// correction, a single-stage rocket): everything the flight's combination would refuse.
-fn extra_motors(c: &mut Checker<'_, '_>, spec: &MissionSpec) {
+fn extra_motors(c: &mut Checker<'_>, spec: &MissionSpec) {
     if spec.extra_motors.is_empty() {
         return;
     }
@@ -239,7 +280,7 @@ fn extra_motors(c: &mut Checker<'_, '_>, spec: &MissionSpec) {
 /// The `[[stages]]` entries: each stage's airframe and motor with the checks of `[rocket]`
 /// and `[motor]` (a stage may weigh nothing), its separation trigger, and what a stack must
 /// share (one coordinate system, distinct surface and parachute names).
-fn stages(c: &mut Checker<'_, '_>, spec: &MissionSpec) {
+fn stages(c: &mut Checker<'_>, spec: &MissionSpec) {
     if spec.stages.is_empty() {
         return;
     }
@@ -361,7 +402,7 @@ fn stages(c: &mut Checker<'_, '_>, spec: &MissionSpec) {
     }
 }
 
-fn environment(c: &mut Checker<'_, '_>, spec: &MissionSpec) {
+fn environment(c: &mut Checker<'_>, spec: &MissionSpec) {
     let env = &spec.environment;
     c.range(
         "environment.latitude",
@@ -465,7 +506,7 @@ fn environment(c: &mut Checker<'_, '_>, spec: &MissionSpec) {
 }
 
 /// `source` must be a service that sends what `model` reads; `station` goes with Wyoming.
-fn source(c: &mut Checker<'_, '_>, atm: &AtmosphereSpec, what: &str) {
+fn source(c: &mut Checker<'_>, atm: &AtmosphereSpec, what: &str) {
     let wyoming = atm.source == Some(WeatherSource::Wyoming);
     if wyoming {
         c.required(
@@ -506,7 +547,7 @@ fn source(c: &mut Checker<'_, '_>, atm: &AtmosphereSpec, what: &str) {
     }
 }
 
-fn motor(c: &mut Checker<'_, '_>, spec: &MissionSpec) {
+fn motor(c: &mut Checker<'_>, spec: &MissionSpec) {
     let m = &spec.motor;
     let what = format!("a {} motor", m.kind);
     match &m.thrust {
@@ -688,7 +729,7 @@ fn motor(c: &mut Checker<'_, '_>, spec: &MissionSpec) {
 
 /// `[rocket.pods]`: at least one pod, every surface named exists and belongs to one pod,
 /// at most one nose cone per pod.
-fn pods(c: &mut Checker<'_, '_>, r: &RocketSpec) {
+fn pods(c: &mut Checker<'_>, r: &RocketSpec) {
     let mut owner: std::collections::BTreeMap<&str, &str> = std::collections::BTreeMap::new();
     for (pod, p) in &r.pods {
         let key = |k: &str| format!("rocket.pods.{pod}.{k}");
@@ -738,7 +779,7 @@ fn pods(c: &mut Checker<'_, '_>, r: &RocketSpec) {
 }
 
 /// `[rocket.drag_estimate]`: dimensions in range, every fin table names a fin set.
-fn drag_estimate(c: &mut Checker<'_, '_>, d: &crate::schema::DragEstimateSpec, r: &RocketSpec) {
+fn drag_estimate(c: &mut Checker<'_>, d: &crate::schema::DragEstimateSpec, r: &RocketSpec) {
     const K: &str = "rocket.drag_estimate";
     if let Some(l) = d.body_length {
         c.positive(&format!("{K}.body_length"), l);
@@ -812,7 +853,7 @@ fn drag_estimate(c: &mut Checker<'_, '_>, d: &crate::schema::DragEstimateSpec, r
 /// 1.13 builds it only from tables, which keep their own points — the ullage, the liquid
 /// height, or the liquid and gas masses given at the same times — and builds no
 /// mass-flow-rate tank so.
-fn own_points_checks(c: &mut Checker<'_, '_>, index: usize, t: &TankSpec) {
+fn own_points_checks(c: &mut Checker<'_>, index: usize, t: &TankSpec) {
     let key = |name: &str| format!("motor.tanks.{index}.{name}");
     let schema = |message: &str| ProblemKind::Schema {
         message: message.to_owned(),
@@ -873,7 +914,7 @@ fn own_points_checks(c: &mut Checker<'_, '_>, index: usize, t: &TankSpec) {
 
 /// One `[[motor.tanks]]` entry: the keys its kind needs and uses, its geometry, fluids, flux
 /// time and curves (the contents are checked against the volume when the tank is built).
-fn tank_checks(c: &mut Checker<'_, '_>, index: usize, t: &TankSpec) {
+fn tank_checks(c: &mut Checker<'_>, index: usize, t: &TankSpec) {
     let key = |name: &str| format!("motor.tanks.{index}.{name}");
     let what = format!("a {} tank", t.kind);
     let g = &t.geometry;
@@ -1050,7 +1091,7 @@ fn tank_key_name(name: &str) -> &'static str {
     .unwrap_or("tank curve")
 }
 
-fn rocket(c: &mut Checker<'_, '_>, spec: &MissionSpec) {
+fn rocket(c: &mut Checker<'_>, spec: &MissionSpec) {
     let r = &spec.rocket;
     c.positive("rocket.radius", r.radius);
     if c.stage.is_some() {
@@ -1203,7 +1244,7 @@ fn rocket(c: &mut Checker<'_, '_>, spec: &MissionSpec) {
     }
 }
 
-fn air_brakes(c: &mut Checker<'_, '_>, spec: &MissionSpec) {
+fn air_brakes(c: &mut Checker<'_>, spec: &MissionSpec) {
     let Some(ab) = &spec.rocket.air_brakes else {
         return;
     };
@@ -1211,6 +1252,11 @@ fn air_brakes(c: &mut Checker<'_, '_>, spec: &MissionSpec) {
     c.positive(&key("sampling_rate"), ab.sampling_rate);
     if let Some(area) = ab.reference_area {
         c.positive(&key("reference_area"), area);
+    }
+    if !c.data {
+        // The drag table and the controller script are data files (a drawn table only
+        // scales the nominal one's values).
+        return;
     }
     match ab.drag_coefficient_curve.to_drag(c.dir) {
         Ok(AirBrakesDrag::Table(rows)) if rows.is_empty() => c.report(
@@ -1267,7 +1313,7 @@ fn air_brakes(c: &mut Checker<'_, '_>, spec: &MissionSpec) {
     }
 }
 
-fn flight(c: &mut Checker<'_, '_>, spec: &MissionSpec) {
+fn flight(c: &mut Checker<'_>, spec: &MissionSpec) {
     let f = &spec.flight;
     c.positive("flight.rail_length", f.rail_length);
     c.range(
@@ -1323,14 +1369,20 @@ fn flight(c: &mut Checker<'_, '_>, spec: &MissionSpec) {
     }
 }
 
-fn dispersion(c: &mut Checker<'_, '_>, spec: &MissionSpec) {
-    let Some(d) = &spec.dispersion else { return };
-    c.range(
-        "dispersion.samples",
-        f64::from(d.samples),
-        d.samples >= 1,
-        "needs at least 1 sample",
-    );
+fn dispersion(spec: &MissionSpec, doc: &Document<'_>) -> Vec<Problem> {
+    let mut problems = Vec::new();
+    let Some(d) = &spec.dispersion else {
+        return problems;
+    };
+    if d.samples < 1 {
+        problems.push(doc.problem(
+            "dispersion.samples",
+            ProblemKind::OutOfRange {
+                value: f64::from(d.samples),
+                expected: "needs at least 1 sample",
+            },
+        ));
+    }
     for (path, distribution) in &d.vary {
         let key = format!("dispersion.vary.{path}");
         let problem = match paths::resolve(spec, path) {
@@ -1345,9 +1397,10 @@ fn dispersion(c: &mut Checker<'_, '_>, spec: &MissionSpec) {
             Err(error) => Some(error.to_string()),
         };
         if let Some(reason) = problem {
-            c.problems.push(vary_problem(c.doc, &key, path, reason));
+            problems.push(vary_problem(doc, &key, path, reason));
         }
     }
+    problems
 }
 
 /// A problem of a `[dispersion.vary]` entry, located at its key (whose name has dots, so
