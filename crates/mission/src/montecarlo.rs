@@ -982,8 +982,16 @@ mod tests {
         // that multiplies the instants without bound, a trigger below the ground.
         for (values, key, value) in [
             ([0.5, 100.0, 200.0], "flight.rtol", "0.5"),
-            ([nominal[0], 1e10, 200.0], "rocket.parachutes.main.sampling_rate", "10000000000"),
-            ([nominal[0], 100.0, -5.0], "rocket.parachutes.main.trigger", "-5"),
+            (
+                [nominal[0], 1e10, 200.0],
+                "rocket.parachutes.main.sampling_rate",
+                "10000000000",
+            ),
+            (
+                [nominal[0], 100.0, -5.0],
+                "rocket.parachutes.main.trigger",
+                "-5",
+            ),
         ] {
             let message = mc.fly(0, &values).expect_err("out of range");
             assert!(
@@ -993,7 +1001,11 @@ mod tests {
             );
         }
         let message = mc.fly(0, &[0.5, 1e10, -5.0]).expect_err("out of range");
-        assert_eq!(message.matches("is out of range: must").count(), 3, "{message}");
+        assert_eq!(
+            message.matches("is out of range: must").count(),
+            3,
+            "{message}"
+        );
     }
 
     #[test]
