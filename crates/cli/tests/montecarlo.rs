@@ -517,3 +517,38 @@ fn a_bad_stage_path_is_located() {
         "the keys there: {message}"
     );
 }
+
+#[test]
+fn an_input_left_at_an_infinite_default_can_be_drawn_and_the_study_resumed() {
+    // `flight.max_time_step` defaults to infinity: study.json once recorded its nominal value
+    // as `null`, which made the study unreadable after every sample had flown.
+    let out = fresh("infinite-default");
+    let vary = r#"dispersion.vary."flight.max_time_step"={ uniform = [0.05, 0.2] }"#;
+    let output = montecarlo(&out, &["--set", vary]);
+    assert_eq!(output.status.code(), Some(0), "{}", stderr(&output));
+    let study = std::fs::read_to_string(out.join("study.json")).expect("study.json");
+    assert!(study.contains(r#""number": "inf""#), "{study}");
+    assert!(!study.contains("null"), "{study}");
+    let whole = std::fs::read(out.join("samples.csv")).expect("samples.csv");
+    // Killed half-way, then resumed: the same bytes.
+    std::fs::write(out.join("samples.csv"), &whole[..whole.len() / 2]).expect("cut");
+    let output = montecarlo(&out, &["--set", vary]);
+    assert_eq!(output.status.code(), Some(0), "{}", stderr(&output));
+    assert_eq!(
+        std::fs::read(out.join("samples.csv")).expect("samples.csv"),
+        whole
+    );
+    // A normal around (or a factor of) infinity is no distribution: refused before flying.
+    for variation in ["{ std = 0.01 }", "{ factor = { normal = [1, 0.1] } }"] {
+        let out = fresh("infinite-default-std");
+        let vary = format!(r#"dispersion.vary."flight.max_time_step"={variation}"#);
+        let output = montecarlo(&out, &["--set", &vary]);
+        let text = stderr(&output);
+        assert_eq!(output.status.code(), Some(1), "{text}");
+        assert!(
+            text.contains("flight.max_time_step") && text.contains("finite nominal value"),
+            "{text}"
+        );
+        assert!(!out.join("samples.csv").exists());
+    }
+}

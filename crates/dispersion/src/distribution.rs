@@ -151,15 +151,103 @@ pub enum Meaning {
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(rename_all = "snake_case")]
 pub enum Target {
-    /// A real number with this nominal value.
-    Number(f64),
+    /// A real number with this nominal value (which may be infinite: an input the mission
+    /// leaves at an unbounded default, such as `flight.max_time_step`).
+    Number(#[serde(with = "extended_real")] f64),
     /// An integer (a count, an index) with this nominal value: only integral `choice` fits.
     Integer(i64),
     /// A curve (a table of points or a file): only `factor` and `offset` fit.
     Curve,
     /// An array of numbers (an inertia tensor) with these nominal components: only `factor`
     /// and `offset` fit, and scale or shift every component.
-    Array(Vec<f64>),
+    Array(#[serde(with = "extended_reals")] Vec<f64>),
+}
+
+/// Serde for a nominal value that may be infinite or NaN: JSON has no such numbers
+/// (`serde_json` would write `null`, which then fails to read back and makes the study's
+/// `study.json` unreadable), so a finite value is a JSON number and any other the string
+/// `"inf"`, `"-inf"` or `"NaN"`. Finite values serialise exactly as before, so the
+/// fingerprint of a study without such values is unchanged.
+mod extended_real {
+    use serde::{Deserialize, Deserializer, Serializer};
+
+    /// The text of a non-finite value.
+    pub(super) fn text(value: f64) -> &'static str {
+        if value.is_nan() {
+            "NaN"
+        } else if value > 0.0 {
+            "inf"
+        } else {
+            "-inf"
+        }
+    }
+
+    pub(super) fn serialize<S: Serializer>(value: &f64, serializer: S) -> Result<S::Ok, S::Error> {
+        if value.is_finite() {
+            serializer.serialize_f64(*value)
+        } else {
+            serializer.serialize_str(text(*value))
+        }
+    }
+
+    /// A number or one of the three texts.
+    #[derive(Deserialize)]
+    #[serde(untagged)]
+    pub(super) enum Repr {
+        Number(f64),
+        Text(String),
+    }
+
+    impl Repr {
+        pub(super) fn value<E: serde::de::Error>(self) -> Result<f64, E> {
+            match self {
+                Repr::Number(value) => Ok(value),
+                Repr::Text(text) => match text.as_str() {
+                    "inf" => Ok(f64::INFINITY),
+                    "-inf" => Ok(f64::NEG_INFINITY),
+                    "NaN" => Ok(f64::NAN),
+                    _ => Err(E::custom(format!(
+                        "expected a number, \"inf\", \"-inf\" or \"NaN\", found {text:?}"
+                    ))),
+                },
+            }
+        }
+    }
+
+    pub(super) fn deserialize<'de, D: Deserializer<'de>>(deserializer: D) -> Result<f64, D::Error> {
+        Repr::deserialize(deserializer)?.value()
+    }
+}
+
+/// [`extended_real`] for each component of an array.
+mod extended_reals {
+    use super::extended_real::{Repr, text};
+    use serde::ser::SerializeSeq;
+    use serde::{Deserialize, Deserializer, Serializer};
+
+    pub(super) fn serialize<S: Serializer>(
+        values: &[f64],
+        serializer: S,
+    ) -> Result<S::Ok, S::Error> {
+        let mut seq = serializer.serialize_seq(Some(values.len()))?;
+        for value in values {
+            if value.is_finite() {
+                seq.serialize_element(value)?;
+            } else {
+                seq.serialize_element(text(*value))?;
+            }
+        }
+        seq.end()
+    }
+
+    pub(super) fn deserialize<'de, D: Deserializer<'de>>(
+        deserializer: D,
+    ) -> Result<Vec<f64>, D::Error> {
+        Vec::<Repr>::deserialize(deserializer)?
+            .into_iter()
+            .map(Repr::value)
+            .collect()
+    }
 }
 
 /// One uncertain input of a study.
@@ -240,9 +328,14 @@ impl VariedInput {
                 }
             }
             (Target::Integer(_), _) => misfit("an integer input only takes `choice = [...]`"),
-            (Target::Number(nominal), Variation::Std(_)) if !nominal.is_finite() => {
-                misfit("`std` needs a finite nominal value")
-            }
+            (
+                Target::Number(nominal),
+                Variation::Std(_) | Variation::Factor(_) | Variation::Offset(_),
+            ) if !nominal.is_finite() => misfit(
+                "`std`, `factor` and `offset` need a finite nominal value (the mission leaves \
+                     this input at an unbounded default); draw the value itself with a distribution, \
+                     e.g. `{ uniform = [LOW, HIGH] }`, or give the input a value",
+            ),
             (Target::Number(_), _) => Ok(()),
         }
     }
@@ -273,6 +366,61 @@ mod tests {
 
     fn input(target: Target, variation: Variation) -> VariedInput {
         VariedInput::new("x", target, variation)
+    }
+
+    #[test]
+    fn non_finite_nominal_values_round_trip_through_json() {
+        for value in [f64::INFINITY, f64::NEG_INFINITY] {
+            let target = Target::Number(value);
+            let json = serde_json::to_string(&target).unwrap();
+            assert!(!json.contains("null"), "{json}");
+            assert_eq!(serde_json::from_str::<Target>(&json).unwrap(), target);
+        }
+        let json = serde_json::to_string(&Target::Number(f64::NAN)).unwrap();
+        assert_eq!(json, r#"{"number":"NaN"}"#);
+        match serde_json::from_str::<Target>(&json).unwrap() {
+            Target::Number(value) => assert!(value.is_nan()),
+            other => panic!("{other:?}"),
+        }
+        let array = Target::Array(vec![1.5, f64::INFINITY, -2.0]);
+        let json = serde_json::to_string(&array).unwrap();
+        assert_eq!(json, r#"{"array":[1.5,"inf",-2.0]}"#);
+        assert_eq!(serde_json::from_str::<Target>(&json).unwrap(), array);
+        // Finite values keep their plain JSON form, so old study files read unchanged.
+        assert_eq!(
+            serde_json::to_string(&Target::Number(0.25)).unwrap(),
+            r#"{"number":0.25}"#
+        );
+        let error = serde_json::from_str::<Target>(r#"{"number":"infinity"}"#).unwrap_err();
+        assert!(error.to_string().contains("\"infinity\""), "{error}");
+    }
+
+    #[test]
+    fn relative_variations_of_an_infinite_nominal_are_refused() {
+        for variation in [
+            Variation::Std(0.1),
+            Variation::Factor(Distribution::Normal {
+                mean: 1.0,
+                std: 0.1,
+            }),
+            Variation::Offset(Distribution::Normal {
+                mean: 0.0,
+                std: 0.1,
+            }),
+        ] {
+            let error = input(Target::Number(f64::INFINITY), variation)
+                .check()
+                .unwrap_err();
+            assert!(
+                error.to_string().contains("finite nominal value"),
+                "{error}"
+            );
+        }
+        let drawn = Variation::Value(Distribution::Uniform {
+            low: 0.05,
+            high: 0.2,
+        });
+        input(Target::Number(f64::INFINITY), drawn).check().unwrap();
     }
 
     #[test]
