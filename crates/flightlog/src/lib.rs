@@ -46,11 +46,19 @@
 //! Reading is linear in the file's size and never panics on any input (empty files, binary
 //! data, 10 000-column lines, huge numbers, NaN are errors or warnings).
 //!
+//! # Comparison with a simulation
+//! [`compare`] sets a log against a simulated flight given as plain series
+//! ([`SimulatedFlight`]): apogee and its time, the highest vertical velocity, the RMS
+//! altitude and velocity differences over the ascent, the descent rate under each
+//! parachute and the landing points; its module documentation states the rules (time axis,
+//! pad height, descent bands, GNSS landing point).
+//!
 //! The modules are private; everything public is re-exported here.
 
 mod altus;
 mod blueraven;
 mod cats;
+mod compare;
 mod eggtimer;
 mod error;
 mod format;
@@ -64,6 +72,11 @@ mod rrc3;
 mod table;
 mod units;
 
+pub use compare::{
+    CompareError, Comparison, Deployment, DescentPhase, FIRST_MOTION_M, Figures, LandingPoints,
+    MIN_DESCENT_SAMPLES, MIN_DESCENT_SPAN_S, SimulatedFlight, SimulatedLanding, compare,
+    first_motion_time,
+};
 pub use error::FlightLogError;
 pub use format::{Format, detect};
 pub use log::{Event, EventKind, EventSource, FlightLog, Gnss, Reported, Sample, VelocitySource};

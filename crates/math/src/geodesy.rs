@@ -1,4 +1,5 @@
-//! Geodesy on a sphere: where a point lies given its east/north offset from an origin.
+//! Geodesy on a sphere: where a point lies given its east/north offset from an origin, and
+//! the offset of a point from an origin (its inverse).
 //!
 //! karman's flights and dispersion studies live in a flat launch frame (x east, y north);
 //! their latitude/longitude outputs (trajectory, KML) use the great-circle destination on a
@@ -28,9 +29,53 @@ pub fn destination(
     (lat2.to_degrees(), lon2.to_degrees())
 }
 
+/// East and north offsets (m) of the point at `latitude_deg`, `longitude_deg` from the origin
+/// at `origin_latitude_deg`, `origin_longitude_deg`, on a sphere of radius `radius` (m): the
+/// inverse of [`destination`]. The great-circle distance comes from the haversine formula
+/// (numerically sound for short distances) and the initial bearing from
+/// `atan2(sin Δλ cos φ₂, cos φ₁ sin φ₂ − sin φ₁ cos φ₂ cos Δλ)`; the offsets are the distance
+/// along that bearing resolved east and north (Sinnott 1984, "Virtues of the haversine", Sky
+/// and Telescope 68(2):159; the bearing as in Williams, *Aviation Formulary*).
+#[must_use]
+pub fn offset(
+    origin_latitude_deg: f64,
+    origin_longitude_deg: f64,
+    latitude_deg: f64,
+    longitude_deg: f64,
+    radius: f64,
+) -> (f64, f64) {
+    let (lat1, lat2) = (origin_latitude_deg.to_radians(), latitude_deg.to_radians());
+    let dlat = lat2 - lat1;
+    let dlon = (longitude_deg - origin_longitude_deg).to_radians();
+    let h = (0.5 * dlat).sin().powi(2) + lat1.cos() * lat2.cos() * (0.5 * dlon).sin().powi(2);
+    let distance = 2.0 * radius * h.sqrt().min(1.0).asin();
+    let bearing = (dlon.sin() * lat2.cos())
+        .atan2(lat1.cos() * lat2.sin() - lat1.sin() * lat2.cos() * dlon.cos());
+    (distance * bearing.sin(), distance * bearing.cos())
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn offset_inverts_destination() {
+        let r = 6_378_137.0;
+        for (east, north) in [
+            (1500.0, -320.0),
+            (-40.0, 2.5),
+            (0.0, 9000.0),
+            (-7000.0, -7000.0),
+        ] {
+            let (lat, lon) = destination(-23.5, -46.6, east, north, r);
+            let (e, n) = offset(-23.5, -46.6, lat, lon, r);
+            assert!(
+                (e - east).abs() < 1e-6 && (n - north).abs() < 1e-6,
+                "{e} {n}"
+            );
+        }
+        assert_eq!(offset(45.0, 7.0, 45.0, 7.0, r), (0.0, 0.0));
+    }
 
     #[test]
     fn destination_follows_great_circles() {

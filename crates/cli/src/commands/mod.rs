@@ -1,6 +1,7 @@
 //! The subcommands, one file each, and the arguments they share.
 
 mod check;
+mod compare;
 mod import;
 mod inspect;
 mod log;
@@ -39,6 +40,9 @@ pub enum Command {
     /// Altimeter and flight-computer logs: `show` reads one (format detected from its
     /// content) and prints liftoff, apogee, velocity, events and warnings.
     Log(log::LogArgs),
+    /// Fly the mission and set flight logs against it: apogee, velocity, ascent RMS, descent
+    /// rates, landing; --out writes comparison.json and overlay plots.
+    Compare(compare::CompareArgs),
     /// Launch-day weather: download a forecast or sounding once (`fetch`), print and plot
     /// the profile a weather file gives (`show`).
     Weather(weather::WeatherArgs),
@@ -117,5 +121,6 @@ pub fn run(command: Command) -> anyhow::Result<()> {
         Command::Sweep(args) => sweep::run(&args),
         Command::Weather(args) => weather::run(&args),
         Command::Log(args) => log::run(&args),
+        Command::Compare(args) => compare::run(&args),
     }
 }
