@@ -31,7 +31,11 @@ pub const ALLOWED: &[(&str, &[&str])] = &[
         ],
     ),
     ("karman-flightlog", &["karman-math"]),
-    ("karman", &["karman-mission", "karman-flightlog"]),
+    ("karman-fit", &["karman-mission", "karman-flightlog"]),
+    (
+        "karman",
+        &["karman-mission", "karman-flightlog", "karman-fit"],
+    ),
     ("karman-python", &["karman-mission"]),
     ("karman-validation", &[]),
     (

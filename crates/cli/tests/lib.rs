@@ -4,6 +4,7 @@ mod check;
 mod common;
 mod compare;
 mod corpus;
+mod fit;
 mod import;
 mod inspect;
 mod log;

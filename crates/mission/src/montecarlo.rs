@@ -56,7 +56,7 @@ use karman_dispersion::{
     BodyPoints, DataFile, DispersionError, Distribution as Draw, Meaning, Outcome, Points, Site,
     Study, Target, Variation, VariedInput,
 };
-use karman_dynamics::{Air, AtmosphereModel, Summary};
+use karman_dynamics::{Air, AtmosphereModel, Flight, Sample, Summary};
 use karman_math::Cursor;
 use karman_propulsion::Motor;
 use karman_script::ControllerScript;
@@ -545,8 +545,64 @@ impl MonteCarlo {
     }
 
     /// Flies sample `index` with its sampled `values` (in the order of the study's inputs);
-    /// an error is the whole message chain.
+    /// an error is the whole message chain. A multi-stage mission's sample flies the staged
+    /// flight as [`stages::simulate_staged`] does: the top stage's [`OUTPUTS`], then each
+    /// lower stage's separation time and, when it flies alone, its [`BODY_OUTPUTS`] (none
+    /// where its flight did not get there); a body ending early ends the sample.
     pub fn fly(&self, index: u64, values: &[f64]) -> Result<Outcome, String> {
+        let (values, ended) = self.fly_read(
+            index,
+            values,
+            |flight, atmosphere, rocket| output_values(&flight.summary(atmosphere, rocket)),
+            |run| staged_values(run, &self.lower),
+        )?;
+        Ok(match ended {
+            None => Outcome::new(values),
+            Some((kind, message)) => Outcome::ended(values, kind, message),
+        })
+    }
+
+    /// Flies sample `index` with `values` as [`MonteCarlo::fly`] does and returns its
+    /// trajectory: the stored points and the summary (of the top stage for a multi-stage
+    /// mission), with how the flight ended early if it did. A fit to a flight log
+    /// (karman-fit) flies its trial values through this, so that they reach the mission
+    /// exactly as a study's draws do.
+    ///
+    /// # Errors
+    /// As [`MonteCarlo::fly`]: the whole message chain.
+    pub fn track(&self, index: u64, values: &[f64]) -> Result<SampleTrack, String> {
+        let ((samples, summary), ended) = self.fly_read(
+            index,
+            values,
+            |flight, atmosphere, rocket| {
+                (
+                    flight.samples(atmosphere, rocket),
+                    flight.summary(atmosphere, rocket),
+                )
+            },
+            |run| {
+                let (_, ended) = staged_values(run, &self.lower)?;
+                Ok(((run.samples(0), run.summary(0)), ended))
+            },
+        )?;
+        Ok(SampleTrack {
+            samples,
+            summary,
+            ended,
+        })
+    }
+
+    /// Flies sample `index` with `values` and reads the flight with `read` (a single-stage
+    /// flight, with the atmosphere and rocket it flew) or `read_staged` (a multi-stage one,
+    /// which says itself how it ended early); returns what they read and how the flight
+    /// ended early, if it did.
+    fn fly_read<R>(
+        &self,
+        index: u64,
+        values: &[f64],
+        read: impl FnOnce(&Flight, &WindAdjusted<'_>, &Rocket) -> R,
+        read_staged: impl FnOnce(&stages::StagedRun) -> Result<(R, Ended), String>,
+    ) -> Result<(R, Ended), String> {
         let (spec, [factor, offset_deg], drag) = self.sample_spec(values)?;
         drawn_in_range(&spec, &self.mission.dir)?;
         let mission = Mission {
@@ -559,8 +615,17 @@ impl MonteCarlo {
             Some(environment) => Arc::clone(environment),
             None => Arc::new(build_environment(&mission).map_err(|e| chain(&e))?),
         };
+        let noise_seed = flight_seed(self.study.seed, index);
         if !self.lower.is_empty() {
-            return self.fly_staged(index, &mission, &environment, [factor, offset_deg]);
+            let run = stages::simulate_staged_in(
+                &mission,
+                &self.thrusts,
+                (*environment).clone(),
+                [factor, offset_deg],
+                noise_seed,
+            )
+            .map_err(|e| chain(&e))?;
+            return read_staged(&run);
         }
         let (sample_motor, sample_rocket);
         let rocket = if self.reach.rocket {
@@ -576,7 +641,6 @@ impl MonteCarlo {
         } else {
             &self.rocket
         };
-        let noise_seed = flight_seed(self.study.seed, index);
         let settings = flight_settings(&mission, noise_seed);
         let atmosphere = WindAdjusted::new(&environment, factor, offset_deg);
         let (flight, _) = fly(
@@ -594,12 +658,24 @@ impl MonteCarlo {
             },
         )
         .map_err(|e| chain(&e))?;
-        let values = output_values(&flight.summary(&atmosphere, rocket));
-        Ok(match early_ending(flight.termination, &settings) {
-            None => Outcome::new(values),
-            Some((kind, message)) => Outcome::ended(values, kind, message),
-        })
+        let read = read(&flight, &atmosphere, rocket);
+        Ok((read, early_ending(flight.termination, &settings)))
     }
+}
+
+/// How a flight ended before the end a study asks for: the status word and the message
+/// ([`early_ending`]); `None` for a flight that ended as asked.
+pub type Ended = Option<(&'static str, String)>;
+
+/// The trajectory of one sample ([`MonteCarlo::track`]).
+#[derive(Debug, Clone)]
+pub struct SampleTrack {
+    /// Post-processed quantities at every stored point (the top stage's).
+    pub samples: Vec<Sample>,
+    /// The flight summary (the top stage's).
+    pub summary: Summary,
+    /// How the flight ended early, if it did.
+    pub ended: Ended,
 }
 
 /// A sample's mission must pass the range checks of a mission file and `--set`
@@ -619,35 +695,6 @@ fn drawn_in_range(spec: &MissionSpec, dir: &std::path::Path) -> Result<(), Strin
         "a drawn value is out of range: {}",
         listed.join("; ")
     ))
-}
-
-impl MonteCarlo {
-    /// Flies sample `index` of a multi-stage mission (`mission` the sample's) as
-    /// [`stages::simulate_staged`] does: the top stage's [`OUTPUTS`], then each lower stage's
-    /// separation time and, when it flies alone, its [`BODY_OUTPUTS`] (none where its flight
-    /// did not get there: no separation, no landing). A body ending early ends the sample.
-    fn fly_staged(
-        &self,
-        index: u64,
-        mission: &Mission,
-        environment: &Environment,
-        wind: [f64; 2],
-    ) -> Result<Outcome, String> {
-        let noise_seed = flight_seed(self.study.seed, index);
-        let run = stages::simulate_staged_in(
-            mission,
-            &self.thrusts,
-            environment.clone(),
-            wind,
-            noise_seed,
-        )
-        .map_err(|e| chain(&e))?;
-        let (values, ended) = staged_values(&run, &self.lower)?;
-        Ok(match ended {
-            None => Outcome::new(values),
-            Some((kind, message)) => Outcome::ended(values, kind, message),
-        })
-    }
 }
 
 /// The lower stages of a multi-stage mission, as its study and sweep report them.
@@ -680,7 +727,7 @@ pub fn stage_outputs(spec: &MissionSpec) -> Vec<String> {
 
 /// A staged flight's output values and how it ended early, if it did: the status word and
 /// the message ([`early_ending`]).
-pub type StagedValues = (Vec<Option<f64>>, Option<(&'static str, String)>);
+pub type StagedValues = (Vec<Option<f64>>, Ended);
 
 /// The values of [`OUTPUTS`] and [`stage_outputs`] of the staged flight `run` of `spec` (none
 /// where a body's flight did not get there: no separation, no landing), and how it ended

@@ -1,6 +1,6 @@
 //! `karman compare MISSION LOG... [--json] [--out DIR]`: fly the mission once and set each
 //! flight log against it on one time axis from liftoff (karman-flightlog's
-//! [`compare`](karman_flightlog::compare), whose documentation states the rules).
+//! `karman_flightlog::compare`, whose documentation states the rules).
 //!
 //! Per log: the apogee of both and the error (simulated − measured, m and %), the apogee
 //! time error, the error of the highest vertical velocity, the RMS altitude and velocity
@@ -28,13 +28,11 @@ use std::path::{Path, PathBuf};
 
 use anyhow::{Context, Result};
 use clap::Args;
-use karman_flightlog::{
-    Comparison, Deployment, FlightLog, SimulatedFlight, SimulatedLanding, compare,
-};
+use karman_fit::simulated_flight;
+use karman_flightlog::{Comparison, FlightLog, SimulatedFlight, compare};
 use karman_mission::assemble::flight::simulate_with_seed;
 use karman_mission::assemble::stages::simulate_staged;
 use karman_mission::dispersion::files::write_atomic;
-use karman_mission::dynamics::{Sample, Summary};
 use serde_json::{Value, json};
 
 use super::MissionArgs;
@@ -60,41 +58,6 @@ pub struct CompareArgs {
     /// Write comparison.json and the overlay plots into this directory.
     #[arg(long, value_name = "DIR")]
     pub out: Option<PathBuf>,
-}
-
-/// The simulated flight as karman-flightlog's plain series: the samples' time, altitude above
-/// the ground, vertical velocity and acceleration, the parachute events and the impact.
-fn simulated_flight(samples: &[Sample], summary: &Summary) -> SimulatedFlight {
-    let deployments = summary
-        .events
-        .iter()
-        .filter_map(|e| {
-            e.name.strip_prefix("parachute:").map(|name| Deployment {
-                name: name.to_owned(),
-                time_s: e.time_s,
-            })
-        })
-        .collect();
-    let landing = match (
-        summary.impact_time_s,
-        summary.impact_x_m,
-        summary.impact_y_m,
-    ) {
-        (Some(time_s), Some(east_m), Some(north_m)) => Some(SimulatedLanding {
-            time_s,
-            east_m,
-            north_m,
-        }),
-        _ => None,
-    };
-    SimulatedFlight {
-        time_s: samples.iter().map(|s| s.t).collect(),
-        altitude_m: samples.iter().map(|s| s.altitude_agl).collect(),
-        vertical_velocity_mps: samples.iter().map(|s| s.vz).collect(),
-        vertical_acceleration_mps2: samples.iter().map(|s| s.az).collect(),
-        deployments,
-        landing,
-    }
 }
 
 /// Flies the mission (its top stage for a multi-stage one).

@@ -2,6 +2,7 @@
 
 mod check;
 mod compare;
+mod fit;
 mod import;
 mod inspect;
 mod log;
@@ -43,6 +44,9 @@ pub enum Command {
     /// Fly the mission and set flight logs against it: apogee, velocity, ascent RMS, descent
     /// rates, landing; --out writes comparison.json and overlay plots.
     Compare(compare::CompareArgs),
+    /// Fit inputs of the mission (a drag scale, the impulse, a parachute's cd_s, the mass) to
+    /// a flight log by least squares; -o writes the mission with the fitted values.
+    Fit(fit::FitArgs),
     /// Launch-day weather: download a forecast or sounding once (`fetch`), print and plot
     /// the profile a weather file gives (`show`).
     Weather(weather::WeatherArgs),
@@ -122,5 +126,6 @@ pub fn run(command: Command) -> anyhow::Result<()> {
         Command::Weather(args) => weather::run(&args),
         Command::Log(args) => log::run(&args),
         Command::Compare(args) => compare::run(&args),
+        Command::Fit(args) => fit::run(&args),
     }
 }
