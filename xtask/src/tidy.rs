@@ -18,6 +18,10 @@ pub const ALLOWED: &[(&str, &[&str])] = &[
     ("karman-dispersion", &["karman-math"]),
     ("karman-script", &[]),
     (
+        "karman-openrocket",
+        &["karman-airframe", "karman-propulsion"],
+    ),
+    (
         "karman-mission",
         &[
             "karman-math",
@@ -28,10 +32,14 @@ pub const ALLOWED: &[(&str, &[&str])] = &[
             "karman-dynamics",
             "karman-dispersion",
             "karman-script",
+            "karman-openrocket",
         ],
     ),
     ("karman-flightlog", &["karman-math"]),
-    ("karman", &["karman-mission", "karman-flightlog"]),
+    (
+        "karman",
+        &["karman-mission", "karman-flightlog", "karman-openrocket"],
+    ),
     ("karman-python", &["karman-mission"]),
     ("karman-validation", &[]),
     (
