@@ -18,6 +18,10 @@ pub const ALLOWED: &[(&str, &[&str])] = &[
     ("karman-dispersion", &["karman-math"]),
     ("karman-script", &[]),
     (
+        "karman-openrocket",
+        &["karman-airframe", "karman-propulsion"],
+    ),
+    (
         "karman-mission",
         &[
             "karman-math",
@@ -28,13 +32,19 @@ pub const ALLOWED: &[(&str, &[&str])] = &[
             "karman-dynamics",
             "karman-dispersion",
             "karman-script",
+            "karman-openrocket",
         ],
     ),
     ("karman-flightlog", &["karman-math"]),
     ("karman-fit", &["karman-mission", "karman-flightlog"]),
     (
         "karman",
-        &["karman-mission", "karman-flightlog", "karman-fit"],
+        &[
+            "karman-mission",
+            "karman-flightlog",
+            "karman-fit",
+            "karman-openrocket",
+        ],
     ),
     ("karman-python", &["karman-mission"]),
     ("karman-validation", &[]),

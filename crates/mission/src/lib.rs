@@ -28,7 +28,6 @@ mod curves;
 mod document;
 mod error;
 pub mod montecarlo;
-pub mod ork;
 mod overrides;
 pub mod paths;
 pub mod report;

@@ -7,8 +7,8 @@
 use karman_mission::assemble::motors::{PlacedMotor, combined};
 use karman_mission::assemble::{flight::simulate, motor::build_motor, rocket::build_rocket};
 use karman_mission::montecarlo::{MonteCarlo, StudyOverrides};
-use karman_mission::ork::{ImportOptions, OrkError, document_text, import};
 use karman_mission::{Location, Mission, MissionError, parse};
+use karman_openrocket::{ImportOptions, OrkError, document_text, import};
 use std::path::PathBuf;
 
 /// A file of the repository's `fixtures` folder.
@@ -363,7 +363,7 @@ fn two_mounts(
     cluster_delay: &str,
     event: &str,
     delay: &str,
-) -> Result<karman_mission::ork::Imported, OrkError> {
+) -> Result<karman_openrocket::Imported, OrkError> {
     let dir = repo_fixture("openrocket/clustered_motors");
     let path = dir.join("design.ork");
     let text = document_text(&path, &std::fs::read(&path).expect("fixture")).expect("document");

@@ -7,14 +7,14 @@
 //! design: the top stage's apogee and every separation time within 3 %, the maximum speed
 //! reported. A design karman refuses is a miss unless it is a known refusal.
 //! The folder walk, the tolerances and the exceptions are
-//! `karman_mission::report::openrocket::{compare_folder, ...}`, which `cargo xtask validate`
+//! `karman_mission::report::openrocket::compare_folder` (the flights) and karman-openrocket
+//! (the stored flights, the tolerances and the exceptions), which `cargo xtask validate`
 //! reports too (on any folder with `--openrocket DIR`).
 
 use std::path::PathBuf;
 
-use karman_mission::report::openrocket::{
-    Compared, KNOWN_REFUSALS, STAGED_APOGEE_EXCEPTIONS, compare_folder, design_folders,
-};
+use karman_mission::report::openrocket::compare_folder;
+use karman_openrocket::{Compared, KNOWN_REFUSALS, STAGED_APOGEE_EXCEPTIONS, design_folders};
 
 fn fixtures() -> PathBuf {
     PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../../fixtures/openrocket")
@@ -66,7 +66,7 @@ fn the_openrocket_exceptions_name_designs_of_the_fixtures() {
 #[test]
 fn validate_openrocket_launch_masses() {
     use karman_mission::assemble::{motor::build_motor, rocket::build_rocket};
-    use karman_mission::ork::{ImportOptions, import};
+    use karman_openrocket::{ImportOptions, import};
     const STORED_HALF_UNIT: f64 = 0.0005;
     let mut failures = Vec::new();
     for dir in design_folders(&fixtures()).expect("fixtures/openrocket") {

@@ -285,7 +285,7 @@ motor_position = 2.5
 
 /// `fixtures/openrocket/<design>` imported for its first stored simulation.
 fn imported(design: &str) -> Mission {
-    use karman_mission::ork::{ImportOptions, import};
+    use karman_openrocket::{ImportOptions, import};
     let dir = repository_fixture("openrocket").join(design);
     let options = ImportOptions {
         simulation: None,

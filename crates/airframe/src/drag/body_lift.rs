@@ -123,7 +123,7 @@ impl BodyLift {
     /// "worst" CP (its `getWorstCP`: Barrowman's CP at α = 0 and Mach 0.3 over the roll angles
     /// `2π k / 360`, the first of the most forward). OpenRocket's launch code means to roll
     /// the rocket on the rod so that the wind comes from this angle (24.12 starts it at 0
-    /// instead: `karman_mission::report::openrocket`); it differs from 0 only when a set of
+    /// instead: `karman_openrocket::StoredFlight::rod_exit_roll`); it differs from 0 only when a set of
     /// one or two fins makes the CP depend on the roll angle.
     #[must_use]
     pub fn worst_roll_angle(&self, rocket: &Rocket, tip: f64) -> f64 {

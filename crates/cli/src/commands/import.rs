@@ -1,12 +1,12 @@
 //! `karman import DESIGN.ork -o MISSION.toml`: an OpenRocket design as a commented mission
-//! (karman-mission `ork`), its motor's thrust curve found by designation.
+//! (karman-openrocket), its motor's thrust curve found by designation.
 
 use std::io::Write;
 use std::path::PathBuf;
 
 use anyhow::{Context, Result, bail};
 use clap::Args;
-use karman_mission::ork::{ImportOptions, import};
+use karman_openrocket::{ImportOptions, import};
 
 /// Arguments of `karman import`.
 #[derive(Debug, Args)]

@@ -4,7 +4,7 @@
 use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
 
-use super::OrkError;
+use crate::OrkError;
 
 /// The component types the reader knows.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]

@@ -1,51 +1,11 @@
-//! `karman import design.ork`: an OpenRocket design (zip archive or plain XML, format 1.x)
-//! read into a karman mission.
-//!
-//! The file format is OpenRocket's (`OpenRocketSaver` / `importt` in the OpenRocket sources,
-//! read for the element names only). The reader maps
-//! - the body (nose cone, body tubes, transitions) onto a `"nose"` surface and `"tail"`
-//!   surfaces, trapezoidal, elliptical and free-form fin sets onto fin surfaces and tube fin
-//!   sets onto `"tube_fins"`;
-//! - every component's mass, centre of mass and inertia, with OpenRocket's mass and CG
-//!   overrides, onto the rocket's mass, centre of mass and inertia without motor
-//!   (module `mass`);
-//! - parachutes onto `[rocket.parachutes]`, the chosen simulation's launch conditions onto
-//!   `[environment]` and `[flight]`, its motor onto a generic `[motor]` whose thrust curve is
-//!   found by designation among the given files and folders;
-//! - the drag onto `power_off_drag = "estimate"` with `[rocket.drag_estimate]` (finish, fin
-//!   thickness and edges, launch lugs, rail buttons).
-//!
-//! - a design of several stages onto `[[stages]]`: the top stage as `[rocket]` and `[motor]`,
-//!   each stage below with its own airframe, motor and drag-estimate table, and OpenRocket's
-//!   separation and ignition events (with their delays) as `separation = "burnout + X"` and
-//!   `ignition_delay` (module `write`); a motor OpenRocket never lights is carried as mass, and
-//!   a stage without a lit motor rides on the stage below (at the bottom, on the stage above
-//!   while its separation never fires).
-//!
-//! - a clustered inner tube onto `[motor] cluster_count` and `cluster_radius`, its copies'
-//!   masses with their offsets (`Component::cluster`).
-//!
-//! - several motor mounts in one stage of a single-stage design onto `[motor]` (the mount lit
-//!   first) and `[[extra_motors]]` (each with its ignition delay after launch, OpenRocket's
-//!   `automatic`/`launch` events; the launch stage's `burnout`/`ejection` never fire, and those
-//!   motors are carried as mass like any motor OpenRocket never lights).
-//!
-//! - pod sets onto `[rocket.pods]` (their surfaces, and their masses at the pods' offset).
-//!
-//! Powered pods, parallel boosters and staging events the format cannot express are refused,
-//! naming the component; what is mapped approximately is listed in [`Imported::warnings`].
-
-mod design;
-mod mass;
-mod write;
+//! The reader's entry points: the document of a `.ork` file (zip archive or plain XML, with
+//! the hostile-input limits), its errors, and [`import`] (read, parse, write the mission).
 
 use std::path::{Path, PathBuf};
 
 use thiserror::Error;
 
-pub use design::{
-    Component, Design, Kind, MAX_COMPONENT_DEPTH, MotorRef, SeparationRef, Simulation,
-};
+use crate::design::Design;
 
 /// Errors of the `.ork` reader; each names the file and, where there is one, the component.
 #[derive(Debug, Error)]
@@ -254,5 +214,5 @@ pub fn document_text(file: &Path, bytes: &[u8]) -> Result<String, OrkError> {
 pub fn import(file: &Path, options: &ImportOptions) -> Result<Imported, OrkError> {
     let text = read_document(file)?;
     let design = Design::parse(file, &text)?;
-    write::mission(file, &design, options)
+    crate::write::mission(file, &design, options)
 }

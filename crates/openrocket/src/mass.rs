@@ -16,8 +16,8 @@ use std::f64::consts::PI;
 
 use karman_airframe::Profile;
 
-use super::OrkError;
-use super::design::{Component, Kind};
+use crate::OrkError;
+use crate::design::{Component, Kind};
 
 /// Mass properties: mass (kg), axial CM from the nose tip (m), longitudinal (pitch) and
 /// rotational (roll) moments of inertia about that CM (kg·m²).
@@ -439,7 +439,7 @@ fn within(
     let override_mass = c
         .fields
         .get("overridemass")
-        .and_then(|t| super::design::number(t));
+        .and_then(|t| crate::design::number(t));
     if let Some(m) = override_mass {
         if massive && !subs_override {
             p = p.scaled(m);
@@ -448,7 +448,7 @@ fn within(
     if let Some(cg) = c
         .fields
         .get("overridecg")
-        .and_then(|t| super::design::number(t))
+        .and_then(|t| crate::design::number(t))
     {
         if !flag(c, "overridesubcomponentscg") {
             p.cg = c.x + cg;
@@ -522,7 +522,7 @@ fn within(
         if let Some(cg) = c
             .fields
             .get("overridecg")
-            .and_then(|t| super::design::number(t))
+            .and_then(|t| crate::design::number(t))
         {
             p.cg = c.x + cg;
         }
@@ -533,7 +533,7 @@ fn within(
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::ork::Design;
+    use crate::Design;
 
     /// A stage (with `stage` extra elements) holding a 1 m paper tube (with `tube` extra
     /// elements) and, in the tube, a 0.1 kg mass at its aft end.

@@ -4,9 +4,9 @@ use std::collections::BTreeSet;
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
 
-use super::design::{Component, Design, Kind, MotorRef, SeparationRef, Simulation};
-use super::mass::{self, MassProps};
-use super::{ImportOptions, Imported, OrkError};
+use crate::design::{Component, Design, Kind, MotorRef, SeparationRef, Simulation};
+use crate::mass::{self, MassProps};
+use crate::{ImportOptions, Imported, OrkError};
 
 /// A TOML number that reads back to the same `f64`.
 fn n(v: f64) -> String {
@@ -936,7 +936,7 @@ fn motor_text(
         "# {} {} from {}: RASP masses {} kg propellant, {} kg total; the propellant is",
         motor.manufacturer,
         motor.designation,
-        super::design::one_line(&eng_path.display().to_string()),
+        crate::design::one_line(&eng_path.display().to_string()),
         eng.propellant,
         eng.total
     );
@@ -1178,7 +1178,7 @@ fn body_text(
         if let Some(cd) = nose
             .fields
             .get("overridecd")
-            .and_then(|t| super::design::number(t))
+            .and_then(|t| crate::design::number(t))
         {
             let _ = writeln!(overrides, "{nose_key} = {}", n(cd));
         }
@@ -1226,7 +1226,7 @@ fn body_text(
             if let Some(cd) = b
                 .fields
                 .get("overridecd")
-                .and_then(|t| super::design::number(t))
+                .and_then(|t| crate::design::number(t))
             {
                 let _ = writeln!(overrides, "{tail_key} = {}", n(cd));
             }
@@ -1501,7 +1501,7 @@ pub(super) fn mission(
         "# {} — imported from {} by `karman import`.",
         design.name,
         file.file_name()
-            .map_or_else(String::new, |f| super::design::one_line(
+            .map_or_else(String::new, |f| crate::design::one_line(
                 &f.to_string_lossy()
             ))
     );
@@ -1634,7 +1634,7 @@ pub(super) fn mission(
         let mut head = String::new();
         for warning in &warnings {
             // A warning can quote a file name, which may hold any character.
-            let _ = writeln!(head, "# note: {}", super::design::one_line(warning));
+            let _ = writeln!(head, "# note: {}", crate::design::one_line(warning));
         }
         t = t.replacen(
             &format!("name = {}", quoted(&design.name)),
