@@ -1,7 +1,8 @@
 //! `cargo xtask bench [FILTER]`: run every criterion benchmark of the workspace in release and
 //! print one line per benchmark with its median time (and, where the benchmark declares a
 //! throughput in elements, the rate and the time per element: right-hand-side evaluations of
-//! a flight, flights of a Monte Carlo run), read from criterion's
+//! a flight, flights of a Monte Carlo run; in bytes, MB/s and the time per byte: a flight
+//! log read), read from criterion's
 //! `target/criterion/**/new/estimates.json` written by this run (older files, of benchmarks
 //! since renamed or removed, are left out). Speed targets live here, never in timed tests.
 
@@ -45,14 +46,20 @@ pub fn run(root: &Path, args: &[String]) -> Result<()> {
             .map_or_else(String::new, |p| p.display().to_string());
         // Elements per second where the bench declares a throughput (criterion's
         // benchmark.json beside the estimates).
-        let elements = std::fs::read_to_string(path.with_file_name("benchmark.json"))
+        let throughput = std::fs::read_to_string(path.with_file_name("benchmark.json"))
             .ok()
             .and_then(|t| serde_json::from_str::<Value>(&t).ok())
-            .and_then(|b| b["throughput"]["Elements"].as_f64());
-        let (rate, each) = elements.map_or_else(
-            || (String::new(), String::new()),
-            |n| (format!("{:.0} /s", n / (ns * 1e-9)), human(ns / n)),
-        );
+            .map(|b| b["throughput"].clone());
+        let elements = throughput.as_ref().and_then(|t| t["Elements"].as_f64());
+        let bytes = throughput.as_ref().and_then(|t| t["Bytes"].as_f64());
+        let (rate, each) = match (elements, bytes) {
+            (Some(n), _) => (format!("{:.0} /s", n / (ns * 1e-9)), human(ns / n)),
+            (None, Some(n)) => (
+                format!("{:.1} MB/s", n / (ns * 1e-9) / 1e6),
+                format!("{} /B", human(ns / n)),
+            ),
+            (None, None) => (String::new(), String::new()),
+        };
         println!("{name:<42} {:>14} {rate:>18} {each:>14}", human(ns));
     }
     Ok(())

@@ -3,6 +3,10 @@
 //! zeroed) and (b) with the measured flight (`measured.apogee_agl_m`, and `flight_data.csv`:
 //! altitude RMSE over the ascent and the time of apogee).
 //!
+//! Every validation flight with the device's raw log in its folder is also compared from that
+//! log (`karman compare`: read by karman-flightlog, its liftoff found by the reader's rules),
+//! beside the comparison with the cleaned `flight_data.csv`.
+//!
 //! Then (issue 20) the same flights with the drag estimated from the geometry instead of the
 //! team's curve (karman-airframe `drag`), against the measured apogee beside the team curve's
 //! error; and every OpenRocket design of `fixtures/openrocket` imported, flown and compared
@@ -145,6 +149,7 @@ pub fn run(root: &Path, args: &[String]) -> Result<()> {
         );
     }
     let mut report = report_markdown(&flights);
+    report += &raw_log_report(&exe, &folder, &flights)?;
     report += &estimated_drag_report(&data, &flights);
     let (openrocket, openrocket_failures) = openrocket_report(&root.join("fixtures/openrocket"))?;
     report += &openrocket;
@@ -426,6 +431,120 @@ fn report_markdown(flights: &[Flight]) -> String {
         mean(&theirs)
     );
     s
+}
+
+/// Files of a validation folder that are never flight logs.
+const NOT_LOGS: &[&str] = &["mission.toml", "reference.json", "flight_data.csv"];
+
+/// Every raw flight log of a validation flight's folder: the files `karman log show` reads
+/// (the format recognised from the content, as a user's log would be), in name order.
+fn raw_logs(exe: &Path, dir: &Path) -> Result<Vec<PathBuf>> {
+    let mut files: Vec<PathBuf> = std::fs::read_dir(dir)?
+        .filter_map(|e| e.ok().map(|e| e.path()))
+        .filter(|p| p.is_file())
+        .filter(|p| {
+            p.file_name().and_then(|n| n.to_str()).is_some_and(|n| {
+                !NOT_LOGS.contains(&n) && !n.ends_with(".nc") && !n.ends_with(".eng")
+            })
+        })
+        .collect();
+    files.sort();
+    let mut logs = Vec::new();
+    for file in files {
+        let output = Command::new(exe)
+            .arg("log")
+            .arg("show")
+            .arg(&file)
+            .arg("--json")
+            .output()
+            .context("could not run karman")?;
+        if output.status.success() {
+            logs.push(file);
+        }
+    }
+    Ok(logs)
+}
+
+/// Each validation flight with a raw log in its folder, compared with `karman compare` from
+/// that log (read by karman-flightlog, liftoff and apogee found by its rules), beside the
+/// comparison with the cleaned `flight_data.csv` above; the same equations and noise-free
+/// triggers as the parity run.
+fn raw_log_report(
+    exe: &Path,
+    folder: &karman_validation::Folder,
+    flights: &[Flight],
+) -> Result<String> {
+    let mut s = String::from(
+        "\n## Raw flight logs\n\nEach validation flight with the device's own log beside it, \
+         compared with `karman compare` (the log read and its liftoff found by karman-flightlog; \
+         RocketPy 1.13's equations, parachute noise zeroed, as the parity run), beside the \
+         comparison with the cleaned `flight_data.csv`.\n\n",
+    );
+    s.push_str("| flight | log | format | log apogee (m) | cleaned apogee (m) | apogee error from the log | from the cleaned data | apogee time error (s) | ascent RMS, log (m) | ascent RMSE, cleaned (m) | max vertical velocity error | descent rate errors |\n");
+    s.push_str("|---|---|---|---|---|---|---|---|---|---|---|---|\n");
+    for flight in &folder.flights {
+        let Some(f) = flights.iter().find(|f| f.name == flight.name) else {
+            continue;
+        };
+        let mission = flight.dir.join("mission.toml");
+        let spec = karman_mission::load(&mission, &[])
+            .map_err(|e| anyhow::anyhow!("{e}"))?
+            .spec;
+        for log in raw_logs(exe, &flight.dir)? {
+            let mut cmd = Command::new(exe);
+            cmd.arg("compare").arg(&mission).arg(&log).arg("--json");
+            cmd.arg("--set").arg("flight.equations=\"rocketpy_1_13\"");
+            for chute in spec.rocket.parachutes.keys() {
+                cmd.arg("--set")
+                    .arg(format!("rocket.parachutes.{chute}.noise=[0,0,0]"));
+            }
+            let output = cmd.output().context("could not run karman")?;
+            if !output.status.success() {
+                bail!(
+                    "karman compare {} failed: {}",
+                    log.display(),
+                    String::from_utf8_lossy(&output.stderr)
+                );
+            }
+            let report: Value = serde_json::from_slice(&output.stdout).context("compare JSON")?;
+            let entry = &report["logs"][0];
+            let cleaned = f.measured_apogee;
+            let simulated = num(&report["simulation"], "apogee_m");
+            let from_cleaned = simulated.zip(cleaned).map(|(k, m)| 100.0 * (k - m) / m);
+            let descent: Vec<String> = entry["descent"]
+                .as_array()
+                .into_iter()
+                .flatten()
+                .map(|d| match d["error_pct"].as_f64() {
+                    Some(e) => format!("{} {e:+.1} %", d["parachute"].as_str().unwrap_or("?")),
+                    None => format!("{} not in the log", d["parachute"].as_str().unwrap_or("?")),
+                })
+                .collect();
+            let _ = writeln!(
+                s,
+                "| {} | {} | {} | {} | {} | {} % | {} % | {} | {} | {} | {} % | {} |",
+                f.name,
+                log.file_name()
+                    .map(|n| n.to_string_lossy())
+                    .unwrap_or_default(),
+                entry["format"].as_str().unwrap_or("?"),
+                fmt_opt(num(entry, "apogee_m"), 1),
+                fmt_opt(cleaned, 1),
+                fmt_opt(num(entry, "apogee_error_pct"), 2),
+                fmt_opt(from_cleaned, 2),
+                fmt_opt(num(entry, "apogee_time_error_s"), 2),
+                fmt_opt(num(entry, "ascent_rms_altitude_m"), 1),
+                fmt_opt(ascent_fit(f).map(|x| x.1), 1),
+                fmt_opt(num(entry, "max_velocity_error_pct"), 2),
+                if descent.is_empty() {
+                    "—".to_owned()
+                } else {
+                    descent.join(", ")
+                },
+            );
+        }
+    }
+    Ok(s)
 }
 
 /// Fin thickness assumed for the estimate where a validation mission gives none (OpenRocket's

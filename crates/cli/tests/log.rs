@@ -135,3 +135,37 @@ fn bad_logs_are_located_errors() {
     let text = failure(&["log", "show", "/nonexistent/flight.csv"]);
     assert!(text.contains("cannot read"), "{text}");
 }
+
+#[test]
+fn show_plot_draws_each_channel_of_the_log() {
+    let path =
+        fixture("validation/prometheus_2022/2022-06-24-serial-5115-flight-0001-TeleMetrum.csv");
+    let dir = std::path::Path::new(env!("CARGO_TARGET_TMPDIR")).join("karman-cli/log-plot");
+    let _ = std::fs::remove_dir_all(&dir);
+    let output = karman(&[
+        "log",
+        "show",
+        path.to_str().expect("UTF-8"),
+        "--plot",
+        dir.to_str().expect("UTF-8"),
+    ]);
+    assert_eq!(output.status.code(), Some(0), "{}", stderr(&output));
+    for name in ["altitude.svg", "velocity.svg", "acceleration.svg"] {
+        let svg = std::fs::read_to_string(dir.join(name)).expect(name);
+        assert!(svg.contains("<polyline"), "{name} has no curve");
+        assert!(svg.contains("TeleMetrum"), "{name} does not name the log");
+    }
+    // A log without an acceleration channel has no acceleration chart.
+    let rrc3 = fixture("validation/juno3/cots_altimeter.csv");
+    let dir = dir.join("rrc3");
+    let output = karman(&[
+        "log",
+        "show",
+        rrc3.to_str().unwrap(),
+        "--plot",
+        dir.to_str().unwrap(),
+    ]);
+    assert_eq!(output.status.code(), Some(0), "{}", stderr(&output));
+    assert!(dir.join("altitude.svg").is_file());
+    assert!(!dir.join("acceleration.svg").exists());
+}

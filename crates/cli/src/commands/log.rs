@@ -1,11 +1,13 @@
-//! `karman log show FILE [--format NAME] [--mapping SPEC] [--json]`: read an altimeter or
+//! `karman log show FILE [--format NAME] [--mapping SPEC] [--json] [--plot DIR]`: read an altimeter or
 //! flight-computer log with karman-flightlog and print what it says: format and device,
 //! sample count and rate, liftoff (on the device's clock), apogee above ground and its time
 //! from liftoff, the highest vertical velocity, the events, and every warning of the reading
 //! rules. `--json` prints one object with the keys `format`, `device`, `samples`,
 //! `sample_rate_hz`, `velocity_source`, `liftoff_time_s`, `apogee_agl_m`, `apogee_time_s`,
 //! `max_vertical_velocity_mps`, `events` (each `kind`, `time_s`, `source`), `reported`,
-//! `metadata` and `warnings`.
+//! `metadata` and `warnings`. `--plot DIR` draws the altitude, the vertical velocity and (when
+//! the log has one) the acceleration against the time from liftoff into `altitude.svg`,
+//! `velocity.svg` and `acceleration.svg`.
 
 use anyhow::{Context, Result};
 use clap::{Args, Subcommand};
@@ -81,6 +83,9 @@ pub struct ShowArgs {
     /// Print one JSON object instead of the text summary.
     #[arg(long)]
     pub json: bool,
+    /// Draw altitude, vertical velocity and acceleration (SVG) into this directory.
+    #[arg(long, value_name = "DIR")]
+    pub plot: Option<PathBuf>,
 }
 
 /// Runs `karman log`.
@@ -133,8 +138,64 @@ pub fn log_json(log: &FlightLog) -> Value {
     })
 }
 
+/// The plots of `--plot`: one chart per channel the log has, time from liftoff.
+fn plots(log: &FlightLog, file: &std::path::Path, dir: &std::path::Path) -> Result<()> {
+    std::fs::create_dir_all(dir)
+        .with_context(|| format!("cannot create the directory {}", dir.display()))?;
+    let label = file.file_name().map_or_else(
+        || file.display().to_string(),
+        |n| n.to_string_lossy().into_owned(),
+    );
+    let charts: [(
+        &str,
+        &str,
+        &str,
+        fn(&karman_flightlog::Sample) -> Option<f64>,
+    ); 3] = [
+        ("altitude.svg", "Altitude", "altitude AGL (m)", |s| {
+            Some(s.altitude_agl_m)
+        }),
+        (
+            "velocity.svg",
+            "Vertical velocity",
+            "vertical velocity (m/s)",
+            |s| Some(s.vertical_velocity_mps),
+        ),
+        (
+            "acceleration.svg",
+            "Acceleration",
+            "acceleration (m/s²)",
+            |s| s.acceleration_mps2,
+        ),
+    ];
+    for (name, title, y_label, pick) in charts {
+        let points: Vec<(f64, f64)> = log
+            .samples
+            .iter()
+            .filter_map(|s| pick(s).map(|v| (s.time_s, v)))
+            .collect();
+        if points.is_empty() {
+            continue;
+        }
+        crate::plot::line_chart(
+            &dir.join(name),
+            &format!("{title}: {label}"),
+            "time from liftoff (s)",
+            y_label,
+            &[crate::plot::Series {
+                label: &label,
+                points,
+            }],
+        )?;
+    }
+    Ok(())
+}
+
 fn run_show(args: &ShowArgs) -> Result<()> {
     let log = args.read.read(&args.file)?;
+    if let Some(dir) = &args.plot {
+        plots(&log, &args.file, dir)?;
+    }
     let mut out = std::io::stdout().lock();
     if args.json {
         writeln!(out, "{}", serde_json::to_string_pretty(&log_json(&log))?)?;
