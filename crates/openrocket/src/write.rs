@@ -8,9 +8,24 @@ use crate::design::{Component, Design, Kind, MotorRef, SeparationRef, Simulation
 use crate::mass::{self, MassProps};
 use crate::{ImportOptions, Imported, OrkError};
 
-/// A TOML number that reads back to the same `f64`.
+/// Significant digits of a number the importer writes: the design's values pass through unit
+/// conversions and sums (inches and grams to metres and kilograms, component masses summed)
+/// whose last bits are rounding noise, so `0.15239999999999998` (6 in) is written `0.1524`.
+/// Twelve digits keep every figure of an OpenRocket file (which stores at most about ten)
+/// and change a value by at most 5·10⁻¹³ of itself.
+const SIGNIFICANT_DIGITS: usize = 12;
+
+/// A TOML number: `v` rounded to [`SIGNIFICANT_DIGITS`], in the shortest form that reads
+/// back to that rounded `f64`.
 fn n(v: f64) -> String {
-    let s = format!("{v:?}");
+    let rounded = if v.is_finite() {
+        format!("{v:.prec$e}", prec = SIGNIFICANT_DIGITS - 1)
+            .parse::<f64>()
+            .unwrap_or(v)
+    } else {
+        v
+    };
+    let s = format!("{rounded:?}");
     if s.contains('.') || s.contains('e') || s.contains("inf") || s.contains("NaN") {
         s
     } else {
@@ -1646,4 +1661,20 @@ pub(super) fn mission(
         mission: t,
         warnings,
     })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn numbers_are_written_without_rounding_noise() {
+        assert_eq!(n(6.0 * 0.0254), "0.1524");
+        assert_eq!(n(0.013049999999999999), "0.01305");
+        assert_eq!(n(0.40800000000000003), "0.408");
+        assert_eq!(n(2.0), "2.0");
+        assert_eq!(n(1.0 / 3.0), "0.333333333333");
+        assert_eq!(n(-1.5e-7), "-1.5e-7");
+        assert_eq!(n(f64::INFINITY), "inf");
+    }
 }
