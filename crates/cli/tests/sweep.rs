@@ -139,3 +139,65 @@ fn a_two_stage_sweep_has_each_body() {
     assert!(text.contains("stages.0.rocket.mass=0"), "{text}");
     assert!(text.contains("columns"), "{text}");
 }
+
+/// The number of points of each curve of an SVG chart: its 2-pixel `<polyline>`s (the grid
+/// and axes are thinner) of more than the legend's two points.
+fn curve_points(svg: &str) -> Vec<usize> {
+    svg.split("<polyline")
+        .skip(1)
+        .filter(|p| {
+            p.split('>')
+                .next()
+                .is_some_and(|tag| tag.contains("stroke-width=\"2\""))
+        })
+        .filter_map(|p| {
+            let start = p.find("points=\"")? + 8;
+            let end = p[start..].find('"')?;
+            Some(p[start..start + end].split_whitespace().count())
+        })
+        .filter(|&n| n > 2)
+        .collect()
+}
+
+#[test]
+fn a_window_limits_the_charts_to_its_times() {
+    let mission = example().display().to_string();
+    let sweep = |extra: &[&str]| {
+        let out = tempfile::tempdir().expect("temporary directory");
+        let dir = out.path().display().to_string();
+        let mut args = vec![
+            "sweep",
+            &mission,
+            "--vary",
+            "rocket.mass=2.5,2.7",
+            "--out",
+            &dir,
+        ];
+        args.extend_from_slice(extra);
+        let output = karman(&args);
+        assert_eq!(output.status.code(), Some(0), "{}", stderr(&output));
+        std::fs::read_to_string(out.path().join("altitude_agl.svg")).expect("chart")
+    };
+    let whole = curve_points(&sweep(&[]));
+    let boost = curve_points(&sweep(&["--window", "0:3"]));
+    assert_eq!(whole.len(), boost.len());
+    assert!(!boost.is_empty());
+    for (w, b) in whole.iter().zip(&boost) {
+        assert!(*b > 1 && b < w, "window 0:3 kept {b} of {w} points");
+    }
+    // A bad window is a usage error naming the flag and the value.
+    let output = karman(&[
+        "sweep",
+        &mission,
+        "--vary",
+        "rocket.mass=2.5",
+        "--window",
+        "5:2",
+    ]);
+    assert_eq!(output.status.code(), Some(2));
+    let text = stderr(&output);
+    assert!(
+        text.contains("--window") && text.contains("ends before it starts"),
+        "{text}"
+    );
+}

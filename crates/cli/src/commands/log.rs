@@ -138,6 +138,14 @@ pub fn log_json(log: &FlightLog) -> Value {
     })
 }
 
+/// One chart of `--plot`: file, title, y label and what a sample gives (none: not drawn).
+type Chart = (
+    &'static str,
+    &'static str,
+    &'static str,
+    fn(&karman_flightlog::Sample) -> Option<f64>,
+);
+
 /// The plots of `--plot`: one chart per channel the log has, time from liftoff.
 fn plots(log: &FlightLog, file: &std::path::Path, dir: &std::path::Path) -> Result<()> {
     std::fs::create_dir_all(dir)
@@ -146,12 +154,7 @@ fn plots(log: &FlightLog, file: &std::path::Path, dir: &std::path::Path) -> Resu
         || file.display().to_string(),
         |n| n.to_string_lossy().into_owned(),
     );
-    let charts: [(
-        &str,
-        &str,
-        &str,
-        fn(&karman_flightlog::Sample) -> Option<f64>,
-    ); 3] = [
+    let charts: [Chart; 3] = [
         ("altitude.svg", "Altitude", "altitude AGL (m)", |s| {
             Some(s.altitude_agl_m)
         }),

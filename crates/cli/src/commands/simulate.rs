@@ -28,7 +28,7 @@ use karman_mission::dynamics::Sample;
 use karman_mission::report::trajectory;
 
 use super::MissionArgs;
-use crate::plot::{Series, line_chart};
+use crate::plot::{Series, line_chart, map_chart};
 
 /// Arguments of `karman simulate`.
 #[derive(Debug, Args)]
@@ -204,7 +204,7 @@ fn write_staged(run: &StagedRun, name: &str, seed: u64, dir: &Path) -> Result<()
         "altitude AGL (m)",
         &altitude,
     )?;
-    line_chart(
+    map_chart(
         &dir.join("ground_track.svg"),
         "Ground track",
         "east of the pad (m)",
@@ -258,7 +258,7 @@ fn plots(run: &FlightRun, samples: &[Sample], dir: &Path) -> Result<()> {
             points: pick(|s| s.altitude_agl),
         }],
     )?;
-    line_chart(
+    map_chart(
         &dir.join("ground_track.svg"),
         "Ground track",
         "east of the pad (m)",

@@ -1,10 +1,13 @@
-//! `karman sweep MISSION --vary PATH=V1,V2,... [--series NAME]... [--out DIR]`: fly one
+//! `karman sweep MISSION --vary PATH=V1,V2,... [--series NAME]... [--window T0:T1] [--out DIR]`: fly one
 //! mission with one input set to each of several values (RocketPy paper's dynamic-stability
 //! study: the fins moved along the body) and compare the flights.
 //!
 //! Prints a table of the main summary values per variant and writes into DIR `summary.csv`
 //! (the variant's value and every scalar summary key) and one SVG per chosen trajectory
-//! series with the variants overlaid (`altitude_agl.svg`, `attitude_angle.svg`, ...).
+//! series with the variants overlaid (`altitude_agl.svg`, `attitude_angle.svg`, ...). The
+//! charts span the flights (to the last variant's last point) unless `--window T0:T1` chooses
+//! the time window that matters (`0:5` the rail and the boost, `:30` up to 30 s, `20:` from
+//! 20 s): an attitude oscillation after the rail is invisible on a chart that runs to landing.
 //!
 //! A multi-stage mission flies each variant as a staged flight: the table shows the top
 //! stage, `summary.csv` adds each lower stage's columns as a Monte Carlo study's
@@ -46,6 +49,51 @@ pub struct SweepArgs {
     /// Seed of the parachute trigger noise of every variant.
     #[arg(long, default_value_t = 0)]
     pub seed: u64,
+    /// The charts' time window, s: `T0:T1`, `:T1` or `T0:` (default: the whole flights).
+    #[arg(long, value_name = "T0:T1", value_parser = parse_window)]
+    pub window: Option<Window>,
+}
+
+/// A time window of the charts, s (either end open).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Window {
+    /// Start, s.
+    pub start: Option<f64>,
+    /// End, s.
+    pub end: Option<f64>,
+}
+
+impl Window {
+    /// Whether time `t` lies in the window.
+    fn contains(&self, t: f64) -> bool {
+        self.start.is_none_or(|s| t >= s) && self.end.is_none_or(|e| t <= e)
+    }
+}
+
+/// Parses `T0:T1`, `:T1` or `T0:` (finite seconds, `T0 < T1`).
+fn parse_window(text: &str) -> Result<Window, String> {
+    let (start, end) = text
+        .split_once(':')
+        .ok_or_else(|| format!("`{text}`: a window is T0:T1, :T1 or T0: (seconds)"))?;
+    let bound = |part: &str| -> Result<Option<f64>, String> {
+        let part = part.trim();
+        if part.is_empty() {
+            return Ok(None);
+        }
+        match part.parse::<f64>() {
+            Ok(v) if v.is_finite() => Ok(Some(v)),
+            _ => Err(format!("`{text}`: `{part}` is not a time in seconds")),
+        }
+    };
+    let window = Window {
+        start: bound(start)?,
+        end: bound(end)?,
+    };
+    match (window.start, window.end) {
+        (None, None) => Err(format!("`{text}`: give at least one end of the window")),
+        (Some(a), Some(b)) if a >= b => Err(format!("`{text}`: the window ends before it starts")),
+        _ => Ok(window),
+    }
 }
 
 /// Splits `V1,V2,...` at the commas that are not inside brackets, braces or quotes.
@@ -199,7 +247,11 @@ pub fn run(args: &SweepArgs) -> Result<()> {
             .iter()
             .map(|(label, points)| Series {
                 label,
-                points: points.clone(),
+                points: points
+                    .iter()
+                    .copied()
+                    .filter(|(t, _)| args.window.is_none_or(|w| w.contains(*t)))
+                    .collect(),
             })
             .collect();
         let unit = if chosen.unit.is_empty() {
@@ -232,7 +284,20 @@ fn csv_field(value: &str) -> String {
 
 #[cfg(test)]
 mod tests {
-    use super::split_values;
+    use super::{parse_window, split_values};
+
+    #[test]
+    fn windows_parse_with_either_end_open() {
+        let w = parse_window("0:5").unwrap();
+        assert!(w.contains(0.0) && w.contains(5.0) && !w.contains(5.1) && !w.contains(-0.1));
+        let w = parse_window(":30").unwrap();
+        assert!(w.start.is_none() && w.contains(-100.0) && !w.contains(31.0));
+        let w = parse_window("20:").unwrap();
+        assert!(w.end.is_none() && w.contains(1e6) && !w.contains(19.0));
+        for bad in ["5", ":", "5:2", "a:3", "1:inf", "nan:"] {
+            assert!(parse_window(bad).is_err(), "{bad}");
+        }
+    }
 
     #[test]
     fn values_split_outside_brackets_and_quotes() {
