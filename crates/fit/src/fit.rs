@@ -452,14 +452,8 @@ fn rms(values: &[f64]) -> f64 {
     (values.iter().map(|v| v * v).sum::<f64>() / values.len() as f64).sqrt()
 }
 
-/// Fits the inputs `options.vary` of `mission` to `log` (crate documentation: residuals,
-/// weights, optimiser, uncertainty).
-///
-/// # Errors
-/// [`FitError`]: no input or one twice, an input that is not a scalable number, curve or
-/// array, a parachute that does not open in the simulation, too few log samples in a phase,
-/// a flight that fails.
-pub fn fit(mission: &Mission, log: &FlightLog, options: &FitOptions) -> Result<Fit, FitError> {
+/// Refuses a request with no input, an input named twice or too small a budget.
+fn check_request(options: &FitOptions) -> Result<(), FitError> {
     if options.vary.is_empty() {
         return Err(FitError::Usage(
             "name at least one input to fit (--vary PATH)".into(),
@@ -477,7 +471,16 @@ pub fn fit(mission: &Mission, log: &FlightLog, options: &FitOptions) -> Result<F
             2 * (n + 1)
         )));
     }
-    // The study machinery applies the factors exactly as a Monte Carlo draw would.
+    Ok(())
+}
+
+/// The study that flies `mission` with a factor on each input of `options.vary` (the
+/// machinery applies them exactly as a Monte Carlo draw would), and the inputs' nominal
+/// values.
+fn prepare(
+    mission: &Mission,
+    options: &FitOptions,
+) -> Result<(MonteCarlo, Vec<Nominal>), FitError> {
     let mut scaled = mission.clone();
     scaled.spec.dispersion = Some(DispersionSpec {
         samples: 1,
@@ -499,7 +502,7 @@ pub fn fit(mission: &Mission, log: &FlightLog, options: &FitOptions) -> Result<F
         } if section == "dispersion" => FitError::Usage(source.to_string()),
         other => FitError::Mission(other),
     })?;
-    let mut nominals = Vec::with_capacity(n);
+    let mut nominals = Vec::with_capacity(options.vary.len());
     for (path, input) in options.vary.iter().zip(&study.study().inputs) {
         nominals.push(match &input.target {
             Target::Number(v) if v.is_finite() && *v != 0.0 => Nominal::Number(*v),
@@ -519,12 +522,20 @@ pub fn fit(mission: &Mission, log: &FlightLog, options: &FitOptions) -> Result<F
             }
         });
     }
+    Ok((study, nominals))
+}
 
-    // The phases and their log samples, from the nominal flight.
-    let nominal = fly(&study, &vec![1.0; n])?;
-    let comparison = compare(&nominal, log)?;
+/// The log's samples of each phase the inputs `vary` act on, their weights left at 1: the
+/// ascent from liftoff to the log's apogee, and each parachute's altitude band after apogee
+/// (from the `nominal` flight's comparison with the log).
+fn phase_blocks(
+    nominal: &SimulatedFlight,
+    log: &FlightLog,
+    vary: &[String],
+) -> Result<Vec<Block>, FitError> {
+    let comparison = compare(nominal, log)?;
     let mut phases: Vec<Phase> = Vec::new();
-    for path in &options.vary {
+    for path in vary {
         let phase = Phase::of(path);
         if !phases.contains(&phase) {
             phases.push(phase);
@@ -573,22 +584,34 @@ pub fn fit(mission: &Mission, log: &FlightLog, options: &FitOptions) -> Result<F
             weight: 1.0,
         });
     }
-    let before = block_residuals(&nominal, &blocks, 0.0)?;
-    for (block, r) in blocks.iter_mut().zip(&before) {
-        block.weight = 1.0 / rms(r).max(1e-6);
-    }
+    Ok(blocks)
+}
 
-    // Levenberg–Marquardt from the nominal values (and the comparison's clock); one flight
-    // is kept back per input for the final Jacobian and one for the final residuals.
+/// The optimiser's result: the best parameters, flights flown, whether it converged and
+/// how it ended, in words.
+struct Optimised {
+    x: DVector<f64>,
+    flights: usize,
+    converged: bool,
+    termination: String,
+}
+
+/// Levenberg–Marquardt from the nominal values (and the comparison's clock), starting from
+/// the `nominal` flight and its weighted residuals `start`, within `budget` flights.
+fn optimise(
+    study: &MonteCarlo,
+    blocks: &[Block],
+    inputs: usize,
+    nominal: SimulatedFlight,
+    start: DVector<f64>,
+    budget: usize,
+) -> Result<Optimised, FitError> {
     let shift = blocks.iter().any(|b| b.phase == Phase::Ascent);
-    let parameters = n + usize::from(shift);
-    let budget = options.max_flights - 1 - n - 1;
-    // The optimiser starts from the residuals it is handed: the nominal flight's.
-    let start = weighted(&before, &blocks);
+    let parameters = inputs + usize::from(shift);
     let problem = Problem {
-        study: &study,
-        blocks: &blocks,
-        inputs: n,
+        study,
+        blocks,
+        inputs,
         shift,
         x: DVector::zeros(parameters),
         best: RefCell::new(Some((start.norm_squared(), DVector::zeros(parameters)))),
@@ -603,7 +626,7 @@ pub fn fit(mission: &Mission, log: &FlightLog, options: &FitOptions) -> Result<F
         .with_xtol(1e-6)
         .with_gtol(1e-10)
         .with_stepbound(0.5)
-        .with_patience(budget.div_ceil(n + 1).max(1));
+        .with_patience(budget.div_ceil(inputs + 1).max(1));
     let (problem, report) = optimiser.minimize(problem);
     let flights = problem.flights.get();
     let failure = problem.failure.borrow().clone();
@@ -634,53 +657,119 @@ pub fn fit(mission: &Mission, log: &FlightLog, options: &FitOptions) -> Result<F
         TerminationReason::ResidualsZero => (true, "converged (no residual)".into()),
         other => (false, format!("{other:?}")),
     };
+    Ok(Optimised {
+        x,
+        flights,
+        converged,
+        termination,
+    })
+}
 
-    // The uncertainty at the best values: J of the weighted residuals by forward
-    // differences, s² = Σr²/(m − p), cov = s² (JᵀJ)⁻¹, widened for correlated residuals.
+/// What [`uncertainty`] finds at the best values.
+struct Spread {
+    /// The standard deviation of each parameter.
+    sigma: Vec<f64>,
+    /// The raw residuals of each block.
+    after: Vec<Vec<f64>>,
+    /// The variance inflation for correlated residuals.
+    inflation: f64,
+    /// Flights flown.
+    flights: usize,
+}
+
+/// The uncertainty at the best values `x`: the Jacobian of the weighted residuals by forward
+/// differences (`inputs` flights and one for the residuals), `s² = Σr²/(m − p)`, `cov = s²
+/// (JᵀJ)⁻¹` widened for correlated residuals.
+fn uncertainty(
+    study: &MonteCarlo,
+    blocks: &[Block],
+    inputs: usize,
+    x: &DVector<f64>,
+) -> Result<Spread, FitError> {
+    let shift = blocks.iter().any(|b| b.phase == Phase::Ascent);
+    let parameters = x.len();
     let mut last = Problem {
-        study: &study,
-        blocks: &blocks,
-        inputs: n,
+        study,
+        blocks,
+        inputs,
         shift,
         x: x.clone(),
         sim: None,
         residuals: None,
         flights: Cell::new(0),
-        budget: n + 1,
+        budget: inputs + 1,
         failure: RefCell::new(None),
         best: RefCell::new(None),
     };
-    let (sim, base) = last.evaluate(&x).map_err(FitError::Flight)?;
+    let (sim, base) = last.evaluate(x).map_err(FitError::Flight)?;
     last.sim = Some(sim);
     last.residuals = Some(base.clone());
     let jacobian = last
         .jacobian()
         .ok_or_else(|| FitError::Flight(last.failure.borrow().clone().unwrap_or_default()))?;
-    let flights = flights + last.flights.get();
     let m = base.len();
     let s2 = base.norm_squared() / (m.saturating_sub(parameters).max(1)) as f64;
     let mut weighted_after: Vec<Vec<f64>> = Vec::with_capacity(blocks.len());
     let mut from = 0;
-    for block in &blocks {
+    for block in blocks {
         let to = from + block.points.len();
         weighted_after.push(base.as_slice()[from..to].to_vec());
         from = to;
     }
     let after: Vec<Vec<f64>> = weighted_after
         .iter()
-        .zip(&blocks)
+        .zip(blocks)
         .map(|(r, b)| r.iter().map(|v| v / b.weight).collect())
         .collect();
     let rho = lag_one_correlation(&weighted_after);
     let inflation = (1.0 + rho) / (1.0 - rho);
     let normal = jacobian.transpose() * &jacobian;
     let covariance = normal.try_inverse().map(|inv| inv * (s2 * inflation));
-    let sigma = |i: usize| {
-        covariance
-            .as_ref()
-            .map_or(f64::INFINITY, |c| c[(i, i)].max(0.0).sqrt())
-    };
-    let fitted = factors(&x, n);
+    let sigma = (0..parameters)
+        .map(|i| {
+            covariance
+                .as_ref()
+                .map_or(f64::INFINITY, |c| c[(i, i)].max(0.0).sqrt())
+        })
+        .collect();
+    Ok(Spread {
+        sigma,
+        after,
+        inflation,
+        flights: last.flights.get(),
+    })
+}
+
+/// Fits the inputs `options.vary` of `mission` to `log` (crate documentation: residuals,
+/// weights, optimiser, uncertainty).
+///
+/// # Errors
+/// [`FitError`]: no input or one twice, an input that is not a scalable number, curve or
+/// array, a parachute that does not open in the simulation, too few log samples in a phase,
+/// a flight that fails.
+pub fn fit(mission: &Mission, log: &FlightLog, options: &FitOptions) -> Result<Fit, FitError> {
+    check_request(options)?;
+    let n = options.vary.len();
+    let (study, nominals) = prepare(mission, options)?;
+    let nominal = fly(&study, &vec![1.0; n])?;
+    let mut blocks = phase_blocks(&nominal, log, &options.vary)?;
+    let before = block_residuals(&nominal, &blocks, 0.0)?;
+    for (block, r) in blocks.iter_mut().zip(&before) {
+        block.weight = 1.0 / rms(r).max(1e-6);
+    }
+    // One flight is kept back per input for the final Jacobian and one for the final
+    // residuals; the nominal flight counts as the first.
+    let budget = options.max_flights - 1 - n - 1;
+    let start = weighted(&before, &blocks);
+    let optimised = optimise(&study, &blocks, n, nominal, start, budget)?;
+    let x = &optimised.x;
+    let Spread {
+        sigma,
+        after,
+        inflation,
+        flights: final_flights,
+    } = uncertainty(&study, &blocks, n, x)?;
+    let fitted = factors(x, n);
     let inputs: Vec<FittedInput> = options
         .vary
         .iter()
@@ -690,7 +779,7 @@ pub fn fit(mission: &Mission, log: &FlightLog, options: &FitOptions) -> Result<F
             path: path.clone(),
             nominal,
             factor: fitted[i],
-            factor_std: fitted[i] * sigma(i),
+            factor_std: fitted[i] * sigma[i],
         })
         .collect();
     let phases = blocks
@@ -703,7 +792,8 @@ pub fn fit(mission: &Mission, log: &FlightLog, options: &FitOptions) -> Result<F
             rms_after: rms(r1),
         })
         .collect();
-    let offset = clock_offset(&x, n, shift);
+    let shift = x.len() > n;
+    let offset = clock_offset(x, n, shift);
     let mut warnings = Vec::new();
     if shift && offset.abs() > NOTED_CLOCK_OFFSET_S {
         warnings.push(format!(
@@ -717,10 +807,7 @@ pub fn fit(mission: &Mission, log: &FlightLog, options: &FitOptions) -> Result<F
             }
         ));
     }
-    if inputs
-        .iter()
-        .any(|i: &FittedInput| !i.factor_std.is_finite())
-    {
+    if sigma.iter().any(|s| !s.is_finite()) {
         warnings.push(
             "an uncertainty is infinite: the log does not constrain that input (or a factor \
              or the clock offset ended at its bound)"
@@ -730,10 +817,10 @@ pub fn fit(mission: &Mission, log: &FlightLog, options: &FitOptions) -> Result<F
     Ok(Fit {
         inputs,
         phases,
-        clock_offset_s: shift.then(|| [offset, sigma(n)]),
-        flights,
-        converged,
-        termination,
+        clock_offset_s: shift.then(|| [offset, sigma[n]]),
+        flights: optimised.flights + final_flights,
+        converged: optimised.converged,
+        termination: optimised.termination,
         correlation_inflation: inflation,
         warnings,
     })
