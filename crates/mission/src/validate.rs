@@ -19,9 +19,14 @@ use std::path::Path;
 /// Keys where `inf` is a valid value.
 pub(crate) const ALLOW_INFINITE: &[&str] = &["flight.max_time_step"];
 
-/// Largest parachute sampling rate, Hz (a barometer at 10 kHz already resolves far more than
+/// Largest parachute and air-brake controller sampling rate, Hz (a barometer at 10 kHz already resolves far more than
 /// any trigger needs; more only multiplies the sampling instants of a flight).
 const MAX_SAMPLING_RATE: f64 = 10_000.0;
+
+/// Largest 3-DOF weathercock coefficient, 1/s: the attitude then follows the relative wind
+/// within a millisecond, faster than any rocket turns; a larger rate only makes the
+/// equations stiff (at 10¹² 1/s the integrator's step limit ends the flight).
+const MAX_WEATHERCOCK_COEFF: f64 = 1000.0;
 
 /// Longest flight time, s (a day; a descent under a drogue from 100 km takes under an hour).
 const MAX_FLIGHT_TIME: f64 = 86_400.0;
@@ -1249,7 +1254,12 @@ fn air_brakes(c: &mut Checker<'_>, spec: &MissionSpec) {
         return;
     };
     let key = |k: &str| format!("rocket.air_brakes.{k}");
-    c.positive(&key("sampling_rate"), ab.sampling_rate);
+    c.range(
+        &key("sampling_rate"),
+        ab.sampling_rate,
+        ab.sampling_rate > 0.0 && ab.sampling_rate <= MAX_SAMPLING_RATE,
+        "must be in (0, 10000] Hz",
+    );
     if let Some(area) = ab.reference_area {
         c.positive(&key("reference_area"), area);
     }
@@ -1356,8 +1366,8 @@ fn flight(c: &mut Checker<'_>, spec: &MissionSpec) {
                 c.range(
                     "flight.weathercock_coeff",
                     w,
-                    w >= 0.0,
-                    "must be a non-negative rate, 1/s",
+                    (0.0..=MAX_WEATHERCOCK_COEFF).contains(&w),
+                    "must be in [0, 1000] 1/s",
                 );
             }
         }

@@ -325,6 +325,14 @@ fn simulation_mode_and_weathercock_are_checked() {
     assert_eq!(found.len(), 1);
     assert!(matches!(found[0].kind, ProblemKind::OutOfRange { .. }));
     let negative = error_text(&text, &["flight.weathercock_coeff=-0.5"]);
+    // A rate so large it only stiffens the equations (the flight would end at the
+    // integrator's step limit): refused by `check`, as the flight would refuse it.
+    let found = problems(
+        &text,
+        &["flight.weathercock_coeff=1e12".parse().expect("override")],
+    );
+    assert_eq!(found.len(), 1);
+    assert!(matches!(found[0].kind, ProblemKind::OutOfRange { .. }));
     insta::assert_snapshot!(
         "simulation_mode",
         format!("{unknown}\n{six_dof}\n{negative}")

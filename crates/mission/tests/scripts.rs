@@ -145,6 +145,24 @@ fn air_brake_inputs_are_checked() {
 }
 
 #[test]
+fn an_air_brake_sampling_rate_above_10_khz_is_refused_by_check() {
+    // 1e5 Hz would multiply the controller calls until the flight's step limit: `check`
+    // refuses it as it refuses a parachute's.
+    let fast = BRAKES.replace("sampling_rate = 20", "sampling_rate = 1e5");
+    let found = problems(&mission("200", &fast));
+    let rate = found
+        .iter()
+        .find(|p| p.key == "rocket.air_brakes.sampling_rate")
+        .unwrap_or_else(|| panic!("no sampling-rate problem in {found:?}"));
+    assert!(
+        format!("{:?}", rate.kind).contains("(0, 10000] Hz"),
+        "{rate:?}"
+    );
+    let fine = BRAKES.replace("sampling_rate = 20", "sampling_rate = 10000");
+    load(&mission("200", &fine), &[]).unwrap_or_else(|e| panic!("{e}"));
+}
+
+#[test]
 fn the_air_brake_table_takes_factor_and_offset_only() {
     use karman_mission::schema::Distribution;
     let m = load(&mission("200", BRAKES), &[]).unwrap_or_else(|e| panic!("{e}"));
