@@ -85,10 +85,12 @@ pub use drag::{
     FinSetDrag, FlowReference, LaunchLug, PodDrag, Profile, RailButtonDrag, TubeFinSetDrag,
 };
 pub use error::AirframeError;
+/// What fires a parachute: the engine's own trigger kind (one definition, karman-model).
+pub use karman_model::TriggerKind;
 pub use motor::MotorProperties;
 pub use recovery::{
     DEFAULT_CANOPY_DRAG_COEFFICIENT, DEFAULT_POROSITY, DEFAULT_SAMPLING_RATE, Parachute,
-    ParachuteSpec, RailButtons, Trigger,
+    ParachuteSpec, RailButtons,
 };
 pub use rocket::{CoordinateSystem, Rocket, RocketInputs, inertia_components};
 pub use surfaces::{

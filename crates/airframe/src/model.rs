@@ -5,13 +5,11 @@
 use karman_math::Cursor;
 use karman_model::{
     BodyFlow, Configuration, Loads, LocalFlow, MAX_CONTROLS, MassFlowLaw, MassSample,
-    ParachuteSpec, RailButtonGeometry, StabilityModel, SurfaceModel, TriggerKind, VehicleModel,
-    VehicleSetup,
+    ParachuteSpec, RailButtonGeometry, StabilityModel, SurfaceModel, VehicleModel, VehicleSetup,
 };
-use std::sync::Arc;
 
 use crate::air_brakes::AIR_BRAKES_CONTROL;
-use crate::{Rocket, Surface, Trigger};
+use crate::{Rocket, Surface};
 
 impl SurfaceModel for Surface {
     #[inline(always)]
@@ -52,11 +50,7 @@ impl VehicleModel for Rocket {
                 .map(|p| ParachuteSpec {
                     name: p.name.clone(),
                     cd_s: p.cd_s,
-                    trigger: match &p.trigger {
-                        Trigger::Apogee => TriggerKind::Apogee,
-                        Trigger::HeightAboveGround(h) => TriggerKind::HeightAboveGround(*h),
-                        Trigger::Custom(condition) => TriggerKind::Custom(Arc::clone(condition)),
-                    },
+                    trigger: p.trigger.clone(),
                     sampling_rate: p.sampling_rate,
                     lag: p.lag,
                     noise: p.noise,

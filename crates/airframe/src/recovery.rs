@@ -2,9 +2,8 @@
 //! launch rail (RocketPy `Parachute`, `RailButtons`; docs/physics.md §1, §8.1, §8.4, §9.4).
 
 use std::f64::consts::PI;
-use std::sync::Arc;
 
-use karman_model::TriggerCondition;
+use karman_model::TriggerKind;
 
 use crate::error::{AirframeError, finite, non_negative, positive};
 
@@ -16,32 +15,6 @@ pub const DEFAULT_POROSITY: f64 = 0.0432;
 /// Default trigger sampling rate (Hz) of `Rocket.add_parachute`.
 pub const DEFAULT_SAMPLING_RATE: f64 = 100.0;
 
-/// When a parachute is ejected.
-#[derive(Debug, Clone)]
-pub enum Trigger {
-    /// At the first sampling instant with `vz < 0`.
-    Apogee,
-    /// On descent (`vz < 0`) below this barometric height above ground level (m).
-    HeightAboveGround(f64),
-    /// At the first sampling instant where the condition holds, ascent included (RocketPy's
-    /// callable trigger, a time trigger).
-    Custom(Arc<dyn TriggerCondition>),
-}
-
-impl PartialEq for Trigger {
-    /// Built-in triggers compare by value, custom conditions by identity.
-    fn eq(&self, other: &Self) -> bool {
-        match (self, other) {
-            (Trigger::Apogee, Trigger::Apogee) => true,
-            (Trigger::HeightAboveGround(a), Trigger::HeightAboveGround(b)) => {
-                a.to_bits() == b.to_bits()
-            }
-            (Trigger::Custom(a), Trigger::Custom(b)) => Arc::ptr_eq(a, b),
-            _ => false,
-        }
-    }
-}
-
 /// The user's description of a parachute; `None` fields take RocketPy's defaults.
 #[derive(Debug, Clone, PartialEq)]
 pub struct ParachuteSpec {
@@ -50,7 +23,7 @@ pub struct ParachuteSpec {
     /// Drag coefficient × reference area (m²).
     pub cd_s: f64,
     /// Ejection trigger.
-    pub trigger: Trigger,
+    pub trigger: TriggerKind,
     /// Trigger sampling rate (Hz); default 100.
     pub sampling_rate: Option<f64>,
     /// Delay from trigger to full deployment (s); default 0.
@@ -75,7 +48,7 @@ pub struct Parachute {
     /// Drag coefficient × reference area (m²).
     pub cd_s: f64,
     /// Ejection trigger.
-    pub trigger: Trigger,
+    pub trigger: TriggerKind,
     /// Trigger sampling rate (Hz).
     pub sampling_rate: f64,
     /// Delay from trigger to full deployment (s).
@@ -102,7 +75,7 @@ impl Parachute {
     pub fn new(spec: &ParachuteSpec) -> Result<Self, AirframeError> {
         let c = spec.name.as_str();
         let cd_s = positive(c, "cd_s", spec.cd_s)?;
-        if let Trigger::HeightAboveGround(h) = &spec.trigger {
+        if let TriggerKind::HeightAboveGround(h) = &spec.trigger {
             let h = *h;
             finite(c, "trigger", h)?;
         }
@@ -212,7 +185,7 @@ mod tests {
         ParachuteSpec {
             name: "drogue".to_owned(),
             cd_s: 1.0,
-            trigger: Trigger::Apogee,
+            trigger: TriggerKind::Apogee,
             sampling_rate: None,
             lag: None,
             noise: None,

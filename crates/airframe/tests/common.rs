@@ -9,7 +9,7 @@ use std::path::PathBuf;
 use karman_airframe::{
     Airfoil, AngleUnit, CoordinateSystem, MotorProperties, NoseConeSpec, NoseKind, Parachute,
     ParachuteSpec, RailButtons, Rocket, RocketInputs, SurfaceInput, SurfaceSpec, Sweep, TailSpec,
-    TrapezoidalFinsSpec, Trigger,
+    TrapezoidalFinsSpec, TriggerKind,
 };
 use karman_math::{Extrapolation, Interpolation, Table1, linspace};
 
@@ -207,8 +207,8 @@ pub fn calisto_inputs(dir: &std::path::Path, airfoil: Option<Airfoil>) -> Rocket
             },
         ],
         parachutes: vec![
-            chute("main", 10.0, Trigger::HeightAboveGround(800.0)),
-            chute("drogue", 1.0, Trigger::Apogee),
+            chute("main", 10.0, TriggerKind::HeightAboveGround(800.0)),
+            chute("drogue", 1.0, TriggerKind::Apogee),
         ],
         rail_buttons: Some(RailButtons::new(0.0818, -0.6182, 45.0).expect("valid buttons")),
     }

@@ -7,7 +7,7 @@
 use karman_airframe::{
     Airfoil, AngleUnit, CoordinateSystem, EllipticalFinsSpec, FreeFormFinsSpec, MotorProperties,
     NoseConeSpec, NoseKind, Parachute, ParachuteSpec, RailButtons, Rocket, RocketInputs,
-    SurfaceInput, SurfaceSpec, Sweep, TailSpec, TrapezoidalFinsSpec, Trigger,
+    SurfaceInput, SurfaceSpec, Sweep, TailSpec, TrapezoidalFinsSpec, TriggerKind,
 };
 use karman_math::dimensions::{Dimension, ScaledComparison, test_seeds};
 use karman_math::{Extrapolation, Interpolation, PhysicalConstants, Table1, Units, linspace};
@@ -82,7 +82,7 @@ fn motor(u: &Units, common_grid: bool) -> MotorProperties {
     }
 }
 
-fn parachute(u: &Units, name: &str, cd_s: f64, trigger: Trigger, radius: bool) -> Parachute {
+fn parachute(u: &Units, name: &str, cd_s: f64, trigger: TriggerKind, radius: bool) -> Parachute {
     Parachute::new(&ParachuteSpec {
         name: name.to_owned(),
         cd_s: u.scale(cd_s, Dimension::AREA),
@@ -203,8 +203,14 @@ fn inputs(u: &Units, coordinate_system: CoordinateSystem) -> RocketInputs {
             ),
         ],
         parachutes: vec![
-            parachute(u, "main", 10.0, Trigger::HeightAboveGround(l(800.0)), true),
-            parachute(u, "drogue", 1.0, Trigger::Apogee, false),
+            parachute(
+                u,
+                "main",
+                10.0,
+                TriggerKind::HeightAboveGround(l(800.0)),
+                true,
+            ),
+            parachute(u, "drogue", 1.0, TriggerKind::Apogee, false),
         ],
         rail_buttons: Some(RailButtons::new(l(s * 0.0818), l(s * -0.6182), 45.0).expect("valid")),
     }

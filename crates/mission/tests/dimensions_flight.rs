@@ -14,7 +14,7 @@
 use karman_airframe::{
     Airfoil, AngleUnit, CoordinateSystem, MotorProperties, NoseConeSpec, NoseKind, Parachute,
     ParachuteSpec, RailButtons, Rocket, RocketInputs, SurfaceInput, SurfaceSpec, Sweep, TailSpec,
-    TrapezoidalFinsSpec, Trigger,
+    TrapezoidalFinsSpec, TriggerKind,
 };
 use karman_atmos::{Atmosphere, Curve, Datum, Environment, EnvironmentConfig, Gravity, Profiles};
 use karman_dynamics::equations::{CanopyState, Cursors, Equations};
@@ -198,8 +198,8 @@ fn rocket(u: &Units, c: &PhysicalConstants) -> Rocket {
             },
         ],
         parachutes: vec![
-            parachute("main", 10.0, Trigger::HeightAboveGround(l(800.0))),
-            parachute("drogue", 1.0, Trigger::Apogee),
+            parachute("main", 10.0, TriggerKind::HeightAboveGround(l(800.0))),
+            parachute("drogue", 1.0, TriggerKind::Apogee),
         ],
         rail_buttons: Some(RailButtons::new(l(0.0818), l(-0.6182), 45.0).expect("valid")),
     };

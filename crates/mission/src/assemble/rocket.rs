@@ -8,7 +8,7 @@ use std::sync::Arc;
 use karman_airframe::{
     self as airframe, AirBrakes, AirBrakesSpec, Airfoil, AirframeError, CoordinateSystem,
     DragEstimate, DragGeometry, MotorProperties, NoseKind, Parachute, RailButtons, Rocket,
-    RocketInputs, SurfaceInput, Trigger,
+    RocketInputs, SurfaceInput, TriggerKind,
 };
 use karman_script::Expression;
 
@@ -297,17 +297,17 @@ fn build(
             name: name.clone(),
             cd_s: p.cd_s,
             trigger: match &p.trigger {
-                schema::Trigger::Apogee => Trigger::Apogee,
-                schema::Trigger::HeightAboveGround(h) => Trigger::HeightAboveGround(*h),
-                schema::Trigger::Launch(delay) => Trigger::Custom(Arc::new(AfterTime(*delay))),
+                schema::Trigger::Apogee => TriggerKind::Apogee,
+                schema::Trigger::HeightAboveGround(h) => TriggerKind::HeightAboveGround(*h),
+                schema::Trigger::Launch(delay) => TriggerKind::Custom(Arc::new(AfterTime(*delay))),
                 schema::Trigger::Burnout(delay) => {
-                    Trigger::Custom(Arc::new(AfterTime(burn_out + delay)))
+                    TriggerKind::Custom(Arc::new(AfterTime(burn_out + delay)))
                 }
                 schema::Trigger::Expression(text) => {
                     let expression = Expression::parse(text).map_err(|e| {
                         mission.model_error(&format!("rocket.parachutes.{name}.trigger"), e)
                     })?;
-                    Trigger::Custom(Arc::new(ExpressionTrigger(expression)))
+                    TriggerKind::Custom(Arc::new(ExpressionTrigger(expression)))
                 }
             },
             sampling_rate: Some(p.sampling_rate),
