@@ -10,8 +10,7 @@ pub const DEFAULT_ATOL: [f64; 13] = [
 
 /// Which form of the 6-DOF equations a flight integrates (`[flight] equations`,
 /// docs/physics.md §8.6).
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, serde::Serialize, serde::Deserialize)]
-#[serde(rename_all = "snake_case")]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
 pub enum EquationsForm {
     /// The physically consistent form (default): the CM and nozzle vectors from the CDM to the
     /// CM and to the nozzle, and a mass flow that is the derivative of the vehicle's mass
@@ -21,23 +20,20 @@ pub enum EquationsForm {
     /// RocketPy 1.13 exactly: its CM→CDM and nozzle→CDM vectors (the mirrored lever arms of
     /// docs/physics.md §5.4, §5.6) and `ṁ = −T/v̄_e` for every motor (§15.3). The parity tests
     /// and `cargo xtask validate` fly this form against the RocketPy references.
-    #[serde(rename = "rocketpy_1_13")]
     RocketPy113,
 }
 
 /// Which equations fly the free flight from rail exit to the first canopy (`[flight]
 /// simulation_mode`, RocketPy 1.12+'s `Flight(simulation_mode=...)`, docs/physics.md §8.5). The
 /// rail slide (§8.1) and the parachute descents (§8.4) are the same in both modes.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, serde::Serialize, serde::Deserialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
 pub enum SimulationMode {
     /// The 6-DOF variable-mass equations (default, §8.2).
     #[default]
-    #[serde(rename = "6 DOF")]
     SixDof,
     /// RocketPy's 3-DOF point mass (`u_dot_generalized_3dof`): translation only, the attitude
     /// held or relaxed toward the relative wind by the weathercock law
     /// ([`FlightSettings::weathercock_coefficient`]).
-    #[serde(rename = "3 DOF")]
     ThreeDof,
 }
 

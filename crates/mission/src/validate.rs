@@ -7,12 +7,11 @@ use crate::document::Document;
 use crate::error::{Problem, ProblemKind};
 use crate::paths;
 use crate::schema::{
-    AtmosphereModel, AtmosphereSpec, Curve, DensitySpec, Discretize, MissionSpec, MotorKind,
+    AtmosphereModel, AtmosphereSpec, Curve, DensitySpec, Discretize, MissionSpec, Mode, MotorKind,
     RocketSpec, SoundingFormat, SurfaceSpec, Sweep, TankGeometryKind, TankKindName, TankSpec,
     Trigger, WeatherSource,
 };
 use karman_airframe::AirBrakesDrag;
-use karman_dynamics::SimulationMode;
 use karman_math::{Extrapolation, Interpolation};
 use std::path::Path;
 
@@ -1361,7 +1360,7 @@ fn flight(c: &mut Checker<'_>, spec: &MissionSpec) {
         "must be at least 1e-4 s",
     );
     match f.simulation_mode {
-        SimulationMode::ThreeDof => {
+        Mode::ThreeDof => {
             if let Some(w) = f.weathercock_coeff {
                 c.range(
                     "flight.weathercock_coeff",
@@ -1371,7 +1370,7 @@ fn flight(c: &mut Checker<'_>, spec: &MissionSpec) {
                 );
             }
         }
-        SimulationMode::SixDof => c.unused(
+        Mode::SixDof => c.unused(
             "flight.weathercock_coeff",
             f.weathercock_coeff.as_ref(),
             "the \"6 DOF\" simulation mode",

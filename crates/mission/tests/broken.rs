@@ -346,7 +346,7 @@ fn simulation_mode_and_weathercock_are_checked() {
     let flight = &mission.spec.flight;
     assert_eq!(
         flight.simulation_mode,
-        karman_mission::dynamics::SimulationMode::ThreeDof
+        karman_mission::schema::Mode::ThreeDof
     );
     assert_eq!(flight.weathercock_coeff, Some(0.5));
 }

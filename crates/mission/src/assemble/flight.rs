@@ -64,8 +64,8 @@ pub fn flight_settings(mission: &Mission, seed: u64) -> FlightSettings {
     settings.atol = spec.atol.map_or(DEFAULT_ATOL, |a| a.per_state());
     settings.max_time_step = spec.max_time_step;
     settings.noise_seed = seed;
-    settings.equations = spec.equations;
-    settings.simulation_mode = spec.simulation_mode;
+    settings.equations = spec.equations.into();
+    settings.simulation_mode = spec.simulation_mode.into();
     settings.weathercock_coefficient = spec.weathercock_coeff.unwrap_or(0.0);
     if let Some(ab) = &mission.spec.rocket.air_brakes
         && spec.time_overshoot

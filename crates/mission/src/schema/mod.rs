@@ -732,15 +732,59 @@ pub struct FlightSpec {
     /// The form of the 6-DOF equations: `"standard"` (default; physically consistent lever
     /// arms and mass flow) or `"rocketpy_1_13"` (RocketPy 1.13 exactly).
     #[serde(default)]
-    pub equations: karman_dynamics::EquationsForm,
+    pub equations: Equations,
     /// The equations of the free flight: `"6 DOF"` (default) or `"3 DOF"`, RocketPy 1.12+'s
     /// point mass (docs/physics.md §8.5).
     #[serde(default)]
-    pub simulation_mode: karman_dynamics::SimulationMode,
+    pub simulation_mode: Mode,
     /// The 3-DOF weathercock coefficient, 1/s (RocketPy's `PointMassRocket.weathercock_coeff`);
     /// absent: 0, the attitude held at the rail's. Only with `simulation_mode = "3 DOF"`.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub weathercock_coeff: Option<f64>,
+}
+
+/// `[flight] equations`: the form of the 6-DOF equations, as the file spells it (the
+/// assembly maps it to the engine's [`karman_dynamics::EquationsForm`]).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Equations {
+    /// `"standard"`: the physically consistent form (default).
+    #[default]
+    Standard,
+    /// `"rocketpy_1_13"`: RocketPy 1.13 exactly.
+    #[serde(rename = "rocketpy_1_13")]
+    RocketPy113,
+}
+
+impl From<Equations> for karman_dynamics::EquationsForm {
+    fn from(equations: Equations) -> Self {
+        match equations {
+            Equations::Standard => karman_dynamics::EquationsForm::Standard,
+            Equations::RocketPy113 => karman_dynamics::EquationsForm::RocketPy113,
+        }
+    }
+}
+
+/// `[flight] simulation_mode`: the equations of the free flight, as the file spells it (the
+/// assembly maps it to the engine's [`karman_dynamics::SimulationMode`]).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize)]
+pub enum Mode {
+    /// `"6 DOF"`: the variable-mass rigid body (default).
+    #[default]
+    #[serde(rename = "6 DOF")]
+    SixDof,
+    /// `"3 DOF"`: RocketPy 1.12+'s point mass.
+    #[serde(rename = "3 DOF")]
+    ThreeDof,
+}
+
+impl From<Mode> for karman_dynamics::SimulationMode {
+    fn from(mode: Mode) -> Self {
+        match mode {
+            Mode::SixDof => karman_dynamics::SimulationMode::SixDof,
+            Mode::ThreeDof => karman_dynamics::SimulationMode::ThreeDof,
+        }
+    }
 }
 
 /// `[dispersion]`: Monte Carlo run settings and the inputs that vary.
