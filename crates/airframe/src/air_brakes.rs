@@ -88,17 +88,13 @@ impl AirBrakes {
                 )
             }
         };
-        let brakes = AirBrakes {
+        Ok(AirBrakes {
             name: spec.name.clone(),
             curve,
             reference_area: spec.reference_area,
             clamp: spec.clamp,
             override_rocket_drag: spec.override_rocket_drag,
-            initial_level: 0.0,
-        };
-        Ok(AirBrakes {
-            initial_level: brakes.clamped(spec.initial_level),
-            ..brakes
+            initial_level: spec.initial_level,
         })
     }
 
@@ -126,21 +122,12 @@ impl AirBrakes {
         self.override_rocket_drag
     }
 
-    /// The level at `t = 0` (clamped as a write is).
+    /// The level at `t = 0` as the mission gives it. The level belongs to the controller's
+    /// store (karman-script), which clips this value as it clips every write when the brakes
+    /// clamp (docs/physics.md §16.3): one clamp, one owner.
     #[must_use]
     pub fn initial_level(&self) -> f64 {
         self.initial_level
-    }
-
-    /// The level stored when `value` is written: clipped to `[0, 1]` when the brakes clamp
-    /// (docs/physics.md §16.3).
-    #[must_use]
-    pub fn clamped(&self, value: f64) -> f64 {
-        if self.clamp {
-            value.clamp(0.0, 1.0)
-        } else {
-            value
-        }
     }
 
     /// The curve's `Cd(level, Mach)`, whatever the level.
@@ -254,13 +241,12 @@ mod tests {
     }
 
     #[test]
-    fn clamp_applies_to_writes_and_the_initial_level() {
-        let clamped = brakes(true, false);
-        assert_eq!(clamped.initial_level().to_bits(), 1.0f64.to_bits());
-        assert_eq!(clamped.clamped(-0.3).to_bits(), 0.0f64.to_bits());
-        let free = brakes(false, false);
-        assert_eq!(free.initial_level().to_bits(), 1.5f64.to_bits());
-        assert_eq!(free.clamped(-0.3).to_bits(), (-0.3f64).to_bits());
+    fn the_initial_level_is_kept_as_given_for_the_controller_to_clamp() {
+        for clamp in [true, false] {
+            let brakes = brakes(clamp, false);
+            assert_eq!(brakes.initial_level().to_bits(), 1.5f64.to_bits());
+            assert_eq!(brakes.clamp(), clamp);
+        }
     }
 
     #[test]
