@@ -46,7 +46,10 @@ pub const ALLOWED: &[(&str, &[&str])] = &[
             "karman-openrocket",
         ],
     ),
-    ("karman-python", &["karman-mission"]),
+    (
+        "karman-python",
+        &["karman-mission", "karman-flightlog", "karman-fit"],
+    ),
     ("karman-validation", &[]),
     (
         "xtask",

@@ -40,11 +40,14 @@
 //! [`write_fitted`] writes the mission with the fitted values set in place (comments and
 //! layout kept) and a header recording the fit. [`simulated_flight`] hands a flown
 //! mission's points to karman-flightlog's comparison; `karman compare` and `karman fit` use
-//! it.
+//! it. [`log_json`], [`comparison_json`], [`simulation_json`] and [`fit_json`] are the JSON
+//! shapes of a log, a comparison and a fit, shared by the CLI's `--json` output and the
+//! Python package.
 
 mod bridge;
 mod error;
 mod fit;
+mod report;
 mod write;
 
 pub use bridge::simulated_flight;
@@ -53,6 +56,7 @@ pub use fit::{
     FACTOR_RANGE, Fit, FitOptions, FittedInput, MAX_CLOCK_OFFSET_S, MIN_PHASE_SAMPLES,
     NOTED_CLOCK_OFFSET_S, Nominal, Phase, PhaseResiduals, fit,
 };
+pub use report::{comparison_json, fit_json, log_json, simulation_json};
 pub use write::write_fitted;
 
 /// The README's example, compiled and run by `cargo test --doc`.

@@ -13,6 +13,8 @@ use pyo3::prelude::*;
 use pyo3::types::PyDict;
 
 use crate::convert::{from_json, plain};
+use crate::log::FlightLog;
+use crate::log_error;
 
 /// The names of the trajectory series, in the column order of `trajectory.csv`.
 pub fn series_names() -> Vec<&'static str> {
@@ -154,6 +156,31 @@ impl Flight {
         plain(py, &self.run.flight.stats)
     }
 
+    /// The flight set against a flight log (`karman.read_log`) on one time axis from liftoff,
+    /// as one entry of the `logs` list of `karman compare --json`: `apogee_m` (the log's),
+    /// `apogee_error_m` and `apogee_error_pct` (simulated − measured, the simulated altitude
+    /// counted from the pad), `apogee_time_error_s`, `max_velocity_error_pct`,
+    /// `ascent_rms_altitude_m`, `ascent_rms_velocity_mps`, `descent_rate_error_pct`
+    /// (`{parachute: %}`), `descent` (per parachute phase), `landing` (`None` without GNSS
+    /// fixes), ... Raises `karman.LogError` when the two cannot be compared.
+    fn compare<'py>(
+        &self,
+        py: Python<'py>,
+        log: PyRef<'py, FlightLog>,
+    ) -> PyResult<Bound<'py, PyAny>> {
+        let file = log.file();
+        let inner = log.inner();
+        let value = py
+            .detach(|| {
+                let simulated =
+                    karman_fit::simulated_flight(self.samples_ref(), self.summary_ref());
+                karman_flightlog::compare(&simulated, inner)
+                    .map(|c| karman_fit::comparison_json(&file, inner, &c))
+            })
+            .map_err(|e| log_error(&e))?;
+        plain(py, &value)
+    }
+
     /// The rocket's static margin at time `t` (calibres).
     fn static_margin(&self, t: f64) -> f64 {
         self.run.rocket.static_margin(t)
@@ -182,6 +209,7 @@ impl Flight {
             "name",
             "integration",
             "static_margin",
+            "compare",
             "to_pandas",
             "export_csv",
             "export_kml",

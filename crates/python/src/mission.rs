@@ -5,6 +5,7 @@ use std::sync::atomic::{AtomicBool, AtomicU64, Ordering};
 use std::sync::{Arc, OnceLock};
 use std::time::Duration;
 
+use karman_fit::{FitError, FitOptions, fit_json, write_fitted};
 use karman_mission::assemble::environment::build_environment;
 use karman_mission::assemble::flight::PreparedFlight;
 use karman_mission::assemble::motor::build_motor;
@@ -19,12 +20,13 @@ use karman_mission::report::rocket::RocketReport;
 use karman_mission::{MissionError as RustMissionError, Override};
 use pyo3::exceptions::{PyRuntimeError, PyValueError};
 use pyo3::prelude::*;
-use pyo3::types::PyDict;
+use pyo3::types::{PyDict, PyString};
 
-use crate::convert::{from_json, from_toml, to_toml};
+use crate::convert::{from_json, from_toml, plain, to_toml};
 use crate::flight::Flight;
-use crate::mission_error;
+use crate::log::FlightLog;
 use crate::study::Study;
+use crate::{log_error, mission_error};
 
 /// The file name missions built from text or data are given in messages when no `path` is
 /// passed (relative data paths then resolve against the working directory).
@@ -353,6 +355,64 @@ impl Mission {
             Run::Memory(run) => Study::new(study.study(), run.rows, &run.report, None),
             Run::Written(dir, report) => Study::read(study.study(), &report, &dir),
         }
+    }
+
+    /// Fits the inputs named in `vary` (dotted paths such as `"rocket.power_off_drag"`,
+    /// `"motor.total_impulse"`, `"rocket.parachutes.Main.cd_s"`, `"rocket.mass"`; one path or
+    /// a list) to a flight log (`karman.read_log`), as `karman fit` does: the factors on
+    /// their nominal values that make the simulation match the log best in least squares
+    /// over the phase each acts on, within `max_flights` flights, every flight seeded with
+    /// `seed`. Returns the dict of `karman fit --json` (`flights`, `converged`,
+    /// `termination`, `clock_offset_s`, `correlation_inflation`, `warnings`, `inputs`,
+    /// `phases`). `out` writes the mission file with the fitted values (a commented copy, as
+    /// `karman fit -o`). The GIL is released during the fit. Raises `MissionError` for an
+    /// input that cannot be fitted or a flight that fails, `LogError` for a log that cannot
+    /// be compared with the flight or has too few samples in a phase.
+    #[pyo3(signature = (log, vary, max_flights = FitOptions::default().max_flights, seed = 0, out = None))]
+    fn fit<'py>(
+        &self,
+        py: Python<'py>,
+        log: PyRef<'py, FlightLog>,
+        vary: &Bound<'py, PyAny>,
+        max_flights: usize,
+        seed: u64,
+        out: Option<PathBuf>,
+    ) -> PyResult<Bound<'py, PyAny>> {
+        let vary: Vec<String> = if vary.is_instance_of::<PyString>() {
+            vec![vary.extract()?]
+        } else {
+            vary.extract()?
+        };
+        if let Some(out) = &out
+            && std::path::absolute(out).ok() == std::path::absolute(&self.inner.path).ok()
+        {
+            return Err(mission_error(&FitError::Write {
+                file: out.display().to_string(),
+                reason: "the fitted copy would replace the mission itself; write it elsewhere"
+                    .to_owned(),
+            }));
+        }
+        let options = FitOptions {
+            vary,
+            max_flights,
+            seed,
+        };
+        let file = log.file();
+        let log = log.inner();
+        let mission = &self.inner;
+        let value = py
+            .detach(|| -> Result<serde_json::Value, FitError> {
+                let result = karman_fit::fit(mission, log, &options)?;
+                if let Some(out) = &out {
+                    write_fitted(mission, &result, &file, out)?;
+                }
+                Ok(fit_json(&file, &result))
+            })
+            .map_err(|e| match e {
+                FitError::Compare(_) | FitError::TooFewSamples { .. } => log_error(&e),
+                _ => mission_error(&e),
+            })?;
+        plain(py, &value)
     }
 
     fn __repr__(&self) -> String {

@@ -18,7 +18,8 @@
 //! `landing_time_error_s`, `descent_rate_error_pct` (per parachute name), `descent` (per
 //! phase: `parachute`, `band_m`, `simulated_rate_mps`, `measured_rate_mps`,
 //! `measured_samples`, `error_pct`), `landing` (`measured_m`, `simulated_m`, `distance_m`)
-//! and `warnings` (the reader's). `--out DIR` writes that object as `comparison.json` and the
+//! and `warnings` (the reader's): karman-fit's `simulation_json` and `comparison_json`,
+//! shared with the Python package's `Flight.compare()`. `--out DIR` writes that object as `comparison.json` and the
 //! overlay plots `altitude.svg`, `velocity.svg` and `acceleration.svg` (the simulation and
 //! every log, time from liftoff; the acceleration of a log as its device writes it, the
 //! simulation's vertical acceleration).
@@ -28,7 +29,7 @@ use std::path::{Path, PathBuf};
 
 use anyhow::{Context, Result};
 use clap::Args;
-use karman_fit::simulated_flight;
+use karman_fit::{comparison_json, simulated_flight, simulation_json};
 use karman_flightlog::{Comparison, FlightLog, SimulatedFlight, compare};
 use karman_mission::assemble::flight::simulate_with_seed;
 use karman_mission::assemble::stages::simulate_staged;
@@ -116,80 +117,15 @@ pub fn run(args: &CompareArgs) -> Result<()> {
     Ok(())
 }
 
-/// A JSON number, or `null` for a value that is not finite.
-fn number(value: f64) -> Value {
-    if value.is_finite() {
-        json!(value)
-    } else {
-        Value::Null
-    }
-}
-
+/// The `--json` object: the mission's name, the simulation's figures and one entry per log
+/// (karman-fit's shapes, which the Python package's `Flight.compare()` shares).
 fn report_json(name: &str, paths: &[PathBuf], logs: &[FlightLog], cmp: &[Comparison]) -> Value {
-    let simulation = cmp.first().map_or(Value::Null, |c| {
-        json!({
-            "liftoff_time_s": c.simulated_liftoff_s,
-            "apogee_m": c.simulated.apogee_m,
-            "apogee_time_s": c.simulated.apogee_time_s,
-            "max_vertical_velocity_mps": c.simulated.max_vertical_velocity_mps,
-            "landing_time_s": c.simulated.landing_time_s,
-        })
-    });
+    let simulation = cmp.first().map_or(Value::Null, simulation_json);
     let entries: Vec<Value> = paths
         .iter()
         .zip(logs)
         .zip(cmp)
-        .map(|((path, log), c)| {
-            let descent: Vec<Value> = c
-                .descent
-                .iter()
-                .map(|p| {
-                    json!({
-                        "parachute": p.parachute,
-                        "band_m": p.band_m,
-                        "simulated_rate_mps": p.simulated_rate_mps,
-                        "measured_rate_mps": p.measured_rate_mps,
-                        "measured_samples": p.measured_samples,
-                        "error_pct": p.error_pct(),
-                    })
-                })
-                .collect();
-            let errors: serde_json::Map<String, Value> = c
-                .descent
-                .iter()
-                .map(|p| (p.parachute.clone(), json!(p.error_pct())))
-                .collect();
-            let landing = c.landing.map_or(Value::Null, |l| {
-                json!({
-                    "measured_m": l.measured_m,
-                    "simulated_m": l.simulated_m,
-                    "measured_drift_m": l.measured_drift_m(),
-                    "simulated_drift_m": l.simulated_drift_m(),
-                    "distance_m": l.distance_m(),
-                })
-            });
-            json!({
-                "file": path.display().to_string(),
-                "format": log.format.name(),
-                "device": log.device,
-                "apogee_m": c.measured.apogee_m,
-                "apogee_time_s": c.measured.apogee_time_s,
-                "apogee_error_m": c.apogee_error_m(),
-                "apogee_error_pct": c.apogee_error_pct(),
-                "apogee_time_error_s": c.apogee_time_error_s(),
-                "max_vertical_velocity_mps": c.measured.max_vertical_velocity_mps,
-                "max_velocity_error_pct": number(c.max_velocity_error_pct()),
-                "ascent_samples": c.ascent_samples,
-                "ascent_rms_altitude_m": number(c.ascent_rms_altitude_m),
-                "ascent_rms_velocity_mps": number(c.ascent_rms_velocity_mps),
-                "landing_time_s": c.measured.landing_time_s,
-                "landing_time_error_s": c.landing_time_error_s(),
-                "descent_rate_error_pct": errors,
-                "descent": descent,
-                "landing": landing,
-                "warnings": log.warnings,
-            })
-        })
+        .map(|((path, log), c)| comparison_json(&path.display().to_string(), log, c))
         .collect();
     json!({ "mission": name, "simulation": simulation, "logs": entries })
 }

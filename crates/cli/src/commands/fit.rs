@@ -7,15 +7,15 @@
 //! `--json` prints one object: `log`, `flights`, `converged`, `termination`,
 //! `clock_offset_s` (`[value, std]` or null), `correlation_inflation`, `warnings`, `inputs` (each
 //! `path`, `factor`, `factor_std`, and for a number `nominal`, `value`, `value_std`) and
-//! `phases` (each `phase`, `unit`, `samples`, `rms_before`, `rms_after`).
+//! `phases` (each `phase`, `unit`, `samples`, `rms_before`, `rms_after`): karman-fit's
+//! `fit_json`, shared with the Python package's `Mission.fit()`.
 
 use std::io::Write;
 use std::path::PathBuf;
 
 use anyhow::{Result, bail};
 use clap::Args;
-use karman_fit::{Fit, FitOptions, Nominal, fit, write_fitted};
-use serde_json::{Value, json};
+use karman_fit::{Fit, FitOptions, Nominal, fit, fit_json, write_fitted};
 
 use super::MissionArgs;
 use super::log::ReadArgs;
@@ -84,50 +84,6 @@ pub fn run(args: &FitArgs) -> Result<()> {
         }
     }
     Ok(())
-}
-
-fn fit_json(log: &str, fit: &Fit) -> Value {
-    let inputs: Vec<Value> = fit
-        .inputs
-        .iter()
-        .map(|i| {
-            let mut entry = json!({
-                "path": i.path,
-                "factor": i.factor,
-                "factor_std": i.factor_std,
-            });
-            if let Nominal::Number(nominal) = i.nominal {
-                entry["nominal"] = json!(nominal);
-                entry["value"] = json!(i.value());
-                entry["value_std"] = json!(i.value_std());
-            }
-            entry
-        })
-        .collect();
-    let phases: Vec<Value> = fit
-        .phases
-        .iter()
-        .map(|p| {
-            json!({
-                "phase": p.phase.to_string(),
-                "unit": p.phase.unit(),
-                "samples": p.samples,
-                "rms_before": p.rms_before,
-                "rms_after": p.rms_after,
-            })
-        })
-        .collect();
-    json!({
-        "log": log,
-        "flights": fit.flights,
-        "converged": fit.converged,
-        "termination": fit.termination,
-        "clock_offset_s": fit.clock_offset_s,
-        "correlation_inflation": fit.correlation_inflation,
-        "warnings": fit.warnings,
-        "inputs": inputs,
-        "phases": phases,
-    })
 }
 
 fn fit_text(log: &str, fit: &Fit) -> String {

@@ -5,16 +5,16 @@
 //! rules. `--json` prints one object with the keys `format`, `device`, `samples`,
 //! `sample_rate_hz`, `velocity_source`, `liftoff_time_s`, `apogee_agl_m`, `apogee_time_s`,
 //! `max_vertical_velocity_mps`, `events` (each `kind`, `time_s`, `source`), `reported`,
-//! `metadata` and `warnings`. `--plot DIR` draws the altitude, the vertical velocity and (when
-//! the log has one) the acceleration against the time from liftoff into `altitude.svg`,
-//! `velocity.svg` and `acceleration.svg`.
+//! `metadata` and `warnings` (`karman_fit::log_json`, the shape the Python package's
+//! `FlightLog.to_dict()` shares). `--plot DIR` draws the altitude, the vertical velocity and
+//! (when the log has one) the acceleration against the time from liftoff into
+//! `altitude.svg`, `velocity.svg` and `acceleration.svg`.
 
 use anyhow::{Context, Result};
 use clap::{Args, Subcommand};
 use karman_flightlog::{
     ColumnMapping, EventSource, FlightLog, Format, ReadOptions, VelocitySource,
 };
-use serde_json::{Value, json};
 use std::io::Write;
 use std::path::PathBuf;
 
@@ -95,49 +95,6 @@ pub fn run(args: &LogArgs) -> Result<()> {
     }
 }
 
-/// The JSON object of a log (`log show --json`).
-pub fn log_json(log: &FlightLog) -> Value {
-    let apogee = log.apogee();
-    let (vmax, vmax_time) = log.max_vertical_velocity();
-    let events: Vec<Value> = log
-        .events
-        .iter()
-        .map(|e| {
-            json!({
-                "kind": e.kind.name(),
-                "time_s": e.time_s,
-                "source": match e.source {
-                    EventSource::Device => "device",
-                    EventSource::Derived => "derived",
-                },
-            })
-        })
-        .collect();
-    json!({
-        "format": log.format.name(),
-        "device": log.device,
-        "samples": log.samples.len(),
-        "sample_rate_hz": log.median_rate_hz(),
-        "velocity_source": match log.velocity_source {
-            VelocitySource::Device => "device",
-            VelocitySource::Derivative => "derivative",
-        },
-        "liftoff_time_s": log.liftoff_device_time_s,
-        "apogee_agl_m": apogee.altitude_agl_m,
-        "apogee_time_s": apogee.time_s,
-        "max_vertical_velocity_mps": vmax,
-        "max_vertical_velocity_time_s": vmax_time,
-        "events": events,
-        "reported": {
-            "apogee_agl_m": log.reported.apogee_agl_m,
-            "ground_elevation_m": log.reported.ground_elevation_m,
-            "max_velocity_mps": log.reported.max_velocity_mps,
-        },
-        "metadata": log.metadata,
-        "warnings": log.warnings,
-    })
-}
-
 /// One chart of `--plot`: file, title, y label and what a sample gives (none: not drawn).
 type Chart = (
     &'static str,
@@ -201,7 +158,11 @@ fn run_show(args: &ShowArgs) -> Result<()> {
     }
     let mut out = std::io::stdout().lock();
     if args.json {
-        writeln!(out, "{}", serde_json::to_string_pretty(&log_json(&log))?)?;
+        writeln!(
+            out,
+            "{}",
+            serde_json::to_string_pretty(&karman_fit::log_json(&log))?
+        )?;
         return Ok(());
     }
     let apogee = log.apogee();

@@ -20,6 +20,10 @@ class MissionError(ValueError):
     """A mission that cannot be read, overridden, validated, built or flown; the message is
     the command-line interface's, with file, line, column and key."""
 
+class LogError(ValueError):
+    """A flight log that cannot be read or compared with a flight; the message names the
+    file and, where one line is at fault, the line."""
+
 def load(path: PathLike, overrides: Mapping[str, Any] | None = None) -> Mission:
     """Reads a mission file, applies ``overrides`` (``{"flight.inclination": 84}``: the
     dotted paths of ``--set``, values as Python data) and validates it."""
@@ -75,6 +79,22 @@ class Mission:
         ``[dispersion]``; ``vary`` replaces ``[dispersion.vary]``; ``out`` writes the CLI's
         files there). The GIL is released; Ctrl-C raises ``KeyboardInterrupt`` between
         samples; ``progress`` shows tqdm's bar when tqdm is installed, else a text line."""
+    def fit(
+        self,
+        log: FlightLog,
+        vary: str | Sequence[str],
+        max_flights: int = 100,
+        seed: int = 0,
+        out: PathLike | None = None,
+    ) -> dict[str, Any]:
+        """Fits the inputs of ``vary`` (dotted paths: ``rocket.power_off_drag``,
+        ``motor.total_impulse``, ``rocket.parachutes.Main.cd_s``, ``rocket.mass``) to the log
+        as ``karman fit`` does, within ``max_flights`` flights (GIL released). Returns the
+        dict of ``karman fit --json`` (``flights``, ``converged``, ``termination``,
+        ``clock_offset_s``, ``correlation_inflation``, ``warnings``, ``inputs``, ``phases``);
+        ``out`` writes the mission with the fitted values (a commented copy). Raises
+        ``MissionError`` for an input that cannot be fitted, ``LogError`` for a log that
+        cannot be compared with the flight."""
 
 class Flight:
     """A flown mission. Summary keys (``apogee_agl_m``, ``out_of_rail_velocity_mps``, ...)
@@ -116,6 +136,13 @@ class Flight:
         """Integrator counters."""
     def static_margin(self, t: float) -> float:
         """The rocket's static margin at time ``t``, calibres."""
+    def compare(self, log: FlightLog) -> dict[str, Any]:
+        """The flight set against a log on one time axis from liftoff: one entry of the
+        ``logs`` list of ``karman compare --json`` (``apogee_m``, ``apogee_error_m``,
+        ``apogee_error_pct``, ``apogee_time_error_s``, ``max_velocity_error_pct``,
+        ``ascent_rms_altitude_m``, ``ascent_rms_velocity_mps``, ``descent_rate_error_pct``,
+        ``descent``, ``landing`` or ``None``, ...). Errors are simulated minus measured, the
+        simulated altitude counted from the pad."""
     def to_pandas(self) -> Any:
         """Every series as a pandas DataFrame (columns with units); needs pandas."""
     def export_csv(self, path: PathLike) -> None:
@@ -173,3 +200,91 @@ class Study:
     def plot_ellipses(self, path: str | None = None, show: bool = False) -> Any:
         """The landing/apogee points and their 1/2/3-sigma ellipses with matplotlib."""
 
+
+def read_log(
+    path: PathLike, format: str | None = None, mapping: str | None = None
+) -> FlightLog:
+    """Reads an altimeter or flight-computer log: the format detected from its content, or
+    named (``"altusmetrum"``, ``"raven-fip"``, ``"blueraven"``, ``"perfectflite-pf2"``,
+    ``"stratologger-txt"``, ``"rrc3"``, ``"eggtimer"``, ``"cats-vega"``), or a generic CSV
+    through a column mapping (``"time=ts,altitude=alt_ft:ft"``). Raises ``LogError`` naming
+    the file and line."""
+
+class FlightLog:
+    """A flight log read and normalised: SI units, time from liftoff, heights above the
+    ground. ``len(log)`` is the number of samples; the series are float64 arrays of that
+    length, NaN where a sample lacks the channel."""
+
+    @property
+    def path(self) -> str:
+        """The file read."""
+    @property
+    def format(self) -> str:
+        """The format read (``"rrc3"``, ``"altusmetrum"``, ..., ``"generic"``)."""
+    @property
+    def device(self) -> str:
+        """The device (family, model, serial as the file says)."""
+    def __len__(self) -> int: ...
+    @property
+    def sample_rate_hz(self) -> float:
+        """Median sampling rate of the altitude, Hz."""
+    @property
+    def velocity_source(self) -> str:
+        """``"device"`` or ``"derivative"`` (of the altitude)."""
+    @property
+    def liftoff_time_s(self) -> float:
+        """Liftoff on the device's clock, s (the samples' time zero)."""
+    @property
+    def apogee_agl_m(self) -> float:
+        """The highest altitude above the ground, m."""
+    @property
+    def apogee_time_s(self) -> float:
+        """Its time from liftoff, s."""
+    @property
+    def max_vertical_velocity_mps(self) -> float:
+        """The highest vertical velocity, m/s."""
+    @property
+    def max_vertical_velocity_time_s(self) -> float:
+        """Its time from liftoff, s."""
+    @property
+    def events(self) -> list[dict[str, Any]]:
+        """The events (``kind``, ``time_s``, ``source``: ``"device"`` or ``"derived"``)."""
+    @property
+    def reported(self) -> dict[str, float | None]:
+        """The device's own figures (``apogee_agl_m``, ``ground_elevation_m``,
+        ``max_velocity_mps``)."""
+    @property
+    def metadata(self) -> dict[str, str]:
+        """Everything else the header says, by lower-case key."""
+    @property
+    def warnings(self) -> list[str]:
+        """What the reading rules changed or could not read."""
+    def to_dict(self) -> dict[str, Any]:
+        """The log as ``karman log show --json`` prints it."""
+    @property
+    def time(self) -> FloatArray:
+        """Time from liftoff, s."""
+    @property
+    def altitude(self) -> FloatArray:
+        """Height above the ground, m."""
+    @property
+    def vertical_velocity(self) -> FloatArray:
+        """Vertical velocity, m/s."""
+    @property
+    def acceleration(self) -> FloatArray:
+        """Acceleration as the device writes it, m/s²."""
+    @property
+    def pressure(self) -> FloatArray:
+        """Static pressure, Pa."""
+    @property
+    def temperature(self) -> FloatArray:
+        """Temperature, K."""
+    @property
+    def latitude(self) -> FloatArray:
+        """GNSS latitude, degrees north (NaN without a fix)."""
+    @property
+    def longitude(self) -> FloatArray:
+        """GNSS longitude, degrees east (NaN without a fix)."""
+    @property
+    def gnss_altitude(self) -> FloatArray:
+        """GNSS altitude above sea level, m (NaN without one)."""
