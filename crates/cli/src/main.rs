@@ -20,7 +20,7 @@ struct Cli {
 }
 
 fn main() -> ExitCode {
-    keep_freed_heap();
+    karman_mission::allocator::keep_freed_heap();
     let cli = Cli::parse();
     match commands::run(cli.command) {
         Ok(()) => ExitCode::SUCCESS,
@@ -30,25 +30,3 @@ fn main() -> ExitCode {
         }
     }
 }
-
-/// Keeps freed heap memory in the process instead of returning it to the kernel at every free.
-///
-/// glibc gives the top of its heap back (`brk`/`madvise`) whenever more than 128 KiB lie free
-/// there. Each Monte Carlo sample builds and drops about half a megabyte of tables and
-/// trajectory, so with the default every sample shrinks the heap and page-faults it back in:
-/// about a tenth of a Monte Carlo run's time went to the kernel. A 4 MiB threshold keeps the
-/// memory of one sample per thread in reserve (the peak resident size is unchanged).
-#[cfg(all(target_os = "linux", target_env = "gnu"))]
-#[allow(unsafe_code)]
-fn keep_freed_heap() {
-    const TRIM_THRESHOLD: libc::c_int = 4 << 20;
-    // SAFETY: `mallopt` only sets an allocator parameter (glibc serialises it with its own
-    // lock); it takes no pointers and is called here before any other thread exists.
-    unsafe {
-        libc::mallopt(libc::M_TRIM_THRESHOLD, TRIM_THRESHOLD);
-    }
-}
-
-/// Other allocators decide for themselves.
-#[cfg(not(all(target_os = "linux", target_env = "gnu")))]
-fn keep_freed_heap() {}

@@ -23,6 +23,7 @@
 //! The lower crates are re-exported ([`math`], [`atmos`], [`propulsion`], [`airframe`],
 //! [`dynamics`], [`dispersion`]) so the command-line interface depends on this crate only.
 
+pub mod allocator;
 pub mod assemble;
 mod curves;
 mod document;

@@ -86,7 +86,7 @@ pub(crate) fn log_error(error: &dyn std::error::Error) -> PyErr {
 /// The extension module `karman._karman`.
 #[pymodule]
 fn _karman(m: &Bound<'_, PyModule>) -> PyResult<()> {
-    keep_freed_heap();
+    karman_mission::allocator::keep_freed_heap();
     m.add("MissionError", m.py().get_type::<MissionError>())?;
     m.add("LogError", m.py().get_type::<LogError>())?;
     m.add_class::<mission::Mission>()?;
@@ -99,24 +99,3 @@ fn _karman(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add("SUMMARY_KEYS", karman_mission::montecarlo::OUTPUTS.to_vec())?;
     Ok(())
 }
-
-/// Keeps freed heap memory in the Python process instead of returning it to the kernel at
-/// every free, as the `karman` binary does (`crates/cli/src/main.rs`, where the measurement
-/// is): glibc gives the top of its heap back whenever more than 128 KiB lie free there, and a
-/// flight builds and drops about half a megabyte of trajectory, so every `simulate()` and
-/// every Monte Carlo sample would page its memory back in. A 4 MiB threshold keeps one
-/// flight's memory per thread in reserve; the process's peak resident size is unchanged.
-#[cfg(all(target_os = "linux", target_env = "gnu"))]
-#[allow(unsafe_code)]
-fn keep_freed_heap() {
-    const TRIM_THRESHOLD: libc::c_int = 4 << 20;
-    // SAFETY: `mallopt` only sets an allocator parameter, under glibc's own arena lock; it
-    // takes no pointers.
-    unsafe {
-        libc::mallopt(libc::M_TRIM_THRESHOLD, TRIM_THRESHOLD);
-    }
-}
-
-/// Other allocators decide for themselves.
-#[cfg(not(all(target_os = "linux", target_env = "gnu")))]
-fn keep_freed_heap() {}
