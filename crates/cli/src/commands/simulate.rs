@@ -23,7 +23,7 @@ use anyhow::{Context, Result, bail};
 use clap::Args;
 use karman_mission::assemble::flight::{FlightRun, early_ending, simulate_with_seed};
 use karman_mission::assemble::stages::{StagedRun, simulate_staged};
-use karman_mission::dispersion::files::write_atomic;
+use karman_mission::dispersion::files::{temporary_path, write_atomic};
 use karman_mission::dynamics::Sample;
 use karman_mission::report::trajectory;
 
@@ -86,12 +86,8 @@ pub fn run(args: &SimulateArgs) -> Result<()> {
         }
     }
     if let Some(dir) = &args.out {
-        write_outputs(
-            &run,
-            mission.spec.name.as_deref().unwrap_or("karman flight"),
-            args.seed,
-            dir,
-        )?;
+        let name = mission.spec.name.as_deref().unwrap_or("karman flight");
+        write_whole(dir, |staging| write_outputs(&run, name, args.seed, staging))?;
     }
     match early_ending(summary.termination, &run.settings) {
         None => Ok(()),
@@ -137,7 +133,7 @@ fn run_staged(args: &SimulateArgs, mission: &karman_mission::Mission) -> Result<
     }
     if let Some(dir) = &args.out {
         let name = mission.spec.name.as_deref().unwrap_or("karman flight");
-        write_staged(&run, name, args.seed, dir)?;
+        write_whole(dir, |staging| write_staged(&run, name, args.seed, staging))?;
     }
     for (i, body) in run.bodies.iter().enumerate() {
         if let Some((_, message)) = early_ending(run.summary(i).termination, &run.settings) {
@@ -161,6 +157,89 @@ pub fn staged_text(run: &StagedRun) -> String {
         let _ = writeln!(text, "  {t:>10.4} s  {event}");
     }
     text
+}
+
+/// Writes the output set of `--out DIR` whole: `write` fills a temporary folder beside `dir`
+/// (`.DIR.PID.N.tmp`), and only once every file is written is the set moved into `dir` (the
+/// folder renamed to `dir` when there is none; else each file renamed over the previous one,
+/// after checking that every one can be). A run that fails while writing leaves `dir` as it
+/// was: never a new `summary.json` beside the previous run's `trajectory.csv`. Files of `dir`
+/// that this run does not write are left as they are.
+fn write_whole(dir: &Path, write: impl FnOnce(&Path) -> Result<()>) -> Result<()> {
+    let parent = dir
+        .parent()
+        .filter(|p| !p.as_os_str().is_empty())
+        .unwrap_or(Path::new("."));
+    std::fs::create_dir_all(parent)
+        .with_context(|| format!("cannot create {}", parent.display()))?;
+    let staging = temporary_path(dir);
+    // An error names the file under `dir`, where it goes, not the temporary folder.
+    let result = write(&staging)
+        .map_err(|e| {
+            let text = format!("{e:#}");
+            anyhow::anyhow!(
+                text.replace(&staging.display().to_string(), &dir.display().to_string())
+            )
+        })
+        .and_then(|()| move_in(&staging, dir));
+    if staging.exists() {
+        let _ = std::fs::remove_dir_all(&staging);
+    }
+    result
+}
+
+/// Moves the written set `staging` into `dir` ([`write_whole`]).
+fn move_in(staging: &Path, dir: &Path) -> Result<()> {
+    let unchanged = "the previous outputs are left as they were";
+    if !dir.exists() {
+        match std::fs::rename(staging, dir) {
+            Ok(()) => return Ok(()),
+            // Another run made it meanwhile: move the files in one by one, as below.
+            Err(_) if dir.is_dir() => {}
+            Err(e) => {
+                return Err(e)
+                    .with_context(|| format!("cannot move the outputs into {}", dir.display()));
+            }
+        }
+    }
+    if !dir.is_dir() {
+        bail!("{} is not a directory; {unchanged}", dir.display());
+    }
+    let mut names = Vec::new();
+    for entry in
+        std::fs::read_dir(staging).with_context(|| format!("cannot read {}", staging.display()))?
+    {
+        names.push(entry?.file_name());
+    }
+    names.sort();
+    // Every target checked before anything is moved.
+    for name in &names {
+        let target = dir.join(name);
+        if let Ok(existing) = std::fs::symlink_metadata(&target) {
+            let folder = staging.join(name).is_dir();
+            if existing.is_dir() != folder {
+                bail!(
+                    "cannot replace {}: it is a {} where the outputs have a {}; {unchanged}",
+                    target.display(),
+                    if existing.is_dir() { "folder" } else { "file" },
+                    if folder { "folder" } else { "file" },
+                );
+            }
+        }
+    }
+    for name in &names {
+        let (source, target) = (staging.join(name), dir.join(name));
+        if source.is_dir() && target.exists() {
+            // A body's folder: the previous one set aside (into the staging folder, removed
+            // with it), then the new one moved in.
+            let aside = staging.join(format!(".previous.{}", name.to_string_lossy()));
+            std::fs::rename(&target, &aside)
+                .with_context(|| format!("cannot replace {}", target.display()))?;
+        }
+        std::fs::rename(&source, &target)
+            .with_context(|| format!("cannot move the outputs into {}", target.display()))?;
+    }
+    Ok(())
 }
 
 /// `--out` of a multi-stage flight (module documentation).
