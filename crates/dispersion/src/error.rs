@@ -103,9 +103,9 @@ pub enum DispersionError {
     /// A kept row of `samples.csv` whose digest is not the digest of its cells: a cell was
     /// edited after the row was written. Nothing is changed; the folder can be moved aside.
     #[error(
-        "{}, line {line}: sample {index} was altered after it was written (its digest {stored} \
-         is not the digest of its cells, {computed}){detail}; nothing was changed: move the \
-         folder aside and run the study again into another --out directory",
+        "{}, line {line}: sample {index} was altered after it was written (its digest \
+         {stored:016x} is not the digest of its cells, {computed:016x}){detail}; nothing was \
+         changed: move the folder aside and run the study again into another --out directory",
         file.display()
     )]
     TamperedRow {
@@ -116,9 +116,9 @@ pub enum DispersionError {
         /// The sample index.
         index: u64,
         /// The digest the row holds.
-        stored: String,
+        stored: u64,
         /// The digest of its other cells.
-        computed: String,
+        computed: u64,
         /// What differs, when known (a resume flies the sample again to say which cells
         /// changed): empty, or `; ` and the cells.
         detail: String,
