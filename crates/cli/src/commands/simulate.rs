@@ -7,7 +7,9 @@
 //! record under `controller`). `--out DIR` writes `summary.json`, `trajectory.csv` (every
 //! post-processed series, units in the header), `controller.json` (with air brakes: the level
 //! after each controller call and the observed variables), `flight.kml` (the path in
-//! latitude/longitude/altitude for Google Earth) and SVG plots.
+//! latitude/longitude/altitude for Google Earth) and SVG plots, the whole set at once: written
+//! into a temporary folder beside DIR and moved in once every file is written, so a failed
+//! rerun leaves the previous set as it was.
 //!
 //! A multi-stage mission (`[[stages]]`) prints one summary per body (the top stage first,
 //! then the lower stages in the order they separated) and the stack's events in one
