@@ -687,3 +687,59 @@ fn temporary_files_of_a_killed_run_are_removed_by_the_next_run() {
     std::fs::remove_file(dir.join("notes.tmp")).expect("the user's file is kept");
     assert_same_files(&reference, &dir);
 }
+
+#[cfg(unix)]
+#[test]
+fn deleting_study_lock_mid_run_lets_no_second_run_in() {
+    let dir = fresh("lock-deleted");
+    let out = dir.display().to_string();
+    let mission = example().display().to_string();
+    // A study long enough to be caught running (killed once the second run was refused).
+    let args = [
+        "montecarlo",
+        mission.as_str(),
+        "--samples",
+        "1000000",
+        "--threads",
+        "1",
+        "--quiet",
+        "--out",
+        out.as_str(),
+    ];
+    let mut first = std::process::Command::new(env!("CARGO_BIN_EXE_karman"))
+        .args(args)
+        .stdout(std::process::Stdio::null())
+        .stderr(std::process::Stdio::piped())
+        .spawn()
+        .expect("the karman binary runs");
+    let start = std::time::Instant::now();
+    let samples = dir.join("samples.csv");
+    while std::fs::read_to_string(&samples).map_or(0, |t| t.lines().count()) < 3 {
+        if start.elapsed() > std::time::Duration::from_secs(60) {
+            let _ = first.kill();
+            panic!("the first run never wrote a row");
+        }
+        std::thread::sleep(std::time::Duration::from_millis(5));
+    }
+    std::fs::remove_file(dir.join("study.lock")).expect("delete study.lock");
+    let second = karman(&args);
+    let text = stderr(&second);
+    // The first run, its directory still locked, puts the lock file back at its next batch
+    // and goes on.
+    let start = std::time::Instant::now();
+    while !dir.join("study.lock").is_file() && start.elapsed().as_secs() < 60 {
+        std::thread::sleep(std::time::Duration::from_millis(5));
+    }
+    let put_back = dir.join("study.lock").is_file();
+    let still_running = first.try_wait().expect("the first run").is_none();
+    let _ = first.kill();
+    let _ = first.wait();
+    assert_eq!(second.status.code(), Some(1), "{text}");
+    assert!(
+        text.contains("being written by another karman run"),
+        "{text}"
+    );
+    assert!(still_running, "the first run went on");
+    assert!(put_back, "the lock file put back");
+    let _ = std::fs::remove_dir_all(&dir);
+}

@@ -139,11 +139,14 @@ pub enum DispersionError {
         /// Which version it is and what this one reads.
         reason: String,
     },
-    /// The output directory's lock file was removed or replaced while the run held it: the
-    /// run stops rather than risk a second writer.
+    /// The output directory's lock file was removed or replaced while the run held it, and
+    /// the run cannot hold its replacement (another program locked it, or the directory
+    /// itself cannot be locked on this system): the run stops rather than risk a second
+    /// writer.
     #[error(
-        "{}: study.lock was removed or replaced while this run held it; stopped so that no two \
-         runs write one study (the rows written are kept: run again to resume)",
+        "{}: study.lock was removed or replaced while this run held it, and another program \
+         may be writing the folder; stopped so that no two runs write one study (the rows \
+         written are kept: run again to resume)",
         dir.display()
     )]
     LockLost {

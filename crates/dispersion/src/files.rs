@@ -298,7 +298,8 @@ impl Identity {
 /// Two locks are taken: on Unix the directory itself (through a descriptor of the directory,
 /// which no one can remove from under the run while it holds it: deleting `study.lock` does
 /// not let a second run in), and on every system the lock file [`LOCK_FILE`] (the lock of
-/// earlier versions). [`DirLock::check`] sees whether the lock file is still the one locked.
+/// earlier versions). [`DirLock::check`] sees whether the lock file is still the one locked,
+/// and puts it back when it was removed.
 #[derive(Debug)]
 pub(crate) struct DirLock {
     dir: PathBuf,
@@ -309,21 +310,41 @@ pub(crate) struct DirLock {
 }
 
 impl DirLock {
-    /// Whether the lock file is still the file locked; [`DispersionError::LockLost`] when
-    /// it was removed or replaced (so that where the directory itself cannot be locked, a
-    /// second writer that got in is noticed at the next write, and the run stops).
-    pub(crate) fn check(&self) -> Result<(), DispersionError> {
+    /// Checks that the lock file is still the file locked (before each write). When it was
+    /// removed or replaced: with the directory itself locked (Unix) no run of this version
+    /// got in, so a new lock file is created and locked in its place (for earlier versions,
+    /// which lock only the file); [`DispersionError::LockLost`] when that new file is
+    /// already locked by someone else, or where the directory cannot be locked, so that a
+    /// second writer that got in is noticed at the next write and the run stops.
+    pub(crate) fn check(&mut self) -> Result<(), DispersionError> {
         let Some((_, identity)) = &self.file else {
             return Ok(());
         };
-        let now = std::fs::metadata(self.dir.join(LOCK_FILE)).map(|m| Identity::of(&m));
+        let path = self.dir.join(LOCK_FILE);
+        let now = std::fs::metadata(&path).map(|m| Identity::of(&m));
         if now.as_ref().ok() == Some(identity) {
-            Ok(())
-        } else {
-            Err(DispersionError::LockLost {
-                dir: self.dir.clone(),
-            })
+            return Ok(());
         }
+        let lost = || DispersionError::LockLost {
+            dir: self.dir.clone(),
+        };
+        if self._directory.is_none() {
+            return Err(lost());
+        }
+        let file = OpenOptions::new()
+            .create(true)
+            .truncate(false)
+            .write(true)
+            .open(&path)
+            .map_err(DispersionError::io(&path))?;
+        match try_lock(&file, &self.dir, &path) {
+            Ok(()) => {}
+            Err(DispersionError::Locked { .. }) => return Err(lost()),
+            Err(other) => return Err(other),
+        }
+        let identity = Identity::of(&file.metadata().map_err(DispersionError::io(&path))?);
+        self.file = Some((file, identity));
+        Ok(())
     }
 }
 
@@ -408,14 +429,28 @@ mod tests {
     #[test]
     fn a_replaced_lock_file_is_noticed() {
         let tmp = tempfile::tempdir().expect("temporary directory");
-        let lock = lock(tmp.path(), true).expect("lock");
+        let path = tmp.path().join(LOCK_FILE);
+        let mut lock = lock(tmp.path(), true).expect("lock");
         lock.check().expect("held");
-        std::fs::remove_file(tmp.path().join(LOCK_FILE)).expect("remove");
-        assert!(matches!(
-            lock.check(),
-            Err(DispersionError::LockLost { .. })
-        ));
-        std::fs::write(tmp.path().join(LOCK_FILE), "").expect("recreate");
+        std::fs::remove_file(&path).expect("remove");
+        if cfg!(unix) {
+            // The directory is still locked: the lock file is put back, locked.
+            lock.check().expect("put back");
+            let file = File::open(&path).expect("a lock file again");
+            assert!(matches!(
+                fs4::FileExt::try_lock(&file),
+                Err(fs4::TryLockError::WouldBlock)
+            ));
+        } else {
+            assert!(matches!(
+                lock.check(),
+                Err(DispersionError::LockLost { .. })
+            ));
+        }
+        // Replaced by a file someone else locks (an earlier version that got in): stop.
+        std::fs::remove_file(&path).expect("remove");
+        let other = File::create(&path).expect("another lock file");
+        fs4::FileExt::try_lock(&other).expect("the other writer's lock");
         assert!(matches!(
             lock.check(),
             Err(DispersionError::LockLost { .. })

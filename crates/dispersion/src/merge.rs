@@ -112,7 +112,7 @@ pub fn merge(out: &Path, dirs: &[PathBuf]) -> Result<Summary, DispersionError> {
     }
 
     std::fs::create_dir_all(out).map_err(DispersionError::io(out))?;
-    let out_lock = files::lock(out, true)?;
+    let mut out_lock = files::lock(out, true)?;
     files::remove_temporaries(out)?;
     if let Some(existing) = Record::read(&out.join(STUDY_FILE))? {
         let fields = whole.differences(&existing);

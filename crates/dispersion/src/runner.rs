@@ -166,7 +166,7 @@ where
     let record = Record::new(study, shard);
     let key = record.fingerprint.as_str();
     std::fs::create_dir_all(dir).map_err(DispersionError::io(dir))?;
-    let lock = files::lock(dir, true)?;
+    let mut lock = files::lock(dir, true)?;
     files::remove_temporaries(dir)?;
     let study_path = dir.join(STUDY_FILE);
     let samples_path = dir.join(SAMPLES_FILE);
@@ -243,7 +243,7 @@ where
         outputs: study.outputs.len(),
         key,
         path: &samples_path,
-        lock: &lock,
+        lock: &mut lock,
     };
     if !scan.has_header {
         out.out
@@ -402,7 +402,7 @@ struct FileSink<'a, W: std::io::Write> {
     outputs: usize,
     key: &'a str,
     path: &'a Path,
-    lock: &'a files::DirLock,
+    lock: &'a mut files::DirLock,
 }
 
 impl<W: std::io::Write> Sink for FileSink<'_, W> {
