@@ -412,3 +412,68 @@ fn plots(run: &FlightRun, samples: &[Sample], dir: &Path) -> Result<()> {
     )?;
     Ok(())
 }
+
+#[cfg(test)]
+mod tests {
+    use super::write_whole;
+    use std::path::Path;
+
+    fn read(dir: &Path, name: &str) -> String {
+        std::fs::read_to_string(dir.join(name)).expect("a file")
+    }
+
+    fn entries(dir: &Path) -> Vec<String> {
+        let mut names: Vec<String> = std::fs::read_dir(dir)
+            .expect("a folder")
+            .map(|e| e.expect("entry").file_name().to_string_lossy().into_owned())
+            .collect();
+        names.sort();
+        names
+    }
+
+    #[test]
+    fn an_output_set_is_moved_in_whole_or_not_at_all() {
+        let tmp = tempfile::tempdir().expect("temporary directory");
+        let dir = tmp.path().join("out");
+        let set = |summary: &'static str, fail: bool| {
+            move |staging: &Path| -> anyhow::Result<()> {
+                std::fs::create_dir_all(staging.join("booster"))?;
+                std::fs::write(staging.join("summary.json"), summary)?;
+                if fail {
+                    anyhow::bail!("cannot write {}", staging.join("trajectory.csv").display());
+                }
+                std::fs::write(staging.join("trajectory.csv"), summary)?;
+                std::fs::write(staging.join("booster/trajectory.csv"), summary)?;
+                Ok(())
+            }
+        };
+        write_whole(&dir, set("first", false)).expect("a first set");
+        assert_eq!(read(&dir, "summary.json"), "first");
+        // A rerun that fails partway: the previous set is left, the error names the file
+        // under `dir`, and no temporary folder is left.
+        let error = write_whole(&dir, set("second", true)).expect_err("fails partway");
+        assert!(
+            error
+                .to_string()
+                .contains(&dir.join("trajectory.csv").display().to_string()),
+            "{error}"
+        );
+        assert_eq!(read(&dir, "summary.json"), "first");
+        assert_eq!(read(&dir, "trajectory.csv"), "first");
+        assert_eq!(entries(tmp.path()), ["out"]);
+        // A rerun that succeeds replaces every file, the body's folder included.
+        std::fs::write(dir.join("notes.txt"), "mine").expect("a file of the user's");
+        write_whole(&dir, set("third", false)).expect("a third set");
+        assert_eq!(read(&dir, "summary.json"), "third");
+        assert_eq!(read(&dir, "booster/trajectory.csv"), "third");
+        assert_eq!(read(&dir, "notes.txt"), "mine");
+        assert_eq!(entries(tmp.path()), ["out"]);
+        // A folder where a file goes: refused before anything is moved.
+        std::fs::remove_file(dir.join("trajectory.csv")).expect("remove");
+        std::fs::create_dir(dir.join("trajectory.csv")).expect("a folder in its place");
+        let error = write_whole(&dir, set("fourth", false)).expect_err("a folder in the way");
+        assert!(error.to_string().contains("left as they were"), "{error}");
+        assert_eq!(read(&dir, "summary.json"), "third");
+        assert_eq!(entries(tmp.path()), ["out"]);
+    }
+}
