@@ -422,7 +422,11 @@ fn a_two_stage_study_has_each_body_and_the_same_bytes_on_any_split() {
     assert!(at("stages.0.separation").is_some(), "{header:?}");
     let top = at("impact_velocity_mps").expect("top stage column");
     assert_eq!(header[top + 1], "booster.separation_time_s");
-    assert_eq!(header.last(), Some(&"booster.impact_velocity_mps"));
+    // The booster's outputs last, before the row's digest.
+    assert_eq!(
+        header[header.len() - 2..],
+        ["booster.impact_velocity_mps", "digest"]
+    );
     // Every sample flew both bodies: the booster lands short of the sustainer.
     let (sx, bx) = (
         at("impact_x_m").expect("x"),
@@ -551,4 +555,191 @@ fn an_input_left_at_an_infinite_default_can_be_drawn_and_the_study_resumed() {
         );
         assert!(!out.join("samples.csv").exists());
     }
+}
+
+/// Doubles the first completed row's `apogee_agl_m` in `samples.csv`: its line number and
+/// sample index.
+fn double_an_apogee(samples: &Path) -> (usize, String) {
+    let text = std::fs::read_to_string(samples).expect("samples.csv");
+    let mut lines: Vec<String> = text.lines().map(str::to_owned).collect();
+    let column = lines[0]
+        .split(',')
+        .position(|c| c == "apogee_agl_m")
+        .expect("apogee column");
+    let number = (1..lines.len())
+        .find(|&n| lines[n].contains(",ok,") && !lines[n].contains('"'))
+        .expect("a completed row");
+    let mut cells: Vec<String> = lines[number].split(',').map(str::to_owned).collect();
+    let apogee: f64 = cells[column].parse().expect("a number");
+    cells[column] = format!("{:?}", 2.0 * apogee);
+    let index = cells[0].clone();
+    lines[number] = cells.join(",");
+    std::fs::write(samples, lines.join("\n") + "\n").expect("write");
+    (number + 1, index)
+}
+
+#[test]
+fn a_doubled_apogee_is_refused_on_resume_and_merge_naming_the_row() {
+    let dir = fresh("tampered");
+    let output = montecarlo(&dir, &["--threads", "2"]);
+    assert_eq!(output.status.code(), Some(0), "{}", stderr(&output));
+    let csv = std::fs::read_to_string(dir.join("samples.csv")).expect("samples.csv");
+    assert!(csv.lines().next().expect("header").ends_with(",digest"));
+    let (line, index) = double_an_apogee(&dir.join("samples.csv"));
+    let before = std::fs::read(dir.join("samples.csv")).expect("samples.csv");
+    let out = dir.display().to_string();
+    let text = failure(&[
+        "montecarlo",
+        &example().display().to_string(),
+        "--samples",
+        "12",
+        "--quiet",
+        "--out",
+        &out,
+    ]);
+    assert!(text.contains("samples.csv"), "{text}");
+    assert!(text.contains(&format!("line {line}")), "{text}");
+    assert!(
+        text.contains(&format!("sample {index} was altered")),
+        "{text}"
+    );
+    assert!(text.contains("differs in: apogee_agl_m"), "{text}");
+    assert_eq!(text.trim().lines().count(), 1, "one line: {text}");
+    assert_eq!(
+        std::fs::read(dir.join("samples.csv")).expect("samples.csv"),
+        before,
+        "the study is left as it was"
+    );
+
+    // Shards: one tampered shard is refused by merge, naming its file and row.
+    let shards: Vec<PathBuf> = (1..=2)
+        .map(|k| {
+            let shard = fresh(&format!("tampered-shard-{k}"));
+            let output = montecarlo(&shard, &["--shard", &format!("{k}/2")]);
+            assert_eq!(output.status.code(), Some(0), "{}", stderr(&output));
+            shard
+        })
+        .collect();
+    let (line, index) = double_an_apogee(&shards[1].join("samples.csv"));
+    let merged = fresh("tampered-merged");
+    let mut args = vec!["merge".to_owned(), merged.display().to_string()];
+    args.extend(shards.iter().map(|s| s.display().to_string()));
+    let args: Vec<&str> = args.iter().map(String::as_str).collect();
+    let text = failure(&args);
+    assert!(
+        text.contains(&shards[1].join("samples.csv").display().to_string()),
+        "{text}"
+    );
+    assert!(text.contains(&format!("line {line}")), "{text}");
+    assert!(
+        text.contains(&format!("sample {index} was altered")),
+        "{text}"
+    );
+}
+
+#[test]
+fn a_folder_of_the_previous_format_version_is_refused_by_name() {
+    let dir = fresh("old-version");
+    let output = montecarlo(&dir, &[]);
+    assert_eq!(output.status.code(), Some(0), "{}", stderr(&output));
+    let path = dir.join("study.json");
+    let text = std::fs::read_to_string(&path).expect("study.json");
+    std::fs::write(&path, text.replace("\"version\": 3", "\"version\": 2")).expect("write");
+    let out = dir.display().to_string();
+    let text = failure(&[
+        "montecarlo",
+        &example().display().to_string(),
+        "--samples",
+        "12",
+        "--quiet",
+        "--out",
+        &out,
+    ]);
+    assert!(text.contains("study.json"), "{text}");
+    assert!(text.contains("version 2"), "{text}");
+    assert!(text.contains("an earlier karman"), "{text}");
+}
+
+#[test]
+fn temporary_files_of_a_killed_run_are_removed_by_the_next_run() {
+    let dir = fresh("leftovers");
+    let output = montecarlo(&dir, &[]);
+    assert_eq!(output.status.code(), Some(0), "{}", stderr(&output));
+    let reference = fresh("leftovers-reference");
+    let output = montecarlo(&reference, &[]);
+    assert_eq!(output.status.code(), Some(0), "{}", stderr(&output));
+    // What a run killed while writing its files leaves, and a file of the user's.
+    let left = [".summary.json.999999.0.tmp", ".samples.csv.999999.3.tmp"];
+    for name in left {
+        std::fs::write(dir.join(name), "partial").expect("write");
+    }
+    std::fs::write(dir.join("notes.tmp"), "mine").expect("write");
+    let output = montecarlo(&dir, &[]);
+    let text = stderr(&output);
+    assert_eq!(output.status.code(), Some(0), "{text}");
+    for name in left {
+        assert!(!dir.join(name).exists(), "{name} removed");
+        assert!(
+            text.contains(&format!("removed {}", dir.join(name).display())),
+            "{text}"
+        );
+    }
+    std::fs::remove_file(dir.join("notes.tmp")).expect("the user's file is kept");
+    assert_same_files(&reference, &dir);
+}
+
+#[cfg(unix)]
+#[test]
+fn deleting_study_lock_mid_run_lets_no_second_run_in() {
+    let dir = fresh("lock-deleted");
+    let out = dir.display().to_string();
+    let mission = example().display().to_string();
+    // A study long enough to be caught running (killed once the second run was refused).
+    let args = [
+        "montecarlo",
+        mission.as_str(),
+        "--samples",
+        "1000000",
+        "--threads",
+        "1",
+        "--quiet",
+        "--out",
+        out.as_str(),
+    ];
+    let mut first = std::process::Command::new(env!("CARGO_BIN_EXE_karman"))
+        .args(args)
+        .stdout(std::process::Stdio::null())
+        .stderr(std::process::Stdio::piped())
+        .spawn()
+        .expect("the karman binary runs");
+    let start = std::time::Instant::now();
+    let samples = dir.join("samples.csv");
+    while std::fs::read_to_string(&samples).map_or(0, |t| t.lines().count()) < 3 {
+        if start.elapsed() > std::time::Duration::from_secs(60) {
+            let _ = first.kill();
+            panic!("the first run never wrote a row");
+        }
+        std::thread::sleep(std::time::Duration::from_millis(5));
+    }
+    std::fs::remove_file(dir.join("study.lock")).expect("delete study.lock");
+    let second = karman(&args);
+    let text = stderr(&second);
+    // The first run, its directory still locked, puts the lock file back at its next batch
+    // and goes on.
+    let start = std::time::Instant::now();
+    while !dir.join("study.lock").is_file() && start.elapsed().as_secs() < 60 {
+        std::thread::sleep(std::time::Duration::from_millis(5));
+    }
+    let put_back = dir.join("study.lock").is_file();
+    let still_running = first.try_wait().expect("the first run").is_none();
+    let _ = first.kill();
+    let _ = first.wait();
+    assert_eq!(second.status.code(), Some(1), "{text}");
+    assert!(
+        text.contains("being written by another karman run"),
+        "{text}"
+    );
+    assert!(still_running, "the first run went on");
+    assert!(put_back, "the lock file put back");
+    let _ = std::fs::remove_dir_all(&dir);
 }

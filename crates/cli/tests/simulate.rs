@@ -161,26 +161,44 @@ fn two_simultaneous_runs_into_one_folder_leave_whole_files() {
     }
 }
 
-/// A full disk for `simulate --out`, simulated portably on Unix: the child runs under a file
-/// size limit (`ulimit -f`, with SIGXFSZ ignored), so every write past the limit fails with
-/// EFBIG as it would with ENOSPC. The error names the file; no partial file is left under its
-/// name, and no temporary file either.
+/// The names in `dir`, sorted.
+fn names_in(dir: &Path) -> Vec<String> {
+    let mut names: Vec<String> = std::fs::read_dir(dir)
+        .expect("a folder")
+        .map(|e| e.expect("entry").file_name().to_string_lossy().into_owned())
+        .collect();
+    names.sort();
+    names
+}
+
+/// `simulate --out` under a file size limit (`ulimit -f 16`, 16 blocks of 512 bytes, with
+/// SIGXFSZ ignored): every write past the limit fails with EFBIG as it would with ENOSPC
+/// (a full disk, simulated portably on Unix). summary.json fits, trajectory.csv (hundreds of
+/// kB) does not: the run fails partway through its output set.
 #[cfg(unix)]
-#[test]
-fn a_full_disk_on_out_names_the_file_and_leaves_no_partial_file() {
-    let dir = Path::new(env!("CARGO_TARGET_TMPDIR")).join("karman-cli/simulate-full-disk");
-    let _ = std::fs::remove_dir_all(&dir);
-    // 16 blocks of 512 bytes: summary.json fits, trajectory.csv (hundreds of kB) does not.
+fn simulate_on_a_full_disk(dir: &Path) -> std::process::Output {
     let script = format!(
         "trap '' XFSZ; ulimit -f 16 && exec '{}' simulate '{}' --out '{}'",
         env!("CARGO_BIN_EXE_karman"),
         example_arg(),
         dir.display()
     );
-    let output = std::process::Command::new("sh")
+    std::process::Command::new("sh")
         .args(["-c", &script])
         .output()
-        .expect("sh runs");
+        .expect("sh runs")
+}
+
+/// A full disk on a first `simulate --out`: the error names the file (under DIR, where it
+/// goes); nothing is left, neither the folder nor its temporary sibling.
+#[cfg(unix)]
+#[test]
+fn a_full_disk_on_out_names_the_file_and_leaves_no_partial_file() {
+    let root = Path::new(env!("CARGO_TARGET_TMPDIR")).join("karman-cli/simulate-full-disk");
+    let _ = std::fs::remove_dir_all(&root);
+    std::fs::create_dir_all(&root).expect("a folder");
+    let dir = root.join("out");
+    let output = simulate_on_a_full_disk(&dir);
     let text = stderr(&output);
     assert_eq!(output.status.code(), Some(1), "{text}");
     assert!(!text.contains("panicked"), "{text}");
@@ -189,19 +207,45 @@ fn a_full_disk_on_out_names_the_file_and_leaves_no_partial_file() {
         text.contains(&named.display().to_string()),
         "the error names the file: {text}"
     );
-    assert!(!named.exists(), "no partial trajectory.csv");
-    let mut left: Vec<String> = std::fs::read_dir(&dir)
-        .expect("the output folder")
-        .map(|e| e.expect("entry").file_name().to_string_lossy().into_owned())
+    assert!(!dir.exists(), "no partial output set");
+    assert!(names_in(&root).is_empty(), "no temporary folder left");
+}
+
+/// A rerun of `simulate --out` that fails partway (a full disk after summary.json) leaves the
+/// previous run's output set whole: no new summary.json beside the old trajectory.csv.
+#[cfg(unix)]
+#[test]
+fn a_failed_rerun_leaves_the_previous_output_set_intact() {
+    let root = Path::new(env!("CARGO_TARGET_TMPDIR")).join("karman-cli/simulate-rerun-fails");
+    let _ = std::fs::remove_dir_all(&root);
+    let dir = root.join("out");
+    let output = karman(&[
+        "simulate",
+        &example_arg(),
+        "--out",
+        dir.to_str().expect("UTF-8"),
+    ]);
+    assert!(output.status.success(), "{}", stderr(&output));
+    // The previous set, marked so that a rewritten file would show.
+    std::fs::write(dir.join("summary.json"), "{\"previous\": true}\n").expect("write");
+    let before: Vec<(String, Vec<u8>)> = names_in(&dir)
+        .into_iter()
+        .map(|n| {
+            let bytes = std::fs::read(dir.join(&n)).expect("file");
+            (n, bytes)
+        })
         .collect();
-    left.sort();
-    assert_eq!(
-        left,
-        ["summary.json"],
-        "only complete files, no temporary one"
-    );
-    let summary = std::fs::read_to_string(dir.join("summary.json")).expect("summary.json");
-    serde_json::from_str::<serde_json::Value>(&summary).expect("a whole JSON file");
+    let output = simulate_on_a_full_disk(&dir);
+    assert_eq!(output.status.code(), Some(1), "{}", stderr(&output));
+    let after: Vec<(String, Vec<u8>)> = names_in(&dir)
+        .into_iter()
+        .map(|n| {
+            let bytes = std::fs::read(dir.join(&n)).expect("file");
+            (n, bytes)
+        })
+        .collect();
+    assert!(after == before, "the previous output set is left as it was");
+    assert_eq!(names_in(&root), ["out"], "no temporary folder left");
 }
 
 #[test]

@@ -1,13 +1,14 @@
 //! The rows of `samples.csv` (RFC 4180): writing them and reading them back.
 //!
-//! One line per sample: `index,status,error,<inputs>,<outputs>`. `status` is `ok` for a
+//! One line per sample: `index,status,error,<inputs>,<outputs>,digest`. `status` is `ok` for a
 //! completed flight, the name of the way a flight ended early (`max_time`, `stuck_on_rail`,
 //! [`Status::Ended`]) with its message in `error` and the outputs it reached, or `failed` with
 //! the error and no outputs; `error` is empty for `ok`; a missing output is an empty field.
 //! Numbers are
 //! written in Rust's shortest round-trip form (`{:?}`), so reading a row back gives the very
 //! same `f64`. Fields with a comma or a quote are quoted with `"` (quotes doubled); line
-//! breaks inside a message become spaces, so every row is exactly one line.
+//! breaks inside a message become spaces, so every row is exactly one line. `digest` is the
+//! row's digest ([`digest`]), keyed by the study's fingerprint, which resume and merge check.
 
 use serde::Serialize;
 use std::borrow::Cow;
@@ -168,9 +169,54 @@ pub fn header(columns: &[String]) -> String {
     line
 }
 
+/// The name of the last column of `samples.csv`: each row's digest ([`digest`]).
+pub const DIGEST_COLUMN: &str = "digest";
+
+/// The digest of a row whose other cells are `cells` (the row's text before its last comma)
+/// in the study of fingerprint `key`: FNV-1a 64 of `key`, a newline and `cells`, as 16
+/// lowercase hexadecimal digits. Keyed by the study, a row copied from another study does not
+/// verify; covering the index, a row moved to another line does not either. It detects edits
+/// (by hand, by a tool, by a damaged disk), not a forger who recomputes it.
+pub fn digest(key: &str, cells: &str) -> String {
+    let hash = fnv1a64_parts(&[key.as_bytes(), b"\n", cells.as_bytes()]);
+    format!("{hash:016x}")
+}
+
+/// FNV-1a 64 of the concatenation of `parts`.
+fn fnv1a64_parts(parts: &[&[u8]]) -> u64 {
+    const OFFSET: u64 = 0xcbf2_9ce4_8422_2325;
+    const PRIME: u64 = 0x0000_0100_0000_01b3;
+    parts
+        .iter()
+        .flat_map(|part| part.iter())
+        .fold(OFFSET, |hash, byte| {
+            (hash ^ u64::from(*byte)).wrapping_mul(PRIME)
+        })
+}
+
+/// Checks the digest (last field) of `line` (without its newline) against `key`: `Err` with
+/// the digest written (0 when it is not a number) and the digest of the other cells when they
+/// differ (or the line has no digest field).
+pub fn verify(line: &str, key: &str) -> Result<(), (u64, u64)> {
+    let (cells, stored) = line.rsplit_once(',').unwrap_or(("", line));
+    let computed = fnv1a64_parts(&[key.as_bytes(), b"\n", cells.as_bytes()]);
+    // Lowercase, as written: an edited case is an edit.
+    let written = stored.len() == 16
+        && stored
+            .bytes()
+            .all(|b| matches!(b, b'0'..=b'9' | b'a'..=b'f'));
+    match u64::from_str_radix(stored, 16) {
+        Ok(value) if written && value == computed => Ok(()),
+        Ok(value) => Err((value, computed)),
+        Err(_) => Err((0, computed)),
+    }
+}
+
 /// One sample's row, newline included: its status and message, inputs and `values` (for a
-/// failed sample, which has none, `outputs` empty fields).
+/// failed sample, which has none, `outputs` empty fields), then its digest keyed by `key`
+/// (the study's fingerprint, [`digest`]).
 pub fn row(
+    key: &str,
     index: u64,
     inputs: &[f64],
     status: &Status,
@@ -198,6 +244,9 @@ pub fn row(
             }
         }
     }
+    let digest = digest(key, &line);
+    line.push(',');
+    line.push_str(&digest);
     line.push('\n');
     line
 }
@@ -292,14 +341,22 @@ impl Row {
     }
 }
 
-/// Parses a row of a study with `inputs` input and `outputs` output columns; the error
-/// says what is wrong.
+/// Parses a row (without its newline) of a study with `inputs` input and `outputs` output
+/// columns, its last field a digest (16 hexadecimal digits; resume, merge and the summary
+/// check it against the study's fingerprint); the error says what is wrong.
 pub fn parse(line: &str, inputs: usize, outputs: usize) -> Result<Row, String> {
     let fields = split(line).map_err(|_| "badly quoted field".to_owned())?;
-    let expected = 3 + inputs + outputs;
+    let expected = 4 + inputs + outputs;
     if fields.len() != expected {
         return Err(format!("{} fields, expected {expected}", fields.len()));
     }
+    let digest = &fields[expected - 1];
+    if digest.len() != 16 || !digest.bytes().all(|b| b.is_ascii_hexdigit()) {
+        return Err(format!(
+            "its {DIGEST_COLUMN} {digest:?} is not 16 hexadecimal digits"
+        ));
+    }
+    let fields = &fields[..expected - 1];
     let index = fields[0]
         .parse::<u64>()
         .map_err(|_| format!("index {:?} is not a number", fields[0]))?;
@@ -353,7 +410,14 @@ mod tests {
     #[test]
     fn rows_round_trip() {
         let inputs = [0.1, -1e-300, 12345.678];
-        let ok = row(7, &inputs, &Status::Completed, &[Some(1.0 / 3.0), None], 2);
+        let ok = row(
+            "k",
+            7,
+            &inputs,
+            &Status::Completed,
+            &[Some(1.0 / 3.0), None],
+            2,
+        );
         assert!(ok.ends_with('\n'));
         let parsed = parse(ok.trim_end_matches('\n'), 3, 2).expect("valid row");
         assert_eq!(parsed.index, 7);
@@ -362,7 +426,7 @@ mod tests {
         assert_eq!(parsed.outputs, vec![Some(1.0 / 3.0), None]);
 
         let message = "bad \"value\", line\nbreak";
-        let failed = row(8, &inputs, &Status::Failed(message.to_owned()), &[], 2);
+        let failed = row("k", 8, &inputs, &Status::Failed(message.to_owned()), &[], 2);
         assert_eq!(failed.lines().count(), 1);
         let parsed = parse(failed.trim_end_matches('\n'), 3, 2).expect("valid row");
         assert_eq!(
@@ -375,7 +439,7 @@ mod tests {
             kind: "max_time".to_owned(),
             message: "reached max_time, 5 s".to_owned(),
         };
-        let line = row(9, &inputs, &ended, &[Some(2.5), None], 2);
+        let line = row("k", 9, &inputs, &ended, &[Some(2.5), None], 2);
         assert!(
             line.starts_with("9,max_time,\"reached max_time, 5 s\","),
             "{line}"
@@ -400,7 +464,7 @@ mod tests {
             (Status::Failed("no\nflight, \"x\"".to_owned()), Vec::new()),
         ];
         for (status, values) in statuses {
-            let line = row(4, &inputs, &status, &values, 2);
+            let line = row("k", 4, &inputs, &status, &values, 2);
             let read = parse(line.trim_end_matches('\n'), 3, 2).expect("valid row");
             let kept = Row::of(4, inputs.clone(), status, values, 2);
             assert_eq!(kept.status, read.status);
@@ -411,6 +475,31 @@ mod tests {
             let inputs_bits = |v: &[f64]| v.iter().map(|x| x.to_bits()).collect::<Vec<_>>();
             assert_eq!(inputs_bits(&kept.inputs), inputs_bits(&read.inputs));
         }
+    }
+
+    #[test]
+    fn the_digest_covers_every_cell_and_the_key() {
+        let line = row("k", 3, &[1.5], &Status::Completed, &[Some(2.0)], 1);
+        let line = line.trim_end_matches('\n');
+        assert!(verify(line, "k").is_ok(), "{line}");
+        assert!(parse(line, 1, 1).is_ok());
+        // Another study's key, an edited cell, an edited digest: all detected.
+        assert!(verify(line, "other").is_err());
+        let edited = line.replacen(",2.0,", ",4.0,", 1);
+        let (stored, computed) = verify(&edited, "k").expect_err("edited output");
+        assert_ne!(stored, computed);
+        assert_eq!(
+            format!("{stored:016x}"),
+            line.rsplit_once(',').expect("digest").1
+        );
+        let mut forged = line.to_owned();
+        forged.pop();
+        forged.push(if line.ends_with('0') { '1' } else { '0' });
+        assert!(verify(&forged, "k").is_err());
+        assert!(verify("", "k").is_err());
+        // The digest field must be one.
+        assert!(parse("3,ok,,1.5,2.0,xyz", 1, 1).is_err());
+        assert!(parse("3,ok,,1.5,2.0", 1, 1).is_err());
     }
 
     #[test]

@@ -100,6 +100,59 @@ pub enum DispersionError {
         /// What is wrong.
         reason: String,
     },
+    /// A kept row of `samples.csv` whose digest is not the digest of its cells: a cell was
+    /// edited after the row was written. Nothing is changed; the folder can be moved aside.
+    #[error(
+        "{}, line {line}: sample {index} was altered after it was written (its digest \
+         {stored:016x} is not the digest of its cells, {computed:016x}){detail}; nothing was \
+         changed: move the folder aside and run the study again into another --out directory",
+        file.display()
+    )]
+    TamperedRow {
+        /// The file.
+        file: PathBuf,
+        /// 1-based line number of the row.
+        line: u64,
+        /// The sample index.
+        index: u64,
+        /// The digest the row holds.
+        stored: u64,
+        /// The digest of its other cells.
+        computed: u64,
+        /// What differs, when known (a resume flies the sample again to say which cells
+        /// changed): empty, or `; ` and the cells.
+        detail: String,
+        /// The row as kept (without its newline).
+        row: String,
+    },
+    /// `study.json` of another version of the file layout.
+    #[error(
+        "{}: {reason}; it is neither resumed nor merged: move the folder aside and run the study \
+         again into another --out directory",
+        path.display()
+    )]
+    OtherVersion {
+        /// The file.
+        path: PathBuf,
+        /// The version it holds.
+        version: u32,
+        /// Which version it is and what this one reads.
+        reason: String,
+    },
+    /// The output directory's lock file was removed or replaced while the run held it, and
+    /// the run cannot hold its replacement (another program locked it, or the directory
+    /// itself cannot be locked on this system): the run stops rather than risk a second
+    /// writer.
+    #[error(
+        "{}: study.lock was removed or replaced while this run held it, and another program \
+         may be writing the folder; stopped so that no two runs write one study (the rows \
+         written are kept: run again to resume)",
+        dir.display()
+    )]
+    LockLost {
+        /// The output directory.
+        dir: PathBuf,
+    },
     /// `study.json` cannot be read back.
     #[error("{}: {message}", path.display())]
     Json {

@@ -42,7 +42,9 @@ pub(crate) struct Scan {
 }
 
 /// Scans `samples.csv` of `record`: the header must be the study's and every complete row
-/// must be the next sample of the shard with the inputs the study draws for it. A trailing
+/// must be the next sample of the shard with the inputs the study draws for it and a digest
+/// that is the digest of its cells keyed by the study's fingerprint
+/// ([`DispersionError::TamperedRow`] otherwise: an edited cell). A trailing
 /// line without its newline (an interrupted write) is not counted. A missing file scans as
 /// empty.
 pub(crate) fn scan(path: &Path, record: &Record) -> Result<Scan, DispersionError> {
@@ -125,6 +127,18 @@ pub(crate) fn scan(path: &Path, record: &Record) -> Result<Scan, DispersionError
                         .to_owned(),
                 ));
             }
+            let cells = text.trim_end_matches('\n');
+            if let Err((stored, computed)) = csv::verify(cells, &record.fingerprint) {
+                return Err(DispersionError::TamperedRow {
+                    file: path.to_owned(),
+                    line: line_number,
+                    index: row.index,
+                    stored,
+                    computed,
+                    detail: String::new(),
+                    row: cells.to_owned(),
+                });
+            }
             scan.counts.add(&row.status);
             let kept = (scan.rows, line_number, text.to_owned());
             match scan.ends.len() {
@@ -201,17 +215,162 @@ pub fn write_atomic(path: &Path, bytes: &[u8]) -> Result<(), DispersionError> {
     })
 }
 
+/// The files a study writes into its output directory, each through a temporary file
+/// ([`temporary_path`]) that a killed run may leave behind.
+const WRITTEN: [&str; 6] = [
+    STUDY_FILE,
+    SAMPLES_FILE,
+    SUMMARY_FILE,
+    KML_FILE,
+    LANDING_PLOT_FILE,
+    HISTOGRAM_PLOT_FILE,
+];
+
+/// Whether `name` is a temporary file [`write_atomic`] (or a merge) makes for one of the
+/// files a study writes: `.NAME.PID.N.tmp`.
+fn is_temporary(name: &str) -> bool {
+    let Some(middle) = name
+        .strip_prefix('.')
+        .and_then(|rest| rest.strip_suffix(".tmp"))
+    else {
+        return false;
+    };
+    WRITTEN.iter().any(|file| {
+        middle
+            .strip_prefix(file)
+            .and_then(|rest| rest.strip_prefix('.'))
+            .and_then(|rest| rest.split_once('.'))
+            .is_some_and(|(pid, call)| {
+                let digits = |t: &str| !t.is_empty() && t.bytes().all(|b| b.is_ascii_digit());
+                digits(pid) && digits(call)
+            })
+    })
+}
+
+/// Removes the temporary files of killed runs from `dir` (a run holding its lock: no other
+/// run is writing there), saying so on stderr; returns them. Only the temporary files of a
+/// study's own files are removed, never another file.
+pub(crate) fn remove_temporaries(dir: &Path) -> Result<Vec<PathBuf>, DispersionError> {
+    let mut removed = Vec::new();
+    for entry in std::fs::read_dir(dir).map_err(DispersionError::io(dir))? {
+        let entry = entry.map_err(DispersionError::io(dir))?;
+        let is_file = entry.file_type().is_ok_and(|t| t.is_file());
+        if is_file && is_temporary(&entry.file_name().to_string_lossy()) {
+            let path = entry.path();
+            std::fs::remove_file(&path).map_err(DispersionError::io(&path))?;
+            eprintln!(
+                "karman: removed {}, a temporary file left by an interrupted run",
+                path.display()
+            );
+            removed.push(path);
+        }
+    }
+    removed.sort();
+    Ok(removed)
+}
+
+/// What identifies a file, to see that the lock file under its name is still the one locked.
+#[derive(Debug, Clone, PartialEq, Eq)]
+struct Identity(u64, u64);
+
+impl Identity {
+    #[cfg(unix)]
+    fn of(metadata: &std::fs::Metadata) -> Self {
+        use std::os::unix::fs::MetadataExt as _;
+        Identity(metadata.dev(), metadata.ino())
+    }
+
+    #[cfg(not(unix))]
+    fn of(metadata: &std::fs::Metadata) -> Self {
+        let created = metadata
+            .created()
+            .ok()
+            .and_then(|t| t.duration_since(std::time::UNIX_EPOCH).ok())
+            .unwrap_or_default();
+        Identity(created.as_secs(), u64::from(created.subsec_nanos()))
+    }
+}
+
 /// An exclusive lock on an output directory, held while the value lives. The operating
 /// system releases it when the process ends, however it ends (a killed run leaves no stale
 /// lock).
+///
+/// Two locks are taken: on Unix the directory itself (through a descriptor of the directory,
+/// which no one can remove from under the run while it holds it: deleting `study.lock` does
+/// not let a second run in), and on every system the lock file [`LOCK_FILE`] (the lock of
+/// earlier versions). [`DirLock::check`] sees whether the lock file is still the one locked,
+/// and puts it back when it was removed.
 #[derive(Debug)]
 pub(crate) struct DirLock {
-    _file: File,
+    dir: PathBuf,
+    /// The directory's descriptor, locked (Unix).
+    _directory: Option<File>,
+    /// The lock file, locked, and its identity.
+    file: Option<(File, Identity)>,
 }
 
-/// Locks the output directory `dir` (creating its [`LOCK_FILE`]); `Locked` when another run
-/// holds it. `create` false: a directory without a lock file is not locked (and not touched).
-pub(crate) fn lock(dir: &Path, create: bool) -> Result<Option<DirLock>, DispersionError> {
+impl DirLock {
+    /// Checks that the lock file is still the file locked (before each write). When it was
+    /// removed or replaced: with the directory itself locked (Unix) no run of this version
+    /// got in, so a new lock file is created and locked in its place (for earlier versions,
+    /// which lock only the file); [`DispersionError::LockLost`] when that new file is
+    /// already locked by someone else, or where the directory cannot be locked, so that a
+    /// second writer that got in is noticed at the next write and the run stops.
+    pub(crate) fn check(&mut self) -> Result<(), DispersionError> {
+        let Some((_, identity)) = &self.file else {
+            return Ok(());
+        };
+        let path = self.dir.join(LOCK_FILE);
+        let now = std::fs::metadata(&path).map(|m| Identity::of(&m));
+        if now.as_ref().ok() == Some(identity) {
+            return Ok(());
+        }
+        let lost = || DispersionError::LockLost {
+            dir: self.dir.clone(),
+        };
+        if self._directory.is_none() {
+            return Err(lost());
+        }
+        let file = OpenOptions::new()
+            .create(true)
+            .truncate(false)
+            .write(true)
+            .open(&path)
+            .map_err(DispersionError::io(&path))?;
+        match try_lock(&file, &self.dir, &path) {
+            Ok(()) => {}
+            Err(DispersionError::Locked { .. }) => return Err(lost()),
+            Err(other) => return Err(other),
+        }
+        let identity = Identity::of(&file.metadata().map_err(DispersionError::io(&path))?);
+        self.file = Some((file, identity));
+        Ok(())
+    }
+}
+
+/// Takes `file`'s lock; `Locked` when another run holds it.
+fn try_lock(file: &File, dir: &Path, path: &Path) -> Result<(), DispersionError> {
+    match fs4::FileExt::try_lock(file) {
+        Ok(()) => Ok(()),
+        Err(fs4::TryLockError::WouldBlock) => Err(DispersionError::Locked {
+            dir: dir.to_owned(),
+        }),
+        Err(fs4::TryLockError::Error(e)) => Err(DispersionError::io(path)(e)),
+    }
+}
+
+/// Locks the output directory `dir` ([`DirLock`]: the directory itself on Unix, and its
+/// [`LOCK_FILE`], created when `create`); `Locked` when another run holds it. `create` false:
+/// a directory without a lock file is not touched (its lock file not created).
+pub(crate) fn lock(dir: &Path, create: bool) -> Result<DirLock, DispersionError> {
+    #[cfg(unix)]
+    let directory = {
+        let handle = File::open(dir).map_err(DispersionError::io(dir))?;
+        try_lock(&handle, dir, dir)?;
+        Some(handle)
+    };
+    #[cfg(not(unix))]
+    let directory = None;
     let path = dir.join(LOCK_FILE);
     let file = if create {
         OpenOptions::new()
@@ -221,16 +380,99 @@ pub(crate) fn lock(dir: &Path, create: bool) -> Result<Option<DirLock>, Dispersi
             .open(&path)
     } else {
         match File::open(&path) {
-            Err(e) if e.kind() == std::io::ErrorKind::NotFound => return Ok(None),
+            Err(e) if e.kind() == std::io::ErrorKind::NotFound => {
+                return Ok(DirLock {
+                    dir: dir.to_owned(),
+                    _directory: directory,
+                    file: None,
+                });
+            }
             other => other,
         }
     }
     .map_err(DispersionError::io(&path))?;
-    match fs4::FileExt::try_lock(&file) {
-        Ok(()) => Ok(Some(DirLock { _file: file })),
-        Err(fs4::TryLockError::WouldBlock) => Err(DispersionError::Locked {
-            dir: dir.to_owned(),
-        }),
-        Err(fs4::TryLockError::Error(e)) => Err(DispersionError::io(&path)(e)),
+    try_lock(&file, dir, &path)?;
+    let identity = Identity::of(&file.metadata().map_err(DispersionError::io(&path))?);
+    Ok(DirLock {
+        dir: dir.to_owned(),
+        _directory: directory,
+        file: Some((file, identity)),
+    })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn temporary_files_are_recognised() {
+        let made = temporary_path(&PathBuf::from("dir").join(SAMPLES_FILE));
+        let name = made
+            .file_name()
+            .expect("name")
+            .to_string_lossy()
+            .into_owned();
+        assert!(is_temporary(&name), "{name}");
+        assert!(is_temporary(".summary.json.12.0.tmp"));
+        for other in [
+            "samples.csv",
+            ".samples.csv.tmp",
+            ".samples.csv.12.tmp",
+            ".notes.txt.12.0.tmp",
+            ".samples.csv.x.0.tmp",
+            ".samples.csv.1.0.tmp.bak",
+        ] {
+            assert!(!is_temporary(other), "{other}");
+        }
+    }
+
+    #[test]
+    fn a_replaced_lock_file_is_noticed() {
+        let tmp = tempfile::tempdir().expect("temporary directory");
+        let path = tmp.path().join(LOCK_FILE);
+        let mut lock = lock(tmp.path(), true).expect("lock");
+        lock.check().expect("held");
+        std::fs::remove_file(&path).expect("remove");
+        if cfg!(unix) {
+            // The directory is still locked: the lock file is put back, locked.
+            lock.check().expect("put back");
+            let file = File::open(&path).expect("a lock file again");
+            assert!(matches!(
+                fs4::FileExt::try_lock(&file),
+                Err(fs4::TryLockError::WouldBlock)
+            ));
+        } else {
+            assert!(matches!(
+                lock.check(),
+                Err(DispersionError::LockLost { .. })
+            ));
+        }
+        // Replaced by a file someone else locks (an earlier version that got in): stop.
+        std::fs::remove_file(&path).expect("remove");
+        let other = File::create(&path).expect("another lock file");
+        fs4::FileExt::try_lock(&other).expect("the other writer's lock");
+        assert!(matches!(
+            lock.check(),
+            Err(DispersionError::LockLost { .. })
+        ));
+    }
+
+    #[cfg(unix)]
+    #[test]
+    fn the_directory_stays_locked_without_its_lock_file() {
+        let tmp = tempfile::tempdir().expect("temporary directory");
+        let held = lock(tmp.path(), true).expect("lock");
+        std::fs::remove_file(tmp.path().join(LOCK_FILE)).expect("remove");
+        let second = lock(tmp.path(), true);
+        assert!(
+            matches!(second, Err(DispersionError::Locked { .. })),
+            "{second:?}"
+        );
+        assert!(
+            !tmp.path().join(LOCK_FILE).exists(),
+            "the refused run created nothing"
+        );
+        drop(held);
+        lock(tmp.path(), true).expect("free again");
     }
 }

@@ -28,15 +28,18 @@
 //! ```
 //!
 //! Output directory (see [`files`]): `study.lock` (held by the one run writing it),
-//! `study.json` (seed, samples, inputs, outputs, data files and fingerprint), `samples.csv`
-//! (one row per sample in index order with its status: completed, ended early, failed),
+//! `study.json` (format version, seed, samples, inputs, outputs, data files and fingerprint),
+//! `samples.csv` (one row per sample in index order with its status: completed, ended early,
+//! failed, and the row's digest keyed by the fingerprint, which resume and merge check),
 //! `summary.json`, `dispersion.kml`, `landing.svg`, `apogee_histogram.svg`, each written
 //! atomically.
 //!
 //! - Reproducible: sample `i` draws from streams keyed by (seed, i) ([`sampling`]); the
 //!   results are byte-identical for any thread count, shard split or interruption.
 //! - Resumable: rerunning [`run`] in the same directory keeps the complete rows (dropping a
-//!   partial last line), refuses a different study, and flies the rest.
+//!   partial last line), refuses a different study or an edited row (its digest:
+//!   [`DispersionError::TamperedRow`]), removes the temporary files of a killed run, and
+//!   flies the rest.
 //! - Shardable: [`RunOptions::shard`] `K/N` flies the samples with `index % N == K − 1`;
 //!   [`merge`] joins the shard directories into the files of a single run.
 

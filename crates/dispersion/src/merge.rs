@@ -18,7 +18,7 @@ use std::path::{Path, PathBuf};
 pub fn merge(out: &Path, dirs: &[PathBuf]) -> Result<Summary, DispersionError> {
     let fail = |reason: String| Err(DispersionError::Merge { reason });
     // Each shard directory locked once (one given twice is reported below).
-    let mut locks = Vec::with_capacity(dirs.len() + 1);
+    let mut locks = Vec::with_capacity(dirs.len());
     let mut locked: Vec<PathBuf> = Vec::with_capacity(dirs.len());
     for dir in dirs {
         let canonical = dir.canonicalize().unwrap_or_else(|_| dir.clone());
@@ -112,7 +112,8 @@ pub fn merge(out: &Path, dirs: &[PathBuf]) -> Result<Summary, DispersionError> {
     }
 
     std::fs::create_dir_all(out).map_err(DispersionError::io(out))?;
-    locks.push(files::lock(out, true)?);
+    let mut out_lock = files::lock(out, true)?;
+    files::remove_temporaries(out)?;
     if let Some(existing) = Record::read(&out.join(STUDY_FILE))? {
         let fields = whole.differences(&existing);
         if !fields.is_empty() {
@@ -147,8 +148,13 @@ pub fn merge(out: &Path, dirs: &[PathBuf]) -> Result<Summary, DispersionError> {
     }
     writer.flush().map_err(DispersionError::io(&temporary))?;
     drop(writer);
+    if let Err(error) = out_lock.check() {
+        let _ = std::fs::remove_file(&temporary);
+        return Err(error);
+    }
     std::fs::rename(&temporary, &samples_path).map_err(DispersionError::io(&samples_path))?;
     let summary = summarize(out);
+    drop(out_lock);
     drop(locks);
     summary
 }

@@ -164,8 +164,10 @@ where
     let pool = thread_pool(options)?;
     let shard = options.shard.unwrap_or(Shard::WHOLE);
     let record = Record::new(study, shard);
+    let key = record.fingerprint.as_str();
     std::fs::create_dir_all(dir).map_err(DispersionError::io(dir))?;
-    let _lock = files::lock(dir, true)?;
+    let mut lock = files::lock(dir, true)?;
+    files::remove_temporaries(dir)?;
     let study_path = dir.join(STUDY_FILE);
     let samples_path = dir.join(SAMPLES_FILE);
     match Record::read(&study_path)? {
@@ -189,9 +191,32 @@ where
         }
     }
 
-    let scan = files::scan(&samples_path, &record)?;
+    let scan = match files::scan(&samples_path, &record) {
+        Err(DispersionError::TamperedRow {
+            file,
+            line,
+            index,
+            stored,
+            computed,
+            row,
+            ..
+        }) => {
+            let position = (index - (shard.number - 1)) / shard.count;
+            let again = fly_sample(study, shard, &fly, position).line(key, study.outputs.len());
+            return Err(DispersionError::TamperedRow {
+                detail: changed_cells(study, &row, again.trim_end_matches('\n')),
+                file,
+                line,
+                index,
+                stored,
+                computed,
+                row,
+            });
+        }
+        other => other?,
+    };
     for (position, line, kept) in &scan.ends {
-        let again = fly_sample(study, shard, &fly, *position).line(study.outputs.len());
+        let again = fly_sample(study, shard, &fly, *position).line(key, study.outputs.len());
         if again.trim_end_matches('\n') != kept.trim_end_matches('\n') {
             return Err(DispersionError::ChangedOutputs {
                 file: samples_path,
@@ -216,6 +241,9 @@ where
     let mut out = FileSink {
         out: BufWriter::with_capacity(1 << 16, file),
         outputs: study.outputs.len(),
+        key,
+        path: &samples_path,
+        lock: &mut lock,
     };
     if !scan.has_header {
         out.out
@@ -234,7 +262,7 @@ where
         &fly,
     );
     drop(out);
-    let mut counts = flown.written.map_err(DispersionError::io(&samples_path))?;
+    let mut counts = flown.written?;
     counts.merge(&scan.counts);
     let total = shard.len(study.samples);
     if flown.rows < total {
@@ -245,6 +273,7 @@ where
         });
     }
 
+    lock.check()?;
     let summary = if shard == Shard::WHOLE {
         Some(summarize(dir)?)
     } else {
@@ -366,21 +395,28 @@ trait Sink {
     fn flush(&mut self) -> Result<(), Self::Error>;
 }
 
-/// Rows appended to `samples.csv`.
-struct FileSink<W: std::io::Write> {
+/// Rows appended to `samples.csv` (`path`), each with its digest keyed by `key`; before each
+/// batch is flushed, the directory's lock is checked ([`files::DirLock::check`]).
+struct FileSink<'a, W: std::io::Write> {
     out: W,
     outputs: usize,
+    key: &'a str,
+    path: &'a Path,
+    lock: &'a mut files::DirLock,
 }
 
-impl<W: std::io::Write> Sink for FileSink<W> {
-    type Error = std::io::Error;
+impl<W: std::io::Write> Sink for FileSink<'_, W> {
+    type Error = DispersionError;
 
-    fn push(&mut self, row: Finished) -> std::io::Result<()> {
-        self.out.write_all(row.line(self.outputs).as_bytes())
+    fn push(&mut self, row: Finished) -> Result<(), DispersionError> {
+        self.out
+            .write_all(row.line(self.key, self.outputs).as_bytes())
+            .map_err(DispersionError::io(self.path))
     }
 
-    fn flush(&mut self) -> std::io::Result<()> {
-        self.out.flush()
+    fn flush(&mut self) -> Result<(), DispersionError> {
+        self.lock.check()?;
+        self.out.flush().map_err(DispersionError::io(self.path))
     }
 }
 
@@ -483,9 +519,10 @@ struct Finished {
 }
 
 impl Finished {
-    /// Its line of `samples.csv` in a study of `outputs` outputs.
-    fn line(&self, outputs: usize) -> String {
+    /// Its line of `samples.csv` in a study of `outputs` outputs and fingerprint `key`.
+    fn line(&self, key: &str, outputs: usize) -> String {
         csv::row(
+            key,
             self.index,
             &self.inputs,
             &self.status,
@@ -497,6 +534,29 @@ impl Finished {
     /// Its row as read back from that line.
     fn into_row(self, outputs: usize) -> Row {
         Row::of(self.index, self.inputs, self.status, self.values, outputs)
+    }
+}
+
+/// The cells in which the kept row `kept` differs from the row `again` flown again (both
+/// without their newline), for [`DispersionError::TamperedRow`]: `; flown again, it differs
+/// in: apogee_m (kept 2468.2, flown again 1234.1)`.
+fn changed_cells(study: &Study, kept: &str, again: &str) -> String {
+    let (Ok(kept), Ok(again)) = (csv::split(kept), csv::split(again)) else {
+        return String::new();
+    };
+    let columns = study.columns();
+    let cells = columns.len() - 1;
+    let changed: Vec<String> = columns
+        .iter()
+        .zip(kept.iter().zip(&again))
+        .take(cells)
+        .filter(|(_, (a, b))| a != b)
+        .map(|(name, (a, b))| format!("{name} (kept {a:?}, flown again {b:?})"))
+        .collect();
+    if changed.is_empty() {
+        "; flown again, its cells are the same: its digest was edited".to_owned()
+    } else {
+        format!("; flown again, it differs in: {}", changed.join(", "))
     }
 }
 

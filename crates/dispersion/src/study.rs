@@ -161,7 +161,8 @@ impl Study {
         Ok(())
     }
 
-    /// Every column of `samples.csv`: `index`, `status`, `error`, the inputs, the outputs.
+    /// Every column of `samples.csv`: `index`, `status`, `error`, the inputs, the outputs,
+    /// `digest` (the row's digest, [`crate::files`]).
     pub fn columns(&self) -> Vec<String> {
         let fixed = ["index", "status", "error"].map(str::to_owned);
         let inputs = self.inputs.iter().map(VariedInput::column);
@@ -169,6 +170,7 @@ impl Study {
             .into_iter()
             .chain(inputs)
             .chain(self.outputs.iter().cloned())
+            .chain([crate::csv::DIGEST_COLUMN.to_owned()])
             .collect()
     }
 }
@@ -241,8 +243,17 @@ impl fmt::Display for Shard {
     }
 }
 
-/// Version of the output files' layout (2: the data fingerprint and the sample statuses).
-const FORMAT_VERSION: u32 = 2;
+/// Version of the output files' layout (2: the data fingerprint and the sample statuses;
+/// 3: the `digest` column of `samples.csv`).
+pub(crate) const FORMAT_VERSION: u32 = 3;
+
+/// What every version of `study.json` has: read first, so that a folder of another version
+/// is named as such rather than reported as malformed.
+#[derive(Deserialize)]
+struct Version {
+    format: String,
+    version: u32,
+}
 
 /// The content of `study.json`.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
@@ -323,13 +334,31 @@ impl Record {
             path: path.to_owned(),
             message,
         };
-        let record: Record = serde_json::from_str(&text).map_err(|e| json(e.to_string()))?;
-        if record.format != FORMAT || record.version != FORMAT_VERSION {
+        let version: Version = serde_json::from_str(&text).map_err(|e| json(e.to_string()))?;
+        if version.format != FORMAT {
             return Err(json(format!(
-                "not a {FORMAT} of version {FORMAT_VERSION} (format {:?}, version {})",
-                record.format, record.version
+                "not a {FORMAT} (format {:?}, version {})",
+                version.format, version.version
             )));
         }
+        if version.version != FORMAT_VERSION {
+            let age = if version.version < FORMAT_VERSION {
+                "an earlier"
+            } else {
+                "a later"
+            };
+            return Err(DispersionError::OtherVersion {
+                path: path.to_owned(),
+                version: version.version,
+                reason: format!(
+                    "written by {age} karman (study format version {}; this one reads version \
+                     {FORMAT_VERSION}, whose samples.csv rows end with a digest that resume and \
+                     merge check)",
+                    version.version
+                ),
+            });
+        }
+        let record: Record = serde_json::from_str(&text).map_err(|e| json(e.to_string()))?;
         Ok(Some(record))
     }
 

@@ -4,6 +4,7 @@ mod common;
 mod determinism;
 mod distributions;
 mod ellipses;
+mod integrity;
 mod lock;
 mod never_panics;
 mod resume;

@@ -101,3 +101,69 @@ fn simultaneous_atomic_writes_of_one_file_leave_one_whole_file() {
         .collect();
     assert_eq!(names, ["summary.json"], "no temporary file left");
 }
+
+#[cfg(unix)]
+#[test]
+fn deleting_the_lock_file_mid_run_lets_no_second_writer_in() {
+    let study = study(120);
+    let tmp = tempfile::tempdir().expect("temporary directory");
+    let undisturbed = tmp.path().join("undisturbed");
+    run(&study, &undisturbed, &options(2, Shard::WHOLE), fly).expect("undisturbed run");
+
+    let dir = tmp.path().join("shared");
+    let refused = AtomicBool::new(false);
+    let held = |index: u64, values: &[f64]| -> Result<Outcome, String> {
+        let start = Instant::now();
+        while !refused.load(Ordering::Acquire) && start.elapsed() < Duration::from_secs(60) {
+            std::thread::sleep(Duration::from_millis(1));
+        }
+        fly(index, values)
+    };
+    std::thread::scope(|scope| {
+        let first = scope.spawn(|| run(&study, &dir, &options(2, Shard::WHOLE), held));
+        wait_for(|| dir.join("samples.csv").is_file());
+        std::fs::remove_file(dir.join("study.lock")).expect("delete the lock file");
+        let before = files(&dir);
+        let second = run(&study, &dir, &options(1, Shard::WHOLE), fly);
+        assert!(
+            matches!(&second, Err(DispersionError::Locked { .. })),
+            "the directory itself stays locked: {second:?}"
+        );
+        let error = merge(&dir, std::slice::from_ref(&undisturbed)).expect_err("locked output");
+        assert!(matches!(error, DispersionError::Locked { .. }), "{error}");
+        assert_eq!(files(&dir), before, "the refused runs touched nothing");
+        refused.store(true, Ordering::Release);
+        // The first run, its directory still locked, puts the lock file back and completes.
+        let report = first
+            .join()
+            .expect("no panic")
+            .expect("the first run completes");
+        assert_eq!(report.flown, 120);
+        assert!(dir.join("study.lock").is_file(), "the lock file put back");
+    });
+    assert_same_outputs(&undisturbed, &dir);
+    run(&study, &dir, &options(1, Shard::WHOLE), fly).expect("a later run");
+    assert_same_outputs(&undisturbed, &dir);
+}
+
+#[test]
+fn temporary_files_of_a_killed_run_are_removed_when_the_next_run_takes_the_lock() {
+    let study = study(30);
+    let tmp = tempfile::tempdir().expect("temporary directory");
+    let undisturbed = tmp.path().join("undisturbed");
+    run(&study, &undisturbed, &options(1, Shard::WHOLE), fly).expect("undisturbed run");
+    let dir = tmp.path().join("out");
+    run(&study, &dir, &options(1, Shard::WHOLE), fly).expect("run");
+    let left = [".study.json.77.0.tmp", ".landing.svg.77.5.tmp"];
+    for name in left {
+        std::fs::write(dir.join(name), "partial").expect("write");
+    }
+    // Not a temporary file of the study's: kept.
+    std::fs::write(dir.join(".notes.txt.77.0.tmp"), "mine").expect("write");
+    run(&study, &dir, &options(1, Shard::WHOLE), fly).expect("the next run");
+    for name in left {
+        assert!(!dir.join(name).exists(), "{name} removed");
+    }
+    std::fs::remove_file(dir.join(".notes.txt.77.0.tmp")).expect("kept");
+    assert_same_outputs(&undisturbed, &dir);
+}

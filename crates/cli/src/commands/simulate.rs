@@ -7,7 +7,9 @@
 //! record under `controller`). `--out DIR` writes `summary.json`, `trajectory.csv` (every
 //! post-processed series, units in the header), `controller.json` (with air brakes: the level
 //! after each controller call and the observed variables), `flight.kml` (the path in
-//! latitude/longitude/altitude for Google Earth) and SVG plots.
+//! latitude/longitude/altitude for Google Earth) and SVG plots, the whole set at once: written
+//! into a temporary folder beside DIR and moved in once every file is written, so a failed
+//! rerun leaves the previous set as it was.
 //!
 //! A multi-stage mission (`[[stages]]`) prints one summary per body (the top stage first,
 //! then the lower stages in the order they separated) and the stack's events in one
@@ -23,7 +25,7 @@ use anyhow::{Context, Result, bail};
 use clap::Args;
 use karman_mission::assemble::flight::{FlightRun, early_ending, simulate_with_seed};
 use karman_mission::assemble::stages::{StagedRun, simulate_staged};
-use karman_mission::dispersion::files::write_atomic;
+use karman_mission::dispersion::files::{temporary_path, write_atomic};
 use karman_mission::dynamics::Sample;
 use karman_mission::report::trajectory;
 
@@ -86,12 +88,8 @@ pub fn run(args: &SimulateArgs) -> Result<()> {
         }
     }
     if let Some(dir) = &args.out {
-        write_outputs(
-            &run,
-            mission.spec.name.as_deref().unwrap_or("karman flight"),
-            args.seed,
-            dir,
-        )?;
+        let name = mission.spec.name.as_deref().unwrap_or("karman flight");
+        write_whole(dir, |staging| write_outputs(&run, name, args.seed, staging))?;
     }
     match early_ending(summary.termination, &run.settings) {
         None => Ok(()),
@@ -137,7 +135,7 @@ fn run_staged(args: &SimulateArgs, mission: &karman_mission::Mission) -> Result<
     }
     if let Some(dir) = &args.out {
         let name = mission.spec.name.as_deref().unwrap_or("karman flight");
-        write_staged(&run, name, args.seed, dir)?;
+        write_whole(dir, |staging| write_staged(&run, name, args.seed, staging))?;
     }
     for (i, body) in run.bodies.iter().enumerate() {
         if let Some((_, message)) = early_ending(run.summary(i).termination, &run.settings) {
@@ -161,6 +159,89 @@ pub fn staged_text(run: &StagedRun) -> String {
         let _ = writeln!(text, "  {t:>10.4} s  {event}");
     }
     text
+}
+
+/// Writes the output set of `--out DIR` whole: `write` fills a temporary folder beside `dir`
+/// (`.DIR.PID.N.tmp`), and only once every file is written is the set moved into `dir` (the
+/// folder renamed to `dir` when there is none; else each file renamed over the previous one,
+/// after checking that every one can be). A run that fails while writing leaves `dir` as it
+/// was: never a new `summary.json` beside the previous run's `trajectory.csv`. Files of `dir`
+/// that this run does not write are left as they are.
+fn write_whole(dir: &Path, write: impl FnOnce(&Path) -> Result<()>) -> Result<()> {
+    let parent = dir
+        .parent()
+        .filter(|p| !p.as_os_str().is_empty())
+        .unwrap_or(Path::new("."));
+    std::fs::create_dir_all(parent)
+        .with_context(|| format!("cannot create {}", parent.display()))?;
+    let staging = temporary_path(dir);
+    // An error names the file under `dir`, where it goes, not the temporary folder.
+    let result = write(&staging)
+        .map_err(|e| {
+            let text = format!("{e:#}");
+            anyhow::anyhow!(
+                text.replace(&staging.display().to_string(), &dir.display().to_string())
+            )
+        })
+        .and_then(|()| move_in(&staging, dir));
+    if staging.exists() {
+        let _ = std::fs::remove_dir_all(&staging);
+    }
+    result
+}
+
+/// Moves the written set `staging` into `dir` ([`write_whole`]).
+fn move_in(staging: &Path, dir: &Path) -> Result<()> {
+    let unchanged = "the previous outputs are left as they were";
+    if !dir.exists() {
+        match std::fs::rename(staging, dir) {
+            Ok(()) => return Ok(()),
+            // Another run made it meanwhile: move the files in one by one, as below.
+            Err(_) if dir.is_dir() => {}
+            Err(e) => {
+                return Err(e)
+                    .with_context(|| format!("cannot move the outputs into {}", dir.display()));
+            }
+        }
+    }
+    if !dir.is_dir() {
+        bail!("{} is not a directory; {unchanged}", dir.display());
+    }
+    let mut names = Vec::new();
+    for entry in
+        std::fs::read_dir(staging).with_context(|| format!("cannot read {}", staging.display()))?
+    {
+        names.push(entry?.file_name());
+    }
+    names.sort();
+    // Every target checked before anything is moved.
+    for name in &names {
+        let target = dir.join(name);
+        if let Ok(existing) = std::fs::symlink_metadata(&target) {
+            let folder = staging.join(name).is_dir();
+            if existing.is_dir() != folder {
+                bail!(
+                    "cannot replace {}: it is a {} where the outputs have a {}; {unchanged}",
+                    target.display(),
+                    if existing.is_dir() { "folder" } else { "file" },
+                    if folder { "folder" } else { "file" },
+                );
+            }
+        }
+    }
+    for name in &names {
+        let (source, target) = (staging.join(name), dir.join(name));
+        if source.is_dir() && target.exists() {
+            // A body's folder: the previous one set aside (into the staging folder, removed
+            // with it), then the new one moved in.
+            let aside = staging.join(format!(".previous.{}", name.to_string_lossy()));
+            std::fs::rename(&target, &aside)
+                .with_context(|| format!("cannot replace {}", target.display()))?;
+        }
+        std::fs::rename(&source, &target)
+            .with_context(|| format!("cannot move the outputs into {}", target.display()))?;
+    }
+    Ok(())
 }
 
 /// `--out` of a multi-stage flight (module documentation).
@@ -330,4 +411,69 @@ fn plots(run: &FlightRun, samples: &[Sample], dir: &Path) -> Result<()> {
         ],
     )?;
     Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::write_whole;
+    use std::path::Path;
+
+    fn read(dir: &Path, name: &str) -> String {
+        std::fs::read_to_string(dir.join(name)).expect("a file")
+    }
+
+    fn entries(dir: &Path) -> Vec<String> {
+        let mut names: Vec<String> = std::fs::read_dir(dir)
+            .expect("a folder")
+            .map(|e| e.expect("entry").file_name().to_string_lossy().into_owned())
+            .collect();
+        names.sort();
+        names
+    }
+
+    #[test]
+    fn an_output_set_is_moved_in_whole_or_not_at_all() {
+        let tmp = tempfile::tempdir().expect("temporary directory");
+        let dir = tmp.path().join("out");
+        let set = |summary: &'static str, fail: bool| {
+            move |staging: &Path| -> anyhow::Result<()> {
+                std::fs::create_dir_all(staging.join("booster"))?;
+                std::fs::write(staging.join("summary.json"), summary)?;
+                if fail {
+                    anyhow::bail!("cannot write {}", staging.join("trajectory.csv").display());
+                }
+                std::fs::write(staging.join("trajectory.csv"), summary)?;
+                std::fs::write(staging.join("booster/trajectory.csv"), summary)?;
+                Ok(())
+            }
+        };
+        write_whole(&dir, set("first", false)).expect("a first set");
+        assert_eq!(read(&dir, "summary.json"), "first");
+        // A rerun that fails partway: the previous set is left, the error names the file
+        // under `dir`, and no temporary folder is left.
+        let error = write_whole(&dir, set("second", true)).expect_err("fails partway");
+        assert!(
+            error
+                .to_string()
+                .contains(&dir.join("trajectory.csv").display().to_string()),
+            "{error}"
+        );
+        assert_eq!(read(&dir, "summary.json"), "first");
+        assert_eq!(read(&dir, "trajectory.csv"), "first");
+        assert_eq!(entries(tmp.path()), ["out"]);
+        // A rerun that succeeds replaces every file, the body's folder included.
+        std::fs::write(dir.join("notes.txt"), "mine").expect("a file of the user's");
+        write_whole(&dir, set("third", false)).expect("a third set");
+        assert_eq!(read(&dir, "summary.json"), "third");
+        assert_eq!(read(&dir, "booster/trajectory.csv"), "third");
+        assert_eq!(read(&dir, "notes.txt"), "mine");
+        assert_eq!(entries(tmp.path()), ["out"]);
+        // A folder where a file goes: refused before anything is moved.
+        std::fs::remove_file(dir.join("trajectory.csv")).expect("remove");
+        std::fs::create_dir(dir.join("trajectory.csv")).expect("a folder in its place");
+        let error = write_whole(&dir, set("fourth", false)).expect_err("a folder in the way");
+        assert!(error.to_string().contains("left as they were"), "{error}");
+        assert_eq!(read(&dir, "summary.json"), "third");
+        assert_eq!(entries(tmp.path()), ["out"]);
+    }
 }
