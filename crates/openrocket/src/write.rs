@@ -1419,9 +1419,11 @@ fn body_text(
                 };
                 let _ = write!(
                     w,
-                    "[{rocket_key}.parachutes.{}]\ncd_s = {}              # Cd {cd} × π ({d} m)² / 4\ntrigger = {trigger}\nlag = {}\nsampling_rate = 100\n\n",
+                    "[{rocket_key}.parachutes.{}]\ncd_s = {}              # Cd {} × π ({} m)² / 4\ntrigger = {trigger}\nlag = {}\nsampling_rate = 100\n\n",
                     key(&c.name, used),
                     n(cd * area),
+                    n(cd),
+                    n(d),
                     n(delay)
                 );
             }

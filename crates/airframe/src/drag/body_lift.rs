@@ -124,20 +124,26 @@ impl BodyLift {
     /// `2π k / 360`, the first of the most forward). OpenRocket's launch code means to roll
     /// the rocket on the rod so that the wind comes from this angle (24.12 starts it at 0
     /// instead: `karman_openrocket::StoredFlight::rod_exit_roll`); it differs from 0 only when a set of
-    /// one or two fins makes the CP depend on the roll angle.
+    /// one or two fins makes the CP depend on the roll angle. Angles whose CPs differ by no
+    /// more than rounding ([`WORST_ROLL_TIE`] of the CP) are a tie, kept at the first: a
+    /// symmetric set (two canards at 90° and 270°) has its worst CP at 0 and at π exactly,
+    /// and which of the two the last bits favour must not decide the roll.
     #[must_use]
     pub fn worst_roll_angle(&self, rocket: &Rocket, tip: f64) -> f64 {
         let mut worst = (f64::INFINITY, 0.0);
         for k in 0..WORST_ROLL_DIVISIONS {
             let roll = 2.0 * PI * f64::from(k) / f64::from(WORST_ROLL_DIVISIONS);
             let cp = self.cp_at_angle(rocket, tip, 0.0, WORST_ROLL_MACH, roll);
-            if cp < worst.0 {
+            if cp < worst.0 - WORST_ROLL_TIE * worst.0.abs().max(1.0) {
                 worst = (cp, roll);
             }
         }
         worst.1
     }
 }
+
+/// CPs (m) closer than this share of their value are the same worst CP (rounding).
+const WORST_ROLL_TIE: f64 = 1e-9;
 
 /// Roll angles OpenRocket tries for its worst CP.
 const WORST_ROLL_DIVISIONS: u32 = 360;
