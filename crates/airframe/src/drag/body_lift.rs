@@ -125,7 +125,7 @@ impl BodyLift {
     /// the rocket on the rod so that the wind comes from this angle (24.12 starts it at 0
     /// instead: `karman_openrocket::StoredFlight::rod_exit_roll`); it differs from 0 only when a set of
     /// one or two fins makes the CP depend on the roll angle. Angles whose CPs differ by no
-    /// more than rounding ([`WORST_ROLL_TIE`] of the CP) are a tie, kept at the first: a
+    /// more than rounding (a billionth of the CP) are a tie, kept at the first: a
     /// symmetric set (two canards at 90° and 270°) has its worst CP at 0 and at π exactly,
     /// and which of the two the last bits favour must not decide the roll.
     #[must_use]
