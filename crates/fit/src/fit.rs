@@ -5,6 +5,7 @@ use std::cell::{Cell, RefCell};
 
 use karman_flightlog::{BACKOFF_MAX_S, FlightLog, SimulatedFlight, compare, first_motion_time};
 use karman_mission::dispersion::Target;
+use karman_mission::math::interpolate_clamped;
 use karman_mission::montecarlo::{MonteCarlo, StudyOverrides};
 use karman_mission::schema::{DispersionSpec, Distribution};
 use karman_mission::{Mission, MissionError};
@@ -229,7 +230,7 @@ fn clock_offset(x: &DVector<f64>, inputs: usize, shift: bool) -> f64 {
 
 /// The simulated altitude above the pad at time `t` from liftoff.
 fn altitude_at(sim: &SimulatedFlight, liftoff: f64, t: f64) -> f64 {
-    interpolate(&sim.time_s, &sim.altitude_m, t + liftoff) - sim.altitude_m[0]
+    interpolate_clamped(&sim.time_s, &sim.altitude_m, t + liftoff) - sim.altitude_m[0]
 }
 
 /// The simulated vertical velocity when the descent after apogee first comes down to
@@ -253,19 +254,6 @@ fn descent_velocity_at(sim: &SimulatedFlight, h: f64) -> f64 {
         }
     }
     sim.vertical_velocity_mps[sim.vertical_velocity_mps.len() - 1]
-}
-
-/// `ys` at `x` on the polyline `(xs, ys)`, clamped at the ends.
-fn interpolate(xs: &[f64], ys: &[f64], x: f64) -> f64 {
-    let i = xs.partition_point(|&v| v < x);
-    if i == 0 {
-        return ys[0];
-    }
-    if i >= xs.len() {
-        return ys[xs.len() - 1];
-    }
-    let (x0, x1) = (xs[i - 1], xs[i]);
-    ys[i - 1] + (ys[i] - ys[i - 1]) * (x - x0) / (x1 - x0)
 }
 
 /// The raw (unweighted) residuals of each block for the simulated flight `sim`, the log's

@@ -30,7 +30,7 @@
 
 use crate::log::{EventKind, FlightLog, Gnss};
 use karman_math::constants::PhysicalConstants;
-use karman_math::geodesy;
+use karman_math::{geodesy, interpolate_clamped};
 
 /// How far above its starting value the simulated altitude must rise to count as motion, m.
 pub const FIRST_MOTION_M: f64 = 0.01;
@@ -247,7 +247,7 @@ impl SimulatedFlight {
 
     /// The altitude at time `t` of its own clock, linearly interpolated (clamped at the ends).
     fn altitude_at(&self, t: f64) -> f64 {
-        interpolate(&self.time_s, &self.altitude_m, t)
+        interpolate_clamped(&self.time_s, &self.altitude_m, t)
     }
 }
 
@@ -289,7 +289,7 @@ pub fn compare(simulated: &SimulatedFlight, log: &FlightLog) -> Result<Compariso
         }
         let t = s.time_s + liftoff;
         let h = simulated.altitude_at(t) - pad;
-        let v = interpolate(&simulated.time_s, &simulated.vertical_velocity_mps, t);
+        let v = interpolate_clamped(&simulated.time_s, &simulated.vertical_velocity_mps, t);
         sum_h += (h - s.altitude_agl_m).powi(2);
         sum_v += (v - s.vertical_velocity_mps).powi(2);
         n += 1;
@@ -456,19 +456,6 @@ fn landing_points(simulated: &SimulatedFlight, log: &FlightLog) -> Option<Landin
         measured_m: [east, north],
         simulated_m: [landing.east_m, landing.north_m],
     })
-}
-
-/// `ys` at `x` on the polyline `(xs, ys)` (`xs` increasing), clamped at the ends.
-fn interpolate(xs: &[f64], ys: &[f64], x: f64) -> f64 {
-    let i = xs.partition_point(|&v| v < x);
-    if i == 0 {
-        return ys[0];
-    }
-    if i >= xs.len() {
-        return ys[xs.len() - 1];
-    }
-    let (x0, x1) = (xs[i - 1], xs[i]);
-    ys[i - 1] + (ys[i] - ys[i - 1]) * (x - x0) / (x1 - x0)
 }
 
 /// Least-squares slope of `y` on `x` over `points` (at least two distinct `x`).

@@ -71,7 +71,8 @@ pub use function::{Extremum, Function};
 pub use grid::{MAX_GRID_DIMENSIONS, RegularGrid, ScatteredTable};
 pub use quadrature::{Quadrature, QuadratureOptions, integrate};
 pub use table::{
-    Cursor, Extrapolation, Interpolation, Location, Piece, PointOrder, Table1, linspace,
+    Cursor, Extrapolation, Interpolation, Location, Piece, PointOrder, Table1, interpolate_clamped,
+    linspace,
 };
 pub use triangulated::TriangulatedTable;
 

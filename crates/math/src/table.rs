@@ -1212,9 +1212,36 @@ fn polynomial(xs: &[f64], ys: &[f64]) -> Result<Polynomial, MathError> {
     })
 }
 
+/// `ys` at `x` on the polyline through `(xs, ys)` (`xs` increasing, both of one length, at
+/// least one point), held at its first and last values outside `[xs₀, xsₙ]`: linear
+/// interpolation of a series read once, without building a [`Table1`] (a simulated flight's
+/// altitude at a log sample's time).
+#[must_use]
+pub fn interpolate_clamped(xs: &[f64], ys: &[f64], x: f64) -> f64 {
+    let i = xs.partition_point(|&v| v < x);
+    if i == 0 {
+        return ys[0];
+    }
+    if i >= xs.len() {
+        return ys[xs.len() - 1];
+    }
+    let (x0, x1) = (xs[i - 1], xs[i]);
+    ys[i - 1] + (ys[i] - ys[i - 1]) * (x - x0) / (x1 - x0)
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn a_polyline_interpolates_and_holds_its_ends() {
+        let (xs, ys) = ([0.0, 1.0, 3.0], [10.0, 20.0, 0.0]);
+        assert!((interpolate_clamped(&xs, &ys, 0.5) - 15.0).abs() < 1e-12);
+        assert!((interpolate_clamped(&xs, &ys, 2.0) - 10.0).abs() < 1e-12);
+        assert!((interpolate_clamped(&xs, &ys, -1.0) - 10.0).abs() < 1e-12);
+        assert!(interpolate_clamped(&xs, &ys, 9.0).abs() < 1e-12);
+        assert!((interpolate_clamped(&xs, &ys, 1.0) - 20.0).abs() < 1e-12);
+    }
 
     #[test]
     fn a_scaled_table_is_the_table_of_the_scaled_samples() {
