@@ -37,7 +37,7 @@ use karman_mission::dispersion::files::write_atomic;
 use serde_json::{Value, json};
 
 use super::MissionArgs;
-use super::log::ReadArgs;
+use super::log::{CHANNELS, ReadArgs, file_label};
 use crate::plot::{Series, line_chart};
 
 /// Arguments of `karman compare`.
@@ -234,16 +234,8 @@ fn report_text(name: &str, paths: &[PathBuf], logs: &[FlightLog], cmp: &[Compari
     s
 }
 
-/// One overlay plot: file, title, y label, the simulation's points, what a log sample gives.
-type Chart = (
-    &'static str,
-    &'static str,
-    &'static str,
-    Vec<(f64, f64)>,
-    fn(&karman_flightlog::Sample) -> Option<f64>,
-);
-
-/// The overlay plots: the simulation (from liftoff, altitude from the pad) and every log.
+/// The overlay plots: the simulation (from liftoff, altitude from the pad) and every log, one
+/// chart per charted channel ([`super::log::CHANNELS`]).
 fn plots(
     dir: &Path,
     simulated: &SimulatedFlight,
@@ -255,15 +247,7 @@ fn plots(
         return Ok(());
     };
     let (t0, h0) = (first.simulated_liftoff_s, first.simulated_pad_altitude_m);
-    let labels: Vec<String> = paths
-        .iter()
-        .map(|p| {
-            p.file_name().map_or_else(
-                || p.display().to_string(),
-                |n| n.to_string_lossy().into_owned(),
-            )
-        })
-        .collect();
+    let labels: Vec<String> = paths.iter().map(|p| file_label(p)).collect();
     let simulation = |values: &[f64], shift: f64| -> Vec<(f64, f64)> {
         simulated
             .time_s
@@ -272,49 +256,27 @@ fn plots(
             .map(|(t, v)| (t - t0, v - shift))
             .collect()
     };
-    let charts: [Chart; 3] = [
-        (
-            "altitude.svg",
-            "Altitude",
-            "altitude above the pad (m)",
-            simulation(&simulated.altitude_m, h0),
-            |s| Some(s.altitude_agl_m),
-        ),
-        (
-            "velocity.svg",
-            "Vertical velocity",
-            "vertical velocity (m/s)",
-            simulation(&simulated.vertical_velocity_mps, 0.0),
-            |s| Some(s.vertical_velocity_mps),
-        ),
-        (
-            "acceleration.svg",
-            "Acceleration",
-            "acceleration (m/s²)",
-            simulation(&simulated.vertical_acceleration_mps2, 0.0),
-            |s| s.acceleration_mps2,
-        ),
+    let simulated_series = [
+        simulation(&simulated.altitude_m, h0),
+        simulation(&simulated.vertical_velocity_mps, 0.0),
+        simulation(&simulated.vertical_acceleration_mps2, 0.0),
     ];
-    for (file, title, y_label, sim_points, pick) in charts {
+    for (channel, sim_points) in CHANNELS.iter().zip(simulated_series) {
         let mut series = vec![Series {
             label: "simulation",
             points: sim_points,
         }];
         for (label, log) in labels.iter().zip(logs) {
-            let points: Vec<(f64, f64)> = log
-                .samples
-                .iter()
-                .filter_map(|s| pick(s).map(|v| (s.time_s, v)))
-                .collect();
+            let points = channel.points(log);
             if !points.is_empty() {
                 series.push(Series { label, points });
             }
         }
         line_chart(
-            &dir.join(file),
-            title,
+            &dir.join(channel.file),
+            channel.title,
             "time from liftoff (s)",
-            y_label,
+            channel.y_label,
             &series,
         )?;
     }

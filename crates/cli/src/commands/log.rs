@@ -95,53 +95,70 @@ pub fn run(args: &LogArgs) -> Result<()> {
     }
 }
 
-/// One chart of `--plot`: file, title, y label and what a sample gives (none: not drawn).
-type Chart = (
-    &'static str,
-    &'static str,
-    &'static str,
-    fn(&karman_flightlog::Sample) -> Option<f64>,
-);
+/// One channel of a log as a chart: its file, title, y label and what a sample gives (none
+/// where the sample lacks the channel). `log show --plot` and `compare --out` draw these.
+pub(crate) struct Channel {
+    pub file: &'static str,
+    pub title: &'static str,
+    pub y_label: &'static str,
+    pub pick: fn(&karman_flightlog::Sample) -> Option<f64>,
+}
+
+/// The charted channels: altitude, vertical velocity, acceleration (as the device writes it).
+pub(crate) const CHANNELS: [Channel; 3] = [
+    Channel {
+        file: "altitude.svg",
+        title: "Altitude",
+        y_label: "altitude above the pad (m)",
+        pick: |s| Some(s.altitude_agl_m),
+    },
+    Channel {
+        file: "velocity.svg",
+        title: "Vertical velocity",
+        y_label: "vertical velocity (m/s)",
+        pick: |s| Some(s.vertical_velocity_mps),
+    },
+    Channel {
+        file: "acceleration.svg",
+        title: "Acceleration",
+        y_label: "acceleration (m/s²)",
+        pick: |s| s.acceleration_mps2,
+    },
+];
+
+impl Channel {
+    /// The log's points `(time from liftoff, value)` of this channel.
+    pub(crate) fn points(&self, log: &FlightLog) -> Vec<(f64, f64)> {
+        log.samples
+            .iter()
+            .filter_map(|s| (self.pick)(s).map(|v| (s.time_s, v)))
+            .collect()
+    }
+}
+
+/// A log's legend label: its file name (the path when it has none).
+pub(crate) fn file_label(path: &std::path::Path) -> String {
+    path.file_name().map_or_else(
+        || path.display().to_string(),
+        |n| n.to_string_lossy().into_owned(),
+    )
+}
 
 /// The plots of `--plot`: one chart per channel the log has, time from liftoff.
 fn plots(log: &FlightLog, file: &std::path::Path, dir: &std::path::Path) -> Result<()> {
     std::fs::create_dir_all(dir)
         .with_context(|| format!("cannot create the directory {}", dir.display()))?;
-    let label = file.file_name().map_or_else(
-        || file.display().to_string(),
-        |n| n.to_string_lossy().into_owned(),
-    );
-    let charts: [Chart; 3] = [
-        ("altitude.svg", "Altitude", "altitude AGL (m)", |s| {
-            Some(s.altitude_agl_m)
-        }),
-        (
-            "velocity.svg",
-            "Vertical velocity",
-            "vertical velocity (m/s)",
-            |s| Some(s.vertical_velocity_mps),
-        ),
-        (
-            "acceleration.svg",
-            "Acceleration",
-            "acceleration (m/s²)",
-            |s| s.acceleration_mps2,
-        ),
-    ];
-    for (name, title, y_label, pick) in charts {
-        let points: Vec<(f64, f64)> = log
-            .samples
-            .iter()
-            .filter_map(|s| pick(s).map(|v| (s.time_s, v)))
-            .collect();
+    let label = file_label(file);
+    for channel in &CHANNELS {
+        let points = channel.points(log);
         if points.is_empty() {
             continue;
         }
         crate::plot::line_chart(
-            &dir.join(name),
-            &format!("{title}: {label}"),
+            &dir.join(channel.file),
+            &format!("{}: {label}", channel.title),
             "time from liftoff (s)",
-            y_label,
+            channel.y_label,
             &[crate::plot::Series {
                 label: &label,
                 points,
