@@ -233,15 +233,11 @@ fn altitude_at(sim: &SimulatedFlight, liftoff: f64, t: f64) -> f64 {
     interpolate_clamped(&sim.time_s, &sim.altitude_m, t + liftoff) - sim.altitude_m[0]
 }
 
-/// The simulated vertical velocity when the descent after apogee first comes down to
-/// altitude `h` above the pad (the last point's when it never does).
-fn descent_velocity_at(sim: &SimulatedFlight, h: f64) -> f64 {
+/// The simulated vertical velocity when the descent after apogee (the point `top`,
+/// [`SimulatedFlight::apogee_index`]) first comes down to altitude `h` above the pad (the
+/// last point's when it never does).
+fn descent_velocity_at(sim: &SimulatedFlight, top: usize, h: f64) -> f64 {
     let pad = sim.altitude_m[0];
-    let top =
-        sim.altitude_m.iter().enumerate().fold(
-            0,
-            |best, (i, &v)| if v > sim.altitude_m[best] { i } else { best },
-        );
     for i in top + 1..sim.time_s.len() {
         let (h0, h1) = (sim.altitude_m[i - 1] - pad, sim.altitude_m[i] - pad);
         if h1 <= h && h0 >= h {
@@ -265,6 +261,7 @@ fn block_residuals(
 ) -> Result<Vec<Vec<f64>>, FitError> {
     let liftoff = first_motion_time(&sim.time_s, &sim.altitude_m)
         .ok_or(FitError::Compare(karman_flightlog::CompareError::NoMotion))?;
+    let top = sim.apogee_index();
     Ok(blocks
         .iter()
         .map(|block| {
@@ -273,7 +270,7 @@ fn block_residuals(
                 .iter()
                 .map(|&(x, y)| match block.phase {
                     Phase::Ascent => altitude_at(sim, liftoff, x + offset) - y,
-                    Phase::Descent(_) => descent_velocity_at(sim, x) - y,
+                    Phase::Descent(_) => descent_velocity_at(sim, top, x) - y,
                 })
                 .collect()
         })
@@ -585,7 +582,8 @@ struct Optimised {
 }
 
 /// Levenberg–Marquardt from the nominal values (and the comparison's clock), starting from
-/// the `nominal` flight and its weighted residuals `start`, within `budget` flights.
+/// the `nominal` flight and its weighted residuals `start`, within `budget` flights; `shift`:
+/// the log's clock offset is a parameter after the inputs.
 fn optimise(
     study: &MonteCarlo,
     blocks: &[Block],
@@ -593,8 +591,8 @@ fn optimise(
     nominal: SimulatedFlight,
     start: DVector<f64>,
     budget: usize,
+    shift: bool,
 ) -> Result<Optimised, FitError> {
-    let shift = blocks.iter().any(|b| b.phase == Phase::Ascent);
     let parameters = inputs + usize::from(shift);
     let problem = Problem {
         study,
@@ -673,8 +671,8 @@ fn uncertainty(
     blocks: &[Block],
     inputs: usize,
     x: &DVector<f64>,
+    shift: bool,
 ) -> Result<Spread, FitError> {
-    let shift = blocks.iter().any(|b| b.phase == Phase::Ascent);
     let parameters = x.len();
     let mut last = Problem {
         study,
@@ -749,14 +747,16 @@ pub fn fit(mission: &Mission, log: &FlightLog, options: &FitOptions) -> Result<F
     // residuals; the nominal flight counts as the first.
     let budget = options.max_flights - 1 - n - 1;
     let start = weighted(&before, &blocks);
-    let optimised = optimise(&study, &blocks, n, nominal, start, budget)?;
+    // The log's clock offset is fitted with the inputs when an ascent is compared.
+    let shift = blocks.iter().any(|b| b.phase == Phase::Ascent);
+    let optimised = optimise(&study, &blocks, n, nominal, start, budget, shift)?;
     let x = &optimised.x;
     let Spread {
         sigma,
         after,
         inflation,
         flights: final_flights,
-    } = uncertainty(&study, &blocks, n, x)?;
+    } = uncertainty(&study, &blocks, n, x, shift)?;
     let fitted = factors(x, n);
     let inputs: Vec<FittedInput> = options
         .vary
@@ -780,7 +780,6 @@ pub fn fit(mission: &Mission, log: &FlightLog, options: &FitOptions) -> Result<F
             rms_after: rms(r1),
         })
         .collect();
-    let shift = x.len() > n;
     let offset = clock_offset(x, n, shift);
     let mut warnings = Vec::new();
     if shift && offset.abs() > NOTED_CLOCK_OFFSET_S {
@@ -865,9 +864,9 @@ mod tests {
             landing: None,
         };
         // 250 m above the pad on the way down: between 500 m (-50) and 0 m (-50).
-        assert!((descent_velocity_at(&sim, 250.0) + 50.0).abs() < 1e-12);
+        assert!((descent_velocity_at(&sim, sim.apogee_index(), 250.0) + 50.0).abs() < 1e-12);
         // 750 m: halfway from apogee (0) to 500 m (-50).
-        assert!((descent_velocity_at(&sim, 750.0) + 25.0).abs() < 1e-12);
+        assert!((descent_velocity_at(&sim, sim.apogee_index(), 750.0) + 25.0).abs() < 1e-12);
         // The pad-relative ascent altitude.
         assert!((altitude_at(&sim, 0.0, 5.0) - 250.0).abs() < 1e-12);
     }

@@ -214,6 +214,18 @@ impl Comparison {
 }
 
 impl SimulatedFlight {
+    /// The index of its highest point (the first of equal ones); 0 for no points.
+    #[must_use]
+    pub fn apogee_index(&self) -> usize {
+        let mut top = 0;
+        for (i, &h) in self.altitude_m.iter().enumerate() {
+            if h > self.altitude_m[top] {
+                top = i;
+            }
+        }
+        top
+    }
+
     fn check(&self) -> Result<(), CompareError> {
         let n = self.time_s.len();
         let fail = |m: String| Err(CompareError::Simulation(m));
@@ -316,12 +328,7 @@ pub fn compare(simulated: &SimulatedFlight, log: &FlightLog) -> Result<Compariso
 }
 
 fn simulated_figures(simulated: &SimulatedFlight, liftoff: f64, pad: f64) -> Figures {
-    let mut top = 0;
-    for (i, &h) in simulated.altitude_m.iter().enumerate() {
-        if h > simulated.altitude_m[top] {
-            top = i;
-        }
-    }
+    let top = simulated.apogee_index();
     let max_v = simulated
         .vertical_velocity_mps
         .iter()
