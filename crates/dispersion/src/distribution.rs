@@ -172,7 +172,7 @@ mod extended_real {
     use serde::{Deserialize, Deserializer, Serializer};
 
     /// The text of a non-finite value.
-    pub(super) fn text(value: f64) -> &'static str {
+    fn text(value: f64) -> &'static str {
         if value.is_nan() {
             "NaN"
         } else if value > 0.0 {
@@ -193,13 +193,13 @@ mod extended_real {
     /// A number or one of the three texts.
     #[derive(Deserialize)]
     #[serde(untagged)]
-    pub(super) enum Repr {
+    enum Repr {
         Number(f64),
         Text(String),
     }
 
     impl Repr {
-        pub(super) fn value<E: serde::de::Error>(self) -> Result<f64, E> {
+        fn value<E: serde::de::Error>(self) -> Result<f64, E> {
             match self {
                 Repr::Number(value) => Ok(value),
                 Repr::Text(text) => match text.as_str() {
@@ -221,32 +221,26 @@ mod extended_real {
 
 /// [`extended_real`] for each component of an array.
 mod extended_reals {
-    use super::extended_real::{Repr, text};
-    use serde::ser::SerializeSeq;
-    use serde::{Deserialize, Deserializer, Serializer};
+    use serde::{Deserialize, Deserializer, Serialize, Serializer};
+
+    /// One component, in [`super::extended_real`]'s form.
+    #[derive(Serialize, Deserialize)]
+    struct Component(#[serde(with = "super::extended_real")] f64);
 
     pub(super) fn serialize<S: Serializer>(
         values: &[f64],
         serializer: S,
     ) -> Result<S::Ok, S::Error> {
-        let mut seq = serializer.serialize_seq(Some(values.len()))?;
-        for value in values {
-            if value.is_finite() {
-                seq.serialize_element(value)?;
-            } else {
-                seq.serialize_element(text(*value))?;
-            }
-        }
-        seq.end()
+        serializer.collect_seq(values.iter().map(|&v| Component(v)))
     }
 
     pub(super) fn deserialize<'de, D: Deserializer<'de>>(
         deserializer: D,
     ) -> Result<Vec<f64>, D::Error> {
-        Vec::<Repr>::deserialize(deserializer)?
+        Ok(Vec::<Component>::deserialize(deserializer)?
             .into_iter()
-            .map(Repr::value)
-            .collect()
+            .map(|c| c.0)
+            .collect())
     }
 }
 
