@@ -29,6 +29,7 @@
 //!    ([`karman_math::geodesy::offset`]) and set against the simulation's landing point.
 
 use crate::log::{EventKind, FlightLog, Gnss};
+use crate::normalise::least_squares_slope;
 use karman_math::constants::PhysicalConstants;
 use karman_math::{geodesy, interpolate_clamped};
 
@@ -380,22 +381,22 @@ fn descent_phases(
             continue;
         };
         let simulated_rate = (band[1] - band[0]) / (t_bottom - t_top);
-        let inside: Vec<(f64, f64)> = log
+        let (times, heights): (Vec<f64>, Vec<f64>) = log
             .samples
             .iter()
             .filter(|s| s.time_s > measured_apogee_time)
             .filter(|s| (band[0]..=band[1]).contains(&s.altitude_agl_m))
             .map(|s| (s.time_s, s.altitude_agl_m))
-            .collect();
-        let span = inside.last().map_or(0.0, |l| l.0) - inside.first().map_or(0.0, |f| f.0);
-        let measured_rate = (inside.len() >= MIN_DESCENT_SAMPLES && span >= MIN_DESCENT_SPAN_S)
-            .then(|| -slope(&inside));
+            .unzip();
+        let span = times.last().copied().unwrap_or(0.0) - times.first().copied().unwrap_or(0.0);
+        let measured_rate = (times.len() >= MIN_DESCENT_SAMPLES && span >= MIN_DESCENT_SPAN_S)
+            .then(|| -least_squares_slope(&times, &heights));
         phases.push(DescentPhase {
             parachute: deployment.name.clone(),
             band_m: band,
             simulated_rate_mps: simulated_rate,
             measured_rate_mps: measured_rate,
-            measured_samples: inside.len(),
+            measured_samples: times.len(),
         });
     }
     phases
@@ -463,16 +464,6 @@ fn landing_points(simulated: &SimulatedFlight, log: &FlightLog) -> Option<Landin
         measured_m: [east, north],
         simulated_m: [landing.east_m, landing.north_m],
     })
-}
-
-/// Least-squares slope of `y` on `x` over `points` (at least two distinct `x`).
-fn slope(points: &[(f64, f64)]) -> f64 {
-    let n = points.len() as f64;
-    let mx = points.iter().map(|p| p.0).sum::<f64>() / n;
-    let my = points.iter().map(|p| p.1).sum::<f64>() / n;
-    let sxy: f64 = points.iter().map(|p| (p.0 - mx) * (p.1 - my)).sum();
-    let sxx: f64 = points.iter().map(|p| (p.0 - mx).powi(2)).sum();
-    sxy / sxx
 }
 
 #[cfg(test)]

@@ -158,18 +158,24 @@ pub(crate) fn derivative(t: &[f64], h: &[f64]) -> Vec<f64> {
                 lo = lo.saturating_sub(1);
             }
         }
-        let count = (hi - lo + 1) as f64;
-        let mean_t = t[lo..=hi].iter().sum::<f64>() / count;
-        let mean_h = h[lo..=hi].iter().sum::<f64>() / count;
-        let mut stt = 0.0;
-        let mut sth = 0.0;
-        for j in lo..=hi {
-            stt += (t[j] - mean_t) * (t[j] - mean_t);
-            sth += (t[j] - mean_t) * (h[j] - mean_h);
-        }
-        out.push(if stt > 0.0 { sth / stt } else { 0.0 });
+        out.push(least_squares_slope(&t[lo..=hi], &h[lo..=hi]));
     }
     out
+}
+
+/// The least-squares slope of `y` on `x` (same lengths, at least one point): `Σ(x − x̄)(y −
+/// ȳ) / Σ(x − x̄)²`, 0 when every `x` is the same.
+pub(crate) fn least_squares_slope(x: &[f64], y: &[f64]) -> f64 {
+    let count = x.len() as f64;
+    let mean_x = x.iter().sum::<f64>() / count;
+    let mean_y = y.iter().sum::<f64>() / count;
+    let mut sxx = 0.0;
+    let mut sxy = 0.0;
+    for (xi, yi) in x.iter().zip(y) {
+        sxx += (xi - mean_x) * (xi - mean_x);
+        sxy += (xi - mean_x) * (yi - mean_y);
+    }
+    if sxx > 0.0 { sxy / sxx } else { 0.0 }
 }
 
 /// The index of the liftoff sample and of the threshold crossing, by the crate's rule, or
