@@ -100,6 +100,20 @@ pub struct ReadOptions {
     pub mapping: Option<ColumnMapping>,
 }
 
+impl ReadOptions {
+    /// The options a user names as text: a format name (`rrc3`, [`Format`]'s names) and a
+    /// column mapping ([`ColumnMapping::parse`]), either absent.
+    ///
+    /// # Errors
+    /// [`FlightLogError`] for an unknown format name or a malformed mapping.
+    pub fn named(format: Option<&str>, mapping: Option<&str>) -> Result<Self, FlightLogError> {
+        Ok(ReadOptions {
+            format: format.map(str::parse::<Format>).transpose()?,
+            mapping: mapping.map(ColumnMapping::parse).transpose()?,
+        })
+    }
+}
+
 /// Reads and normalises the log at `path`, its format detected.
 ///
 /// # Errors

@@ -4,7 +4,7 @@
 
 use std::path::PathBuf;
 
-use karman_flightlog::{ColumnMapping, FlightLog as RustFlightLog, Format, ReadOptions, Sample};
+use karman_flightlog::{FlightLog as RustFlightLog, ReadOptions, Sample};
 use numpy::PyArray1;
 use pyo3::prelude::*;
 
@@ -65,15 +65,7 @@ pub fn read_log(
     format: Option<&str>,
     mapping: Option<&str>,
 ) -> PyResult<FlightLog> {
-    let format = format
-        .map(str::parse::<Format>)
-        .transpose()
-        .map_err(|e| log_error(&e))?;
-    let mapping = mapping
-        .map(ColumnMapping::parse)
-        .transpose()
-        .map_err(|e| log_error(&e))?;
-    let options = ReadOptions { format, mapping };
+    let options = ReadOptions::named(format, mapping).map_err(|e| log_error(&e))?;
     let log = py
         .detach(|| karman_flightlog::read_with(&path, &options))
         .map_err(|e| log_error(&e))?;

@@ -12,9 +12,7 @@
 
 use anyhow::{Context, Result};
 use clap::{Args, Subcommand};
-use karman_flightlog::{
-    ColumnMapping, EventSource, FlightLog, Format, ReadOptions, VelocitySource,
-};
+use karman_flightlog::{EventSource, FlightLog, ReadOptions, VelocitySource};
 use std::io::Write;
 use std::path::PathBuf;
 
@@ -51,17 +49,10 @@ pub struct ReadArgs {
 impl ReadArgs {
     /// The reading options these arguments name.
     pub fn options(&self) -> Result<ReadOptions> {
-        let format = self
-            .format
-            .as_deref()
-            .map(str::parse::<Format>)
-            .transpose()?;
-        let mapping = self
-            .mapping
-            .as_deref()
-            .map(ColumnMapping::parse)
-            .transpose()?;
-        Ok(ReadOptions { format, mapping })
+        Ok(ReadOptions::named(
+            self.format.as_deref(),
+            self.mapping.as_deref(),
+        )?)
     }
 
     /// Reads the log at `path`.
