@@ -62,7 +62,7 @@ pub(crate) fn read(text: &str, file: &str) -> Result<Raw, FlightLogError> {
     let field = |name: &str| {
         table
             .column(name)
-            .and_then(|i| table.rows.first()?.fields.get(i))
+            .and_then(|i| table.first.as_ref()?.fields.get(i))
     };
     let serial = field("serial").unwrap_or("?");
     let flight = field("flight").unwrap_or("?");
@@ -78,10 +78,11 @@ pub(crate) fn read(text: &str, file: &str) -> Result<Raw, FlightLogError> {
         raw.metadata
             .insert("altosui_csv_version".into(), v.to_owned());
     }
-    raw.samples = extract(&table, &columns, &[], &mut raw)?;
+    extract(&table, &columns, &[], &mut raw)?;
     if let (Some(state), Some(time)) = (state, table.column("time")) {
-        let mut last = "";
-        for row in &table.rows {
+        let mut last = String::new();
+        let mut rows = table.rows();
+        while let Some(row) = rows.next()? {
             let (Some(s), Some(t)) = (row.fields.get(state), row.fields.get(time).and_then(number))
             else {
                 continue;
@@ -97,7 +98,7 @@ pub(crate) fn read(text: &str, file: &str) -> Result<Raw, FlightLogError> {
                 if let Some(kind) = kind {
                     raw.device_events.push(DeviceEvent { kind, time: t });
                 }
-                last = s;
+                s.clone_into(&mut last);
             }
         }
     }

@@ -44,12 +44,12 @@ pub(crate) fn read(text: &str, file: &str) -> Result<Raw, FlightLogError> {
         "Baro_Press_(atm)",
         Unit::Atmosphere,
     ));
-    raw.samples = extract(&table, &columns, &[], &mut raw)?;
+    extract(&table, &columns, &[], &mut raw)?;
     if let (Some(y), Some(m), Some(d)) = (
         table.column("Year"),
         table.column("Month"),
         table.column("Day"),
-    ) && let Some(row) = table.rows.first()
+    ) && let Some(row) = &table.first
     {
         let f = |i| row.fields.get(i).unwrap_or("?");
         raw.metadata

@@ -23,16 +23,12 @@ pub(crate) fn read(text: &str, file: &str) -> Result<Raw, FlightLogError> {
         let mut raw = Raw::new(Format::CatsVega, file, AltitudeKind::Pressure);
         if let Some(id) = table.column("id") {
             let first = table
-                .rows
-                .first()
+                .first
+                .as_ref()
                 .and_then(|r| r.fields.get(id))
                 .unwrap_or("")
                 .to_owned();
-            let before = table.rows.len();
-            table
-                .rows
-                .retain(|r| r.fields.get(id).is_none_or(|v| v == first));
-            let other = before - table.rows.len();
+            let other = table.keep_only(id, &first)?;
             if other > 0 {
                 raw.warnings.push(format!(
                     "{other} row(s) of sensors other than {first} not read"
@@ -54,7 +50,7 @@ pub(crate) fn read(text: &str, file: &str) -> Result<Raw, FlightLogError> {
             },
         ];
         columns.extend(opt(&table, Channel::Temperature, "T", Unit::Celsius));
-        raw.samples = extract(&table, &columns, &[], &mut raw)?;
+        extract(&table, &columns, &[], &mut raw)?;
         return Ok(raw);
     }
     let mut raw = Raw::new(Format::CatsVega, file, AltitudeKind::Agl);
@@ -96,6 +92,6 @@ pub(crate) fn read(text: &str, file: &str) -> Result<Raw, FlightLogError> {
             format: Format::CatsVega.name(),
         });
     }
-    raw.samples = extract(&table, &columns, &[], &mut raw)?;
+    extract(&table, &columns, &[], &mut raw)?;
     Ok(raw)
 }

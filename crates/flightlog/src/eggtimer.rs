@@ -30,7 +30,7 @@ pub(crate) fn read(text: &str, file: &str) -> Result<Raw, FlightLogError> {
             NAME,
         )?,
     ];
-    raw.samples = extract(&table, &columns, &[], &mut raw)?;
+    extract(&table, &columns, &[], &mut raw)?;
     for (name, kind) in [
         ("LDA", None),
         ("LowV", None),
@@ -42,11 +42,18 @@ pub(crate) fn read(text: &str, file: &str) -> Result<Raw, FlightLogError> {
         let Some(c) = table.column(name) else {
             continue;
         };
-        let first = table.rows.iter().find_map(|row| {
-            let v = row.fields.get(c).and_then(number)?;
-            let t = row.fields.get(time.index).and_then(number)?;
-            (v.abs() > 0.0).then_some((Unit::Millisecond.to_si(t), Unit::Foot.to_si(v)))
-        });
+        let mut first = None;
+        let mut rows = table.rows();
+        while let Some(row) = rows.next()? {
+            let v = row.fields.get(c).and_then(number);
+            let t = row.fields.get(time.index).and_then(number);
+            if let (Some(v), Some(t)) = (v, t)
+                && v.abs() > 0.0
+            {
+                first = Some((Unit::Millisecond.to_si(t), Unit::Foot.to_si(v)));
+                break;
+            }
+        }
         let Some((t, h)) = first else { continue };
         let key = name.to_ascii_lowercase().replace('-', "_");
         raw.metadata

@@ -225,6 +225,6 @@ pub(crate) fn read(text: &str, file: &str, mapping: &ColumnMapping) -> Result<Ra
         });
     }
     raw.metadata.insert("mapping".into(), mapping.spec.clone());
-    raw.samples = extract(&table, &columns, &[], &mut raw)?;
+    extract(&table, &columns, &[], &mut raw)?;
     Ok(raw)
 }

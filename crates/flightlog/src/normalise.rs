@@ -3,8 +3,8 @@
 //! ground, glitch rows, velocity, liftoff, events.
 
 use crate::error::FlightLogError;
-use crate::log::{Event, EventKind, EventSource, FlightLog, Gnss, Sample, VelocitySource};
-use crate::raw::{AltitudeKind, Raw, RawSample, Tally};
+use crate::log::{Event, EventKind, EventSource, FlightLog, Sample, VelocitySource};
+use crate::raw::{AltitudeKind, Raw, Tally};
 use crate::units::pressure_height;
 use std::cmp::Ordering;
 
@@ -39,28 +39,45 @@ pub const LANDING_HEIGHT_M: f64 = 5.0;
 /// Samples before the climb lower than minus this are reported, m.
 pub const NEGATIVE_REPORT_M: f64 = 10.0;
 
+/// Keeps, in place and in order, the samples (and their lines) that `keep` accepts, given
+/// each sample's line and the last sample kept before it.
+fn retain_after(
+    samples: &mut Vec<Sample>,
+    lines: &mut Vec<usize>,
+    mut keep: impl FnMut(&Sample, usize, Option<&Sample>) -> bool,
+) {
+    let mut kept: usize = 0;
+    for i in 0..samples.len() {
+        let last = kept.checked_sub(1).map(|k| &samples[k]);
+        if keep(&samples[i], lines[i], last) {
+            samples.swap(kept, i);
+            lines.swap(kept, i);
+            kept += 1;
+        }
+    }
+    samples.truncate(kept);
+    lines.truncate(kept);
+}
+
 /// Keeps the samples whose time is later than the last kept one; the others (repeated
 /// times, a clock going back) are dropped and reported.
-fn clock_order(samples: Vec<RawSample>, warnings: &mut Vec<String>) -> Vec<RawSample> {
-    let mut kept: Vec<RawSample> = Vec::with_capacity(samples.len());
+fn clock_order(samples: &mut Vec<Sample>, lines: &mut Vec<usize>, warnings: &mut Vec<String>) {
     let mut repeated = Tally::default();
     let mut backwards = Tally::default();
-    for s in samples {
-        if let Some(last) = kept.last() {
-            match s.time.partial_cmp(&last.time) {
-                Some(Ordering::Greater) => {}
-                Some(Ordering::Equal) => {
-                    repeated.add(s.line);
-                    continue;
-                }
-                _ => {
-                    backwards.add(s.line);
-                    continue;
-                }
+    retain_after(samples, lines, |s, line, last| {
+        let Some(last) = last else { return true };
+        match s.time_s.partial_cmp(&last.time_s) {
+            Some(Ordering::Greater) => true,
+            Some(Ordering::Equal) => {
+                repeated.add(line);
+                false
+            }
+            _ => {
+                backwards.add(line);
+                false
             }
         }
-        kept.push(s);
-    }
+    });
     if repeated.count > 0 {
         warnings.push(format!(
             "{} row(s) repeat the time of the row before and were dropped (first at line {})",
@@ -73,19 +90,18 @@ fn clock_order(samples: Vec<RawSample>, warnings: &mut Vec<String>) -> Vec<RawSa
             backwards.count, backwards.first_line
         ));
     }
-    kept
 }
 
-/// The mean of `value` over the samples in the first [`GROUND_WINDOW_S`].
-fn ground_level(samples: &[RawSample], value: impl Fn(&RawSample) -> f64) -> f64 {
-    let t0 = samples[0].time;
+/// The mean of the raw altitude value over the samples in the first [`GROUND_WINDOW_S`].
+fn ground_level(samples: &[Sample]) -> f64 {
+    let t0 = samples[0].time_s;
     let mut sum = 0.0;
     let mut n = 0.0;
     for s in samples
         .iter()
-        .take_while(|s| s.time - t0 <= GROUND_WINDOW_S)
+        .take_while(|s| s.time_s - t0 <= GROUND_WINDOW_S)
     {
-        sum += value(s);
+        sum += s.altitude_agl_m;
         n += 1.0;
     }
     sum / n
@@ -94,32 +110,27 @@ fn ground_level(samples: &[RawSample], value: impl Fn(&RawSample) -> f64) -> f64
 /// Drops glitch rows: a sample whose height differs from the last kept one by more than
 /// [`GLITCH_SPEED_MPS`]·Δt + [`GLITCH_MARGIN_M`]. After [`GLITCH_RUN`] glitches in a row the
 /// next sample is accepted as a new level (reported).
-fn drop_glitches(
-    samples: Vec<(RawSample, f64)>,
-    warnings: &mut Vec<String>,
-) -> Vec<(RawSample, f64)> {
-    let mut kept: Vec<(RawSample, f64)> = Vec::with_capacity(samples.len());
+fn drop_glitches(samples: &mut Vec<Sample>, lines: &mut Vec<usize>, warnings: &mut Vec<String>) {
     let mut glitches = Tally::default();
     let mut run = 0;
-    for (s, h) in samples {
-        if let Some((last, last_h)) = kept.last() {
-            let dt = s.time - last.time;
-            if (h - last_h).abs() > GLITCH_SPEED_MPS * dt + GLITCH_MARGIN_M {
+    retain_after(samples, lines, |s, line, last| {
+        if let Some(last) = last {
+            let (h, dt) = (s.altitude_agl_m, s.time_s - last.time_s);
+            if (h - last.altitude_agl_m).abs() > GLITCH_SPEED_MPS * dt + GLITCH_MARGIN_M {
                 if run < GLITCH_RUN {
                     run += 1;
-                    glitches.add(s.line);
-                    continue;
+                    glitches.add(line);
+                    return false;
                 }
                 warnings.push(format!(
-                    "line {}: after {GLITCH_RUN} glitch rows the altitude {h:.1} m is taken as \
-                     the new level",
-                    s.line
+                    "line {line}: after {GLITCH_RUN} glitch rows the altitude {h:.1} m is taken \
+                     as the new level"
                 ));
             }
         }
         run = 0;
-        kept.push((s, h));
-    }
+        true
+    });
     if glitches.count > 0 {
         warnings.push(format!(
             "{} glitch row(s) dropped: altitude jumps faster than {GLITCH_SPEED_MPS} m/s from \
@@ -127,7 +138,6 @@ fn drop_glitches(
             glitches.count, glitches.first_line
         ));
     }
-    kept
 }
 
 /// The centred least-squares slope of `h` over `t` at each sample, within
@@ -180,7 +190,7 @@ pub(crate) fn least_squares_slope(x: &[f64], y: &[f64]) -> f64 {
 
 /// The index of the liftoff sample and of the threshold crossing, by the crate's rule, or
 /// `None`.
-fn liftoff(t: &[f64], h: &[f64], accel: &[Option<f64>]) -> Option<(usize, usize)> {
+fn liftoff(t: &[f64], h: &[f64], samples: &[Sample]) -> Option<(usize, usize)> {
     let n = t.len();
     let mut k = 0;
     for i in 0..n {
@@ -194,18 +204,20 @@ fn liftoff(t: &[f64], h: &[f64], accel: &[Option<f64>]) -> Option<(usize, usize)
         if k < n && h[k] > h[i] + RISE_GAIN_M {
             // With an accelerometer: the first sample of the 2 s before the crossing whose
             // acceleration exceeds the pad's by LIFTOFF_ACCELERATION_MPS2.
-            let pad: Vec<f64> = accel
+            let pad: Vec<f64> = samples
                 .iter()
                 .zip(t)
                 .take_while(|(_, ti)| **ti - t[0] <= GROUND_WINDOW_S)
-                .filter_map(|(a, _)| *a)
+                .filter_map(|(s, _)| s.acceleration_mps2)
                 .collect();
             if !pad.is_empty() {
                 let pad = pad.iter().sum::<f64>() / pad.len() as f64;
                 let from = t.partition_point(|&ti| ti < t[i] - BACKOFF_MAX_S);
-                if let Some(j) = (from..=i)
-                    .find(|&j| accel[j].is_some_and(|a| a - pad > LIFTOFF_ACCELERATION_MPS2))
-                {
+                if let Some(j) = (from..=i).find(|&j| {
+                    samples[j]
+                        .acceleration_mps2
+                        .is_some_and(|a| a - pad > LIFTOFF_ACCELERATION_MPS2)
+                }) {
                     return Some((j, i));
                 }
             }
@@ -248,48 +260,36 @@ fn channel_at(channel: &[(f64, f64)], cursor: &mut usize, t: f64) -> Option<f64>
 /// Normalises a raw log by the crate's rules.
 pub(crate) fn normalise(mut raw: Raw) -> Result<FlightLog, FlightLogError> {
     let mut warnings = std::mem::take(&mut raw.warnings);
-    let samples = clock_order(std::mem::take(&mut raw.samples), &mut warnings);
+    let mut samples = std::mem::take(&mut raw.samples);
+    let mut lines = std::mem::take(&mut raw.lines);
+    clock_order(&mut samples, &mut lines, &mut warnings);
     if samples.is_empty() {
         return Err(FlightLogError::NoSamples { file: raw.file });
     }
-    // Height above ground.
-    let heights: Vec<(RawSample, f64)> = match raw.altitude {
-        AltitudeKind::Agl => samples
-            .into_iter()
-            .map(|s| {
-                let h = s.altitude;
-                (s, h)
-            })
-            .collect(),
+    // Height above ground, in place of the raw altitude value.
+    match raw.altitude {
+        AltitudeKind::Agl => {}
         AltitudeKind::Msl => {
-            let ground = ground_level(&samples, |s| s.altitude);
+            let ground = ground_level(&samples);
             raw.metadata
                 .insert("ground_elevation_m".into(), format!("{ground:.2}"));
             raw.reported.ground_elevation_m.get_or_insert(ground);
-            samples
-                .into_iter()
-                .map(|s| {
-                    let h = s.altitude - ground;
-                    (s, h)
-                })
-                .collect()
+            for s in &mut samples {
+                s.altitude_agl_m -= ground;
+            }
         }
         AltitudeKind::Pressure => {
-            let ground = ground_level(&samples, |s| s.altitude);
+            let ground = ground_level(&samples);
             raw.metadata
                 .insert("ground_pressure_pa".into(), format!("{ground:.1}"));
-            samples
-                .into_iter()
-                .map(|s| {
-                    let h = pressure_height(s.altitude, ground);
-                    (s, h)
-                })
-                .collect()
+            for s in &mut samples {
+                s.altitude_agl_m = pressure_height(s.altitude_agl_m, ground);
+            }
         }
-    };
-    let kept = drop_glitches(heights, &mut warnings);
-    let t: Vec<f64> = kept.iter().map(|(s, _)| s.time).collect();
-    let h: Vec<f64> = kept.iter().map(|(_, h)| *h).collect();
+    }
+    drop_glitches(&mut samples, &mut lines, &mut warnings);
+    let t: Vec<f64> = samples.iter().map(|s| s.time_s).collect();
+    let h: Vec<f64> = samples.iter().map(|s| s.altitude_agl_m).collect();
     // Separate acceleration channel, kept in clock order.
     let mut channel: Vec<(f64, f64)> = Vec::with_capacity(raw.acceleration_channel.len());
     let mut channel_dropped = 0;
@@ -306,14 +306,12 @@ pub(crate) fn normalise(mut raw: Raw) -> Result<FlightLog, FlightLogError> {
         ));
     }
     let mut cursor = 0;
-    let accel: Vec<Option<f64>> = kept
-        .iter()
-        .map(|(s, _)| {
-            s.acceleration
-                .or_else(|| channel_at(&channel, &mut cursor, s.time))
-        })
-        .collect();
-    let Some((start, crossing)) = liftoff(&t, &h, &accel) else {
+    for s in &mut samples {
+        if s.acceleration_mps2.is_none() {
+            s.acceleration_mps2 = channel_at(&channel, &mut cursor, s.time_s);
+        }
+    }
+    let Some((start, crossing)) = liftoff(&t, &h, &samples) else {
         return Err(FlightLogError::NoLiftoff {
             file: raw.file,
             threshold_m: LIFTOFF_HEIGHT_M,
@@ -336,38 +334,26 @@ pub(crate) fn normalise(mut raw: Raw) -> Result<FlightLog, FlightLogError> {
             below.len(),
             h[lowest],
             t[lowest] - t_liftoff,
-            kept[lowest].0.line
+            lines[lowest]
         ));
     }
-    // Velocity: the device's where it has one, else the derivative.
-    let has_device_velocity = kept.iter().any(|(s, _)| s.velocity.is_some());
+    drop(lines);
+    // Velocity: the device's where it has one, else the derivative; time from liftoff.
+    let has_device_velocity = samples.iter().any(|s| !s.vertical_velocity_mps.is_nan());
     let slope = derivative(&t, &h);
     let velocity_source = if has_device_velocity {
         VelocitySource::Device
     } else {
         VelocitySource::Derivative
     };
-    let out: Vec<Sample> = kept
-        .iter()
-        .zip(&slope)
-        .zip(&accel)
-        .map(|(((s, height), slope), acceleration)| Sample {
-            time_s: s.time - t_liftoff,
-            altitude_agl_m: *height,
-            vertical_velocity_mps: s.velocity.unwrap_or(*slope),
-            acceleration_mps2: *acceleration,
-            pressure_pa: s.pressure,
-            temperature_k: s.temperature,
-            gnss: match (s.latitude, s.longitude) {
-                (Some(latitude_deg), Some(longitude_deg)) => Some(Gnss {
-                    latitude_deg,
-                    longitude_deg,
-                    altitude_m: s.gnss_altitude,
-                }),
-                _ => None,
-            },
-        })
-        .collect();
+    for (s, slope) in samples.iter_mut().zip(&slope) {
+        s.time_s -= t_liftoff;
+        if s.vertical_velocity_mps.is_nan() {
+            s.vertical_velocity_mps = *slope;
+        }
+    }
+    drop(slope);
+    let out = samples;
     // Events.
     let mut apogee = start;
     for i in start..h.len() {

@@ -138,13 +138,12 @@ pub(crate) fn read_pf2(text: &str, file: &str) -> Result<Raw, FlightLogError> {
             unit,
         });
     }
-    raw.samples = extract(&table, &columns, &[], &mut raw)?;
+    let rows = extract(&table, &columns, &[], &mut raw)?;
     if let Some(n) = raw.metadata.get("numsamps").and_then(|v| number(v))
-        && (n as usize) != table.rows.len()
+        && (n as usize) != rows
     {
         raw.warnings.push(format!(
-            "the header says NumSamps {n}, the file holds {} data rows",
-            table.rows.len()
+            "the header says NumSamps {n}, the file holds {rows} data rows"
         ));
     }
     Ok(raw)
@@ -167,8 +166,8 @@ pub(crate) fn read_text(text: &str, file: &str) -> Result<Raw, FlightLogError> {
     ];
     if let Some(c) = table.column_where(|h| h.starts_with("temp")) {
         let celsius = table
-            .rows
-            .first()
+            .first
+            .as_ref()
             .and_then(|r| r.fields.get(c))
             .is_some_and(|v| v.trim_end().ends_with('C'));
         let unit = if celsius {
@@ -182,6 +181,6 @@ pub(crate) fn read_text(text: &str, file: &str) -> Result<Raw, FlightLogError> {
             unit,
         });
     }
-    raw.samples = extract(&table, &columns, &['F', 'C'], &mut raw)?;
+    extract(&table, &columns, &['F', 'C'], &mut raw)?;
     Ok(raw)
 }

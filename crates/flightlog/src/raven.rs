@@ -86,10 +86,11 @@ pub(crate) fn read(text: &str, file: &str) -> Result<Raw, FlightLogError> {
         raw.metadata
             .insert("unread_columns".into(), unread.join("; "));
     }
-    raw.samples = extract(&table, &columns, &[], &mut raw)?;
+    extract(&table, &columns, &[], &mut raw)?;
     if let Some((t, a)) = accel {
         let mut bad = 0;
-        for row in &table.rows {
+        let mut rows = table.rows();
+        while let Some(row) = rows.next()? {
             match (
                 row.fields.get(t).and_then(number),
                 row.fields.get(a).and_then(number),

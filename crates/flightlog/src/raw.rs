@@ -13,7 +13,7 @@
 
 use crate::error::FlightLogError;
 use crate::format::Format;
-use crate::log::{EventKind, Reported};
+use crate::log::{EventKind, Gnss, Reported, Sample};
 use crate::table::{Table, number};
 use crate::units::Unit;
 use std::collections::BTreeMap;
@@ -25,7 +25,7 @@ const MAX_ALTITUDE: f64 = 2e5;
 /// Largest plausible pressure, Pa.
 const MAX_PRESSURE: f64 = 2e5;
 
-/// What the primary altitude value of a [`RawSample`] is.
+/// What the primary altitude value of a raw sample is.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub(crate) enum AltitudeKind {
     /// Height above ground as the device zeroed it, m.
@@ -74,22 +74,6 @@ pub(crate) struct Column {
     pub unit: Unit,
 }
 
-/// One row of a log on the device's clock, SI units.
-#[derive(Debug, Clone, Default)]
-pub(crate) struct RawSample {
-    pub line: usize,
-    pub time: f64,
-    /// AGL or MSL height (m) or pressure (Pa), as [`Raw::altitude`] says.
-    pub altitude: f64,
-    pub velocity: Option<f64>,
-    pub acceleration: Option<f64>,
-    pub pressure: Option<f64>,
-    pub temperature: Option<f64>,
-    pub latitude: Option<f64>,
-    pub longitude: Option<f64>,
-    pub gnss_altitude: Option<f64>,
-}
-
 /// An event the device itself recorded, on its own clock.
 #[derive(Debug, Clone, Copy)]
 pub(crate) struct DeviceEvent {
@@ -103,7 +87,14 @@ pub(crate) struct Raw {
     pub device: String,
     pub file: String,
     pub altitude: AltitudeKind,
-    pub samples: Vec<RawSample>,
+    /// The rows read, in the record's own [`Sample`] type so that normalisation works in
+    /// place (no second copy of a large log): until then on the device's clock
+    /// (`time_s`), `altitude_agl_m` holding the primary altitude value (AGL or MSL height,
+    /// m, or pressure, Pa, as [`Raw::altitude`] says), `vertical_velocity_mps` the device's
+    /// velocity or NaN where it has none.
+    pub samples: Vec<Sample>,
+    /// The 1-based line of each of `samples`.
+    pub lines: Vec<usize>,
     /// An acceleration channel on its own clock (FIP exports), (device time s, m/s²).
     pub acceleration_channel: Vec<(f64, f64)>,
     pub device_events: Vec<DeviceEvent>,
@@ -120,6 +111,7 @@ impl Raw {
             file: file.to_owned(),
             altitude,
             samples: Vec::new(),
+            lines: Vec::new(),
             acceleration_channel: Vec::new(),
             device_events: Vec::new(),
             metadata: BTreeMap::new(),
@@ -162,16 +154,17 @@ fn value(fields: &csv::StringRecord, column: Column, strip: &[char]) -> Option<f
 
 /// Reads the samples of `table`'s rows through `columns` (which must contain a time and an
 /// altitude column; the altitude column of a barometer-only log is its pressure, kind
-/// [`AltitudeKind::Pressure`]) into `raw`, by the row rules of this module. `strip` lists
-/// trailing characters removed from a field before parsing (StratoLogger's `58.7F`).
-/// Rows whose time field is empty are not samples of this channel group (a FIP channel that
-/// ended): passed over, and counted in a warning but for FIP exports.
+/// [`AltitudeKind::Pressure`]) into `raw.samples` and `raw.lines`, by the row rules of this
+/// module. `strip` lists trailing characters removed from a field before parsing
+/// (StratoLogger's `58.7F`). Rows whose time field is empty are not samples of this channel
+/// group (a FIP channel that ended): passed over, and counted in a warning but for FIP
+/// exports. Returns the number of data rows read.
 pub(crate) fn extract(
-    table: &Table,
+    table: &Table<'_>,
     columns: &[Column],
     strip: &[char],
     raw: &mut Raw,
-) -> Result<Vec<RawSample>, FlightLogError> {
+) -> Result<usize, FlightLogError> {
     let needed = columns.iter().map(|c| c.index + 1).max().unwrap_or(0);
     let time = columns.iter().find(|c| c.channel == Channel::Time).copied();
     let altitude = columns
@@ -184,34 +177,40 @@ pub(crate) fn extract(
             format: raw.format.name(),
         });
     };
-    let mut out = Vec::with_capacity(table.rows.len());
+    let bound = table.row_bound();
+    raw.samples = Vec::with_capacity(bound);
+    raw.lines = Vec::with_capacity(bound);
     let mut bad_rows = Tally::default();
     let mut no_time = Tally::default();
     let mut bad_values: BTreeMap<&'static str, Tally> = BTreeMap::new();
-    let last = table.rows.len().saturating_sub(1);
-    for (i, row) in table.rows.iter().enumerate() {
-        let short = row.fields.len() < needed;
-        if short && i == last {
-            raw.warnings.push(format!(
-                "line {}: truncated final row ({} of {} fields) skipped",
-                row.line,
-                row.fields.len(),
-                needed
-            ));
+    // A short row is an error unless it is the last one: kept here until the next row
+    // (line, fields found, whether its time field is empty).
+    let mut short_row: Option<(usize, usize, bool)> = None;
+    let mut count = 0;
+    let mut rows = table.rows();
+    while let Some(row) = rows.next()? {
+        count += 1;
+        if let Some((line, found, no_time_field)) = short_row.take() {
+            if no_time_field {
+                no_time.add(line);
+            } else {
+                return Err(FlightLogError::TruncatedRow {
+                    file: table.file.clone(),
+                    line,
+                    found,
+                    needed,
+                });
+            }
+        }
+        let no_time_field = row.fields.get(time.index).is_none_or(str::is_empty);
+        if row.fields.len() < needed {
+            short_row = Some((row.line, row.fields.len(), no_time_field));
             continue;
         }
-        if row.fields.get(time.index).is_none_or(str::is_empty) {
+        if no_time_field {
             // No sample of this channel group on this row (a FIP channel that ended).
             no_time.add(row.line);
             continue;
-        }
-        if short {
-            return Err(FlightLogError::TruncatedRow {
-                file: table.file.clone(),
-                line: row.line,
-                found: row.fields.len(),
-                needed,
-            });
         }
         let (Some(t), Some(h)) = (
             value(&row.fields, time, strip),
@@ -220,22 +219,17 @@ pub(crate) fn extract(
             bad_rows.add(row.line);
             continue;
         };
-        let mut sample = RawSample {
-            line: row.line,
-            time: t,
-            altitude: h,
-            ..RawSample::default()
-        };
+        let mut read = Channels::default();
         for c in columns {
             let slot = match c.channel {
                 Channel::Time | Channel::Altitude => continue,
-                Channel::Velocity => &mut sample.velocity,
-                Channel::Acceleration => &mut sample.acceleration,
-                Channel::Pressure => &mut sample.pressure,
-                Channel::Temperature => &mut sample.temperature,
-                Channel::Latitude => &mut sample.latitude,
-                Channel::Longitude => &mut sample.longitude,
-                Channel::GnssAltitude => &mut sample.gnss_altitude,
+                Channel::Velocity => &mut read.velocity,
+                Channel::Acceleration => &mut read.acceleration,
+                Channel::Pressure => &mut read.pressure,
+                Channel::Temperature => &mut read.temperature,
+                Channel::Latitude => &mut read.latitude,
+                Channel::Longitude => &mut read.longitude,
+                Channel::GnssAltitude => &mut read.gnss_altitude,
             };
             *slot = value(&row.fields, *c, strip);
             if slot.is_none() {
@@ -245,7 +239,28 @@ pub(crate) fn extract(
                     .add(row.line);
             }
         }
-        out.push(sample);
+        raw.samples.push(Sample {
+            time_s: t,
+            altitude_agl_m: h,
+            vertical_velocity_mps: read.velocity.unwrap_or(f64::NAN),
+            acceleration_mps2: read.acceleration,
+            pressure_pa: read.pressure,
+            temperature_k: read.temperature,
+            gnss: match (read.latitude, read.longitude) {
+                (Some(latitude_deg), Some(longitude_deg)) => Some(Gnss {
+                    latitude_deg,
+                    longitude_deg,
+                    altitude_m: read.gnss_altitude,
+                }),
+                _ => None,
+            },
+        });
+        raw.lines.push(row.line);
+    }
+    if let Some((line, found, _)) = short_row {
+        raw.warnings.push(format!(
+            "line {line}: truncated final row ({found} of {needed} fields) skipped"
+        ));
     }
     if bad_rows.count > 0 {
         raw.warnings.push(format!(
@@ -267,12 +282,25 @@ pub(crate) fn extract(
             tally.count, tally.first_line
         ));
     }
-    Ok(out)
+    Ok(count)
+}
+
+/// The optional channels of one row as read (each `None` when its column is absent or the
+/// value unreadable).
+#[derive(Default)]
+struct Channels {
+    velocity: Option<f64>,
+    acceleration: Option<f64>,
+    pressure: Option<f64>,
+    temperature: Option<f64>,
+    latitude: Option<f64>,
+    longitude: Option<f64>,
+    gnss_altitude: Option<f64>,
 }
 
 /// A required column of a format, as a [`Column`].
 pub(crate) fn col(
-    table: &Table,
+    table: &Table<'_>,
     channel: Channel,
     name: &str,
     unit: Unit,
@@ -286,7 +314,7 @@ pub(crate) fn col(
 }
 
 /// An optional column of a format, as a [`Column`] when the header has it.
-pub(crate) fn opt(table: &Table, channel: Channel, name: &str, unit: Unit) -> Option<Column> {
+pub(crate) fn opt(table: &Table<'_>, channel: Channel, name: &str, unit: Unit) -> Option<Column> {
     table.column(name).map(|index| Column {
         channel,
         index,

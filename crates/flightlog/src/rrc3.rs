@@ -40,9 +40,10 @@ pub(crate) fn read(text: &str, file: &str) -> Result<Raw, FlightLogError> {
         "temperature",
         Unit::Celsius,
     ));
-    raw.samples = extract(&table, &columns, &[], &mut raw)?;
+    extract(&table, &columns, &[], &mut raw)?;
     if let Some(t) = table.column("time") {
-        for row in &table.rows {
+        let mut rows = table.rows();
+        while let Some(row) = rows.next()? {
             let Some(time) = row.fields.get(t).and_then(number) else {
                 continue;
             };
