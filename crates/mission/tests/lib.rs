@@ -5,6 +5,7 @@ mod broken;
 mod common;
 mod dimensions_flight;
 mod drag_estimate;
+mod examples;
 mod extra_motors;
 mod fingerprint;
 mod fuzz;
