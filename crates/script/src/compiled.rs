@@ -34,7 +34,7 @@ use rhai::{
     AST, ASTFlags, ASTNode, Array, BinaryExpr, Dynamic, Expr, FLOAT, FnCallExpr, INT, Stmt, Token,
 };
 
-use crate::controller::{AirBrakesSetup, EnvironmentQuery, stored_level};
+use crate::arguments::{AirBrakesSetup, EnvironmentQuery, stored_level};
 use crate::sandbox;
 
 /// A generous bound on the operations Rhai counts for one AST node evaluated once.

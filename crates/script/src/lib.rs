@@ -29,6 +29,7 @@
 //! # Ok::<(), karman_script::ScriptError>(())
 //! ```
 
+mod arguments;
 mod compiled;
 pub mod controller;
 pub mod expression;

@@ -8,7 +8,7 @@
 //! comparator) and its limit error is discarded there. What the engine adds: the `motor`
 //! module, and the `AirBrakes` and `Environment` types of the controller's arguments.
 
-use crate::controller::{AirBrakesHandle, EnvironmentHandle};
+use crate::arguments::{AirBrakesHandle, EnvironmentHandle};
 use rhai::module_resolvers::DummyModuleResolver;
 use rhai::packages::{Package, StandardPackage};
 use rhai::{Engine, FLOAT, Module, Shared};
