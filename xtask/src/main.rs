@@ -10,12 +10,15 @@
 //!   `fixtures/openrocket` with OpenRocket's stored flights; `validate --openrocket DIR`: the
 //!   OpenRocket comparison alone, on the designs of another folder (see `validate.rs`).
 //! - `bench [FILTER]`: run the criterion benchmarks and print their medians.
+//! - `docs`: the user guide (mdBook, with figures karman draws from the fixtures and a link
+//!   check) and the API documentation, into `target/docs` (`guide.rs`).
 //! - `tidy`: repository rules that are not compiler checks (the crate layering of
 //!   ARCHITECTURE.md, read from `cargo metadata`; every `docs/physics.md §N.M` citation
 //!   naming a section of that file; no circle between the sibling modules of the folders
 //!   `modules.rs` lists).
 
 mod bench;
+mod guide;
 mod modules;
 mod python;
 mod tidy;
@@ -46,9 +49,10 @@ fn run() -> Result<()> {
             .and_then(|()| modules::check_module_circles(&root)),
         Some("validate") => validate::run(&root, &args[1..]),
         Some("bench") => bench::run(&root, &args[1..]),
+        Some("docs") => guide::build(&root),
         _ => {
             eprintln!(
-                "usage: cargo xtask <ci|validate [--data DIR]|validate --openrocket DIR|bench [FILTER]|tidy>"
+                "usage: cargo xtask <ci|validate [--data DIR]|validate --openrocket DIR|bench [FILTER]|docs|tidy>"
             );
             bail!("unknown or missing command {:?}", args.first())
         }
@@ -160,17 +164,8 @@ fn ci(root: &Path) -> Result<()> {
                 modules::check_module_circles(root)
             }),
         ),
-        // The API documentation builds without broken links.
-        (
-            "docs",
-            Box::new(|| {
-                cargo_with(
-                    root,
-                    &["doc", "--workspace", "--no-deps"],
-                    &[("RUSTDOCFLAGS", "-D warnings")],
-                )
-            }),
-        ),
+        // The user guide and the API documentation build without broken links.
+        ("docs", Box::new(|| guide::build(root))),
         // The network feature (`fetch`, on by default in the binary, so the workspace build
         // compiles and tests it) is tested against loopback servers only.
         (
