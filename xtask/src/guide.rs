@@ -35,6 +35,18 @@ const FIGURES: &[(&str, &[&str])] = &[
         ],
     ),
     (
+        "dispersion",
+        &[
+            "montecarlo",
+            "fixtures/example.toml",
+            "--samples",
+            "100",
+            "--quiet",
+            "--out",
+            "{out}",
+        ],
+    ),
+    (
         "after-the-flight",
         &[
             "compare",

@@ -8,7 +8,9 @@
 //!   must be a line of its standard output or error, in order (`...` stands for lines left
 //!   out). The command must succeed, unless the block is ` ```console,exit=N `.
 //! - A ` ```toml,file=NAME ` block is written to `NAME` in the working folder before the
-//!   commands after it run; any other ` ```toml ` block is a fragment and must parse as TOML.
+//!   commands after it run (` ```toml,file=NAME,append ` adds it to the end of the file, so
+//!   that a chapter builds a mission part by part); any other ` ```toml ` block is a fragment
+//!   and must parse as TOML.
 //! - A ` ```sh ` block is not run: it may hold only commands the test cannot run here (`cargo`,
 //!   `pip`, `git`, `python3 -m venv`, `source`), so no `karman` command hides in one.
 //!
@@ -167,9 +169,22 @@ fn check_chapter(path: &Path) {
             }
             "toml" => {
                 let body = block.lines.join("\n");
+                let append = block.info.split(',').any(|w| w.trim() == "append");
                 match attribute("file") {
-                    Some(file) => std::fs::write(dir.path().join(&file), body + "\n")
-                        .unwrap_or_else(|e| panic!("{name}:{}: {file}: {e}", block.line)),
+                    Some(file) => {
+                        let path = dir.path().join(&file);
+                        let mut text = if append {
+                            std::fs::read_to_string(&path).unwrap_or_else(|e| {
+                                panic!("{name}:{}: append to {file}: {e}", block.line)
+                            })
+                        } else {
+                            String::new()
+                        };
+                        text.push_str(&body);
+                        text.push('\n');
+                        std::fs::write(&path, text)
+                            .unwrap_or_else(|e| panic!("{name}:{}: {file}: {e}", block.line));
+                    }
                     None => {
                         if let Err(e) = body.parse::<toml::Table>() {
                             panic!(
