@@ -13,6 +13,8 @@
 //!   and must parse as TOML.
 //! - A ` ```sh ` block is not run: it may hold only commands the test cannot run here (`cargo`,
 //!   `pip`, `git`, `python3 -m venv`, `source`), so no `karman` command hides in one.
+//! - A ` ```python ` block is run by the Python package's tests
+//!   (`crates/python/tests/test_guide.py`), where its `assert`s state the figures.
 //!
 //! Each chapter has a working folder of its own, holding a link `fixtures` to the repository's
 //! fixtures: the guide's paths are the repository's.
