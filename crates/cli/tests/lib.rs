@@ -5,6 +5,7 @@ mod common;
 mod compare;
 mod corpus;
 mod fit;
+mod hostile;
 mod import;
 mod inspect;
 mod log;
