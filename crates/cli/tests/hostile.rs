@@ -57,18 +57,26 @@ fn tail(text: &str) -> &str {
     &text[start..]
 }
 
+/// A command running `program` with its address space limited to [`MEMORY_LIMIT_KIB`]
+/// (through the shell's `ulimit -v`, then `exec`: the child is the program itself).
+fn limited(program: &str) -> Command {
+    let mut command = Command::new("/bin/sh");
+    command
+        .arg("-c")
+        .arg(format!(
+            "ulimit -v {MEMORY_LIMIT_KIB} && exec \"$0\" \"$@\""
+        ))
+        .arg(program);
+    command
+}
+
 /// Runs the binary with `args` in `dir`, bounded in time and memory.
 fn bounded(args: &[String], dir: &Path) -> Outcome {
     static RUNS: AtomicUsize = AtomicUsize::new(0);
     let run = RUNS.fetch_add(1, Ordering::Relaxed);
     let err_path = dir.join(format!(".stderr-{}-{run}", std::process::id()));
     let err_file = std::fs::File::create(&err_path).expect("stderr file");
-    let mut child = Command::new("/bin/sh")
-        .arg("-c")
-        .arg(format!(
-            "ulimit -v {MEMORY_LIMIT_KIB} && exec \"$0\" \"$@\""
-        ))
-        .arg(env!("CARGO_BIN_EXE_karman"))
+    let mut child = limited(env!("CARGO_BIN_EXE_karman"))
         .args(args)
         .current_dir(dir)
         .stdin(Stdio::null())
@@ -394,8 +402,8 @@ fn hostile_study_folders() {
     assert!(failures.is_empty(), "{}", failures.join("\n"));
 }
 
-/// The runner itself: a hang is killed and reported, a crash is told from a refusal, and the
-/// memory bound holds (a run that maps more than the bound fails).
+/// The runner itself: a hang and a crash are told from a refusal, the memory bound is set
+/// on the child, and a run under it succeeds (it leaves room for the binary and its threads).
 #[test]
 fn the_bounds_are_enforced() {
     let dir = fresh("bounds");
@@ -420,4 +428,13 @@ fn the_bounds_are_enforced() {
     // `--version` runs within the bounds: the limit leaves room for the binary itself.
     let outcome = bounded(&["--version".to_owned()], &dir);
     assert_eq!(outcome.code, Some(0), "{}", outcome.stderr);
+    // The limit is the child's own: a shell started the same way reports it.
+    let shown = limited("/bin/sh")
+        .args(["-c", "ulimit -v"])
+        .output()
+        .expect("a shell");
+    assert_eq!(
+        String::from_utf8_lossy(&shown.stdout).trim(),
+        MEMORY_LIMIT_KIB.to_string()
+    );
 }
