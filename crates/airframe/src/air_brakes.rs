@@ -82,7 +82,7 @@ impl AirBrakes {
                         AirframeError::Table {
                             component: spec.name.clone(),
                             quantity: "drag_coefficient_curve",
-                            source,
+                            error: source,
                         }
                     })?,
                 )

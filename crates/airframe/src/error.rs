@@ -71,15 +71,15 @@ pub enum AirframeError {
         got: usize,
     },
     /// A table derived from the inputs could not be built.
-    #[error("{component}: cannot tabulate {quantity}: {source}")]
+    #[error("{component}: cannot tabulate {quantity}: {error}")]
     Table {
         /// Component the table belongs to.
         component: String,
         /// The tabulated quantity.
         quantity: &'static str,
-        /// The underlying table error.
-        #[source]
-        source: MathError,
+        /// The underlying table error (in the message, not a source of its own: a chain
+        /// printed whole would say it twice).
+        error: MathError,
     },
 }
 

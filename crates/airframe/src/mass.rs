@@ -152,7 +152,7 @@ impl MassModel {
                     .map_err(|source| AirframeError::Table {
                         component: "rocket".to_owned(),
                         quantity,
-                        source,
+                        error: source,
                     })
             };
             let nodes = || masses.iter().copied().zip(positions.iter().copied());

@@ -249,7 +249,7 @@ impl Rocket {
             .map_err(|source| AirframeError::Table {
                 component: C.to_owned(),
                 quantity: "static margin",
-                source,
+                error: source,
             })?;
             rocket.static_margin = Some(table);
         }

@@ -26,6 +26,20 @@ pub enum AtmosError {
         /// What was empty.
         what: String,
     },
+    /// A pressure-level profile with a single usable level: its pressure, temperature and
+    /// wind would be one constant value at every height.
+    #[error(
+        "{source_name}: {what}: only the {level_hpa} hPa level has temperature, height and \
+         wind; a profile needs at least two levels"
+    )]
+    OneLevel {
+        /// File or description of the data.
+        source_name: String,
+        /// Which profile (member and hour).
+        what: String,
+        /// The one level, hPa.
+        level_hpa: f64,
+    },
     /// A line of a text table (custom profile or sounding) could not be parsed.
     #[error("{source_name}, line {line}: {message}: `{text}`")]
     Parse {
@@ -178,11 +192,7 @@ pub enum AtmosError {
     },
 }
 
-/// Truncates user text quoted in an error message to 80 characters.
+/// User text quoted in an error message, cut to 80 characters ([`karman_math::text`]).
 pub(crate) fn snippet(text: &str) -> String {
-    let t = text.trim_end();
-    match t.char_indices().nth(80) {
-        Some((i, _)) => format!("{}…", &t[..i]),
-        None => t.to_string(),
-    }
+    karman_math::text::shorten(text, 80).into_owned()
 }

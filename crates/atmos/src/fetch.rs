@@ -209,7 +209,7 @@ impl Fetcher {
             .build()
             .map(|r| r.url().to_string())
             .unwrap_or_else(|_| url.clone());
-        let shown = shorten(&full, REQUEST_SHOWN);
+        let shown = karman_math::text::shorten(&full, REQUEST_SHOWN).into_owned();
         let fail = |message: String| AtmosError::Download {
             service: service.title().into(),
             request: shown.clone(),
@@ -417,14 +417,6 @@ fn reason(body: &[u8]) -> Option<String> {
 /// How much of a request's address an error message shows: an Open-Meteo query naming every
 /// pressure level runs to kilobytes, and the message is one line a person reads.
 const REQUEST_SHOWN: usize = 240;
-
-/// `text` cut to `limit` characters, an ellipsis marking the cut.
-fn shorten(text: &str, limit: usize) -> String {
-    match text.char_indices().nth(limit) {
-        Some((at, _)) => format!("{}…", &text[..at]),
-        None => text.to_owned(),
-    }
-}
 
 /// The causes of a transport error, innermost last, without the top error's own text
 /// (reqwest's names the address, which the message gives once, after the cause); the top

@@ -182,7 +182,8 @@ impl OpenMeteo {
     ///
     /// # Errors
     /// [`AtmosError::DateOutsideFile`], [`AtmosError::NoSuchMember`], and
-    /// [`AtmosError::Empty`] when no level has all four quantities at that hour.
+    /// [`AtmosError::Empty`] when no level has all four quantities at that hour,
+    /// [`AtmosError::OneLevel`] when only one has.
     pub fn profile(
         &self,
         unix_time: f64,
@@ -237,6 +238,15 @@ impl OpenMeteo {
                 ),
             });
         }
+        // One level gives constant profiles (pressure and density the same at every height):
+        // refused, as a flight in them ends nowhere sensible.
+        if let [pressure] = out.pressure_pa[..] {
+            return Err(AtmosError::OneLevel {
+                source_name: self.name.clone(),
+                what: format!("member {member} at {}", iso8601(self.times[index])),
+                level_hpa: pressure / 100.0,
+            });
+        }
         Ok(out)
     }
 
@@ -289,7 +299,9 @@ mod tests {
              {{\"temperature_1000hPa\": \"°F\", \"wind_speed_1000hPa\": \"kn\"}}, \"hourly\": \
              {{\"time\": [\"2024-06-01T01:00\", \"2024-06-01T02:00\"], \
              \"temperature_1000hPa\": [32, 50], \"geopotential_height_1000hPa\": [100, 110], \
-             \"wind_speed_1000hPa\": [10, 20], \"wind_direction_1000hPa\": [90, 0]{extra}}}}}"
+             \"wind_speed_1000hPa\": [10, 20], \"wind_direction_1000hPa\": [90, 0], \
+             \"temperature_850hPa\": [20, 30], \"geopotential_height_850hPa\": [1500, 1510], \
+             \"wind_speed_850hPa\": [10, 20], \"wind_direction_850hPa\": [90, 0]{extra}}}}}"
         )
     }
 
@@ -312,6 +324,21 @@ mod tests {
         assert!(
             (tie.temperature_k[0] - 273.15).abs() < 1e-9,
             "a tie takes the earlier"
+        );
+    }
+
+    #[test]
+    fn a_single_level_is_refused_with_its_file_and_level() {
+        let single = response("").replace("_850hPa\"", "_850hPa_member01\"");
+        let om = OpenMeteo::parse(single.as_bytes(), "om.json").expect("parses");
+        let e = om
+            .profile(om.time_span().0, None, 6.371e6)
+            .expect_err("one level")
+            .to_string();
+        assert_eq!(
+            e,
+            "om.json: member 0 at 2024-06-01T00:00:00Z: only the 1000 hPa level has \
+             temperature, height and wind; a profile needs at least two levels"
         );
     }
 

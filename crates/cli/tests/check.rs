@@ -146,3 +146,73 @@ fn check_warns_on_implausible_sizes_and_overhanging_fins() {
         "{text}"
     );
 }
+
+/// The air-brakes example with its controller replaced by one whose body is `body`.
+fn air_brakes_with(name: &str, body: &str) -> (String, Vec<String>) {
+    let script = scratch(
+        &format!("check/{name}.rhai"),
+        format!(
+            "fn controller_function(time, sampling_rate, state, state_history, \
+             observed_variables, air_brakes, sensors, environment) {{\n    {body}\n}}\n"
+        )
+        .as_bytes(),
+    );
+    let mission = Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("../../fixtures/airbrakes/calisto_docs.toml")
+        .display()
+        .to_string();
+    let set = format!(
+        "rocket.air_brakes.controller=\"{}\"",
+        script.display().to_string().replace('\\', "\\\\")
+    );
+    (mission, vec!["--set".to_owned(), set])
+}
+
+/// `check` makes the controller's first call as the flight makes it: a run-time error of that
+/// call (a method of a number, an air-brake property that does not exist, a string written
+/// to the level, a sandbox limit) fails `check` with the flight's message, located at the
+/// script's line; controllers the flight accepts still check.
+#[test]
+fn check_calls_the_controller_once() {
+    for (name, body, line) in [
+        ("method", "time.foo();", ":2:"),
+        ("property", "let x = air_brakes.nonexistent;", ":2:"),
+        (
+            "string level",
+            "air_brakes.deployment_level = \"open\";",
+            ":2:",
+        ),
+        ("environment", "let x = environment.nothing(1.0);", ":2:"),
+        ("endless", "loop { }", ":1:1:"),
+    ] {
+        let (mission, set) = air_brakes_with(name, body);
+        let mut args = vec!["check", mission.as_str()];
+        args.extend(set.iter().map(String::as_str));
+        let text = failure(&args);
+        assert!(
+            text.contains(&format!("{name}.rhai{line}"))
+                && text.contains("`rocket.air_brakes.controller`: the flight fails")
+                && !text.contains("cannot build the model")
+                && !text.contains("(line"),
+            "{name}: {text}"
+        );
+        args[0] = "simulate";
+        let flown = failure(&args);
+        assert_eq!(
+            flown.lines().last(),
+            text.lines().last(),
+            "{name}: check and the flight fail alike"
+        );
+    }
+    for (name, body) in [
+        ("returns a string", "\"hello\""),
+        ("NaN level", "air_brakes.deployment_level = 0.0 / 0.0;"),
+        ("late error", "if time > 2.0 { time.foo(); }"),
+    ] {
+        let (mission, set) = air_brakes_with(name, body);
+        let mut args = vec!["check", mission.as_str()];
+        args.extend(set.iter().map(String::as_str));
+        let output = karman(&args);
+        assert_eq!(output.status.code(), Some(0), "{name}: {}", stderr(&output));
+    }
+}

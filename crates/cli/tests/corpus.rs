@@ -213,13 +213,13 @@ const REJECTED: &[(&str, &[&str], &str)] = &[
     (
         "motor too weak",
         &["motor.reshape_thrust_curve=[2.75, 40]"],
-        "`motor.thrust`: cannot build the model: the rocket is stuck on the rail: its thrust \
+        "`motor.reshape_thrust_curve`: cannot build the model: the rocket is stuck on the rail: its thrust \
          never exceeds its weight",
     ),
     (
         "rocket creeps up the rail",
         &["motor.reshape_thrust_curve=[0.05, 15]"],
-        "`motor.thrust`: cannot build the model: the rocket is stuck on the rail: at burn-out",
+        "`motor.reshape_thrust_curve`: cannot build the model: the rocket is stuck on the rail: at burn-out",
     ),
     (
         "burn time outside the data",

@@ -6,6 +6,7 @@ mod compare;
 mod corpus;
 mod fit;
 mod guide;
+mod hostile;
 mod import;
 mod inspect;
 mod log;

@@ -579,3 +579,65 @@ fn weather_heights_that_fold_back_are_a_warning() {
         );
     }
 }
+
+/// An Open-Meteo file with one usable pressure level (every height the same pressure and
+/// temperature) fails `check` as it fails the flight, naming the file and the level; with two
+/// levels it checks and flies.
+#[test]
+fn a_single_level_open_meteo_file_fails_check() {
+    for (name, kept, refused) in [
+        ("one-level", &["850hPa"][..], true),
+        ("two-levels", &["850hPa", "700hPa"][..], false),
+    ] {
+        let mut json: serde_json::Value =
+            serde_json::from_slice(&open_meteo(1)).expect("the answer is JSON");
+        let hourly = json["hourly"].as_object_mut().expect("hourly");
+        hourly.retain(|key, _| key == "time" || kept.iter().any(|l| key.ends_with(l)));
+        let m = mission(name, "model = \"open_meteo\"\nfile = \"levels.json\"");
+        let file = m.with_file_name("levels.json");
+        std::fs::write(&file, json.to_string()).expect("weather file");
+        let check = karman(&["check", text(&m)]);
+        let fly = karman(&["simulate", text(&m)]);
+        if refused {
+            let message = stderr(&check);
+            assert_eq!(check.status.code(), Some(1), "{message}");
+            assert!(
+                message.contains("levels.json")
+                    && message.contains("`environment.atmosphere")
+                    && message.contains("only the 850 hPa level"),
+                "{message}"
+            );
+            assert_eq!(fly.status.code(), Some(1));
+            assert_eq!(stderr(&fly), message, "check and the flight fail alike");
+        } else {
+            ok(&check);
+            ok(&fly);
+        }
+    }
+}
+
+/// A write error on stdout is an error (exit 1), never exit 0 or a panic: `--help`,
+/// `--version` and a command's report into a full device.
+#[cfg(target_os = "linux")]
+#[test]
+fn writing_into_a_full_device_fails() {
+    let example = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../fixtures/example.toml");
+    for args in [
+        vec!["--help"],
+        vec!["--version"],
+        vec!["check", text(&example)],
+    ] {
+        let full = std::fs::OpenOptions::new()
+            .write(true)
+            .open("/dev/full")
+            .expect("/dev/full");
+        let output = Command::new(env!("CARGO_BIN_EXE_karman"))
+            .args(&args)
+            .stdout(full)
+            .output()
+            .expect("runs");
+        let message = stderr(&output);
+        assert_eq!(output.status.code(), Some(1), "{args:?}: {message}");
+        assert!(!message.contains("panicked"), "{message}");
+    }
+}

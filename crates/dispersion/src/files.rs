@@ -41,6 +41,23 @@ pub(crate) struct Scan {
     pub ends: Vec<(u64, u64, String)>,
 }
 
+/// Why a first line that is not this study's header is refused: a byte-order mark or
+/// Windows line endings (an editor or a copy rewrote the file; karman writes neither) are
+/// said as such, anything else is another study's (or no) header.
+fn foreign_header(line: &[u8]) -> String {
+    if line.starts_with("\u{feff}".as_bytes()) {
+        "the file starts with a byte-order mark (U+FEFF), which karman never writes: an \
+         editor rewrote it; remove the mark to resume"
+            .to_owned()
+    } else if line.ends_with(b"\r\n") {
+        "the file has Windows line endings (CRLF), which karman never writes: an editor or a \
+         copy rewrote it; convert it back to LF line endings to resume"
+            .to_owned()
+    } else {
+        "not the header of this study".to_owned()
+    }
+}
+
 /// Scans `samples.csv` of `record`: the header must be the study's and every complete row
 /// must be the next sample of the shard with the inputs the study draws for it and a digest
 /// that is the digest of its cells keyed by the study's fingerprint
@@ -79,7 +96,7 @@ pub(crate) fn scan(path: &Path, record: &Record) -> Result<Scan, DispersionError
         if n == 0 || buffer.last() != Some(&b'\n') {
             // End of file, or a partial last line.
             if !scan.has_header && !header.as_bytes().starts_with(&buffer) {
-                return Err(corrupt(1, "not the header of this study".to_owned()));
+                return Err(corrupt(1, foreign_header(&buffer)));
             }
             return Ok(scan);
         }
@@ -88,7 +105,7 @@ pub(crate) fn scan(path: &Path, record: &Record) -> Result<Scan, DispersionError
             .map_err(|_| corrupt(line_number, "not UTF-8 text".to_owned()))?;
         if !scan.has_header {
             if text != header {
-                return Err(corrupt(1, "not the header of this study".to_owned()));
+                return Err(corrupt(1, foreign_header(&buffer)));
             }
             scan.has_header = true;
         } else {
@@ -403,6 +420,15 @@ pub(crate) fn lock(dir: &Path, create: bool) -> Result<DirLock, DispersionError>
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn a_rewritten_header_says_how_it_was_rewritten() {
+        let bom = foreign_header("\u{feff}index,status\n".as_bytes());
+        assert!(bom.contains("byte-order mark"), "{bom}");
+        let crlf = foreign_header(b"index,status\r\n");
+        assert!(crlf.contains("Windows line endings (CRLF)"), "{crlf}");
+        assert_eq!(foreign_header(b"a,b\n"), "not the header of this study");
+    }
 
     #[test]
     fn temporary_files_are_recognised() {

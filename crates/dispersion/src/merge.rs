@@ -17,6 +17,18 @@ use std::path::{Path, PathBuf};
 /// being written (its lock held) and an `out` another run writes are refused.
 pub fn merge(out: &Path, dirs: &[PathBuf]) -> Result<Summary, DispersionError> {
     let fail = |reason: String| Err(DispersionError::Merge { reason });
+    // A mistyped shard is said to be missing as a folder, not as the study.json it lacks.
+    for dir in dirs {
+        if !dir.exists() {
+            return fail(format!("{}: the folder does not exist", dir.display()));
+        }
+        if !dir.is_dir() {
+            return fail(format!(
+                "{}: not a folder (a shard's output directory, `montecarlo --out DIR`)",
+                dir.display()
+            ));
+        }
+    }
     // Each shard directory locked once (one given twice is reported below).
     let mut locks = Vec::with_capacity(dirs.len());
     let mut locked: Vec<PathBuf> = Vec::with_capacity(dirs.len());

@@ -129,6 +129,21 @@ fn three_shards_merge_into_a_single_run() {
     let mixed = [foreign, dirs[0].clone(), dirs[1].clone()];
     let error = merge(&tmp.path().join("mixed"), &mixed).expect_err("different studies");
     assert!(error.to_string().contains("seed"), "{error}");
+
+    // A shard folder that does not exist, or is a file, is said to be so (not a missing
+    // study.json), and nothing is created for it.
+    let typo = tmp.path().join("shard-typo");
+    let error = merge(&tmp.path().join("typo"), &[typo.clone(), dirs[1].clone()])
+        .expect_err("no such folder");
+    let text = error.to_string();
+    assert!(
+        text.contains("shard-typo") && text.contains("the folder does not exist"),
+        "{text}"
+    );
+    assert!(!typo.exists());
+    let file = dirs[0].join("samples.csv");
+    let error = merge(&tmp.path().join("file"), &[file]).expect_err("a file");
+    assert!(error.to_string().contains("not a folder"), "{error}");
 }
 
 #[test]

@@ -190,7 +190,7 @@ struct Rows {
 }
 
 fn quote(text: &str) -> String {
-    text.chars().take(QUOTE_CHARS).collect()
+    crate::text::shorten(text, QUOTE_CHARS).into_owned()
 }
 
 /// Rows of numbers; `width` fixes the number of fields (else the first data row does). Work

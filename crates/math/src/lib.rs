@@ -24,6 +24,7 @@
 //!   the Delaunay triangulation and a thin-plate spline outside the hull (RocketPy's linear
 //!   two-variable `Function`, used for fluid densities).
 //! - [`geodesy`]: latitude/longitude of an east/north offset (great-circle destination).
+//! - [`text`]: user text and numbers as error messages quote them (cut to one line).
 //! - [`csv`]: numeric columns and `[x, y]` curves from text files, with errors that name the
 //!   file, line, column and text ([`CsvError`]).
 //!
@@ -62,6 +63,7 @@ pub mod geodesy;
 mod grid;
 pub mod quadrature;
 mod table;
+pub mod text;
 mod triangulated;
 
 pub use constants::{PhysicalConstants, Units};

@@ -47,7 +47,7 @@ pub enum ProblemKind {
         value: f64,
     },
     /// A number is outside its valid range.
-    #[error("{value} is out of range: {expected}")]
+    #[error("{} is out of range: {expected}", karman_math::text::number(*value))]
     OutOfRange {
         /// The value.
         value: f64,
@@ -212,7 +212,7 @@ pub enum MissionError {
     },
     /// A model could not be built from a section of the mission (e.g. a thrust file that
     /// fails to parse); the source is the model crate's error.
-    #[error("{}", ModelHeading { file, location: location.as_ref(), section })]
+    #[error("{}", Heading { file, location: location.as_ref(), section, what: "cannot build the model" })]
     Model {
         /// The mission file.
         file: PathBuf,
@@ -221,6 +221,20 @@ pub enum MissionError {
         /// The section or key, e.g. `motor` or `rocket.surfaces.fins`.
         section: String,
         /// The model crate's error.
+        source: Box<dyn std::error::Error + Send + Sync>,
+    },
+    /// The models were built and the flight failed while it flew: the integration (a
+    /// non-finite state, a stiff model) or a run-time error of a controller script; the
+    /// source says what and when.
+    #[error("{}", Heading { file, location: location.as_ref(), section, what: "the flight fails" })]
+    Flight {
+        /// The mission file.
+        file: PathBuf,
+        /// Where the key `section` was written, when it was.
+        location: Option<Location>,
+        /// The section or key, e.g. `flight` or `rocket.air_brakes.controller`.
+        section: String,
+        /// The engine's or the script's error.
         source: Box<dyn std::error::Error + Send + Sync>,
     },
     /// A curve of the mission could not be turned into a table.
@@ -247,6 +261,17 @@ impl MissionError {
                 section,
                 source,
             } if roots.iter().any(|root| section.starts_with(root)) => MissionError::Model {
+                file,
+                location,
+                section: format!("{prefix}{section}"),
+                source,
+            },
+            MissionError::Flight {
+                file,
+                location,
+                section,
+                source,
+            } if roots.iter().any(|root| section.starts_with(root)) => MissionError::Flight {
                 file,
                 location,
                 section: format!("{prefix}{section}"),
@@ -289,26 +314,42 @@ pub enum OverrideError {
     },
 }
 
-/// Formats the heading of [`MissionError::Model`]: `file:line:column: `key`: cannot build
-/// the model`, or `--set PATH=VALUE: ...` for a key given on the command line.
-struct ModelHeading<'a> {
+/// A `--set PATH=VALUE` argument as a message echoes it: the path whole, the value cut to
+/// [`karman_math::text::SHOWN_CHARS`] characters (a 100,000-digit number is not repeated).
+fn shown_override(text: &str) -> String {
+    match text.split_once('=') {
+        Some((path, value)) => format!("{path}={}", karman_math::text::value(value)),
+        None => karman_math::text::value(text).into_owned(),
+    }
+}
+
+/// Formats the heading of [`MissionError::Model`] and [`MissionError::Flight`]:
+/// `file:line:column: `key`: WHAT` (`cannot build the model`, `the flight fails`), or
+/// `--set PATH=VALUE: ...` for a key given on the command line.
+struct Heading<'a> {
     file: &'a PathBuf,
     location: Option<&'a Location>,
     section: &'a str,
+    what: &'a str,
 }
 
-impl fmt::Display for ModelHeading<'_> {
+impl fmt::Display for Heading<'_> {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         match self.location {
             Some(Location::File { line, column }) => {
                 write!(f, "{}:{line}:{column}: ", self.file.display())?;
             }
             Some(Location::Override { text }) => {
-                write!(f, "{}: --set {text}: ", self.file.display())?;
+                write!(
+                    f,
+                    "{}: --set {}: ",
+                    self.file.display(),
+                    shown_override(text)
+                )?;
             }
             None => write!(f, "{}: ", self.file.display())?,
         }
-        write!(f, "`{}`: cannot build the model", self.section)
+        write!(f, "`{}`: {}", self.section, self.what)
     }
 }
 
@@ -356,7 +397,7 @@ impl fmt::Display for DisplayProblem<'_> {
             Location::File { line, column } => {
                 write!(f, "{}:{line}:{column}: ", self.file.display())?;
             }
-            Location::Override { text } => write!(f, "--set {text}: ")?,
+            Location::Override { text } => write!(f, "--set {}: ", shown_override(text))?,
         }
         if !self.problem.key.is_empty() {
             write!(f, "`{}`: ", self.problem.key)?;

@@ -102,6 +102,21 @@ impl Mission {
         }
     }
 
+    /// A [`MissionError::Flight`] at `section` (located where the mission wrote that key):
+    /// the models were built and the flight failed as it flew.
+    pub fn flight_error(
+        &self,
+        section: &str,
+        source: impl Into<Box<dyn std::error::Error + Send + Sync>>,
+    ) -> MissionError {
+        MissionError::Flight {
+            file: self.path.clone(),
+            location: self.keys.locate(section).cloned(),
+            section: section.to_owned(),
+            source: source.into(),
+        }
+    }
+
     /// A part of this mission flown or built as a mission of its own: `spec` (this mission's
     /// with the part's tables moved to the top), its keys located where the part wrote them,
     /// so that `prefix` + a key under one of `roots` (`stages.0.` + `rocket.mass`) is found

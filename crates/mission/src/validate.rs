@@ -27,8 +27,21 @@ const MAX_SAMPLING_RATE: f64 = 10_000.0;
 /// equations stiff (at 10¹² 1/s the integrator's step limit ends the flight).
 const MAX_WEATHERCOCK_COEFF: f64 = 1000.0;
 
+/// Most fins (or tube fins) of one set: far more than any rocket carries; at 10⁹ the
+/// interference factors make the flight too stiff to integrate.
+const MAX_FINS: u32 = 1000;
+const FIN_COUNT: &str = "needs 1 to 1000 fins";
+const TUBE_COUNT: &str = "needs 1 to 1000 tubes";
+
+/// Longest launch rail, m: a kilometre, far beyond any rail or tower.
+const MAX_RAIL_LENGTH: f64 = 1000.0;
+
+/// Range of the launch elevation, m: from below the Dead Sea shore to the Kármán line (a
+/// launch from 10¹² m ends the flight in the integrator's step limit).
+const ELEVATION_RANGE: (f64, f64) = (-1000.0, 100_000.0);
+
 /// Longest flight time, s (a day; a descent under a drogue from 100 km takes under an hour).
-const MAX_FLIGHT_TIME: f64 = 86_400.0;
+pub(crate) const MAX_FLIGHT_TIME: f64 = 86_400.0;
 
 /// Range of the integrator's relative tolerance: below 1e-12 round-off dominates the error
 /// estimate; above 1e-2 the steps no longer resolve the flight (at 1 the step control accepts
@@ -413,6 +426,12 @@ fn environment(c: &mut Checker<'_>, spec: &MissionSpec) {
         env.latitude_deg,
         (-90.0..=90.0).contains(&env.latitude_deg),
         "must be within [-90, 90] deg",
+    );
+    c.range(
+        "environment.elevation",
+        env.elevation,
+        (ELEVATION_RANGE.0..=ELEVATION_RANGE.1).contains(&env.elevation),
+        "must be within [-1000, 100000] m",
     );
     c.range(
         "environment.longitude",
@@ -1138,7 +1157,12 @@ fn rocket(c: &mut Checker<'_>, spec: &MissionSpec) {
                 }
             }
             SurfaceSpec::TrapezoidalFins(s) => {
-                c.range(&key("n"), f64::from(s.n), s.n >= 1, "needs at least 1 fin");
+                c.range(
+                    &key("n"),
+                    f64::from(s.n),
+                    (1..=MAX_FINS).contains(&s.n),
+                    FIN_COUNT,
+                );
                 c.positive(&key("span"), s.span);
                 c.positive(&key("root_chord"), s.root_chord);
                 c.non_negative(&key("tip_chord"), s.tip_chord);
@@ -1156,7 +1180,12 @@ fn rocket(c: &mut Checker<'_>, spec: &MissionSpec) {
                 }
             }
             SurfaceSpec::EllipticalFins(s) => {
-                c.range(&key("n"), f64::from(s.n), s.n >= 1, "needs at least 1 fin");
+                c.range(
+                    &key("n"),
+                    f64::from(s.n),
+                    (1..=MAX_FINS).contains(&s.n),
+                    FIN_COUNT,
+                );
                 c.positive(&key("span"), s.span);
                 c.positive(&key("root_chord"), s.root_chord);
                 if let Some(radius) = s.radius {
@@ -1165,7 +1194,12 @@ fn rocket(c: &mut Checker<'_>, spec: &MissionSpec) {
                 }
             }
             SurfaceSpec::FreeFormFins(s) => {
-                c.range(&key("n"), f64::from(s.n), s.n >= 1, "needs at least 1 fin");
+                c.range(
+                    &key("n"),
+                    f64::from(s.n),
+                    (1..=MAX_FINS).contains(&s.n),
+                    FIN_COUNT,
+                );
                 if s.shape_points.len() < 3 {
                     c.report(
                         &key("shape_points"),
@@ -1187,7 +1221,12 @@ fn rocket(c: &mut Checker<'_>, spec: &MissionSpec) {
                 c.positive(&key("length"), s.length);
             }
             SurfaceSpec::TubeFins(s) => {
-                c.range(&key("n"), f64::from(s.n), s.n >= 1, "needs at least 1 tube");
+                c.range(
+                    &key("n"),
+                    f64::from(s.n),
+                    (1..=MAX_FINS).contains(&s.n),
+                    TUBE_COUNT,
+                );
                 c.positive(&key("length"), s.length);
                 c.positive(&key("outer_radius"), s.outer_radius);
                 c.positive(&key("inner_radius"), s.inner_radius);
@@ -1324,7 +1363,12 @@ fn air_brakes(c: &mut Checker<'_>, spec: &MissionSpec) {
 
 fn flight(c: &mut Checker<'_>, spec: &MissionSpec) {
     let f = &spec.flight;
-    c.positive("flight.rail_length", f.rail_length);
+    c.range(
+        "flight.rail_length",
+        f.rail_length,
+        f.rail_length > 0.0 && f.rail_length <= MAX_RAIL_LENGTH,
+        "must be in (0, 1000] m",
+    );
     c.range(
         "flight.inclination",
         f.inclination_deg,

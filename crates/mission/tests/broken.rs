@@ -434,3 +434,61 @@ fn pod_mistakes_are_located() {
     let (one, two) = (slope(&plain) - 2.0, slope(&mission) - 2.0);
     assert!((two - 2.0 * one).abs() < 1e-12, "{one} {two}");
 }
+
+/// Inputs no flight can be integrated on are refused at their key, before any model is built:
+/// a rail longer than a kilometre, a launch from beyond the Kármán line, a fin set of a
+/// billion fins. A huge value is shown in exponent form, not in its 301 digits.
+#[test]
+fn values_beyond_any_flight_are_out_of_range() {
+    for (from, to, key, shown) in [
+        (
+            "rail_length = 2.0",
+            "rail_length = 1e300",
+            "flight.rail_length",
+            "1e300 is out of range",
+        ),
+        (
+            "elevation = 1400",
+            "elevation = 1e12",
+            "environment.elevation",
+            "1000000000000 is out of range",
+        ),
+        (
+            "n = 3",
+            "n = 1000000000",
+            "rocket.surfaces.fins.n",
+            "1000000000 is out of range",
+        ),
+    ] {
+        let found = problems(&edited(&[(from, to)]), &[]);
+        assert_eq!(found.len(), 1, "{to}: {found:?}");
+        assert_eq!(found[0].key, key);
+        let text = found[0].display(Path::new("m.toml")).to_string();
+        assert!(text.contains(shown) && text.len() < 200, "{text}");
+    }
+    for (from, to) in [
+        ("rail_length = 2.0", "rail_length = 1000"),
+        ("elevation = 1400", "elevation = -400"),
+        ("n = 3", "n = 1000"),
+    ] {
+        load_text(&edited(&[(from, to)]));
+    }
+}
+
+/// A `--set` value of 100,000 digits is echoed as its beginning and end, not whole.
+#[test]
+fn a_huge_override_value_is_cut_in_the_message() {
+    let digits = "9".repeat(100_000);
+    let text = error_text(&edited(&[]), &[&format!("rocket.mass={digits}")]);
+    assert!(
+        text.contains("--set rocket.mass=999") && text.contains('…'),
+        "{text}"
+    );
+    assert!(text.len() < 300, "{} characters", text.len());
+}
+
+fn load_text(text: &str) {
+    if let Err(e) = parse(text, &fixture("broken.toml"), &[]) {
+        panic!("{e}");
+    }
+}

@@ -114,8 +114,13 @@ fn bad_tank_inputs_name_their_key_and_line() {
         let text = liquid_text().replacen(table, bad, 1);
         let mission = parse(&text, &path, &[]).expect("parses");
         let error = build_motor(&mission).expect_err("refused");
-        let source = std::error::Error::source(&error).map(ToString::to_string);
-        let message = format!("{error}: {}", source.unwrap_or_default());
+        // The whole chain, as every consumer prints it (each error says its own part once).
+        let mut message = error.to_string();
+        let mut source = std::error::Error::source(&error);
+        while let Some(cause) = source {
+            message = format!("{message}: {cause}");
+            source = cause.source();
+        }
         assert!(
             message.contains("motor.tanks.2.gas.density") && message.contains(reason),
             "{message}"

@@ -345,6 +345,18 @@ impl Component {
         Ok(v)
     }
 
+    /// A non-negative dimension, `default` when absent or `auto` (as [`Component::num_or`]).
+    ///
+    /// # Errors
+    /// As [`Component::dim`].
+    pub fn dim_or(&self, element: &str, default: f64) -> Result<f64, OrkError> {
+        match self.fields.get(element) {
+            None => Ok(default),
+            Some(t) if t.trim() == "auto" => Ok(default),
+            Some(_) => self.dim(element),
+        }
+    }
+
     /// The text of `element`.
     pub fn text(&self, element: &str) -> Option<&str> {
         self.fields.get(element).map(String::as_str)
@@ -418,13 +430,13 @@ fn positioning_length(kind: Kind, c: &Component) -> Result<f64, OrkError> {
             _ => 0.0,
         },
         Kind::Parachute | Kind::Streamer | Kind::ShockCord | Kind::MassComponent => {
-            c.num_or("packedlength", 0.0)?
+            c.dim_or("packedlength", 0.0)?
         }
-        Kind::RailButton => c.num_or("outerdiameter", 0.0)?,
+        Kind::RailButton => c.dim_or("outerdiameter", 0.0)?,
         Kind::Stage => 0.0,
         // Set from its body parts before it is placed (`assembly_length`).
         Kind::PodSet => c.length,
-        _ => c.num_or("length", 0.0)?,
+        _ => c.dim_or("length", 0.0)?,
     })
 }
 

@@ -11,12 +11,12 @@ use crate::design::Design;
 #[derive(Debug, Error)]
 pub enum OrkError {
     /// The file cannot be read.
-    #[error("{}: cannot read: {source}", file.display())]
+    #[error("{}: cannot read: {error}", file.display())]
     Read {
         /// The design file.
         file: PathBuf,
         /// The I/O error.
-        source: std::io::Error,
+        error: std::io::Error,
     },
     /// Not a zip archive holding an OpenRocket document, nor OpenRocket XML.
     #[error("{}: not an OpenRocket design: {reason}", file.display())]
@@ -118,9 +118,9 @@ pub struct Imported {
 /// or a document larger than [`MAX_DOCUMENT_BYTES`] (decompressed).
 pub fn read_document(file: &Path) -> Result<String, OrkError> {
     use std::io::Read;
-    let read_error = |source| OrkError::Read {
+    let read_error = |error| OrkError::Read {
         file: file.to_owned(),
-        source,
+        error,
     };
     // Only a regular file: a FIFO would block forever and `/dev/zero` never ends.
     let meta = std::fs::metadata(file).map_err(read_error)?;

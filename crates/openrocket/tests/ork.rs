@@ -304,6 +304,37 @@ fn walls_thicker_than_their_radius_fill_the_part() {
     );
 }
 
+/// A negative length (the nose cone's here, read for its placement) is an error naming the
+/// component and the element, not a `clamp` with its bounds crossed in the mass integral.
+#[test]
+fn a_negative_length_names_the_component() {
+    let text = simple_xml().replacen("<length>0.1</length>", "<length>-0.1</length>", 1);
+    let e = parse_error_or_import(&text, "negative_nose.ork");
+    assert!(
+        e.contains("Nose cone") && e.contains("<length>") && e.contains("negative"),
+        "{e}"
+    );
+}
+
+/// The error of reading `xml` as a design, or of importing it.
+fn parse_error_or_import(xml: &str, name: &str) -> String {
+    let file = tempdir().join(name);
+    std::fs::write(&file, xml).expect("write");
+    let options = ImportOptions {
+        motors: vec![
+            design("a_simple_model_rocket")
+                .parent()
+                .expect("dir")
+                .to_owned(),
+        ],
+        ..ImportOptions::default()
+    };
+    match import(&file, &options) {
+        Ok(_) => panic!("{name} imported"),
+        Err(e) => e.to_string(),
+    }
+}
+
 /// A component tree 5,000 deep (inner tubes inside inner tubes) is an error naming the depth
 /// limit, not a stack overflow; 20 deep still reads.
 #[test]

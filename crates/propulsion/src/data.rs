@@ -103,6 +103,10 @@ impl ThrustData {
     }
 }
 
+/// Largest thrust a curve may give, N (Super Heavy's 33 engines give 7.4e7 N): a rocket
+/// pushed by 1e300 N leaves the integrator's step limit at once.
+pub(crate) const MAX_THRUST: f64 = 1e9;
+
 /// Accumulates points in file order, checking that time never decreases (a repeated time is a
 /// step, which only a linear curve takes: [`crate::ThrustCurve::new`] checks that).
 pub(crate) struct PointsBuilder {
@@ -123,12 +127,29 @@ impl PointsBuilder {
     }
 
     /// Appends a point read at `line`.
+    ///
+    /// # Errors
+    /// [`PropulsionError::TimeNotIncreasing`] for a time before the previous one, and
+    /// [`PropulsionError::Malformed`] for a thrust beyond [`MAX_THRUST`] (no flight can be
+    /// integrated on it).
     pub(crate) fn push(
         &mut self,
         line: usize,
         time: f64,
         thrust: f64,
     ) -> Result<(), PropulsionError> {
+        let beyond = |value: f64, reason: &'static str| PropulsionError::Malformed {
+            source_name: self.source_name.clone(),
+            line,
+            text: karman_math::text::number(value),
+            reason,
+        };
+        if thrust.abs() > MAX_THRUST {
+            return Err(beyond(
+                thrust,
+                "thrust beyond 1e9 N (ten times the largest engine cluster flown)",
+            ));
+        }
         if let Some(&previous) = self.times.last() {
             if time < previous {
                 return Err(PropulsionError::TimeNotIncreasing {
@@ -208,6 +229,30 @@ pub(crate) fn parse_number(
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn a_table_error_says_its_cause_once_in_a_whole_chain() {
+        let math = karman_math::MathError::TooFewPoints { needed: 2, got: 1 };
+        let e = PropulsionError::table("propellant mass")(math);
+        assert!(std::error::Error::source(&e).is_none());
+        assert_eq!(
+            e.to_string(),
+            "propellant mass: a table needs at least 2 point(s), got 1"
+        );
+    }
+
+    #[test]
+    fn a_thrust_no_flight_survives_is_refused_at_its_point() {
+        let e = ThrustData::from_points("t.eng", &[[0.0, 0.0], [0.1, 1e300], [2.0, 0.0]])
+            .unwrap_err()
+            .to_string();
+        assert_eq!(
+            e,
+            "t.eng:2: thrust beyond 1e9 N (ten times the largest engine cluster flown): '1e300'"
+        );
+        // Super Heavy's thrust is a curve.
+        ThrustData::from_points("t.eng", &[[0.0, 7.4e7], [3600.0, 0.0]]).expect("a curve");
+    }
 
     #[test]
     fn inline_points_are_sorted_stably_and_checked() {

@@ -155,18 +155,19 @@ pub enum PropulsionError {
         reason: &'static str,
     },
     /// A table could not be built from the derived values.
-    #[error("{what}: {source}")]
+    #[error("{what}: {error}")]
     Table {
         /// Which table.
         what: &'static str,
-        /// The underlying error.
-        source: MathError,
+        /// The underlying error (in the message, not a source of its own: a chain printed
+        /// whole would say it twice).
+        error: MathError,
     },
 }
 
 impl PropulsionError {
     /// Wraps a [`MathError`] raised while building the table `what`.
     pub(crate) fn table(what: &'static str) -> impl FnOnce(MathError) -> PropulsionError {
-        move |source| PropulsionError::Table { what, source }
+        move |error| PropulsionError::Table { what, error }
     }
 }

@@ -63,7 +63,9 @@ impl PropellantModel for CylindricalChamber {
             Extrapolation::Constant,
         )
         .map_err(PropulsionError::table("propellant mass"))?;
-        let nodes = curve.xs().to_vec();
+        // A repeated time (a step of the thrust) is one node of the mass tables.
+        let mut nodes = curve.xs().to_vec();
+        nodes.dedup_by(|later, earlier| *later <= *earlier);
         let on_nodes = |what, factor: f64| {
             let ys = nodes.iter().map(|&t| mass.eval(t) * factor).collect();
             Table1::new(

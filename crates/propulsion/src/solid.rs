@@ -306,8 +306,8 @@ impl PropellantModel for BatesGrains {
     }
 }
 
-/// The time grid of a grain's tables: the thrust-curve nodes, every interval split into equal
-/// pieces of at most [`PhysicalConstants::propellant_grid_step`] (longer for very long burns).
+/// The time grid of a grain's tables (strictly increasing): the thrust-curve nodes, each
+/// once, every interval split into equal pieces of at most [`PhysicalConstants::propellant_grid_step`] (longer for very long burns).
 pub(crate) fn grain_grid(curve: &Table1, constants: &PhysicalConstants) -> Vec<f64> {
     let nodes = curve.xs();
     let (start, end) = curve.domain();
@@ -322,6 +322,11 @@ pub(crate) fn grain_grid(curve: &Table1, constants: &PhysicalConstants) -> Vec<f
     let mut times = vec![nodes[0]];
     for pair in nodes.windows(2) {
         let (a, b) = (pair[0], pair[1]);
+        // A repeated time is a step of the thrust (`ThrustData`): the mass is continuous
+        // there and the grid holds the instant once.
+        if b <= a {
+            continue;
+        }
         let pieces = pieces_of(a, b);
         times.extend((1..pieces).map(|k| a + (b - a) * k as f64 / pieces as f64));
         times.push(b);
@@ -378,6 +383,28 @@ pub(crate) fn regress(
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn a_step_of_the_thrust_is_one_instant_of_the_grain_grid() {
+        let curve = Table1::linear_stepwise(
+            vec![0.0, 0.5, 0.5, 2.0],
+            vec![0.0, 500.0, 900.0, 0.0],
+            Extrapolation::Zero,
+        )
+        .expect("a step");
+        let grid = grain_grid(&curve, &PhysicalConstants::default());
+        assert!(grid.windows(2).all(|w| w[0] < w[1]), "{grid:?}");
+        assert_eq!(grid.iter().filter(|&&t| (t - 0.5).abs() < 1e-15).count(), 1);
+        let (times, masses) = regress(&grid, 1.0, |a, b| curve.integral(a, b) / 2000.0);
+        assert_eq!(times.len(), masses.len());
+        Table1::new(
+            times,
+            masses,
+            Interpolation::Linear,
+            Extrapolation::Constant,
+        )
+        .expect("the mass table of a stepped curve");
+    }
 
     fn calisto() -> BatesGrains {
         BatesGrains {

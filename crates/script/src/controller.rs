@@ -101,7 +101,15 @@ fn runtime(file: &Path, function: Option<(usize, usize)>, error: &EvalAltResult)
     }
     let message = match innermost {
         EvalAltResult::ErrorTooManyOperations(_) => call_budget(),
-        other => other.to_string(),
+        // Rhai's text ends with "(line L, position C)": the error's own location says it.
+        other => {
+            let text = other.to_string();
+            let suffix = format!(" ({})", other.position());
+            match text.strip_suffix(&suffix) {
+                Some(bare) if !other.position().is_none() => bare.to_owned(),
+                _ => text,
+            }
+        }
     };
     let mut error = located(file, position, message);
     if error.position.is_none() {

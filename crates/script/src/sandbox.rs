@@ -36,8 +36,10 @@ pub const MAX_CALL_LEVELS: usize = 48;
 pub const MAX_EXPR_DEPTHS: (usize, usize) = (64, 48);
 /// Characters of one string.
 pub const MAX_STRING_SIZE: usize = 16_384;
-/// Elements of one array.
-pub const MAX_ARRAY_SIZE: usize = 100_000;
+/// Elements of one array (the total of nested arrays). Rhai measures a whole array after each
+/// change to it, so a call growing one element by element costs the square of this limit:
+/// 10,000 keeps such a call to a fraction of a second, far above what a controller keeps.
+pub const MAX_ARRAY_SIZE: usize = 10_000;
 /// Entries of one object map.
 pub const MAX_MAP_SIZE: usize = 10_000;
 /// Variables alive at once.

@@ -305,6 +305,10 @@ fn runtime_errors_are_located() {
     );
     let error = c.call(0.0, &STATE, &row(0.0)).unwrap_err();
     assert_eq!(error.position.map(|p| p.0), Some(2), "{error}");
+    // The location is said once, as `file:line:column:`, not again in Rhai's words.
+    let text = error.to_string();
+    assert!(text.starts_with("brakes.rhai:2:"), "{text}");
+    assert!(!text.contains("(line"), "{text}");
 }
 
 #[test]

@@ -246,3 +246,18 @@ fn an_endless_sort_comparator_hits_the_call_limit() {
         eprintln!("endless comparator stopped in {:?}", started.elapsed());
     }
 }
+
+/// An array grown one element at a time to the size limit ends its call in well under a
+/// second: Rhai measures the whole array after every `push`, so the time of a call grows with
+/// the square of the limit (at 100,000 elements one such call took 21 s in a debug build).
+#[test]
+fn an_array_grown_to_the_size_limit_fails_fast() {
+    let mut c = controller("    let a = [];\n    for i in 0..100000000 { a.push(i); }\n    a");
+    let started = std::time::Instant::now();
+    let (error, calls) = fly(&mut c, 1);
+    let message = error.expect("the array size limit").to_string();
+    assert_eq!(calls, 0);
+    assert!(message.contains("Size of array"), "{message}");
+    let elapsed = started.elapsed();
+    assert!(elapsed.as_secs_f64() < 5.0, "{elapsed:?}");
+}

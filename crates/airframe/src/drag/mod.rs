@@ -178,7 +178,7 @@ impl DragEstimate {
             |source| AirframeError::Table {
                 component: "drag estimate".to_owned(),
                 quantity: "drag coefficient",
-                source,
+                error: source,
             },
         )
     }

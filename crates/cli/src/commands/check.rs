@@ -1,11 +1,13 @@
 //! `karman check MISSION [--set PATH=VALUE]...`: load and validate a mission, then build and
 //! check every model its flight needs (thrust and drag curves, soundings, weather grids, the
-//! launch from the rail) exactly as `simulate` does before it integrates.
+//! launch from the rail) exactly as `simulate` does before it integrates, and call the
+//! air-brake controller once as the flight's first call (its run-time errors are the
+//! flight's).
 
 use super::MissionArgs;
 use clap::Args;
 use karman_mission::assemble::preflight::prepare;
-use karman_mission::assemble::scripts::compile_controller;
+use karman_mission::assemble::scripts::{compile_controller, first_call};
 use karman_mission::assemble::stages::prepare_staged;
 use std::io::Write;
 
@@ -21,15 +23,22 @@ pub struct CheckArgs {
 /// otherwise the error (every problem, each with `file:line:column`) goes back to `main`.
 pub fn run(args: &CheckArgs) -> anyhow::Result<()> {
     let mission = args.mission.load()?;
-    let warnings = if mission.spec.stages.is_empty() {
-        prepare(&mission, 0)?.warnings
+    let (warnings, script) = if mission.spec.stages.is_empty() {
+        let models = prepare(&mission, 0)?;
+        let script = compile_controller(&mission)?;
+        // The controller's first call, made as the flight makes it: its run-time errors
+        // are the flight's.
+        if let Some(script) = &script {
+            first_call(&mission, script, &models.rocket, &models.environment)?;
+        }
+        (models.warnings, script)
     } else {
-        prepare_staged(&mission, 0)?
+        (prepare_staged(&mission, 0)?, compile_controller(&mission)?)
     };
     super::print_warnings(&mission, &warnings);
     // A controller outside the compiled subset is no error: its calls run in Rhai's
     // interpreter, with the same results, slower.
-    if let Some(script) = compile_controller(&mission)?
+    if let Some(script) = script
         && let Some(reason) = script.interpreted_because()
     {
         let _ = writeln!(

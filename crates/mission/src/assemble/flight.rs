@@ -168,7 +168,7 @@ impl PreparedFlight {
     /// parachute trigger noise seeded by `seed` (recorded in the flight).
     ///
     /// # Errors
-    /// [`MissionError::Model`] with section `flight` when the flight cannot be integrated (a
+    /// [`MissionError::Flight`] with section `flight` when the flight cannot be integrated (a
     /// non-finite state, a stiff or unstable model), or the controller's section for a
     /// script error.
     pub fn fly(&self, mission: &Mission, seed: u64) -> Result<FlightRun, MissionError> {
@@ -215,7 +215,7 @@ pub fn simulate_with_seed(mission: &Mission, seed: u64) -> Result<FlightRun, Mis
 /// flight and the controller's record.
 ///
 /// # Errors
-/// [`MissionError::Model`]: section `flight` when the flight cannot be integrated, section
+/// [`MissionError::Flight`]: section `flight` when the flight cannot be integrated, section
 /// `rocket.air_brakes.controller` for a script error (located in the script), which ends
 /// the flight.
 pub fn fly<A: AtmosphereModel>(
@@ -228,7 +228,7 @@ pub fn fly<A: AtmosphereModel>(
 ) -> Result<(Flight, Option<ControllerRecord>), MissionError> {
     let Some(script) = script else {
         let flight = karman_dynamics::simulate(atmosphere, rocket, settings)
-            .map_err(|e| mission.model_error("flight", e))?;
+            .map_err(|e| mission.flight_error("flight", e))?;
         return Ok((flight, None));
     };
     let mut controller = scripts::controller(mission, script, rocket, queries())?;
@@ -240,9 +240,9 @@ pub fn fly<A: AtmosphereModel>(
     };
     let flight =
         karman_dynamics::simulate_with(atmosphere, rocket, settings, vec![Box::new(process)])
-            .map_err(|e| mission.model_error("flight", e))?;
+            .map_err(|e| mission.flight_error("flight", e))?;
     if let Some(error) = error {
-        return Err(mission.model_error("rocket.air_brakes.controller", error));
+        return Err(mission.flight_error("rocket.air_brakes.controller", error));
     }
     Ok((flight, Some(controller.record())))
 }

@@ -132,6 +132,8 @@ pub fn build_motor_with(mission: &Mission, source: &ThrustSource) -> Result<Moto
         PropulsionError::InvalidParameter { name, .. } => {
             mission.model_error(&format!("motor.{name}"), e)
         }
+        // The curve's own fault, not the motor's other keys.
+        PropulsionError::NoImpulse { .. } => mission.model_error("motor.thrust", e),
         _ => mission.model_error("motor", e),
     })
 }
@@ -291,7 +293,24 @@ fn build_tank(mission: &Mission, index: usize, spec: &TankSpec) -> Result<Tank, 
 /// [`MissionError::Model`] (section `motor.thrust`) for unreadable or malformed thrust data,
 /// naming the file, line and value.
 pub fn thrust_source(mission: &Mission) -> Result<ThrustSource, MissionError> {
-    read_thrust(mission, &mission.spec.motor).map_err(model_err(mission, "motor.thrust"))
+    let source =
+        read_thrust(mission, &mission.spec.motor).map_err(model_err(mission, "motor.thrust"))?;
+    // A burn longer than any flight (a curve to t = 1e9 s) cannot be flown to its end.
+    let max = crate::validate::MAX_FLIGHT_TIME;
+    if let ThrustSource::Data(data) = &source
+        && let Some(&end) = data.times.last()
+        && end > max
+    {
+        return Err(mission.model_error(
+            "motor.thrust",
+            format!(
+                "{}: the curve ends at t = {} s, after the longest flight karman flies ({max} s)",
+                data.source_name,
+                karman_math::text::number(end)
+            ),
+        ));
+    }
+    Ok(source)
 }
 
 fn read_thrust(mission: &Mission, spec: &MotorSpec) -> Result<ThrustSource, PropulsionError> {

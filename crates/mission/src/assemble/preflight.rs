@@ -399,6 +399,9 @@ fn check_rail(
         let key = if best_excess > 0.0 && s <= 0.0 {
             let [u, v] = env.wind(env.elevation());
             wind_key(mission, u.abs() >= v.abs())
+        } else if mission.spec.motor.reshape_thrust_curve.is_some() {
+            // The curve flown is the reshaped one: its burn time and impulse are the keys.
+            "motor.reshape_thrust_curve"
         } else {
             "motor.thrust"
         };

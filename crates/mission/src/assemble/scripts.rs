@@ -61,6 +61,39 @@ pub fn compile_controller(mission: &Mission) -> Result<Option<ControllerScript>,
         .map_err(|e| fail(Box::new(e)))
 }
 
+/// Calls the air-brake controller of `mission` once as its flight's first call is made, so
+/// that `karman check` reports what that call would end the flight with (a run-time type
+/// error, an unknown property or method, a limit of the sandbox, a value the record refuses),
+/// located in the script: at t = 0 s, the rocket at rest on the pad (at the launch site's
+/// elevation, upright, not turning), with the arguments the flight passes, on a controller of
+/// its own (the flight's starts afresh).
+///
+/// # Errors
+/// [`MissionError::Flight`] (section `rocket.air_brakes.controller`), the message the flight
+/// would end with; [`controller`]'s errors.
+pub fn first_call(
+    mission: &Mission,
+    script: &ControllerScript,
+    rocket: &Rocket,
+    environment: &Environment,
+) -> Result<(), MissionError> {
+    let queries = Arc::new(ControllerEnvironment::new(
+        Arc::new(environment.clone()),
+        1.0,
+        0.0,
+    ));
+    let mut controller = controller(mission, script, rocket, queries)?;
+    let mut state = [0.0; 13];
+    state[2] = environment.elevation();
+    state[6] = 1.0;
+    let mut row = [0.0; 14];
+    row[1..].copy_from_slice(&state);
+    controller
+        .call(0.0, &state, &row)
+        .map(|_| ())
+        .map_err(|e| mission.flight_error("rocket.air_brakes.controller", e))
+}
+
 /// The environment a controller queries: the flight's, with its wind scaled and turned as
 /// the flight's (`factor`, and the rotation `sin`, `cos`; identity for a plain flight).
 pub struct ControllerEnvironment {

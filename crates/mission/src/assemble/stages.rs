@@ -568,7 +568,7 @@ enum Start {
 ///
 /// # Errors
 /// The builders' [`MissionError`]s (lower stages' keys under `stages.<index>`), the launch
-/// checks of the launch stack, and [`MissionError::Model`] (section `flight`) when a flight
+/// checks of the launch stack, and [`MissionError::Flight`] (section `flight`) when a flight
 /// cannot be integrated.
 pub fn simulate_staged(mission: &Mission, seed: u64) -> Result<StagedRun, MissionError> {
     let thrusts = ThrustCache::read(mission)?;
@@ -673,7 +673,7 @@ fn fly_tree<A: AtmosphereModel>(
     let mut bodies = Vec::new();
     let mut shared: Vec<usize> = Vec::new();
     let mut start = Start::Rail;
-    let flight_error = |e| mission.model_error("flight", e);
+    let flight_error = |e| mission.flight_error("flight", e);
     loop {
         let (vehicle_mission, rocket) = build_stack(mission, thrusts, count, ignition)?;
         if !(segments.is_empty() && launch_checked) {
