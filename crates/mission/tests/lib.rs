@@ -14,6 +14,7 @@ mod ork;
 mod overrides;
 mod paths;
 mod scripts;
+mod sensors;
 mod stages;
 mod tanks;
 mod validate_environment;

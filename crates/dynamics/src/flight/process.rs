@@ -343,6 +343,15 @@ pub trait SampledProcess {
     fn whole_step(&self) -> bool {
         false
     }
+    /// Whether the process is sampled at the first instant group of a `clear` phase, the
+    /// group at which an action ended the previous phase (a parachute deployed, a control
+    /// set): the processes after the acting one in that group were not sampled there before
+    /// the cut. A sensor is (RocketPy clears only the parachutes and callbacks of that node);
+    /// it must then come after every process that may act, so that it is sampled once.
+    /// Default: false.
+    fn sampled_at_cleared_start(&self) -> bool {
+        false
+    }
     /// Whether the process certainly cannot act anywhere in the step with these bounds: it
     /// then has no instants there (not even for the merge). Default: false.
     fn cannot_act(&self, _bounds: &StepBounds) -> bool {
