@@ -17,6 +17,7 @@ pub const ALLOWED: &[(&str, &[&str])] = &[
     ("karman-dynamics", &["karman-math", "karman-model"]),
     ("karman-dispersion", &["karman-math"]),
     ("karman-script", &[]),
+    ("karman-sensors", &["karman-math"]),
     (
         "karman-openrocket",
         &["karman-airframe", "karman-propulsion"],
@@ -32,6 +33,7 @@ pub const ALLOWED: &[(&str, &[&str])] = &[
             "karman-dynamics",
             "karman-dispersion",
             "karman-script",
+            "karman-sensors",
             "karman-openrocket",
         ],
     ),

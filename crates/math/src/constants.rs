@@ -147,6 +147,10 @@ pub struct PhysicalConstants {
     pub tank_volume_slack: f64,
     /// RocketPy's slack of a tank's height checks (m).
     pub tank_height_slack: f64,
+    /// Temperature at which RocketPy 1.13's sensor model is ideal (K, 25 °C): a sensor's
+    /// temperature bias and scale drift act on `T − T_ref` (`rocketpy/sensors/sensor.py`,
+    /// docs/physics.md §29.1).
+    pub sensor_reference_temperature: f64,
 }
 
 const fn layer(h: f64, t: f64, beta: f64, p: f64) -> AtmosphereLayer {
@@ -197,6 +201,7 @@ impl PhysicalConstants {
         tank_gas_mass_slack: 1e-6,
         tank_volume_slack: 1e-6,
         tank_height_slack: 1e-4,
+        sensor_reference_temperature: 298.15,
     };
 
     /// The same constants expressed in the unit system `u`.
@@ -238,6 +243,7 @@ impl PhysicalConstants {
             tank_gas_mass_slack: self.tank_gas_mass_slack * u.mass,
             tank_volume_slack: self.tank_volume_slack * len * len * len,
             tank_height_slack: self.tank_height_slack * len,
+            sensor_reference_temperature: self.sensor_reference_temperature * u.temperature,
         }
     }
 }

@@ -117,6 +117,13 @@ pub enum ProblemKind {
         /// The script's file, line, column and message.
         source: Box<karman_script::ScriptError>,
     },
+    /// A `[[rocket.sensors]]` entry that cannot be flown as written (a name, a key of another
+    /// kind, three values for a one-component sensor).
+    #[error("{reason}")]
+    Sensor {
+        /// Why.
+        reason: String,
+    },
     /// A `[[stages]]` entry does not fit the stack it belongs to.
     #[error("{reason}")]
     Stage {

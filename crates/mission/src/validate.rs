@@ -16,7 +16,11 @@ use karman_math::{Extrapolation, Interpolation};
 use std::path::Path;
 
 /// Keys where `inf` is a valid value.
-pub(crate) const ALLOW_INFINITE: &[&str] = &["flight.max_time_step"];
+pub(crate) const ALLOW_INFINITE: &[&str] = &[
+    "flight.max_time_step",
+    // RocketPy's default: unbounded (`inf` is `[-inf, inf]`).
+    "rocket.sensors.measurement_range",
+];
 
 /// Largest parachute and air-brake controller sampling rate, Hz (a barometer at 10 kHz already resolves far more than
 /// any trigger needs; more only multiplies the sampling instants of a flight).
@@ -208,6 +212,7 @@ pub(crate) fn validate(
     motor(&mut c, spec);
     rocket(&mut c, spec);
     air_brakes(&mut c, spec);
+    sensors(&mut c, spec);
     flight(&mut c, spec);
     let mut problems = c.take_located(doc);
     problems.extend(dispersion(spec, doc));
@@ -228,6 +233,7 @@ pub(crate) fn validate_drawn(spec: &MissionSpec, dir: &Path) -> Vec<(String, Pro
     motor(&mut c, spec);
     rocket(&mut c, spec);
     air_brakes(&mut c, spec);
+    sensors(&mut c, spec);
     flight(&mut c, spec);
     stages(&mut c, spec);
     extra_motors(&mut c, spec);
@@ -1358,6 +1364,120 @@ fn air_brakes(c: &mut Checker<'_>, spec: &MissionSpec) {
                 source: Box::new(source),
             },
         ),
+    }
+}
+
+/// `[[rocket.sensors]]` (docs/physics.md §29): a unique name usable in a file name, a rate in
+/// `(0, MAX_SENSOR_SAMPLING_RATE]`, the kind's own keys only, parameters in their domains.
+/// Whether each sensor lies on the rocket is checked when the rocket is built
+/// (`assemble::sensors::build`).
+fn sensors(c: &mut Checker<'_>, spec: &MissionSpec) {
+    use crate::assemble::sensors::MAX_SENSOR_SAMPLING_RATE;
+    let sensors = &spec.rocket.sensors;
+    if !sensors.is_empty() && !spec.stages.is_empty() {
+        c.report(
+            "rocket.sensors",
+            ProblemKind::Unsupported {
+                what: "sensors on a multi-stage rocket".to_owned(),
+            },
+        );
+    }
+    for (i, s) in sensors.iter().enumerate() {
+        let key = |k: &str| format!("rocket.sensors.{i}.{k}");
+        let sensor = |reason: String| ProblemKind::Sensor { reason };
+        let good_name = !s.name.is_empty()
+            && s.name.len() <= 64
+            && s.name
+                .chars()
+                .all(|ch| ch.is_ascii_alphanumeric() || ch == '_' || ch == '-');
+        if !good_name {
+            c.report(
+                &key("name"),
+                sensor(format!(
+                    "`{}`: a sensor name is 1 to 64 letters, digits, `_` or `-` (its readings go \
+                     to sensor_<name>.csv)",
+                    s.name.escape_debug()
+                )),
+            );
+        }
+        if sensors[..i].iter().any(|other| other.name == s.name) {
+            c.report(
+                &key("name"),
+                sensor(format!("a sensor `{}` is already defined above", s.name)),
+            );
+        }
+        c.range(
+            &key("sampling_rate"),
+            s.sampling_rate,
+            s.sampling_rate > 0.0 && s.sampling_rate <= MAX_SENSOR_SAMPLING_RATE,
+            "must be in (0, 10000] Hz",
+        );
+        let kind = format!("a {} sensor", s.kind.as_str());
+        for k in s.keys_not_for_kind() {
+            c.report(
+                &key(k),
+                ProblemKind::NotApplicable {
+                    model: kind.clone(),
+                },
+            );
+        }
+        for k in s.per_axis_keys_on_scalar() {
+            c.report(
+                &key(k),
+                sensor(format!(
+                    "{kind} has one axis: give one number, not [x, y, z]"
+                )),
+            );
+        }
+        for (k, v) in [
+            ("noise_density", s.noise_density),
+            ("noise_variance", s.noise_variance),
+            ("random_walk_density", s.random_walk_density),
+            ("random_walk_variance", s.random_walk_variance),
+        ] {
+            if let Some(v) = v {
+                for x in v.values() {
+                    c.non_negative(&key(k), x);
+                }
+            }
+        }
+        for (k, v) in [
+            ("resolution", s.resolution),
+            ("position_accuracy", s.position_accuracy),
+            ("altitude_accuracy", s.altitude_accuracy),
+        ] {
+            if let Some(v) = v {
+                c.non_negative(&key(k), v);
+            }
+        }
+        if let Some(t) = s.operating_temperature {
+            c.range(
+                &key("operating_temperature"),
+                t,
+                t > 0.0,
+                "must be > 0 K (a temperature in kelvin)",
+            );
+        }
+        if let Some(x) = s.cross_axis_sensitivity {
+            c.range(
+                &key("cross_axis_sensitivity"),
+                x,
+                (0.0..=100.0).contains(&x),
+                "must be in [0, 100] %",
+            );
+        }
+        if let Some(r) = s.measurement_range {
+            let [lo, hi] = r.0;
+            if lo.is_nan() || hi.is_nan() || lo >= hi {
+                c.report(
+                    &key("measurement_range"),
+                    sensor(format!(
+                        "[{lo}, {hi}]: the range must be [low, high] with low < high (a single \
+                         number m is [-m, m], m > 0)"
+                    )),
+                );
+            }
+        }
     }
 }
 

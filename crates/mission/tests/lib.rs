@@ -15,6 +15,7 @@ mod ork;
 mod overrides;
 mod paths;
 mod scripts;
+mod sensors;
 mod stages;
 mod tanks;
 mod validate_environment;

@@ -4,8 +4,10 @@
 //! a readable summary (RocketPy's `flight.info()`, figures rounded to what is meaningful;
 //! `--verbose` adds the integrator's work); with `--json` the summary object of the
 //! mission contract with the warnings under `warnings` (and, with air brakes, the controller's
-//! record under `controller`). `--out DIR` writes `summary.json`, `trajectory.csv` (every
-//! post-processed series, units in the header), `controller.json` (with air brakes: the level
+//! record under `controller`, and with `[[rocket.sensors]]` their readings under `sensors`).
+//! `--out DIR` writes `summary.json`, `trajectory.csv` (every
+//! post-processed series, units in the header), `sensor_<name>.csv` (each sensor's readings,
+//! time and components with units in the header), `controller.json` (with air brakes: the level
 //! after each controller call and the observed variables), `flight.kml` (the path in
 //! latitude/longitude/altitude for Google Earth) and SVG plots, the whole set at once: written
 //! into a temporary folder beside DIR and moved in once every file is written, so a failed
@@ -70,6 +72,9 @@ pub fn run(args: &SimulateArgs) -> Result<()> {
         if let Some(record) = &run.controller {
             json["controller"] = record.to_json();
         }
+        if !run.sensors.is_empty() {
+            json["sensors"] = sensors_json(&run);
+        }
         writeln!(out, "{}", serde_json::to_string_pretty(&json)?)?;
     } else {
         writeln!(out, "{summary}")?;
@@ -95,6 +100,16 @@ pub fn run(args: &SimulateArgs) -> Result<()> {
         None => Ok(()),
         Some((_, message)) => bail!(message),
     }
+}
+
+/// The `sensors` object of `--json`: each sensor by name, its kind and one array per column
+/// (docs/mission-format.md, `[[rocket.sensors]]`).
+fn sensors_json(run: &FlightRun) -> serde_json::Value {
+    let mut object = serde_json::Map::new();
+    for readings in &run.sensors {
+        object.insert(readings.name.clone(), readings.to_json());
+    }
+    serde_json::Value::Object(object)
 }
 
 /// The JSON object of a multi-stage flight (`--json`, `summary.json`).
@@ -320,6 +335,12 @@ fn write_outputs(run: &FlightRun, name: &str, seed: u64, dir: &Path) -> Result<(
         &dir.join("trajectory.csv"),
         trajectory::csv(run, &samples).as_bytes(),
     )?;
+    for readings in &run.sensors {
+        write_atomic(
+            &dir.join(format!("sensor_{}.csv", readings.name)),
+            readings.csv().as_bytes(),
+        )?;
+    }
     write_atomic(
         &dir.join("flight.kml"),
         trajectory::kml(run, name, &samples).as_bytes(),

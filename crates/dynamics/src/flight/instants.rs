@@ -157,7 +157,8 @@ impl Processes<'_> {
         let skip_first = phase.clear && (first - phase.t).abs() < 1e-9;
         let mut any_may_act = false;
         for range in &mut self.instants {
-            while skip_first
+            let cleared = skip_first && !self.list[range.p].sampled_at_cleared_start();
+            while cleared
                 && range.next <= range.last
                 && node_key(range.time(range.next)) == first_key
             {

@@ -61,6 +61,9 @@ pub trait DenseOutput {
     }
     /// The step's end: its time and the state stored there.
     fn step_end(&self) -> (f64, State);
+    /// The right-hand side of the phase's equations at `(t, y)` (not an interpolant: the
+    /// equations evaluated there, as RocketPy's `phase.derivative(t, y)`).
+    fn right_hand_side(&mut self, t: f64, y: &State) -> State;
 }
 
 impl<F: FnMut(f64, &State) -> State> DenseOutput for RungeKutta<13, F> {
@@ -76,6 +79,9 @@ impl<F: FnMut(f64, &State) -> State> DenseOutput for RungeKutta<13, F> {
     }
     fn step_end(&self) -> (f64, State) {
         (self.t(), *self.y())
+    }
+    fn right_hand_side(&mut self, t: f64, y: &State) -> State {
+        self.rhs_at(t, y)
     }
 }
 
@@ -144,6 +150,16 @@ impl<'s> Probe<'s> {
     /// ([`DenseOutput::derivative`]): the inertial acceleration is components 3–5.
     pub fn derivative(&mut self) -> State {
         self.dense.derivative(self.t)
+    }
+
+    /// The state at the instant and the right-hand side of the phase's equations there
+    /// ([`DenseOutput::right_hand_side`]): RocketPy's `(u, u_dot)` at a time node, which its
+    /// sensors measure from (docs/physics.md §29.2). The right-hand side is evaluated afresh
+    /// at each call.
+    pub fn state_and_rhs(&mut self) -> (State, State) {
+        let state = self.dense.state(self.t);
+        let rhs = self.dense.right_hand_side(self.t, &state);
+        (state, rhs)
     }
 
     /// The inertial acceleration `v̇` at the instant, m/s² (the dense output's slope).
@@ -325,6 +341,15 @@ pub trait SampledProcess {
     /// (a custom trigger, a controller) is sampled from the step's start, so that its instants
     /// do not depend on where the solver's steps fall. Default: false.
     fn whole_step(&self) -> bool {
+        false
+    }
+    /// Whether the process is sampled at the first instant group of a `clear` phase, the
+    /// group at which an action ended the previous phase (a parachute deployed, a control
+    /// set): the processes after the acting one in that group were not sampled there before
+    /// the cut. A sensor is (RocketPy clears only the parachutes and callbacks of that node);
+    /// it must then come after every process that may act, so that it is sampled once.
+    /// Default: false.
+    fn sampled_at_cleared_start(&self) -> bool {
         false
     }
     /// Whether the process certainly cannot act anywhere in the step with these bounds: it

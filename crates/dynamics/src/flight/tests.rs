@@ -54,7 +54,7 @@ impl Processes<'_> {
             if key == k_end {
                 break;
             }
-            if skip_first && key == first_key {
+            if skip_first && key == first_key && !self.list[p].sampled_at_cleared_start() {
                 continue;
             }
             // The group is evaluated at its first instant.

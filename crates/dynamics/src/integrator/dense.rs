@@ -8,6 +8,14 @@ impl<const N: usize, F> RungeKutta<N, F>
 where
     F: FnMut(f64, &[f64; N]) -> [f64; N],
 {
+    /// The right-hand side `f(t, y)` at any point, outside the integration: what a sampled
+    /// process that needs the equations' derivative at a dense state calls (a sensor,
+    /// RocketPy's `u_dot = derivative(t, y)` at a time node). Not counted in
+    /// [`RungeKutta::evaluations`], which counts the integration's own evaluations.
+    pub fn rhs_at(&mut self, t: f64, y: &[f64; N]) -> [f64; N] {
+        (self.rhs)(t, y)
+    }
+
     /// The dense-output rows `F₀…F₆` of the last accepted step, made on first use: `F₀ = Δy`,
     /// `F₁ = h f₀ − Δy`, then for DOPRI5 `F₂ = Δy − h f₁ − F₁`, `F₃ = h Σ d_i k_i` (HNW I,
     /// §II.6), for DOP853 `F₂ = 2Δy − h (f₁ + f₀)`, `F₃…F₆ = h Σ d_ij k_j` after three extra

@@ -15,9 +15,11 @@ use karman_dynamics::{
 };
 use karman_propulsion::Motor;
 use karman_script::{ControllerRecord, ControllerScript, EnvironmentQuery};
+use karman_sensors::{Sensor, Surroundings};
 
 use super::preflight::{Models, prepare};
 use super::scripts::{self, ControllerEnvironment, ControllerProcess, compile_controller};
+use super::sensors::{self, EnvironmentSurroundings, SensorProcess, SensorReadings};
 use crate::{Mission, MissionError};
 
 /// How a flight ended against the end a mission asks for: `None` for a completed flight
@@ -104,6 +106,9 @@ pub struct FlightRun {
     /// The air-brake controller's record (RocketPy's observed variables and the level after
     /// each call), when the rocket has air brakes.
     pub controller: Option<ControllerRecord>,
+    /// The readings of the mission's `[[rocket.sensors]]`, in file order (docs/physics.md
+    /// §29).
+    pub sensors: Vec<SensorReadings>,
 }
 
 impl FlightRun {
@@ -174,7 +179,9 @@ impl PreparedFlight {
     pub fn fly(&self, mission: &Mission, seed: u64) -> Result<FlightRun, MissionError> {
         let mut settings = self.settings.clone();
         settings.noise_seed = seed;
-        let (flight, controller) = fly(
+        let sensors = sensors::build(mission, &self.rocket, seed)?;
+        let surroundings = EnvironmentSurroundings(&self.environment);
+        let (flight, controller, sensors) = fly_with_sensors(
             mission,
             &*self.environment,
             &self.rocket,
@@ -187,6 +194,7 @@ impl PreparedFlight {
                     0.0,
                 ))
             },
+            (sensors, &surroundings),
         )?;
         Ok(FlightRun {
             environment: Arc::clone(&self.environment),
@@ -196,6 +204,7 @@ impl PreparedFlight {
             flight,
             warnings: self.warnings.clone(),
             controller,
+            sensors,
         })
     }
 }
@@ -226,25 +235,81 @@ pub fn fly<A: AtmosphereModel>(
     script: Option<&ControllerScript>,
     queries: impl FnOnce() -> Arc<dyn EnvironmentQuery>,
 ) -> Result<(Flight, Option<ControllerRecord>), MissionError> {
-    let Some(script) = script else {
+    struct Nowhere;
+    impl Surroundings for Nowhere {
+        fn pressure(&self, _h: f64) -> f64 {
+            f64::NAN
+        }
+        fn gravity(&self, _h: f64) -> f64 {
+            f64::NAN
+        }
+        fn site(&self) -> [f64; 2] {
+            [f64::NAN; 2]
+        }
+        fn earth_radius(&self) -> f64 {
+            f64::NAN
+        }
+    }
+    let (flight, record, _) = fly_with_sensors(
+        mission,
+        atmosphere,
+        rocket,
+        settings,
+        script,
+        queries,
+        (Vec::new(), &Nowhere),
+    )?;
+    Ok((flight, record))
+}
+
+/// [`fly`] with `sensors` sampled during the flight, measuring with `surroundings`
+/// (docs/physics.md §29.2); returns their readings too, in order. The sensors are sampled
+/// after the controller at the instants they share. Without sensors or controller the flight
+/// is [`karman_dynamics::simulate`]'s, with the same bytes as before sensors existed.
+///
+/// # Errors
+/// As [`fly`].
+pub fn fly_with_sensors<A: AtmosphereModel>(
+    mission: &Mission,
+    atmosphere: &A,
+    rocket: &Rocket,
+    settings: &FlightSettings,
+    script: Option<&ControllerScript>,
+    queries: impl FnOnce() -> Arc<dyn EnvironmentQuery>,
+    (sensors, surroundings): (Vec<Sensor>, &dyn Surroundings),
+) -> Result<(Flight, Option<ControllerRecord>, Vec<SensorReadings>), MissionError> {
+    let mut readings = sensors::empty_readings(&sensors);
+    let mut controller = match script {
+        Some(script) => Some(scripts::controller(mission, script, rocket, queries())?),
+        None => None,
+    };
+    if controller.is_none() && sensors.is_empty() {
         let flight = karman_dynamics::simulate(atmosphere, rocket, settings)
             .map_err(|e| mission.flight_error("flight", e))?;
-        return Ok((flight, None));
-    };
-    let mut controller = scripts::controller(mission, script, rocket, queries())?;
+        return Ok((flight, None, readings));
+    }
     let mut error = None;
-    let process = ControllerProcess {
-        controller: &mut controller,
-        error: &mut error,
-        overshoot: mission.spec.flight.time_overshoot,
-    };
-    let flight =
-        karman_dynamics::simulate_with(atmosphere, rocket, settings, vec![Box::new(process)])
-            .map_err(|e| mission.flight_error("flight", e))?;
+    let mut processes: Vec<Box<dyn karman_dynamics::flight::SampledProcess + '_>> = Vec::new();
+    if let Some(controller) = controller.as_mut() {
+        processes.push(Box::new(ControllerProcess {
+            controller,
+            error: &mut error,
+            overshoot: mission.spec.flight.time_overshoot,
+        }));
+    }
+    for (sensor, readings) in sensors.into_iter().zip(readings.iter_mut()) {
+        processes.push(Box::new(SensorProcess {
+            sensor,
+            surroundings,
+            readings,
+        }));
+    }
+    let flight = karman_dynamics::simulate_with(atmosphere, rocket, settings, processes)
+        .map_err(|e| mission.flight_error("flight", e))?;
     if let Some(error) = error {
         return Err(mission.flight_error("rocket.air_brakes.controller", error));
     }
-    Ok((flight, Some(controller.record())))
+    Ok((flight, controller.map(|c| c.record()), readings))
 }
 
 /// [`simulate_with_seed`] with seed 0.

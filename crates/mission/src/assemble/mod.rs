@@ -7,4 +7,5 @@ pub mod motors;
 pub mod preflight;
 pub mod rocket;
 pub mod scripts;
+pub mod sensors;
 pub mod stages;

@@ -131,6 +131,8 @@ pub(crate) fn checked_models(
 ) -> Result<(Motor, Rocket, FlightSettings, Vec<String>), MissionError> {
     let motor = build_motor_with(mission, thrust)?;
     let rocket = build_rocket(mission, &motor)?;
+    // The sensors are built with each flight's seed; here only checked on the rocket.
+    super::sensors::build(mission, &rocket, seed)?;
     let mut settings = flight_settings(mission, seed);
     if rocket.motor().thrust.xs().len() > MAX_KNOT_STOPS {
         settings.stop_at_thrust_knots = false;

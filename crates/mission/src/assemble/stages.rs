@@ -268,6 +268,7 @@ fn stack_rocket_spec(mission: &Mission, bottom: usize, above: Lump) -> RocketSpe
         parachutes: indexmap::IndexMap::new(),
         pods: members.iter().flat_map(|m| m.pods.clone()).collect(),
         air_brakes: None,
+        sensors: Vec::new(),
     }
 }
 

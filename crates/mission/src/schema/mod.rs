@@ -13,6 +13,7 @@
 
 mod drag;
 pub mod names;
+mod sensors;
 pub(crate) mod surfaces;
 pub mod values;
 
@@ -26,6 +27,7 @@ pub use names::{
     MotorCoordinateSystem, MotorKind, NoseKind, RocketCoordinateSystem, SoundingFormat,
     SurfaceFinish, SurfaceType, TankGeometryKind, TankKindName, WeatherSource,
 };
+pub use sensors::{Axes, MeasurementRange, SensorKindName, SensorPosition, SensorSpec};
 pub use surfaces::{
     AirfoilSpec, EllipticalFinsSpec, FreeFormFinsSpec, NoseSpec, PodSpec, SurfaceSpec, Sweep,
     TailSpec, TrapezoidalFinsSpec, TubeFinsSpec,
@@ -583,6 +585,9 @@ pub struct RocketSpec {
     /// `[rocket.air_brakes]`, optional.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub air_brakes: Option<AirBrakesSpec>,
+    /// `[[rocket.sensors]]`, in file order (docs/physics.md §29).
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub sensors: Vec<SensorSpec>,
 }
 
 fn default_true() -> bool {

@@ -1,0 +1,3 @@
+//! The integration tests of karman-sensors.
+
+mod noise;
