@@ -6,11 +6,13 @@
 //!   chapter's working folder with the `karman` binary first on `PATH`; the lines after it, up
 //!   to the next command, are output it must print: each, with runs of white space made one,
 //!   must be a line of its standard output or error, in order (`...` stands for lines left
-//!   out). The command must succeed, unless the block is ` ```console,exit=N `.
+//!   out; the working folder's path is shown as `$PWD`). The command must succeed, unless the
+//!   block is ` ```console,exit=N `.
 //! - A ` ```toml,file=NAME ` block is written to `NAME` in the working folder before the
 //!   commands after it run (` ```toml,file=NAME,append ` adds it to the end of the file, so
 //!   that a chapter builds a mission part by part); any other ` ```toml ` block is a fragment
-//!   and must parse as TOML.
+//!   and must parse as TOML. A ` ```rhai,file=NAME ` block (a controller script) is written
+//!   the same way; other ` ```rhai ` blocks are shown only.
 //! - A ` ```sh ` block is not run: it may hold only commands the test cannot run here (`cargo`,
 //!   `pip`, `git`, `python3 -m venv`, `source`), so no `karman` command hides in one.
 //! - A ` ```python ` block is run by the Python package's tests
@@ -107,7 +109,13 @@ fn run(chapter: &str, line: usize, dir: &Path, command: &str, expected: &[String
         "{place} exited {:?}\nstdout:\n{stdout}\nstderr:\n{stderr}",
         output.status.code()
     );
-    let printed: Vec<String> = stdout.lines().chain(stderr.lines()).map(squeeze).collect();
+    // The working folder is shown as `$PWD`, as the commands that name it write it.
+    let folder = dir.display().to_string();
+    let printed: Vec<String> = stdout
+        .lines()
+        .chain(stderr.lines())
+        .map(|l| squeeze(&l.replace(&folder, "$PWD")))
+        .collect();
     let mut at = 0;
     for want in expected
         .iter()
@@ -123,6 +131,19 @@ fn run(chapter: &str, line: usize, dir: &Path, command: &str, expected: &[String
             ),
         }
     }
+}
+
+/// Writes a block's `body` to `file` in `dir`, or adds it to the file's end when `append`.
+fn write_block(dir: &Path, file: &str, body: &str, append: bool) -> std::io::Result<()> {
+    let path = dir.join(file);
+    let mut text = if append {
+        std::fs::read_to_string(&path)?
+    } else {
+        String::new()
+    };
+    text.push_str(body);
+    text.push('\n');
+    std::fs::write(&path, text)
 }
 
 /// Commands a ` ```sh ` block may hold (not run by the test).
@@ -169,25 +190,15 @@ fn check_chapter(path: &Path) {
                     current.unwrap_or_else(|| panic!("{name}:{}: no command", block.line));
                 run(&name, at, dir.path(), &command, &expected, exit);
             }
-            "toml" => {
+            "toml" | "rhai" => {
                 let body = block.lines.join("\n");
-                let append = block.info.split(',').any(|w| w.trim() == "append");
                 match attribute("file") {
                     Some(file) => {
-                        let path = dir.path().join(&file);
-                        let mut text = if append {
-                            std::fs::read_to_string(&path).unwrap_or_else(|e| {
-                                panic!("{name}:{}: append to {file}: {e}", block.line)
-                            })
-                        } else {
-                            String::new()
-                        };
-                        text.push_str(&body);
-                        text.push('\n');
-                        std::fs::write(&path, text)
+                        let append = block.info.split(',').any(|w| w.trim() == "append");
+                        write_block(dir.path(), &file, &body, append)
                             .unwrap_or_else(|e| panic!("{name}:{}: {file}: {e}", block.line));
                     }
-                    None => {
+                    None if language == "toml" => {
                         if let Err(e) = body.parse::<toml::Table>() {
                             panic!(
                                 "{name}:{}: the TOML fragment does not parse: {e}",
@@ -195,6 +206,7 @@ fn check_chapter(path: &Path) {
                             );
                         }
                     }
+                    None => {}
                 }
             }
             "sh" => {
