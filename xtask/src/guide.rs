@@ -1,9 +1,12 @@
 //! `cargo xtask docs`: the user guide (mdBook, `docs/guide`) and the API documentation in one
 //! folder, `target/docs` (`index.html` links both).
 //!
-//! The guide is built from a copy of `docs/guide` in `target/docs/guide-book`, to which the
-//! figures the chapters show are added first, drawn by karman itself from the fixtures
-//! ([`FIGURES`]), so that a figure never drifts from what the program draws. The copy's links
+//! The guide is built from a copy of `docs` in `target/docs/source` (the guide and the
+//! reference pages beside it, which the guide's reference chapter includes with mdBook's
+//! `{{#include}}`), to which the figures the chapters show are added first, drawn by karman
+//! itself from the fixtures ([`FIGURES`]), so that a figure never drifts from what the program
+//! draws, and the command-line reference, written from the help clap prints for every command
+//! ([`cli_reference`]). The copy's links
 //! are then checked (every relative link and image names a file of the book, every `#anchor`
 //! a heading of its page) before mdBook renders it. mdBook comes from the crate registry, at
 //! [`MDBOOK_VERSION`], installed once into `target/tools` (a few minutes of compilation on a
@@ -58,17 +61,78 @@ const FIGURES: &[(&str, &[&str])] = &[
     ),
 ];
 
+/// Where the generated command-line reference goes in the book (the chapter
+/// `src/reference/cli.md` includes it).
+const CLI_REFERENCE: &str = "src/reference/cli-generated.md";
+
+/// How deep [`cli_reference`] follows subcommands (`karman weather fetch` is depth 2).
+const MAX_COMMAND_DEPTH: usize = 3;
+
+/// The command-line reference: the help of `karman` and of every subcommand, found from the
+/// `Commands:` list of each help text (clap's layout), as Markdown sections.
+fn cli_reference(karman: &Path) -> Result<String> {
+    let mut out = String::new();
+    let mut pending = vec![Vec::<String>::new()];
+    while let Some(path) = pending.pop() {
+        let mut args = path.clone();
+        args.push("--help".to_owned());
+        let output = crate::child_command(karman)
+            .args(&args)
+            .env("NO_COLOR", "1")
+            .output()
+            .with_context(|| format!("running {}", karman.display()))?;
+        if !output.status.success() {
+            bail!("`karman {}` failed", args.join(" "));
+        }
+        let help = String::from_utf8(output.stdout).context("karman's help is not UTF-8")?;
+        let title = std::iter::once("karman".to_owned())
+            .chain(path.iter().cloned())
+            .collect::<Vec<_>>()
+            .join(" ");
+        out.push_str(&format!(
+            "## `{title}`\n\n```text\n{}\n```\n\n",
+            help.trim_end()
+        ));
+        if path.len() < MAX_COMMAND_DEPTH {
+            // Pushed in reverse so that the sections come in the help's order.
+            for command in subcommands(&help).into_iter().rev() {
+                let mut next = path.clone();
+                next.push(command);
+                pending.push(next);
+            }
+        }
+    }
+    Ok(out)
+}
+
+/// The subcommands a clap help text lists under `Commands:` (without `help`).
+fn subcommands(help: &str) -> Vec<String> {
+    help.lines()
+        .skip_while(|l| l.trim() != "Commands:")
+        .skip(1)
+        .take_while(|l| l.starts_with("  "))
+        // A command's line is indented by two spaces; a wrapped description by more.
+        .filter(|l| !l.starts_with("   "))
+        .filter_map(|l| l.split_whitespace().next())
+        .filter(|c| *c != "help")
+        .map(str::to_owned)
+        .collect()
+}
+
 /// Builds the guide and the API documentation into `target/docs`.
 pub fn build(root: &Path) -> Result<()> {
     let target = crate::target_dir(root);
     let docs = target.join("docs");
-    let book = docs.join("guide-book");
-    if book.exists() {
-        fs::remove_dir_all(&book).with_context(|| format!("removing {}", book.display()))?;
+    let source = docs.join("source");
+    if source.exists() {
+        fs::remove_dir_all(&source).with_context(|| format!("removing {}", source.display()))?;
     }
-    copy_tree(&root.join("docs/guide"), &book)?;
+    copy_tree(&root.join("docs"), &source)?;
+    let book = source.join("guide");
     crate::cargo(root, &["build", "--package", "karman"])?;
     let karman = target.join("debug").join("karman");
+    let cli = cli_reference(&karman)?;
+    fs::write(book.join(CLI_REFERENCE), cli).with_context(|| format!("writing {CLI_REFERENCE}"))?;
     for (folder, args) in FIGURES {
         let out = book.join("src/figures").join(folder);
         fs::create_dir_all(&out).with_context(|| format!("creating {}", out.display()))?;
@@ -312,6 +376,14 @@ mod tests {
             links("see [a](a.md), ![b](f/b.svg \"title\") and `[c](c.md)`"),
             ["a.md", "f/b.svg"]
         );
+    }
+
+    #[test]
+    fn subcommands_are_read_from_the_commands_list() {
+        let help = "Usage: karman <COMMAND>\n\nCommands:\n  check   Load a mission\n  \
+                    weather  Weather\n          more text\n  help    Print\n\nOptions:\n  -h\n";
+        assert_eq!(subcommands(help), ["check", "weather"]);
+        assert!(subcommands("Usage: karman check <MISSION>\n\nOptions:\n  -h\n").is_empty());
     }
 
     #[test]
