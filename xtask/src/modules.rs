@@ -15,6 +15,7 @@ pub const ACYCLIC: &[&str] = &[
     "crates/dynamics/src/equations",
     "crates/dynamics/src/flight",
     "crates/dynamics/src/integrator",
+    "crates/mission/src/assemble",
     "crates/script/src",
 ];
 

@@ -40,12 +40,13 @@
 //! as the flight's own track does (RocketPy's ellipse export uses 6.3781e6 m: up to 0.1 %
 //! apart, about 1 m per km of drift).
 
-use crate::assemble::environment::build_environment;
-use crate::assemble::flight::{early_ending, flight_settings, fly};
+use crate::assemble::environment::{WindAdjusted, build_environment};
+use crate::assemble::flight::{early_ending, fly};
 use crate::assemble::motors::ThrustCache;
+use crate::assemble::preflight::flight_settings;
 use crate::assemble::rocket::{EstimateScaling, build_rocket_scaled};
 use crate::assemble::scripts::{ControllerEnvironment, compile_controller};
-use crate::assemble::stages;
+use crate::assemble::{stage_view, stages};
 use crate::paths::{self, DerivedKnob, Input};
 use crate::schema::{AirBrakesCurve, Curve, Distribution, MissionSpec};
 use crate::{Mission, MissionError, validate};
@@ -56,8 +57,7 @@ use karman_dispersion::{
     BodyPoints, DataFile, DispersionError, Distribution as Draw, Meaning, Outcome, Points, Site,
     Study, Target, Variation, VariedInput,
 };
-use karman_dynamics::{Air, AtmosphereModel, Flight, Sample, Summary};
-use karman_math::Cursor;
+use karman_dynamics::{Flight, Sample, Summary};
 use karman_propulsion::Motor;
 use karman_script::ControllerScript;
 use sha2::{Digest, Sha256};
@@ -293,7 +293,7 @@ impl MonteCarlo {
         for (index, stage) in spec.stages.iter().enumerate() {
             stage_reshapes.push(match &stage.motor {
                 Some(_) => {
-                    let alone = stages::stage_mission(mission, index);
+                    let alone = stage_view::stage_mission(mission, index);
                     let motor = stages::stage_motor(&alone, &thrusts, index)?;
                     Some([motor.burn_out(), motor.total_impulse()])
                 }
@@ -408,7 +408,7 @@ impl MonteCarlo {
             apogee: Some(["apogee_x_m".into(), "apogee_y_m".into()]),
             landing: Some(["impact_x_m".into(), "impact_y_m".into()]),
             histogram: Some("apogee_agl_m".into()),
-            body: (!lower.is_empty()).then(|| stages::TOP_STAGE.to_owned()),
+            body: (!lower.is_empty()).then(|| stage_view::TOP_STAGE.to_owned()),
             bodies,
         };
         study.site = Some(Site {
@@ -703,7 +703,7 @@ fn lower_stages(spec: &MissionSpec) -> Vec<LowerStage> {
         .iter()
         .enumerate()
         .map(|(index, stage)| LowerStage {
-            name: stages::stage_name(stage, index),
+            name: stage_view::stage_name(stage, index),
             flies: stage.rocket.mass > 0.0 && stage.motor.is_some(),
         })
         .collect()
@@ -741,7 +741,7 @@ pub fn staged_outputs(run: &stages::StagedRun, spec: &MissionSpec) -> Result<Sta
 
 fn staged_values(run: &stages::StagedRun, lower: &[LowerStage]) -> Result<StagedValues, String> {
     let body = |name: &str| run.bodies.iter().position(|b| b.name == name);
-    let top = body(stages::TOP_STAGE).ok_or("the top stage did not fly")?;
+    let top = body(stage_view::TOP_STAGE).ok_or("the top stage did not fly")?;
     let top_summary = run.summary(top);
     let mut values = output_values(&top_summary);
     let mut ended = early_ending(top_summary.termination, &run.settings);
@@ -878,94 +878,12 @@ fn chain(error: &dyn std::error::Error) -> String {
     text
 }
 
-/// An environment whose wind is multiplied by `factor` and turned clockwise (seen from
-/// above) by `offset_deg`: `(u, v) → factor · (u cos δ + v sin δ, −u sin δ + v cos δ)`.
-#[derive(Debug, Clone, Copy)]
-pub struct WindAdjusted<'a> {
-    environment: &'a Environment,
-    factor: f64,
-    sin: f64,
-    cos: f64,
-}
-
-impl<'a> WindAdjusted<'a> {
-    /// The adjusted environment.
-    pub fn new(environment: &'a Environment, factor: f64, offset_deg: f64) -> Self {
-        let (sin, cos) = offset_deg.to_radians().sin_cos();
-        WindAdjusted {
-            environment,
-            factor,
-            sin,
-            cos,
-        }
-    }
-}
-
-impl WindAdjusted<'_> {
-    /// The adjusted wind vector.
-    #[inline]
-    fn turn(&self, [u, v]: [f64; 2]) -> [f64; 2] {
-        [
-            self.factor * (u * self.cos + v * self.sin),
-            self.factor * (-u * self.sin + v * self.cos),
-        ]
-    }
-}
-
-impl AtmosphereModel for WindAdjusted<'_> {
-    #[inline]
-    fn elevation(&self) -> f64 {
-        self.environment.elevation()
-    }
-    #[inline]
-    fn pressure(&self, z: f64) -> f64 {
-        self.environment.pressure(z)
-    }
-    #[inline]
-    fn density(&self, z: f64) -> f64 {
-        self.environment.density(z)
-    }
-    #[inline]
-    fn speed_of_sound(&self, z: f64) -> f64 {
-        self.environment.speed_of_sound(z)
-    }
-    #[inline]
-    fn dynamic_viscosity(&self, z: f64) -> f64 {
-        self.environment.dynamic_viscosity(z)
-    }
-    #[inline]
-    fn wind(&self, z: f64) -> [f64; 2] {
-        self.turn(self.environment.wind(z))
-    }
-    fn uniform_wind(&self) -> Option<[f64; 2]> {
-        self.environment.uniform_wind().map(|wind| self.turn(wind))
-    }
-    #[inline]
-    fn air(&self, z: f64) -> Air {
-        self.environment.air(z)
-    }
-    #[inline]
-    fn air_near(&self, z: f64, cursor: &mut Cursor) -> Air {
-        AtmosphereModel::air_near(self.environment, z, cursor)
-    }
-    #[inline]
-    fn gravity(&self, z: f64) -> f64 {
-        self.environment.gravity(z)
-    }
-    #[inline]
-    fn earth_rotation_enu(&self) -> [f64; 3] {
-        self.environment.earth_rotation_enu()
-    }
-    #[inline]
-    fn barometric_height(&self, pressure: f64) -> f64 {
-        self.environment.barometric_height(pressure)
-    }
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
     use crate::assemble::flight::simulate_with_seed;
+    use karman_dynamics::AtmosphereModel;
+    use karman_math::Cursor;
     use std::path::PathBuf;
 
     /// The test fixture `minimal.toml` in a custom atmosphere with a constant wind

@@ -9,8 +9,8 @@
 //! storing of solution points, which `simulate` does into a `Vec`).
 
 use karman_mission::assemble::environment::build_environment;
-use karman_mission::assemble::flight::flight_settings;
 use karman_mission::assemble::motor::build_motor;
+use karman_mission::assemble::preflight::flight_settings;
 use karman_mission::assemble::rocket::build_rocket;
 use karman_mission::dynamics::equations::{CanopyState, Cursors, Equations};
 use karman_mission::dynamics::integrator::{Pair, RungeKutta, StepStatus, Tolerances};

@@ -115,7 +115,7 @@ fn motor(u: &Units, c: &PhysicalConstants) -> MotorProperties {
         c,
     )
     .expect("valid motor");
-    karman_mission::assemble::rocket::motor_properties(&motor)
+    karman_mission::assemble::motor::motor_properties(&motor)
 }
 
 fn rocket(u: &Units, c: &PhysicalConstants) -> Rocket {

@@ -205,11 +205,11 @@ fn models(
     karman_mission::airframe::Rocket,
     karman_mission::dynamics::FlightSettings,
 ) {
-    use karman_mission::assemble::{environment, flight, motor, rocket};
+    use karman_mission::assemble::{environment, motor, preflight, rocket};
     let env = Arc::new(environment::build_environment(mission).unwrap_or_else(|e| panic!("{e}")));
     let motor = motor::build_motor(mission).unwrap_or_else(|e| panic!("{e}"));
     let rocket = rocket::build_rocket(mission, &motor).unwrap_or_else(|e| panic!("{e}"));
-    (env, rocket, flight::flight_settings(mission, 0))
+    (env, rocket, preflight::flight_settings(mission, 0))
 }
 
 fn same_flight(a: &karman_mission::dynamics::Flight, b: &karman_mission::dynamics::Flight) {

@@ -4,7 +4,8 @@
 use std::path::{Path, PathBuf};
 
 use karman_mission::assemble::flight::simulate;
-use karman_mission::assemble::stages::{StagedRun, TOP_STAGE, simulate_staged};
+use karman_mission::assemble::stage_view::TOP_STAGE;
+use karman_mission::assemble::stages::{StagedRun, simulate_staged};
 use karman_mission::dynamics::{Summary, Termination};
 use karman_mission::{Mission, MissionError, Override, load, parse};
 

@@ -285,7 +285,7 @@ fn too_heavy_to_leave_the_rail_is_flagged() {
     let env = karman_mission::assemble::environment::build_environment(&mission).expect("env");
     let motor = karman_mission::assemble::motor::build_motor(&mission).expect("motor");
     let rocket = karman_mission::assemble::rocket::build_rocket(&mission, &motor).expect("rocket");
-    let settings = karman_mission::assemble::flight::flight_settings(&mission, 0);
+    let settings = karman_mission::assemble::preflight::flight_settings(&mission, 0);
     let start = std::time::Instant::now();
     let flight = karman_mission::dynamics::simulate(&env, &rocket, &settings).expect("flight");
     assert!(start.elapsed() < std::time::Duration::from_secs(30));

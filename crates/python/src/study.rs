@@ -12,7 +12,7 @@ use pyo3::exceptions::{PyOSError, PyRuntimeError};
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 
-use karman_mission::assemble::stages::TOP_STAGE;
+use karman_mission::assemble::stage_view::TOP_STAGE;
 
 use crate::convert::{from_json, plain};
 

@@ -108,7 +108,7 @@ pub fn drag_geometry(
     for s in surfaces {
         let g = airframe::Surface::geometry_of(s, rocket.radius, &constants)
             .map_err(|e| model(&s.name, e))?;
-        let (pod_name, pod) = match super::rocket::pod_of(rocket, &s.name) {
+        let (pod_name, pod) = match pod_of(rocket, &s.name) {
             Some((name, pod)) => (Some(name), Some(pod)),
             None => (None, None),
         };
@@ -421,4 +421,16 @@ pub fn estimate(
     let model =
         DragModel::new(&geometry, &constants).map_err(|e| mission.model_error(SECTION, e))?;
     Ok(model.estimate(&launch_air(mission.spec.environment.elevation, &constants)))
+}
+
+/// The pod set of `rocket` that carries surface `name`, if any (`[rocket.pods.<pod>]`).
+pub(crate) fn pod_of<'a>(
+    rocket: &'a schema::RocketSpec,
+    name: &str,
+) -> Option<(&'a str, &'a schema::PodSpec)> {
+    rocket
+        .pods
+        .iter()
+        .find(|(_, pod)| pod.surfaces.iter().any(|s| s == name))
+        .map(|(key, pod)| (key.as_str(), pod))
 }

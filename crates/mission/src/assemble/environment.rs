@@ -22,7 +22,8 @@ use karman_atmos::{
     AtmosError, Atmosphere, EarthModel, Environment, EnvironmentConfig, Gravity, GridDictionary,
     GridRequest, LevelProfile, OpenMeteo, Profiles, Sounding, WeatherGrid,
 };
-use karman_math::PhysicalConstants;
+use karman_dynamics::Air;
+use karman_math::{Cursor, PhysicalConstants};
 
 /// Builds the launch environment of a mission.
 ///
@@ -261,4 +262,88 @@ fn read_text(path: &std::path::Path, name: &str) -> Result<String, AtmosError> {
         message: e.to_string(),
     })?;
     Ok(String::from_utf8_lossy(&bytes).into_owned())
+}
+
+/// An environment whose wind is multiplied by `factor` and turned clockwise (seen from
+/// above) by `offset_deg`: `(u, v) → factor · (u cos δ + v sin δ, −u sin δ + v cos δ)`.
+#[derive(Debug, Clone, Copy)]
+pub struct WindAdjusted<'a> {
+    environment: &'a Environment,
+    factor: f64,
+    sin: f64,
+    cos: f64,
+}
+
+impl<'a> WindAdjusted<'a> {
+    /// The adjusted environment.
+    pub fn new(environment: &'a Environment, factor: f64, offset_deg: f64) -> Self {
+        let (sin, cos) = offset_deg.to_radians().sin_cos();
+        WindAdjusted {
+            environment,
+            factor,
+            sin,
+            cos,
+        }
+    }
+}
+
+impl WindAdjusted<'_> {
+    /// The adjusted wind vector.
+    #[inline]
+    fn turn(&self, [u, v]: [f64; 2]) -> [f64; 2] {
+        [
+            self.factor * (u * self.cos + v * self.sin),
+            self.factor * (-u * self.sin + v * self.cos),
+        ]
+    }
+}
+
+impl karman_dynamics::AtmosphereModel for WindAdjusted<'_> {
+    #[inline]
+    fn elevation(&self) -> f64 {
+        self.environment.elevation()
+    }
+    #[inline]
+    fn pressure(&self, z: f64) -> f64 {
+        self.environment.pressure(z)
+    }
+    #[inline]
+    fn density(&self, z: f64) -> f64 {
+        self.environment.density(z)
+    }
+    #[inline]
+    fn speed_of_sound(&self, z: f64) -> f64 {
+        self.environment.speed_of_sound(z)
+    }
+    #[inline]
+    fn dynamic_viscosity(&self, z: f64) -> f64 {
+        self.environment.dynamic_viscosity(z)
+    }
+    #[inline]
+    fn wind(&self, z: f64) -> [f64; 2] {
+        self.turn(self.environment.wind(z))
+    }
+    fn uniform_wind(&self) -> Option<[f64; 2]> {
+        self.environment.uniform_wind().map(|wind| self.turn(wind))
+    }
+    #[inline]
+    fn air(&self, z: f64) -> Air {
+        self.environment.air(z)
+    }
+    #[inline]
+    fn air_near(&self, z: f64, cursor: &mut Cursor) -> Air {
+        karman_dynamics::AtmosphereModel::air_near(self.environment, z, cursor)
+    }
+    #[inline]
+    fn gravity(&self, z: f64) -> f64 {
+        self.environment.gravity(z)
+    }
+    #[inline]
+    fn earth_rotation_enu(&self) -> [f64; 3] {
+        self.environment.earth_rotation_enu()
+    }
+    #[inline]
+    fn barometric_height(&self, pressure: f64) -> f64 {
+        self.environment.barometric_height(pressure)
+    }
 }

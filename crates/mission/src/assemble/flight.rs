@@ -10,9 +10,7 @@ use std::sync::Arc;
 
 use karman_airframe::Rocket;
 use karman_atmos::Environment;
-use karman_dynamics::{
-    AtmosphereModel, DEFAULT_ATOL, Flight, FlightSettings, Sample, Summary, Termination,
-};
+use karman_dynamics::{AtmosphereModel, Flight, FlightSettings, Sample, Summary, Termination};
 use karman_propulsion::Motor;
 use karman_script::{ControllerRecord, ControllerScript, EnvironmentQuery};
 use karman_sensors::{Sensor, Surroundings};
@@ -51,40 +49,6 @@ pub fn early_ending(
                 .to_owned(),
         )),
     }
-}
-
-/// The flight settings of a mission, with the trigger-noise `seed` of its parachutes.
-#[must_use]
-pub fn flight_settings(mission: &Mission, seed: u64) -> FlightSettings {
-    let spec = &mission.spec.flight;
-    let mut settings = FlightSettings::new(spec.rail_length);
-    settings.inclination_deg = spec.inclination_deg;
-    settings.heading_deg = spec.heading_deg;
-    settings.max_time = spec.max_time;
-    settings.terminate_on_apogee = spec.terminate_on_apogee;
-    settings.rtol = spec.rtol;
-    settings.atol = spec.atol.map_or(DEFAULT_ATOL, |a| a.per_state());
-    settings.max_time_step = spec.max_time_step;
-    settings.noise_seed = seed;
-    settings.equations = spec.equations.into();
-    settings.simulation_mode = spec.simulation_mode.into();
-    settings.weathercock_coefficient = spec.weathercock_coeff.unwrap_or(0.0);
-    if let Some(ab) = &mission.spec.rocket.air_brakes
-        && spec.time_overshoot
-        && ab.sampling_rate > 0.0
-    {
-        // Deviation from RocketPy: a level written by the controller acts from the end of
-        // the solver step holding the call (docs/physics.md §16.4); steps at most one sampling
-        // interval long keep that delay as short as RocketPy's LSODA steps make it. The
-        // bound covers the free flight, where the level is in the equations (§16.1), and the
-        // steps whose instants are not sampled (rail exit, the impact); the parachute
-        // descents otherwise keep the solver's steps (`FlightSettings::control_max_time_step`).
-        // The bound is what parity needs: with steps of up to 2 or 5 intervals, or unbounded,
-        // camoes' apogee is 0.11, 0.08 or 0.10 % above RocketPy's (0.03 % bounded) and the
-        // levels of fixtures/airbrakes/calisto_apogee.toml differ from RocketPy's by 0.005.
-        settings.control_max_time_step = 1.0 / ab.sampling_rate;
-    }
-    settings
 }
 
 /// A flown mission: the models it was built into (shared with the [`PreparedFlight`] that

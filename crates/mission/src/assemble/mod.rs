@@ -8,4 +8,5 @@ pub mod preflight;
 pub mod rocket;
 pub mod scripts;
 pub mod sensors;
+pub mod stage_view;
 pub mod stages;

@@ -15,7 +15,9 @@
 //! rejected there); errors here come from the thrust data (file, line and value) or from
 //! combinations the model rejects, wrapped in [`MissionError::Model`] with section `motor`.
 
-use karman_math::PhysicalConstants;
+use karman_airframe::MotorProperties;
+use karman_math::{PhysicalConstants, Table1};
+use karman_model::PropellantPart;
 use karman_propulsion::{
     BatesGrains, BurnTime, CoordinateSystem, CylindricalChamber, DEFAULT_DISCRETIZE,
     DEFAULT_PRESSURE, DEFAULT_TEMPERATURE, Fluid, Motor, MotorStructure, PositionedTank,
@@ -324,4 +326,158 @@ fn read_thrust(mission: &Mission, spec: &MotorSpec) -> Result<ThrustSource, Prop
             ThrustSource::Data(Box::new(ThrustData::load(&mission.resolve(path))?))
         }
     })
+}
+
+/// The motor's tables and constants as the airframe needs them
+/// ([`karman_airframe::MotorProperties`]).
+///
+/// A propellant in parts (a liquid motor whose tanks are on different time grids, a hybrid
+/// motor's grain and tanks) is handed over with them ([`MotorProperties::propellant_parts`]),
+/// which the rocket sums pointwise as RocketPy does (docs/physics.md §15.3–15.4).
+#[must_use]
+pub fn motor_properties(motor: &Motor) -> MotorProperties {
+    let (i11, i33) = motor.propellant_inertia();
+    let propellant_parts = motor.propellant_parts().to_vec();
+    MotorProperties {
+        thrust: motor.thrust_table().clone(),
+        burn_start: motor.burn_start(),
+        burn_out: motor.burn_out(),
+        exhaust_velocity: motor.exhaust_velocity(),
+        propellant_mass: motor.propellant_mass().clone(),
+        mass_flow: None,
+        propellant_center_of_mass: motor.propellant_center_of_mass().clone(),
+        propellant_i11: i11.clone(),
+        propellant_i33: i33.clone(),
+        propellant_parts,
+        dry_mass: motor.dry_mass(),
+        center_of_dry_mass: motor.center_of_dry_mass(),
+        dry_inertia: motor.dry_inertia(),
+        nozzle_position: motor.nozzle_position(),
+        nozzle_radius: motor.nozzle_radius(),
+        coordinate_system_sign: motor.coordinate_system_sign(),
+        reference_pressure: motor.reference_pressure(),
+    }
+}
+
+/// `motor` ignited `ignition` s after the flight's time origin: every table of time moved by
+/// that much (the motor of an upper stage, lit at or after its separation).
+///
+/// # Errors
+/// [`karman_math::MathError`] when the shift rounds two of a table's times together.
+pub fn delayed(
+    motor: MotorProperties,
+    ignition: f64,
+) -> Result<MotorProperties, karman_math::MathError> {
+    Ok(MotorProperties {
+        thrust: motor.thrust.shifted(ignition)?,
+        burn_start: motor.burn_start + ignition,
+        burn_out: motor.burn_out + ignition,
+        propellant_mass: motor.propellant_mass.shifted(ignition)?,
+        mass_flow: match &motor.mass_flow {
+            Some(table) => Some(table.shifted(ignition)?),
+            None => None,
+        },
+        propellant_center_of_mass: motor.propellant_center_of_mass.shifted(ignition)?,
+        propellant_i11: motor.propellant_i11.shifted(ignition)?,
+        propellant_i33: motor.propellant_i33.shifted(ignition)?,
+        propellant_parts: motor
+            .propellant_parts
+            .iter()
+            .map(|p| {
+                Ok(PropellantPart {
+                    mass: p.mass.shifted(ignition)?,
+                    center_of_mass: p.center_of_mass.shifted(ignition)?,
+                    moment: p.moment.shifted(ignition)?,
+                    i11: p.i11.shifted(ignition)?,
+                })
+            })
+            .collect::<Result<_, karman_math::MathError>>()?,
+        ..motor
+    })
+}
+
+/// A cluster of `count` copies of `motor` (docs/physics.md §24.1), lit together, their axes at
+/// `radius` from the rocket's axis (the `[motor]` keys `cluster_count`, `cluster_radius`): thrust,
+/// mass flow, masses and mass moments times `count`, the centres of mass and the exhaust velocity
+/// unchanged. Each inertia is the sum over the copies with the parallel-axis theorem: about the
+/// roll axis `+ m r²` per copy, about each lateral axis `+ m r²/2` (the mean over the two lateral
+/// axes of `m y²` and `m z²`, exact for three or more motors evenly on a ring; karman's rocket is
+/// axisymmetric). The propellant's terms are tabulated on the union of the nodes of its inertia and
+/// mass tables. The nozzle exit radius becomes [`cluster_exit_radius`]. One motor on the axis is
+/// returned unchanged.
+///
+/// # Errors
+/// [`karman_math::MathError`] for a propellant table that cannot be rebuilt.
+pub fn clustered(
+    motor: MotorProperties,
+    count: u32,
+    radius: f64,
+) -> Result<MotorProperties, karman_math::MathError> {
+    if count == 1 && radius == 0.0 {
+        return Ok(motor);
+    }
+    let n = f64::from(count);
+    let arm2 = radius * radius;
+    // n (I(t) + k m(t)) on the union of the two tables' nodes, with I's interpolation and
+    // extrapolation: exact for two linear tables.
+    let with_mass = |inertia: &Table1, mass: &Table1, k: f64| {
+        let mut xs: Vec<f64> = inertia.xs().iter().chain(mass.xs()).copied().collect();
+        xs.sort_by(f64::total_cmp);
+        xs.dedup();
+        let ys = xs
+            .iter()
+            .map(|&t| n * (inertia.eval(t) + k * mass.eval(t)))
+            .collect();
+        Table1::new(xs, ys, inertia.interpolation(), inertia.extrapolation())
+    };
+    let d = motor.dry_inertia;
+    let dry = motor.dry_mass;
+    Ok(MotorProperties {
+        thrust: motor.thrust.scaled(n),
+        propellant_mass: motor.propellant_mass.scaled(n),
+        mass_flow: motor.mass_flow.as_ref().map(|t| t.scaled(n)),
+        propellant_i11: with_mass(&motor.propellant_i11, &motor.propellant_mass, 0.5 * arm2)?,
+        propellant_i33: with_mass(&motor.propellant_i33, &motor.propellant_mass, arm2)?,
+        propellant_parts: motor
+            .propellant_parts
+            .iter()
+            .map(|p| {
+                Ok(PropellantPart {
+                    mass: p.mass.scaled(n),
+                    center_of_mass: p.center_of_mass.clone(),
+                    moment: p.moment.scaled(n),
+                    i11: with_mass(&p.i11, &p.mass, 0.5 * arm2)?,
+                })
+            })
+            .collect::<Result<_, karman_math::MathError>>()?,
+        dry_mass: n * dry,
+        dry_inertia: [
+            n * (d[0] + 0.5 * dry * arm2),
+            n * (d[1] + 0.5 * dry * arm2),
+            n * (d[2] + dry * arm2),
+            n * d[3],
+            n * d[4],
+            n * d[5],
+        ],
+        nozzle_radius: cluster_exit_radius(motor.nozzle_radius, count),
+        ..motor
+    })
+}
+
+/// The exit radius of one nozzle whose area is that of a cluster of `count` nozzles of
+/// `radius`, `radius √count` (the pressure thrust and the power-on base drag see the total
+/// exit area).
+#[must_use]
+pub fn cluster_exit_radius(radius: f64, count: u32) -> f64 {
+    radius * f64::from(count).sqrt()
+}
+
+/// The `[motor]` cluster of `mission`: `(cluster_count, cluster_radius)`, `(1, 0)` by default.
+#[must_use]
+pub fn cluster_of(mission: &Mission) -> (u32, f64) {
+    let m = &mission.spec.motor;
+    (
+        m.cluster_count.unwrap_or(1),
+        m.cluster_radius.unwrap_or(0.0),
+    )
 }

@@ -6,8 +6,8 @@
 //! their sum, [`combined`], built once before the flight:
 //!
 //! - each motor is first the single motor it would be alone (its cluster,
-//!   [`super::rocket::clustered`]), then moved to its ignition time
-//!   ([`super::rocket::delayed`]), then placed in the coordinates of `[motor]` (its origin at
+//!   [`super::motor::clustered`]), then moved to its ignition time
+//!   ([`super::motor::delayed`]), then placed in the coordinates of `[motor]` (its origin at
 //!   `rocket.motor_position`, its orientation): a position `z` of motor `k`, whose origin is
 //!   at `p_k` in rocket coordinates with orientation `s_k = csys_r · csys_m,k`, is
 //!   `s_0 (p_k − p_0) + s_0 s_k z` in those coordinates;
@@ -30,7 +30,7 @@
 //!   impulse over the total propellant mass `Σ I_k / Σ m_p0,k`, so that the flow integrates
 //!   to the propellant burnt; exact when the motors share their exhaust velocity;
 //! - nozzle exit radius: `√(Σ r_k²)`, the radius of the total exit area (as a cluster's,
-//!   [`super::rocket::cluster_exit_radius`]), which the power-on base drag of the drag
+//!   [`super::motor::cluster_exit_radius`]), which the power-on base drag of the drag
 //!   estimate sees; the pressure-thrust correction (`reference_pressure`), which would need the
 //!   exit area of the motors burning at each instant, is refused for a combination;
 //! - nozzle position: the aftmost nozzle exit of the motors. The launch checks take the nozzle
@@ -51,8 +51,8 @@ use karman_propulsion::{Motor, ThrustSource};
 use std::borrow::Cow;
 
 use super::motor::{build_motor, build_motor_with, thrust_source};
-use super::rocket::{clustered, delayed, motor_properties};
-use super::stages::{in_stage, stage_mission};
+use super::motor::{clustered, delayed, motor_properties};
+use super::stage_view::{in_stage, stage_mission};
 use crate::schema::{Curve, RocketCoordinateSystem};
 use crate::{Mission, MissionError};
 
@@ -282,7 +282,7 @@ pub fn with_extra_motors(
 pub fn combined_exit_radius(mission: &Mission, primary_radius: f64) -> f64 {
     let spec = &mission.spec;
     let cluster = |m: &crate::schema::MotorSpec, r: f64| {
-        super::rocket::cluster_exit_radius(r, m.cluster_count.unwrap_or(1))
+        super::motor::cluster_exit_radius(r, m.cluster_count.unwrap_or(1))
     };
     let first = cluster(&spec.motor, primary_radius);
     if spec.extra_motors.is_empty() {

@@ -36,15 +36,14 @@ use karman_model::TriggerCondition;
 use karman_propulsion::Motor;
 use karman_script::Expression;
 
-use super::environment::build_environment_checked;
-use super::flight::flight_settings;
+use super::environment::{WindAdjusted, build_environment_checked};
 use super::motors::ThrustCache;
-use super::preflight::{MAX_KNOT_STOPS, checked_models, prepare};
+use super::preflight::{MAX_KNOT_STOPS, checked_models, flight_settings, prepare};
 use super::rocket::build_rocket_ignited_at;
 use super::scripts::{AfterTime, ExpressionTrigger};
-use crate::montecarlo::WindAdjusted;
+use super::stage_view::{TOP_STAGE, in_stage, stage_mission, stage_name};
 use crate::report::trajectory::Track;
-use crate::schema::{DragEstimateSpec, Inertia, RocketSpec, StageSpec, Trigger};
+use crate::schema::{DragEstimateSpec, Inertia, RocketSpec, Trigger};
 use crate::{Mission, MissionError};
 
 /// One integrated flight of a vehicle of the tree: a stack until a separation, or a body to
@@ -111,38 +110,6 @@ struct Tree {
     warnings: Vec<String>,
 }
 
-/// The name of lower stage `index` in reports.
-pub(crate) fn stage_name(stage: &StageSpec, index: usize) -> String {
-    stage
-        .name
-        .clone()
-        .unwrap_or_else(|| format!("stage {}", index + 2))
-}
-
-/// The name of the top stage in reports.
-pub const TOP_STAGE: &str = "sustainer";
-
-/// `mission` with lower stage `index` as its `[rocket]` and `[motor]` (the top stage's motor
-/// when the stage has none), its keys located at the stage's.
-pub(crate) fn stage_mission(mission: &Mission, index: usize) -> Mission {
-    let stage = &mission.spec.stages[index];
-    let mut spec = mission.spec.clone();
-    spec.rocket = stage.rocket.clone();
-    if let Some(motor) = &stage.motor {
-        spec.motor = motor.clone();
-    }
-    spec.stages.clear();
-    mission.part(spec, &stage_prefix(index), STAGE_ROOTS)
-}
-
-/// The tables of a `[[stages]]` entry built as a mission's own.
-const STAGE_ROOTS: &[&str] = &["rocket", "motor"];
-
-/// The key prefix of `[[stages]]` entry `index`.
-fn stage_prefix(index: usize) -> String {
-    format!("stages.{index}.")
-}
-
 /// The own motor of lower stage `index` (which has one), as it flies after separation, from
 /// the stage's own mission `alone` ([`stage_mission`]).
 ///
@@ -154,11 +121,6 @@ pub(crate) fn stage_motor(
     index: usize,
 ) -> Result<Motor, MissionError> {
     thrusts.motor(alone).map_err(|e| in_stage(e, index))
-}
-
-/// An error found while building stage `index` from its own mission, named by the stage's key.
-pub(crate) fn in_stage(error: MissionError, index: usize) -> MissionError {
-    error.in_part(&stage_prefix(index), STAGE_ROOTS)
 }
 
 /// The top stage alone as a mission (without `[[stages]]`).
