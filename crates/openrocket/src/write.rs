@@ -1059,68 +1059,12 @@ fn body_text(
             "a stage without body tubes".to_owned(),
         ));
     };
-    let mut radius: f64 = 0.0;
-    for b in &body {
-        for e in ["radius", "aftradius", "foreradius"] {
-            if b.fields.contains_key(e) {
-                radius = radius.max(b.dim(e)?);
-            }
-        }
-    }
-    if radius <= 0.0 {
-        return Err(first.value_error("radius", "the body has no positive radius"));
-    }
-    // OpenRocket's reference radius is the largest body radius, pods included.
-    for pod in all.iter().filter(|c| c.kind == Kind::PodSet) {
-        for b in pod.children.iter().filter(|c| c.kind.is_body()) {
-            for e in ["radius", "aftradius", "foreradius"] {
-                if b.fields.contains_key(e) {
-                    radius = radius.max(b.dim(e)?);
-                }
-            }
-        }
-    }
+    let radius = reference_radius(first, &body, &all)?;
     let body_end = body.last().map_or(0.0, |b| b.x + b.length);
-    for c in &all {
-        let overridden = c.fields.contains_key("overridecd");
-        let mapped = matches!(c.kind, Kind::NoseCone | Kind::Transition)
-            && c.text("overridesubcomponentscd") != Some("true");
-        if overridden && !mapped {
-            warnings.push(format!(
-                "`{}`: its drag-coefficient override is not modelled; the estimate includes its drag",
-                c.name
-            ));
-        }
-    }
-    // Radius steps without a transition: the estimate's implied body has none.
-    for w in body.windows(2).filter(|w| w[1].kind == Kind::BodyTube) {
-        let aft = w[0].num_or("aftradius", w[0].num_or("radius", 0.0)?)?;
-        let fore = w[1].num_or("foreradius", w[1].num_or("radius", 0.0)?)?;
-        if (aft - fore).abs() > 1e-6 {
-            warnings.push(format!(
-                "`{}` → `{}`: a step in radius ({aft} m → {fore} m) without a transition; \
-                 the drag estimate's body keeps the radius",
-                w[0].name, w[1].name
-            ));
-        }
-    }
+    unmodelled_drag_warnings(&all, &body, warnings)?;
 
     // Mass without motor, with the motors OpenRocket never lights carried whole.
-    let mut props = MassProps::default();
-    for stage in &group.stages {
-        props = props.add(mass::subtree(stage, 0.0, radius)?);
-    }
-    for (mount, motor) in &group.unlit {
-        let (_, eng) = find_motor(file, motor, options)?;
-        let (length, diameter) = eng.size_of(motor);
-        props = props.add(mass::unlit_motor(
-            mount.x + mount.length + mount.overhang,
-            length,
-            0.5 * diameter,
-            eng.total,
-            mount.cluster()?,
-        ));
-    }
+    let props = mass_without_motor(file, group, radius, options)?;
 
     // Motor of the simulation's configuration.
     let (m, nozzle_at) = motor_text(file, group.mount, group.motor, motor_key, options)?;
@@ -1175,12 +1119,260 @@ fn body_text(
     );
 
     // Drag-estimate geometry.
+    let finish = body_finish(&body);
+    let Attached {
+        surfaces,
+        pod_surfaces,
+        pods,
+        fins,
+        lugs,
+        buttons,
+        overrides,
+    } = attached_text(
+        file, nose, &body, rocket_key, radius, finish, used, warnings,
+    )?;
+    if !top {
+        let _ = writeln!(
+            w,
+            "# The drag estimate of the stack while this stage is its bottom: the body from the\n\
+             # sustainer's nose tip to this stage's aft end."
+        );
+    }
+    let _ = writeln!(
+        w,
+        "[{rocket_key}.drag_estimate]\nbody_length = {}\nfinish = \"{finish}\"\n",
+        n(body_end)
+    );
+    if !overrides.is_empty() {
+        let _ = writeln!(
+            w,
+            "# OpenRocket's drag-coefficient overrides (on the reference area)."
+        );
+        let _ = writeln!(w, "[{rocket_key}.drag_estimate.overrides]\n{overrides}");
+    }
+    w.push_str(&fins);
+    w.push_str(&lugs);
+    if let Some(buttons) = buttons {
+        rail_buttons_text(w, rocket_key, buttons);
+    }
+    w.push_str(&surfaces);
+    w.push_str(&pods);
+    w.push_str(&pod_surfaces);
+
+    recovery_text(
+        w, file, config, group, &all, rocket_key, options, used, warnings,
+    )?;
+    Ok(BodyText {
+        motor: m,
+        rocket: t,
+    })
+}
+
+/// The finish most of a body's components have (OpenRocket's `finish`), `normal` when none says.
+fn body_finish<'a>(body: &[&'a Component]) -> &'a str {
     let finishes: Vec<&str> = body.iter().filter_map(|b| b.text("finish")).collect();
-    let finish = finishes
+    finishes
         .iter()
         .copied()
         .max_by_key(|f| finishes.iter().filter(|g| *g == f).count())
-        .unwrap_or("normal");
+        .unwrap_or("normal")
+}
+
+/// The rail buttons' drag-estimate table and their positions on the rail, appended to `w`:
+/// `(upper, lower, outer diameter, inner diameter, height, inner height)`, m.
+fn rail_buttons_text(
+    w: &mut String,
+    rocket_key: &str,
+    (upper, lower, od, id, h, inner): (f64, f64, f64, f64, f64, f64),
+) {
+    let _ = writeln!(
+        w,
+        "[{rocket_key}.drag_estimate.rail_buttons]\nouter_diameter = {}\ninner_diameter = {}\nheight = {}\ninner_height = {}\n",
+        n(od),
+        n(id),
+        n(h),
+        n(inner)
+    );
+    let _ = writeln!(
+        w,
+        "[{rocket_key}.rail_buttons]\nupper_position = {}\nlower_position = {}\n",
+        n(upper),
+        n(lower.max(upper + 1e-3))
+    );
+}
+
+/// The nose cone's surface table appended to `surfaces` (its OpenRocket drag override to
+/// `overrides`).
+///
+/// # Errors
+/// An unreadable dimension or a nose shape the mission cannot describe.
+fn nose_text(
+    nose: &Component,
+    rocket_key: &str,
+    used: &mut BTreeSet<String>,
+    warnings: &mut Vec<String>,
+    surfaces: &mut String,
+    overrides: &mut String,
+) -> Result<(), OrkError> {
+    let nose_key = key(&nose.name, used);
+    if let Some(cd) = nose
+        .fields
+        .get("overridecd")
+        .and_then(|t| crate::design::number(t))
+    {
+        let _ = writeln!(overrides, "{nose_key} = {}", n(cd));
+    }
+    let _ = write!(
+        surfaces,
+        "[{rocket_key}.surfaces.{nose_key}]\ntype = \"nose\"\nlength = {}\n",
+        n(nose.length)
+    );
+    let shape = nose.text("shape").unwrap_or("conical");
+    let parameter = nose.num_or("shapeparameter", 1.0)?;
+    let kind = nose_kind(nose, shape, parameter, warnings)?;
+    let _ = writeln!(surfaces, "kind = \"{kind}\"");
+    if kind == "powerseries" {
+        let _ = writeln!(surfaces, "power = {}", n(parameter));
+    }
+    let _ = write!(
+        surfaces,
+        "position = {}\nbase_radius = {}\n\n",
+        n(nose.x),
+        n(nose.dim("aftradius")?)
+    );
+    Ok(())
+}
+
+/// The reference radius of a body: its largest radius, pods included (OpenRocket's reference
+/// radius is the largest body radius of the rocket).
+///
+/// # Errors
+/// A component's unreadable radius; no positive radius at all (named at `first`).
+fn reference_radius(
+    first: &Component,
+    body: &[&Component],
+    all: &[&Component],
+) -> Result<f64, OrkError> {
+    let mut radius: f64 = 0.0;
+    for b in body {
+        for e in ["radius", "aftradius", "foreradius"] {
+            if b.fields.contains_key(e) {
+                radius = radius.max(b.dim(e)?);
+            }
+        }
+    }
+    if radius <= 0.0 {
+        return Err(first.value_error("radius", "the body has no positive radius"));
+    }
+    for pod in all.iter().filter(|c| c.kind == Kind::PodSet) {
+        for b in pod.children.iter().filter(|c| c.kind.is_body()) {
+            for e in ["radius", "aftradius", "foreradius"] {
+                if b.fields.contains_key(e) {
+                    radius = radius.max(b.dim(e)?);
+                }
+            }
+        }
+    }
+    Ok(radius)
+}
+
+/// Warnings for the drag inputs of the design the drag estimate does not model: a
+/// drag-coefficient override on a component whose drag is estimated as a whole, and a step in
+/// radius without a transition.
+///
+/// # Errors
+/// A component's unreadable radius.
+fn unmodelled_drag_warnings(
+    all: &[&Component],
+    body: &[&Component],
+    warnings: &mut Vec<String>,
+) -> Result<(), OrkError> {
+    for c in all {
+        let overridden = c.fields.contains_key("overridecd");
+        let mapped = matches!(c.kind, Kind::NoseCone | Kind::Transition)
+            && c.text("overridesubcomponentscd") != Some("true");
+        if overridden && !mapped {
+            warnings.push(format!(
+                "`{}`: its drag-coefficient override is not modelled; the estimate includes its drag",
+                c.name
+            ));
+        }
+    }
+    // Radius steps without a transition: the estimate's implied body has none.
+    for w in body.windows(2).filter(|w| w[1].kind == Kind::BodyTube) {
+        let aft = w[0].num_or("aftradius", w[0].num_or("radius", 0.0)?)?;
+        let fore = w[1].num_or("foreradius", w[1].num_or("radius", 0.0)?)?;
+        if (aft - fore).abs() > 1e-6 {
+            warnings.push(format!(
+                "`{}` → `{}`: a step in radius ({aft} m → {fore} m) without a transition; \
+                 the drag estimate's body keeps the radius",
+                w[0].name, w[1].name
+            ));
+        }
+    }
+    Ok(())
+}
+
+/// The mass properties of a group without its motor, summed over its components (with
+/// OpenRocket's overrides), the motors OpenRocket never lights carried whole.
+///
+/// # Errors
+/// A component's unreadable dimensions; an unlit motor's thrust file that cannot be found.
+fn mass_without_motor(
+    file: &Path,
+    group: &Group,
+    radius: f64,
+    options: &ImportOptions,
+) -> Result<MassProps, OrkError> {
+    let mut props = MassProps::default();
+    for stage in &group.stages {
+        props = props.add(mass::subtree(stage, 0.0, radius)?);
+    }
+    for (mount, motor) in &group.unlit {
+        let (_, eng) = find_motor(file, motor, options)?;
+        let (length, diameter) = eng.size_of(motor);
+        props = props.add(mass::unlit_motor(
+            mount.x + mount.length + mount.overhang,
+            length,
+            0.5 * diameter,
+            eng.total,
+            mount.cluster()?,
+        ));
+    }
+    Ok(props)
+}
+
+/// The mission tables of the surfaces and drag-estimate parts of a body: each a string of
+/// TOML tables, in the order [`body_text`] writes them.
+struct Attached {
+    surfaces: String,
+    pod_surfaces: String,
+    pods: String,
+    fins: String,
+    lugs: String,
+    /// The first rail-button set: upper and lower positions, outer and inner diameters,
+    /// height and inner height, m.
+    buttons: Option<(f64, f64, f64, f64, f64, f64)>,
+    overrides: String,
+}
+
+/// The nose, the transitions (tails) and what each body component carries (fins, pods, tube
+/// fins, launch lugs, rail buttons) as mission tables under `rocket_key`, the names taken
+/// unique through `used`.
+///
+/// # Errors
+/// A component's unreadable dimensions or a shape the mission cannot describe.
+#[allow(clippy::too_many_arguments)]
+fn attached_text(
+    file: &Path,
+    nose: Option<&&Component>,
+    body: &[&Component],
+    rocket_key: &str,
+    radius: f64,
+    finish: &str,
+    used: &mut BTreeSet<String>,
+    warnings: &mut Vec<String>,
+) -> Result<Attached, OrkError> {
     let mut surfaces = String::new();
     let mut pod_surfaces = String::new();
     let mut pods = String::new();
@@ -1189,34 +1381,16 @@ fn body_text(
     let mut buttons = None;
     let mut overrides = String::new();
     if let Some(nose) = nose {
-        let nose_key = key(&nose.name, used);
-        if let Some(cd) = nose
-            .fields
-            .get("overridecd")
-            .and_then(|t| crate::design::number(t))
-        {
-            let _ = writeln!(overrides, "{nose_key} = {}", n(cd));
-        }
-        let _ = write!(
-            surfaces,
-            "[{rocket_key}.surfaces.{nose_key}]\ntype = \"nose\"\nlength = {}\n",
-            n(nose.length)
-        );
-        let shape = nose.text("shape").unwrap_or("conical");
-        let parameter = nose.num_or("shapeparameter", 1.0)?;
-        let kind = nose_kind(nose, shape, parameter, warnings)?;
-        let _ = writeln!(surfaces, "kind = \"{kind}\"");
-        if kind == "powerseries" {
-            let _ = writeln!(surfaces, "power = {}", n(parameter));
-        }
-        let _ = write!(
-            surfaces,
-            "position = {}\nbase_radius = {}\n\n",
-            n(nose.x),
-            n(nose.dim("aftradius")?)
-        );
+        nose_text(
+            nose,
+            rocket_key,
+            used,
+            warnings,
+            &mut surfaces,
+            &mut overrides,
+        )?;
     }
-    for b in &body {
+    for b in body {
         if b.kind == Kind::Transition {
             // Equal radii (automatic ends between tubes of one radius): a piece of tube,
             // which the drag estimate's body already has; no tail.
@@ -1255,7 +1429,7 @@ fn body_text(
             );
         }
     }
-    for parent in &body {
+    for parent in body {
         let tube_radius = parent.num_or("radius", parent.num_or("aftradius", radius)?)?;
         for c in &parent.children {
             match c.kind {
@@ -1324,49 +1498,36 @@ fn body_text(
             }
         }
     }
-    if !top {
-        let _ = writeln!(
-            w,
-            "# The drag estimate of the stack while this stage is its bottom: the body from the\n\
-             # sustainer's nose tip to this stage's aft end."
-        );
-    }
-    let _ = writeln!(
-        w,
-        "[{rocket_key}.drag_estimate]\nbody_length = {}\nfinish = \"{finish}\"\n",
-        n(body_end)
-    );
-    if !overrides.is_empty() {
-        let _ = writeln!(
-            w,
-            "# OpenRocket's drag-coefficient overrides (on the reference area)."
-        );
-        let _ = writeln!(w, "[{rocket_key}.drag_estimate.overrides]\n{overrides}");
-    }
-    w.push_str(&fins);
-    w.push_str(&lugs);
-    if let Some((upper, lower, od, id, h, inner)) = buttons {
-        let _ = writeln!(
-            w,
-            "[{rocket_key}.drag_estimate.rail_buttons]\nouter_diameter = {}\ninner_diameter = {}\nheight = {}\ninner_height = {}\n",
-            n(od),
-            n(id),
-            n(h),
-            n(inner)
-        );
-        let _ = writeln!(
-            w,
-            "[{rocket_key}.rail_buttons]\nupper_position = {}\nlower_position = {}\n",
-            n(upper),
-            n(lower.max(upper + 1e-3))
-        );
-    }
-    w.push_str(&surfaces);
-    w.push_str(&pods);
-    w.push_str(&pod_surfaces);
+    Ok(Attached {
+        surfaces,
+        pod_surfaces,
+        pods,
+        fins,
+        lugs,
+        buttons,
+        overrides,
+    })
+}
 
-    // Recovery.
-    for c in &all {
+/// The recovery devices of a group as `[<rocket_key>.parachutes.<name>]` tables appended to
+/// `w`: each parachute with the chosen configuration's deployment settings (else the
+/// device's own) and OpenRocket's deployment event as a trigger; streamers are not modelled.
+///
+/// # Errors
+/// A parachute's unreadable dimensions; a motor's thrust file that cannot be found.
+#[allow(clippy::too_many_arguments)]
+fn recovery_text(
+    w: &mut String,
+    file: &Path,
+    config: &str,
+    group: &Group,
+    all: &[&Component],
+    rocket_key: &str,
+    options: &ImportOptions,
+    used: &mut BTreeSet<String>,
+    warnings: &mut Vec<String>,
+) -> Result<(), OrkError> {
+    for c in all {
         match c.kind {
             Kind::Parachute => {
                 // The chosen configuration's deployment settings, else the device's own.
@@ -1431,10 +1592,7 @@ fn body_text(
             _ => {}
         }
     }
-    Ok(BodyText {
-        motor: m,
-        rocket: t,
-    })
+    Ok(())
 }
 
 /// Builds the mission text of `design` for the simulation chosen by `options`: the top body
