@@ -536,11 +536,11 @@ impl Design {
     }
 }
 
-/// Reads one component element and its sub-components; `parent` is the parent's (top,
-/// length) and `previous` the end of the previous body sibling (for `after` placement).
 /// How deep components may nest inside each other (stage, body tube, inner tube, ring, …).
 pub const MAX_COMPONENT_DEPTH: usize = 64;
 
+/// Reads one component element and its sub-components; `parent` is the parent's (top,
+/// length) and `previous` the end of the previous body sibling (for `after` placement).
 fn component(
     file: &Path,
     node: roxmltree::Node<'_, '_>,
@@ -607,66 +607,8 @@ fn component(
                     text.clone(),
                 ));
             }
-            "finpoints" => {
-                for p in e.children().filter(|p| p.has_tag_name("point")) {
-                    let coordinate = |a: &str| {
-                        p.attribute(a)
-                            .and_then(|v| v.parse::<f64>().ok())
-                            .filter(|v| v.is_finite())
-                    };
-                    match (coordinate("x"), coordinate("y")) {
-                        (Some(x), Some(y)) => points.push([x, y]),
-                        _ => {
-                            return Err(OrkError::Value {
-                                file: file.to_owned(),
-                                component: name.clone(),
-                                element: "finpoints".to_owned(),
-                                problem: "a point without finite x and y".to_owned(),
-                            });
-                        }
-                    }
-                }
-            }
-            "motormount" => {
-                if let Some(o) = child_text(e, "overhang").as_deref().and_then(number) {
-                    overhang = o;
-                }
-                let ignition_of = |n: roxmltree::Node<'_, '_>| {
-                    (
-                        child_text(n, "ignitionevent"),
-                        child_text(n, "ignitiondelay").as_deref().and_then(number),
-                    )
-                };
-                let (default_event, default_delay) = ignition_of(e);
-                for m in e.children().filter(|m| m.has_tag_name("motor")) {
-                    let id = m.attribute("configid").unwrap_or("").to_owned();
-                    let get = |t: &str| child_text(m, t).unwrap_or_default();
-                    let delay = child_text(m, "delay").and_then(|d| number(&d));
-                    let (event, ignition_delay) = e
-                        .children()
-                        .find(|c| {
-                            c.has_tag_name("ignitionconfiguration")
-                                && c.attribute("configid") == Some(id.as_str())
-                        })
-                        .map_or((None, None), ignition_of);
-                    motors.insert(
-                        id,
-                        MotorRef {
-                            manufacturer: get("manufacturer"),
-                            designation: get("designation"),
-                            delay,
-                            diameter: number(&get("diameter")).unwrap_or(f64::NAN),
-                            length: number(&get("length")).unwrap_or(f64::NAN),
-                            ignition: (
-                                event
-                                    .or_else(|| default_event.clone())
-                                    .unwrap_or_else(|| "automatic".to_owned()),
-                                ignition_delay.or(default_delay).unwrap_or(0.0),
-                            ),
-                        },
-                    );
-                }
-            }
+            "finpoints" => points.extend(fin_points(file, &name, e)?),
+            "motormount" => mount_motors(e, &mut overhang, &mut motors),
             "deploymentconfiguration" => {
                 let id = e.attribute("configid").unwrap_or("").to_owned();
                 let settings = e
@@ -718,25 +660,7 @@ fn component(
         c.length = assembly_length(node);
     }
     c.length = positioning_length(kind, &c)?;
-    let (parent_top, parent_length) = parent.unwrap_or((0.0, 0.0));
-    let (method, value) = match &axial {
-        Some((m, v)) => (
-            m.as_str(),
-            number(v)
-                .ok_or_else(|| c.value_error("axialoffset", &format!("{v:?} is not a number")))?,
-        ),
-        None => ("after", 0.0),
-    };
-    c.x = match method {
-        "after" => previous.unwrap_or(parent_top) + value,
-        "absolute" => value,
-        "middle" => parent_top + 0.5 * parent_length - 0.5 * c.length + value,
-        "bottom" => parent_top + parent_length - c.length + value,
-        _ => parent_top + value,
-    };
-    if !c.x.is_finite() {
-        return Err(c.value_error("axialoffset", "gives no finite position"));
-    }
+    c.x = axial_position(&c, axial.as_ref(), parent, previous)?;
     // Sub-components: body parts one after the other, the rest relative to this one.
     let mut end = None;
     if let Some(subs) = node.children().find(|s| s.has_tag_name("subcomponents")) {
@@ -752,6 +676,118 @@ fn component(
         c.length = end.map_or(0.0, |e| e - c.x);
     }
     Ok(c)
+}
+
+/// The points of a free-form fin's `<finpoints>` element `e`, m.
+///
+/// # Errors
+/// [`OrkError::Value`] for a point without finite `x` and `y`.
+fn fin_points(
+    file: &Path,
+    component: &str,
+    e: roxmltree::Node<'_, '_>,
+) -> Result<Vec<[f64; 2]>, OrkError> {
+    let mut points = Vec::new();
+    for p in e.children().filter(|p| p.has_tag_name("point")) {
+        let coordinate = |a: &str| {
+            p.attribute(a)
+                .and_then(|v| v.parse::<f64>().ok())
+                .filter(|v| v.is_finite())
+        };
+        match (coordinate("x"), coordinate("y")) {
+            (Some(x), Some(y)) => points.push([x, y]),
+            _ => {
+                return Err(OrkError::Value {
+                    file: file.to_owned(),
+                    component: component.to_owned(),
+                    element: "finpoints".to_owned(),
+                    problem: "a point without finite x and y".to_owned(),
+                });
+            }
+        }
+    }
+    Ok(points)
+}
+
+/// The overhang and the motors of a `<motormount>` element `e`, each motor by its
+/// configuration id, with the ignition event and delay of its configuration (else the
+/// mount's, else OpenRocket's `automatic` at 0 s).
+fn mount_motors(
+    e: roxmltree::Node<'_, '_>,
+    overhang: &mut f64,
+    motors: &mut BTreeMap<String, MotorRef>,
+) {
+    if let Some(o) = child_text(e, "overhang").as_deref().and_then(number) {
+        *overhang = o;
+    }
+    let ignition_of = |n: roxmltree::Node<'_, '_>| {
+        (
+            child_text(n, "ignitionevent"),
+            child_text(n, "ignitiondelay").as_deref().and_then(number),
+        )
+    };
+    let (default_event, default_delay) = ignition_of(e);
+    for m in e.children().filter(|m| m.has_tag_name("motor")) {
+        let id = m.attribute("configid").unwrap_or("").to_owned();
+        let get = |t: &str| child_text(m, t).unwrap_or_default();
+        let delay = child_text(m, "delay").and_then(|d| number(&d));
+        let (event, ignition_delay) = e
+            .children()
+            .find(|c| {
+                c.has_tag_name("ignitionconfiguration")
+                    && c.attribute("configid") == Some(id.as_str())
+            })
+            .map_or((None, None), ignition_of);
+        motors.insert(
+            id,
+            MotorRef {
+                manufacturer: get("manufacturer"),
+                designation: get("designation"),
+                delay,
+                diameter: number(&get("diameter")).unwrap_or(f64::NAN),
+                length: number(&get("length")).unwrap_or(f64::NAN),
+                ignition: (
+                    event
+                        .or_else(|| default_event.clone())
+                        .unwrap_or_else(|| "automatic".to_owned()),
+                    ignition_delay.or(default_delay).unwrap_or(0.0),
+                ),
+            },
+        );
+    }
+}
+
+/// The position of component `c` (its length known) from its `<axialoffset>` (`method`,
+/// value; none: `after`), the parent's (top, length) and the end of the previous body sibling.
+///
+/// # Errors
+/// An offset that is not a number or gives no finite position.
+fn axial_position(
+    c: &Component,
+    axial: Option<&(String, String)>,
+    parent: Option<(f64, f64)>,
+    previous: Option<f64>,
+) -> Result<f64, OrkError> {
+    let (parent_top, parent_length) = parent.unwrap_or((0.0, 0.0));
+    let (method, value) = match axial {
+        Some((m, v)) => (
+            m.as_str(),
+            number(v)
+                .ok_or_else(|| c.value_error("axialoffset", &format!("{v:?} is not a number")))?,
+        ),
+        None => ("after", 0.0),
+    };
+    let x = match method {
+        "after" => previous.unwrap_or(parent_top) + value,
+        "absolute" => value,
+        "middle" => parent_top + 0.5 * parent_length - 0.5 * c.length + value,
+        "bottom" => parent_top + parent_length - c.length + value,
+        _ => parent_top + value,
+    };
+    if !x.is_finite() {
+        return Err(c.value_error("axialoffset", "gives no finite position"));
+    }
+    Ok(x)
 }
 
 /// The length of a pod set: its body parts end to end (OpenRocket places them one after the

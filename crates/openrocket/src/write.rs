@@ -336,17 +336,22 @@ fn separation_fires(separation: &SeparationRef, above_lit: bool) -> bool {
     }
 }
 
-/// The design's stages grouped into the bodies karman flies ([`Group`]) for `sim`.
-fn groups<'a>(
+/// A stage's motor mount with the motor the configuration puts in it.
+type Mount<'a> = (&'a Component, &'a MotorRef);
+
+/// Each stage's motor mount in the configuration of `sim` (none for a stage without one; the
+/// first lit of a single-stage design with several), and the other mounts of such a design.
+///
+/// # Errors
+/// A stage the simulation leaves inactive; several motors in one stage of a multi-stage
+/// rocket.
+fn stage_mounts<'a>(
     file: &Path,
     design: &'a Design,
     sim: &Simulation,
-    warnings: &mut Vec<String>,
-) -> Result<Vec<Group<'a>>, OrkError> {
-    // Each stage's motor mount in the configuration (the first lit of a single-stage design
-    // with several, `others` the rest).
-    let mut mounts: Vec<Option<(&'a Component, &'a MotorRef)>> = Vec::new();
-    let mut others: Vec<(&'a Component, &'a MotorRef)> = Vec::new();
+) -> Result<(Vec<Option<Mount<'a>>>, Vec<Mount<'a>>), OrkError> {
+    let mut mounts: Vec<Option<Mount<'a>>> = Vec::new();
+    let mut others: Vec<Mount<'a>> = Vec::new();
     for (number, stage) in design.stages.iter().enumerate() {
         if sim.inactive_stages.contains(&number) {
             return Err(unsupported(
@@ -390,8 +395,16 @@ fn groups<'a>(
             }
         }
     }
-    // Which of them OpenRocket lights, from the bottom stage up.
-    let bottom = design.stages.len() - 1;
+    Ok((mounts, others))
+}
+
+/// Which of the stages' mounts OpenRocket lights, from the bottom stage (`bottom`) up (an
+/// upper motor lit by the ejection charge below it); a warning for each it never lights.
+fn lit_mounts(
+    mounts: &[Option<Mount<'_>>],
+    bottom: usize,
+    warnings: &mut Vec<String>,
+) -> Vec<bool> {
     let mut lit_motor: Vec<bool> = vec![false; mounts.len()];
     for number in (0..mounts.len()).rev() {
         if let Some((mount, motor)) = mounts[number] {
@@ -410,6 +423,19 @@ fn groups<'a>(
             }
         }
     }
+    lit_motor
+}
+
+/// The design's stages grouped into the bodies karman flies ([`Group`]) for `sim`.
+fn groups<'a>(
+    file: &Path,
+    design: &'a Design,
+    sim: &Simulation,
+    warnings: &mut Vec<String>,
+) -> Result<Vec<Group<'a>>, OrkError> {
+    let (mounts, others) = stage_mounts(file, design, sim)?;
+    let bottom = design.stages.len() - 1;
+    let lit_motor = lit_mounts(&mounts, bottom, warnings);
 
     let mut out: Vec<Group<'a>> = Vec::new();
     let mut pending: Vec<&Component> = Vec::new();
@@ -577,65 +603,40 @@ struct PodText {
     pod: String,
 }
 
-/// The surfaces, fin drag tables and pod table of pod set `pod` under `rocket_key`, sitting
-/// on a body of outer radius `parent_radius`.
-#[allow(clippy::too_many_arguments)]
-fn pod_text(
-    file: &Path,
-    pod: &Component,
-    parent_radius: f64,
+/// The largest of a component's radii (`radius`, `aftradius`, `foreradius`, whichever it
+/// has), 0 when it has none.
+///
+/// # Errors
+/// An unreadable radius.
+fn largest_radius(c: &Component) -> Result<f64, OrkError> {
+    let mut r: f64 = 0.0;
+    for e in ["radius", "aftradius", "foreradius"] {
+        if c.fields.contains_key(e) {
+            r = r.max(c.dim(e)?);
+        }
+    }
+    Ok(r)
+}
+
+/// The surfaces of a pod's body (its nose cone, and its tail cones and transitions as conical
+/// tails) appended to `surfaces`, their keys to `names`; returns the aft end of the body
+/// (from the pod's position `pod_x`), m.
+///
+/// # Errors
+/// An unreadable dimension or a nose shape the mission cannot describe.
+fn pod_body_text(
+    pod_x: f64,
+    body: &[&Component],
     rocket_key: &str,
-    finish: &str,
     used: &mut BTreeSet<String>,
     warnings: &mut Vec<String>,
-) -> Result<PodText, OrkError> {
-    let (count, distance, angle) = pod.pod_placement(parent_radius)?;
-    let body: Vec<&Component> = pod.children.iter().filter(|c| c.kind.is_body()).collect();
-    if let Some(c) = pod
-        .children
-        .iter()
-        .find(|c| !c.kind.is_body() && (c.kind.is_aerodynamic() || c.kind == Kind::PodSet))
-    {
-        return Err(unsupported(
-            file,
-            &c.name,
-            "a pod's part other than a nose cone, body tube, transition or fin set".to_owned(),
-        ));
-    }
-    let radius_of = |c: &Component| -> Result<f64, OrkError> {
-        let mut r: f64 = 0.0;
-        for e in ["radius", "aftradius", "foreradius"] {
-            if c.fields.contains_key(e) {
-                r = r.max(c.dim(e)?);
-            }
-        }
-        Ok(r)
-    };
-    let mut pod_radius: f64 = 0.0;
-    for b in &body {
-        pod_radius = pod_radius.max(radius_of(b)?);
-    }
-    let mut surfaces = String::new();
-    let mut names = Vec::new();
-    let has_body = pod_radius > 0.0;
-    if has_body {
-        match body.first() {
-            Some(first)
-                if first.kind == Kind::NoseCone && first.text("isflipped") != Some("true") => {}
-            Some(first) => {
-                return Err(unsupported(
-                    file,
-                    &first.name,
-                    "a pod body that does not start with a nose cone (a blunt front)".to_owned(),
-                ));
-            }
-            None => {}
-        }
-    }
-    let mut body_end = pod.x;
+    surfaces: &mut String,
+    names: &mut Vec<String>,
+) -> Result<f64, OrkError> {
+    let mut body_end = pod_x;
     for (i, b) in body.iter().enumerate() {
         body_end = body_end.max(b.x + b.length);
-        if radius_of(b)? <= 0.0 {
+        if largest_radius(b)? <= 0.0 {
             continue;
         }
         let flipped = b.text("isflipped") == Some("true");
@@ -696,6 +697,64 @@ type = \"nose\"\nlength = {}\nkind = \"{kind}\"\n",
             _ => {}
         }
     }
+    Ok(body_end)
+}
+
+/// The surfaces, fin drag tables and pod table of pod set `pod` under `rocket_key`, sitting
+/// on a body of outer radius `parent_radius`.
+#[allow(clippy::too_many_arguments)]
+fn pod_text(
+    file: &Path,
+    pod: &Component,
+    parent_radius: f64,
+    rocket_key: &str,
+    finish: &str,
+    used: &mut BTreeSet<String>,
+    warnings: &mut Vec<String>,
+) -> Result<PodText, OrkError> {
+    let (count, distance, angle) = pod.pod_placement(parent_radius)?;
+    let body: Vec<&Component> = pod.children.iter().filter(|c| c.kind.is_body()).collect();
+    if let Some(c) = pod
+        .children
+        .iter()
+        .find(|c| !c.kind.is_body() && (c.kind.is_aerodynamic() || c.kind == Kind::PodSet))
+    {
+        return Err(unsupported(
+            file,
+            &c.name,
+            "a pod's part other than a nose cone, body tube, transition or fin set".to_owned(),
+        ));
+    }
+    let mut pod_radius: f64 = 0.0;
+    for b in &body {
+        pod_radius = pod_radius.max(largest_radius(b)?);
+    }
+    let mut surfaces = String::new();
+    let mut names = Vec::new();
+    let has_body = pod_radius > 0.0;
+    if has_body {
+        match body.first() {
+            Some(first)
+                if first.kind == Kind::NoseCone && first.text("isflipped") != Some("true") => {}
+            Some(first) => {
+                return Err(unsupported(
+                    file,
+                    &first.name,
+                    "a pod body that does not start with a nose cone (a blunt front)".to_owned(),
+                ));
+            }
+            None => {}
+        }
+    }
+    let body_end = pod_body_text(
+        pod.x,
+        &body,
+        rocket_key,
+        used,
+        warnings,
+        &mut surfaces,
+        &mut names,
+    )?;
     let mut fins = String::new();
     for b in &body {
         let tube_radius = b.num_or("radius", b.num_or("aftradius", 0.0)?)?;
@@ -1255,22 +1314,14 @@ fn reference_radius(
 ) -> Result<f64, OrkError> {
     let mut radius: f64 = 0.0;
     for b in body {
-        for e in ["radius", "aftradius", "foreradius"] {
-            if b.fields.contains_key(e) {
-                radius = radius.max(b.dim(e)?);
-            }
-        }
+        radius = radius.max(largest_radius(b)?);
     }
     if radius <= 0.0 {
         return Err(first.value_error("radius", "the body has no positive radius"));
     }
     for pod in all.iter().filter(|c| c.kind == Kind::PodSet) {
         for b in pod.children.iter().filter(|c| c.kind.is_body()) {
-            for e in ["radius", "aftradius", "foreradius"] {
-                if b.fields.contains_key(e) {
-                    radius = radius.max(b.dim(e)?);
-                }
-            }
+            radius = radius.max(largest_radius(b)?);
         }
     }
     Ok(radius)
@@ -1603,26 +1654,7 @@ pub(super) fn mission(
     options: &ImportOptions,
 ) -> Result<Imported, OrkError> {
     let mut warnings = Vec::new();
-    let sim = match &options.simulation {
-        Some(name) => design.simulations.iter().find(|s| &s.name == name),
-        None => design.simulations.first(),
-    };
-    let Some(sim) = sim else {
-        return Err(OrkError::Simulation {
-            file: file.to_owned(),
-            name: options.simulation.clone().unwrap_or_default(),
-            available: if design.simulations.is_empty() {
-                "none".to_owned()
-            } else {
-                design
-                    .simulations
-                    .iter()
-                    .map(|s| format!("{:?}", s.name))
-                    .collect::<Vec<_>>()
-                    .join(", ")
-            },
-        });
-    };
+    let sim = chosen_simulation(file, design, options)?;
     refuse_powered_pods(file, design)?;
     let groups = groups(file, design, sim, &mut warnings)?;
     let bottom = &groups[groups.len() - 1];
@@ -1671,6 +1703,67 @@ pub(super) fn mission(
 
     let mut t = String::new();
     let w = &mut t;
+    header_text(w, file, design, sim, &groups);
+
+    environment_text(w, sim);
+    w.push_str(&top.motor);
+    w.push_str(&top.rocket);
+
+    flight_text(w, sim);
+    extra_motors_text(w, file, &groups[0], options)?;
+    stages_text(w, sim, &groups, &lower, &staging_of);
+    let t = t.trim_end().to_owned() + "\n";
+    let mut t = t;
+    if !warnings.is_empty() {
+        let mut head = String::new();
+        for warning in &warnings {
+            // A warning can quote a file name, which may hold any character.
+            let _ = writeln!(head, "# note: {}", crate::design::one_line(warning));
+        }
+        t = t.replacen(
+            &format!("name = {}", quoted(&design.name)),
+            &format!("{head}name = {}", quoted(&design.name)),
+            1,
+        );
+    }
+    Ok(Imported {
+        mission: t,
+        warnings,
+    })
+}
+
+/// The stored simulation `options` names (the design's first by default).
+///
+/// # Errors
+/// [`OrkError::Simulation`] naming the simulations the design has when none matches.
+fn chosen_simulation<'a>(
+    file: &Path,
+    design: &'a Design,
+    options: &ImportOptions,
+) -> Result<&'a Simulation, OrkError> {
+    let sim = match &options.simulation {
+        Some(name) => design.simulations.iter().find(|s| &s.name == name),
+        None => design.simulations.first(),
+    };
+    sim.ok_or_else(|| OrkError::Simulation {
+        file: file.to_owned(),
+        name: options.simulation.clone().unwrap_or_default(),
+        available: if design.simulations.is_empty() {
+            "none".to_owned()
+        } else {
+            design
+                .simulations
+                .iter()
+                .map(|s| format!("{:?}", s.name))
+                .collect::<Vec<_>>()
+                .join(", ")
+        },
+    })
+}
+
+/// The mission's opening comments (the design, its file, the simulation, its motors and
+/// stages) and its `name`, appended to `w`.
+fn header_text(w: &mut String, file: &Path, design: &Design, sim: &Simulation, groups: &[Group]) {
     let _ = writeln!(
         w,
         "# {} — imported from {} by `karman import`.",
@@ -1707,7 +1800,11 @@ pub(super) fn mission(
     }
     let _ = writeln!(w, "name = {}", quoted(&design.name));
     let _ = writeln!(w);
+}
 
+/// The `[environment]` of the simulation's launch conditions (site and OpenRocket's average
+/// wind as a constant wind), appended to `w`.
+fn environment_text(w: &mut String, sim: &Simulation) {
     let lat = condition(sim, "launchlatitude", 0.0);
     let lon = condition(sim, "launchlongitude", 0.0);
     let alt = condition(sim, "launchaltitude", 0.0);
@@ -1732,9 +1829,10 @@ pub(super) fn mission(
         n(u),
         n(v)
     );
-    w.push_str(&top.motor);
-    w.push_str(&top.rocket);
+}
 
+/// The `[flight]` table of the simulation's launch rod and time limit, appended to `w`.
+fn flight_text(w: &mut String, sim: &Simulation) {
     let rod = condition(sim, "launchrodlength", 1.0);
     let angle = condition(sim, "launchrodangle", 0.0);
     let heading = condition(sim, "launchroddirection", 90.0);
@@ -1747,8 +1845,20 @@ pub(super) fn mission(
         n(heading),
         n(max_time)
     );
-    // Further motor mounts of a single-stage rocket, each lit its delay after launch.
-    for (mount, motor) in &groups[0].extra {
+}
+
+/// The further motor mounts of a single-stage rocket as `[[extra_motors]]` entries, each lit
+/// its delay after launch, appended to `w`.
+///
+/// # Errors
+/// A motor's thrust file that cannot be found or read.
+fn extra_motors_text(
+    w: &mut String,
+    file: &Path,
+    group: &Group,
+    options: &ImportOptions,
+) -> Result<(), OrkError> {
+    for (mount, motor) in &group.extra {
         let (text, nozzle_at) = motor_text(file, mount, motor, "extra_motors.motor", options)?;
         let _ = writeln!(
             w,
@@ -1768,6 +1878,18 @@ pub(super) fn mission(
         );
         w.push_str(&text);
     }
+    Ok(())
+}
+
+/// The bodies below the top one as `[[stages]]` entries (their separation and the ignition of
+/// the stage above, their airframe and motor texts `lower`), appended to `w`.
+fn stages_text(
+    w: &mut String,
+    sim: &Simulation,
+    groups: &[Group],
+    lower: &[BodyText],
+    staging_of: &[(f64, f64)],
+) {
     // Stage names as reports show them, made unique by OpenRocket's stage number.
     let title = |g: &Group| {
         if groups.iter().filter(|o| o.name() == g.name()).count() > 1 {
@@ -1776,7 +1898,7 @@ pub(super) fn mission(
             g.name().to_owned()
         }
     };
-    for (k, (group, text)) in groups[1..].iter().zip(&lower).enumerate() {
+    for (k, (group, text)) in groups[1..].iter().zip(lower).enumerate() {
         let (separate, ignition_delay) = staging_of[k];
         let upper = &groups[k];
         let sep = separation(&sim.config, group.stages[0]);
@@ -1803,24 +1925,6 @@ pub(super) fn mission(
         w.push_str(&text.motor);
         w.push_str(&text.rocket);
     }
-    let t = t.trim_end().to_owned() + "\n";
-    let mut t = t;
-    if !warnings.is_empty() {
-        let mut head = String::new();
-        for warning in &warnings {
-            // A warning can quote a file name, which may hold any character.
-            let _ = writeln!(head, "# note: {}", crate::design::one_line(warning));
-        }
-        t = t.replacen(
-            &format!("name = {}", quoted(&design.name)),
-            &format!("{head}name = {}", quoted(&design.name)),
-            1,
-        );
-    }
-    Ok(Imported {
-        mission: t,
-        warnings,
-    })
 }
 
 #[cfg(test)]
