@@ -223,8 +223,12 @@ pub fn draw_rocket_svg(mission: &Mission, rocket: &Rocket) -> String {
     let scale = (WIDTH - 2.0 * MARGIN) / span;
     let height = 2.0 * (tallest * scale + MARGIN) + 60.0;
     let axis = height / 2.0 + 10.0;
-    let x = |z: f64| MARGIN + (z - zmin) * scale;
-    let y = |r: f64| axis - r * scale;
+    let canvas = Canvas {
+        zmin,
+        scale,
+        axis,
+        csys,
+    };
 
     let mut svg = String::new();
     let _ = writeln!(
@@ -248,98 +252,139 @@ pub fn draw_rocket_svg(mission: &Mission, rocket: &Rocket) -> String {
         MARGIN / 2.0,
         WIDTH - MARGIN / 2.0
     );
-    let points_text = |points: &[(f64, f64)]| {
-        points
-            .iter()
-            .map(|(a, b)| format!("{a:.2},{b:.2}"))
-            .collect::<Vec<_>>()
-            .join(" ")
-    };
-    let polygon = |svg: &mut String, points: &[(f64, f64)], fill: &str| {
-        let _ = writeln!(
-            svg,
-            r##"<polygon points="{}" fill="{fill}" stroke="#222" stroke-width="1"/>"##,
-            points_text(points)
-        );
-    };
-    // A pod surface: a dashed outline, named, over the body.
-    let pod_outline = |svg: &mut String, s: &Surface, points: &[(f64, f64)]| {
-        let count = s.pod.map_or(1, |p| p.count);
-        let _ = writeln!(
-            svg,
-            r##"<polygon points="{}" fill="none" stroke="#6a3d9a" stroke-width="1" stroke-dasharray="4 3"><title>{} (on {count} pod(s), drawn on the rocket axis)</title></polygon>"##,
-            points_text(points),
-            escape(&s.name)
-        );
-    };
+    draw_body(&mut svg, rocket, &canvas);
+    draw_markers(&mut svg, rocket, &canvas, height);
+    svg.push_str("</svg>\n");
+    svg
+}
 
-    // Every surface's outline polygons, in drawing coordinates.
-    let outlines = |s: &Surface| -> Vec<Vec<(f64, f64)>> {
-        let (z0, z1) = (s.position, s.position - csys * s.geometry.length());
-        let quad = |r0: f64, r1: f64| {
-            vec![
-                (x(z0), y(r0)),
-                (x(z1), y(r1)),
-                (x(z1), y(-r1)),
-                (x(z0), y(-r0)),
-            ]
-        };
-        match &s.geometry {
-            Geometry::Nose { profile, .. } => {
-                let mut pts: Vec<(f64, f64)> = profile
+/// The drawing's coordinates: user axial positions `z` to the right from `zmin`, radii up
+/// from the axis at `axis`, both at `scale` pixels per metre (`csys`: the rocket's axis sign).
+struct Canvas {
+    zmin: f64,
+    scale: f64,
+    axis: f64,
+    csys: f64,
+}
+
+impl Canvas {
+    /// The drawing's abscissa of axial position `z`.
+    fn x(&self, z: f64) -> f64 {
+        MARGIN + (z - self.zmin) * self.scale
+    }
+    /// The drawing's ordinate of radius `r` (negative below the axis).
+    fn y(&self, r: f64) -> f64 {
+        self.axis - r * self.scale
+    }
+}
+
+/// Polygon points as SVG's `points` attribute.
+fn points_text(points: &[(f64, f64)]) -> String {
+    points
+        .iter()
+        .map(|(a, b)| format!("{a:.2},{b:.2}"))
+        .collect::<Vec<_>>()
+        .join(" ")
+}
+
+/// A filled, outlined polygon.
+fn polygon(svg: &mut String, points: &[(f64, f64)], fill: &str) {
+    let _ = writeln!(
+        svg,
+        r##"<polygon points="{}" fill="{fill}" stroke="#222" stroke-width="1"/>"##,
+        points_text(points)
+    );
+}
+
+/// A pod surface: a dashed outline, named, over the body.
+fn pod_outline(svg: &mut String, s: &Surface, points: &[(f64, f64)]) {
+    let count = s.pod.map_or(1, |p| p.count);
+    let _ = writeln!(
+        svg,
+        r##"<polygon points="{}" fill="none" stroke="#6a3d9a" stroke-width="1" stroke-dasharray="4 3"><title>{} (on {count} pod(s), drawn on the rocket axis)</title></polygon>"##,
+        points_text(points),
+        escape(&s.name)
+    );
+}
+
+/// A surface's outline polygons, in drawing coordinates: a nose's profile above and below the
+/// axis, a tail's quadrilateral, one tube fin and one fin above and below the body.
+fn outlines(c: &Canvas, s: &Surface) -> Vec<Vec<(f64, f64)>> {
+    let csys = c.csys;
+    let (z0, z1) = (s.position, s.position - csys * s.geometry.length());
+    let quad = |r0: f64, r1: f64| {
+        vec![
+            (c.x(z0), c.y(r0)),
+            (c.x(z1), c.y(r1)),
+            (c.x(z1), c.y(-r1)),
+            (c.x(z0), c.y(-r0)),
+        ]
+    };
+    match &s.geometry {
+        Geometry::Nose { profile, .. } => {
+            let mut pts: Vec<(f64, f64)> = profile
+                .iter()
+                .map(|p| (c.x(s.position - csys * p[0]), c.y(p[1])))
+                .collect();
+            pts.extend(
+                profile
                     .iter()
-                    .map(|p| (x(s.position - csys * p[0]), y(p[1])))
-                    .collect();
-                pts.extend(
-                    profile
-                        .iter()
-                        .rev()
-                        .map(|p| (x(s.position - csys * p[0]), y(-p[1]))),
-                );
-                vec![pts]
-            }
-            Geometry::Tail {
-                top_radius,
-                bottom_radius,
-                ..
-            } => vec![quad(*top_radius, *bottom_radius)],
-            // One tube seen from the side above and below the body.
-            Geometry::TubeFins {
-                outer_radius,
-                body_radius,
-                ..
-            } => [1.0, -1.0]
-                .iter()
-                .map(|side| {
-                    let (r0, r1) = (
-                        side * body_radius,
-                        side * (body_radius + 2.0 * outer_radius),
-                    );
-                    vec![
-                        (x(z0), y(r0)),
-                        (x(z1), y(r0)),
-                        (x(z1), y(r1)),
-                        (x(z0), y(r1)),
-                    ]
-                })
-                .collect(),
-            // One fin above and one below the axis.
-            Geometry::Fins {
-                outline,
-                body_radius,
-                ..
-            } => [1.0, -1.0]
-                .iter()
-                .map(|side| {
-                    outline
-                        .iter()
-                        .map(|p| (x(s.position - csys * p[0]), y(side * (body_radius + p[1]))))
-                        .collect()
-                })
-                .collect(),
+                    .rev()
+                    .map(|p| (c.x(s.position - csys * p[0]), c.y(-p[1]))),
+            );
+            vec![pts]
         }
-    };
+        Geometry::Tail {
+            top_radius,
+            bottom_radius,
+            ..
+        } => vec![quad(*top_radius, *bottom_radius)],
+        // One tube seen from the side above and below the body.
+        Geometry::TubeFins {
+            outer_radius,
+            body_radius,
+            ..
+        } => [1.0, -1.0]
+            .iter()
+            .map(|side| {
+                let (r0, r1) = (
+                    side * body_radius,
+                    side * (body_radius + 2.0 * outer_radius),
+                );
+                vec![
+                    (c.x(z0), c.y(r0)),
+                    (c.x(z1), c.y(r0)),
+                    (c.x(z1), c.y(r1)),
+                    (c.x(z0), c.y(r1)),
+                ]
+            })
+            .collect(),
+        // One fin above and one below the axis.
+        Geometry::Fins {
+            outline,
+            body_radius,
+            ..
+        } => [1.0, -1.0]
+            .iter()
+            .map(|side| {
+                outline
+                    .iter()
+                    .map(|p| {
+                        (
+                            c.x(s.position - csys * p[0]),
+                            c.y(side * (body_radius + p[1])),
+                        )
+                    })
+                    .collect()
+            })
+            .collect(),
+    }
+}
 
+/// The rocket's own surfaces (noses, tails and tube fins, then body tubes laid between the
+/// shells, then fins on top) and its pod surfaces as dashed outlines.
+fn draw_body(svg: &mut String, rocket: &Rocket, c: &Canvas) {
+    let csys = c.csys;
     // Shells (nose, tails) from front to aft, to lay body tubes between them.
     let body = |z: f64| csys * (z - rocket.center_of_dry_mass());
     let mut shells: Vec<(f64, f64, f64, f64)> = Vec::new(); // (front z, aft z, front r, aft r)
@@ -370,8 +415,8 @@ pub fn draw_rocket_svg(mission: &Mission, rocket: &Rocket) -> String {
             Geometry::TubeFins { .. } => "#f2d8c9",
             Geometry::Fins { .. } => continue,
         };
-        for pts in outlines(s) {
-            polygon(&mut svg, &pts, fill);
+        for pts in outlines(c, s) {
+            polygon(svg, &pts, fill);
         }
     }
     shells.sort_by(|a, b| body(b.0).total_cmp(&body(a.0)));
@@ -380,12 +425,12 @@ pub fn draw_rocket_svg(mission: &Mission, rocket: &Rocket) -> String {
         if let Some((z0, r)) = tube_start {
             if body(z0) > body(front) {
                 let pts = [
-                    (x(z0), y(r)),
-                    (x(front), y(r)),
-                    (x(front), y(-r)),
-                    (x(z0), y(-r)),
+                    (c.x(z0), c.y(r)),
+                    (c.x(front), c.y(r)),
+                    (c.x(front), c.y(-r)),
+                    (c.x(z0), c.y(-r)),
                 ];
-                polygon(&mut svg, &pts, "#eef2f8");
+                polygon(svg, &pts, "#eef2f8");
             }
         }
         tube_start = Some((aft, aft_radius));
@@ -393,60 +438,66 @@ pub fn draw_rocket_svg(mission: &Mission, rocket: &Rocket) -> String {
     if let Some((z0, r)) = tube_start {
         if body(z0) > body(aft_most) {
             let pts = [
-                (x(z0), y(r)),
-                (x(aft_most), y(r)),
-                (x(aft_most), y(-r)),
-                (x(z0), y(-r)),
+                (c.x(z0), c.y(r)),
+                (c.x(aft_most), c.y(r)),
+                (c.x(aft_most), c.y(-r)),
+                (c.x(z0), c.y(-r)),
             ];
-            polygon(&mut svg, &pts, "#eef2f8");
+            polygon(svg, &pts, "#eef2f8");
         }
     }
     // Fins on top of the tubes.
     for s in own().filter(|s| matches!(s.geometry, Geometry::Fins { .. })) {
-        for pts in outlines(s) {
-            polygon(&mut svg, &pts, "#b8c9e6");
+        for pts in outlines(c, s) {
+            polygon(svg, &pts, "#b8c9e6");
         }
     }
     // Pod surfaces: dashed outlines on the rocket's axis, named.
     for s in rocket.surfaces().iter().filter(|s| s.pod.is_some()) {
-        for pts in outlines(s) {
-            pod_outline(&mut svg, s, &pts);
+        for pts in outlines(c, s) {
+            pod_outline(svg, s, &pts);
         }
     }
+}
+
+/// The nozzle exit, the rail buttons, the CG, CDM and CP markers and their labels.
+fn draw_markers(svg: &mut String, rocket: &Rocket, c: &Canvas, height: f64) {
+    let radius = rocket.radius();
+    let axis = c.axis;
     // Nozzle exit.
     let noz = rocket.nozzle_position();
     let rn = rocket.motor().nozzle_radius;
     let _ = writeln!(
         svg,
         r##"<line x1="{:.2}" y1="{:.2}" x2="{:.2}" y2="{:.2}" stroke="#c03" stroke-width="3"><title>nozzle exit</title></line>"##,
-        x(noz),
-        y(rn),
-        x(noz),
-        y(-rn)
+        c.x(noz),
+        c.y(rn),
+        c.x(noz),
+        c.y(-rn)
     );
     if let Some(b) = rocket.rail_buttons() {
         for z in [b.upper_position, b.lower_position] {
             let _ = writeln!(
                 svg,
                 r##"<rect x="{:.2}" y="{:.2}" width="6" height="5" fill="#555"><title>rail button</title></rect>"##,
-                x(z) - 3.0,
-                y(radius) - 5.0
+                c.x(z) - 3.0,
+                c.y(radius) - 5.0
             );
         }
     }
     // Markers: CG (black/white quartered disc), CDM (hollow), CP (red disc with dot).
     let marker_y = axis;
-    let cg = x(rocket.center_of_mass(0.0));
+    let cg = c.x(rocket.center_of_mass(0.0));
     let _ = writeln!(
         svg,
         r##"<g><title>centre of mass, t = 0</title><circle cx="{cg:.2}" cy="{marker_y:.2}" r="7" fill="#fff" stroke="#000"/><path d="M{cg:.2},{marker_y:.2} h7 a7,7 0 0,0 -7,-7 z M{cg:.2},{marker_y:.2} h-7 a7,7 0 0,0 7,7 z" fill="#000"/></g>"##
     );
-    let cdm = x(rocket.center_of_dry_mass());
+    let cdm = c.x(rocket.center_of_dry_mass());
     let _ = writeln!(
         svg,
         r##"<circle cx="{cdm:.2}" cy="{marker_y:.2}" r="4" fill="none" stroke="#000"><title>centre of dry mass</title></circle>"##
     );
-    let cp = x(rocket.cp_position(0.0));
+    let cp = c.x(rocket.cp_position(0.0));
     let _ = writeln!(
         svg,
         r##"<g><title>centre of pressure, Mach 0</title><circle cx="{cp:.2}" cy="{marker_y:.2}" r="7" fill="#c03" fill-opacity="0.8"/><circle cx="{cp:.2}" cy="{marker_y:.2}" r="2" fill="#fff"/></g>"##
@@ -463,6 +514,4 @@ pub fn draw_rocket_svg(mission: &Mission, rocket: &Rocket) -> String {
         label_y - 16.0,
         rocket.cp_position(0.0)
     );
-    svg.push_str("</svg>\n");
-    svg
 }
