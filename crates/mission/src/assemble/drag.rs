@@ -117,68 +117,7 @@ pub fn drag_geometry(
             None => &mut parts,
         };
         let copies = pod.map_or(1, |p| p.count);
-        match g {
-            Geometry::Nose {
-                kind,
-                length,
-                base_radius,
-                ..
-            } => {
-                if part.nose.is_some() {
-                    let within = pod_name.map_or(String::new(), |p| format!(" in pod `{p}`"));
-                    return Err(geometry_error(
-                        mission,
-                        format!(
-                            "a second nose cone `{}`{within}: the estimate needs one",
-                            s.name
-                        ),
-                    ));
-                }
-                part.nose = Some((
-                    s.position,
-                    length,
-                    base_radius,
-                    profile(kind),
-                    s.name.clone(),
-                ));
-            }
-            Geometry::Tail {
-                top_radius,
-                bottom_radius,
-                length,
-            } => part.tails.push((
-                s.position,
-                length,
-                top_radius,
-                bottom_radius,
-                s.name.clone(),
-            )),
-            Geometry::Fins {
-                n,
-                root_chord,
-                outline,
-                ..
-            } => part
-                .fins
-                .push((s.position, n * copies, root_chord, outline, s.name.clone())),
-            Geometry::TubeFins {
-                n,
-                length,
-                outer_radius,
-                inner_radius,
-                body_radius,
-            } => part.tube_fins.push(TubeFinSetDrag {
-                name: s.name.clone(),
-                count: n * copies,
-                length,
-                outer_radius,
-                inner_radius,
-                body_radius,
-                // Aft of the tip once the nose is known.
-                position: s.position,
-                roughness,
-            }),
-        }
+        part.add(mission, s, g, pod_name, copies, roughness)?;
     }
     let Some((tip, nose_length, nose_radius, nose_profile, nose_name)) = parts.nose.take() else {
         return Err(geometry_error(
@@ -290,6 +229,85 @@ struct Parts {
 }
 
 impl Parts {
+    /// Adds surface `s` of geometry `g` (of pod `pod_name`, `copies` of it around the rocket,
+    /// or of the rocket itself) to its kind's list.
+    ///
+    /// # Errors
+    /// A second nose cone in the rocket or in one pod.
+    fn add(
+        &mut self,
+        mission: &Mission,
+        s: &SurfaceInput,
+        g: Geometry,
+        pod_name: Option<&str>,
+        copies: u32,
+        roughness: f64,
+    ) -> Result<(), MissionError> {
+        match g {
+            Geometry::Nose {
+                kind,
+                length,
+                base_radius,
+                ..
+            } => {
+                if self.nose.is_some() {
+                    let within = pod_name.map_or(String::new(), |p| format!(" in pod `{p}`"));
+                    return Err(geometry_error(
+                        mission,
+                        format!(
+                            "a second nose cone `{}`{within}: the estimate needs one",
+                            s.name
+                        ),
+                    ));
+                }
+                self.nose = Some((
+                    s.position,
+                    length,
+                    base_radius,
+                    profile(kind),
+                    s.name.clone(),
+                ));
+            }
+            Geometry::Tail {
+                top_radius,
+                bottom_radius,
+                length,
+            } => self.tails.push((
+                s.position,
+                length,
+                top_radius,
+                bottom_radius,
+                s.name.clone(),
+            )),
+            Geometry::Fins {
+                n,
+                root_chord,
+                outline,
+                ..
+            } => self
+                .fins
+                .push((s.position, n * copies, root_chord, outline, s.name.clone())),
+            Geometry::TubeFins {
+                n,
+                length,
+                outer_radius,
+                inner_radius,
+                body_radius,
+            } => self.tube_fins.push(TubeFinSetDrag {
+                name: s.name.clone(),
+                count: n * copies,
+                length,
+                outer_radius,
+                inner_radius,
+                body_radius,
+                // Aft of the tip once the nose is known.
+                position: s.position,
+                roughness,
+            }),
+        }
+        Ok(())
+    }
+
     /// The fin and tube-fin sets, placed aft of the nose tip by `aft_of_tip`, and the aftmost
     /// end of a tail, a fin root chord or a tube (at least `end`).
     fn appendages(

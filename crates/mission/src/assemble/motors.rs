@@ -370,6 +370,112 @@ pub fn combined(motors: &[PlacedMotor], csys: f64) -> Result<MotorProperties, Co
     if motors.len() == 1 {
         return Ok(first.properties.clone());
     }
+    check_combinable(motors)?;
+    let s0 = csys * first.properties.coordinate_system_sign;
+    let frame = |m: &PlacedMotor| frame_in(first, m, csys);
+
+    let thrusts: Vec<&Table1> = motors.iter().map(|m| &m.properties.thrust).collect();
+    let thrust = linear_sum(&thrusts, Extrapolation::Zero)?;
+
+    let parts = parts_in_frame(motors, &frame)?;
+    let i33s: Vec<&Table1> = motors
+        .iter()
+        .map(|m| &m.properties.propellant_i33)
+        .collect();
+    let propellant_i33 = tabulated(union(i33s.iter().copied()), |t| {
+        i33s.iter().map(|i| i.eval(t)).sum()
+    })?;
+    // The summed propellant at a time, for the report tables (the flight sums the parts).
+    let sum = |t: f64| {
+        let mass: f64 = parts.iter().map(|p| p.mass.eval(t)).sum();
+        let moment: f64 = parts.iter().map(|p| p.moment.eval(t)).sum();
+        let z = if mass == 0.0 {
+            parts[0].center_of_mass.eval(t)
+        } else {
+            moment / mass
+        };
+        let i11 = parts.iter().fold(0.0, |acc, p| {
+            let d = p.center_of_mass.eval(t) - z;
+            acc + p.i11.eval(t) + p.mass.eval(t) * d * d
+        });
+        (mass, z, i11)
+    };
+    let grid = union(
+        parts
+            .iter()
+            .flat_map(|p| [&p.mass, &p.center_of_mass, &p.i11]),
+    );
+    let propellant_mass = tabulated(grid.clone(), |t| sum(t).0)?;
+    let propellant_center_of_mass = tabulated(grid.clone(), |t| sum(t).1)?;
+    let propellant_i11 = tabulated(grid, |t| sum(t).2)?;
+
+    let exhaust_velocity = common_exhaust_velocity(motors, first);
+
+    let (dry_mass, center_of_dry_mass, dry_inertia) = dry_lump(motors, first, &frame);
+
+    // The aftmost nozzle exit (smallest `csys · z` in rocket coordinates), in `[motor]`'s
+    // coordinates; the radius of the total exit area.
+    let nozzle_position = motors
+        .iter()
+        .map(|m| {
+            let (a, b) = frame(m);
+            a + b * m.properties.nozzle_position
+        })
+        .fold(f64::NAN, |aft, z| {
+            // In `[motor]`'s coordinates, rocket coordinates are `p_0 + s_0 z`.
+            if aft.is_nan() || csys * s0 * z < csys * s0 * aft {
+                z
+            } else {
+                aft
+            }
+        });
+    let nozzle_radius = motors
+        .iter()
+        .map(|m| m.properties.nozzle_radius * m.properties.nozzle_radius)
+        .sum::<f64>()
+        .sqrt();
+
+    Ok(MotorProperties {
+        thrust,
+        burn_start: motors
+            .iter()
+            .map(|m| m.properties.burn_start)
+            .fold(f64::INFINITY, f64::min),
+        burn_out: motors
+            .iter()
+            .map(|m| m.properties.burn_out)
+            .fold(f64::NEG_INFINITY, f64::max),
+        exhaust_velocity,
+        propellant_mass,
+        mass_flow: None,
+        propellant_center_of_mass,
+        propellant_i11,
+        propellant_i33,
+        propellant_parts: parts,
+        dry_mass,
+        center_of_dry_mass,
+        dry_inertia,
+        nozzle_position,
+        nozzle_radius,
+        coordinate_system_sign: first.properties.coordinate_system_sign,
+        reference_pressure: None,
+    })
+}
+
+/// Motor `m`'s coordinate `z` in the coordinates of `first` (`[motor]`): `a + b z`, returned as
+/// `(a, b)`, with `csys` the rocket's coordinate-system sign.
+fn frame_in(first: &PlacedMotor, m: &PlacedMotor, csys: f64) -> (f64, f64) {
+    let s0 = csys * first.properties.coordinate_system_sign;
+    let sk = csys * m.properties.coordinate_system_sign;
+    (s0 * (m.position - first.position), s0 * sk)
+}
+
+/// Refuses the motors [`combined`] cannot sum exactly: a thrust curve that is not linear, a
+/// pressure-thrust correction, a mass-flow table of the motor's own.
+///
+/// # Errors
+/// The [`CombineError`] of the first such motor.
+fn check_combinable(motors: &[PlacedMotor]) -> Result<(), CombineError> {
     for (index, m) in motors.iter().enumerate() {
         let p = &m.properties;
         if p.thrust.interpolation() != Interpolation::Linear {
@@ -382,17 +488,19 @@ pub fn combined(motors: &[PlacedMotor], csys: f64) -> Result<MotorProperties, Co
             return Err(CombineError::MassFlowTable { index });
         }
     }
-    let s0 = csys * first.properties.coordinate_system_sign;
-    // Motor `k`'s coordinate `z` in `[motor]`'s coordinates: `a + b z`.
-    let frame = |m: &PlacedMotor| {
-        let sk = csys * m.properties.coordinate_system_sign;
-        (s0 * (m.position - first.position), s0 * sk)
-    };
+    Ok(())
+}
 
-    let thrusts: Vec<&Table1> = motors.iter().map(|m| &m.properties.thrust).collect();
-    let thrust = linear_sum(&thrusts, Extrapolation::Zero)?;
-
-    // Every motor's propellant as parts in `[motor]`'s coordinates.
+/// Every motor's propellant as parts in `[motor]`'s coordinates (`frame`: each motor's
+/// coordinate map, [`frame_in`]): a motor without parts is one part; a part's moment table is
+/// moved node by node as its centre.
+///
+/// # Errors
+/// A table that cannot be formed.
+fn parts_in_frame(
+    motors: &[PlacedMotor],
+    frame: &dyn Fn(&PlacedMotor) -> (f64, f64),
+) -> Result<Vec<PropellantPart>, CombineError> {
     let mut parts = Vec::new();
     for m in motors {
         let p = &m.properties;
@@ -447,38 +555,12 @@ pub fn combined(motors: &[PlacedMotor], csys: f64) -> Result<MotorProperties, Co
             }
         }
     }
-    let i33s: Vec<&Table1> = motors
-        .iter()
-        .map(|m| &m.properties.propellant_i33)
-        .collect();
-    let propellant_i33 = tabulated(union(i33s.iter().copied()), |t| {
-        i33s.iter().map(|i| i.eval(t)).sum()
-    })?;
-    // The summed propellant at a time, for the report tables (the flight sums the parts).
-    let sum = |t: f64| {
-        let mass: f64 = parts.iter().map(|p| p.mass.eval(t)).sum();
-        let moment: f64 = parts.iter().map(|p| p.moment.eval(t)).sum();
-        let z = if mass == 0.0 {
-            parts[0].center_of_mass.eval(t)
-        } else {
-            moment / mass
-        };
-        let i11 = parts.iter().fold(0.0, |acc, p| {
-            let d = p.center_of_mass.eval(t) - z;
-            acc + p.i11.eval(t) + p.mass.eval(t) * d * d
-        });
-        (mass, z, i11)
-    };
-    let grid = union(
-        parts
-            .iter()
-            .flat_map(|p| [&p.mass, &p.center_of_mass, &p.i11]),
-    );
-    let propellant_mass = tabulated(grid.clone(), |t| sum(t).0)?;
-    let propellant_center_of_mass = tabulated(grid.clone(), |t| sum(t).1)?;
-    let propellant_i11 = tabulated(grid, |t| sum(t).2)?;
+    Ok(parts)
+}
 
-    // One exhaust velocity: the total impulse over the total propellant.
+/// One exhaust velocity for the motors flown as one: the total impulse over the total
+/// propellant (each motor's `v_e m_0`), `first`'s when none has propellant.
+fn common_exhaust_velocity(motors: &[PlacedMotor], first: &PlacedMotor) -> f64 {
     let initial = |p: &MotorProperties| {
         if p.propellant_parts.is_empty() {
             p.propellant_mass.eval(p.burn_start)
@@ -497,13 +579,21 @@ pub fn combined(motors: &[PlacedMotor], csys: f64) -> Result<MotorProperties, Co
             propellant += m0;
         }
     }
-    let exhaust_velocity = if propellant > 0.0 {
+    if propellant > 0.0 {
         impulse / propellant
     } else {
         first.properties.exhaust_velocity
-    };
+    }
+}
 
-    // Dry masses at their common centre, lateral inertias moved there.
+/// The motors' dry masses at their common centre (in `[motor]`'s coordinates through
+/// `frame`), the lateral inertias moved there by the parallel-axis theorem: `(mass, centre,
+/// inertia)`; `first`'s centre when the total is zero.
+fn dry_lump(
+    motors: &[PlacedMotor],
+    first: &PlacedMotor,
+    frame: &dyn Fn(&PlacedMotor) -> (f64, f64),
+) -> (f64, f64, [f64; 6]) {
     let dry_mass: f64 = motors.iter().map(|m| m.properties.dry_mass).sum();
     let dry_center = |m: &PlacedMotor| {
         let (a, b) = frame(m);
@@ -527,52 +617,5 @@ pub fn combined(motors: &[PlacedMotor], csys: f64) -> Result<MotorProperties, Co
             *total += if i < 2 { own + steiner } else { own };
         }
     }
-
-    // The aftmost nozzle exit (smallest `csys · z` in rocket coordinates), in `[motor]`'s
-    // coordinates; the radius of the total exit area.
-    let nozzle_position = motors
-        .iter()
-        .map(|m| {
-            let (a, b) = frame(m);
-            a + b * m.properties.nozzle_position
-        })
-        .fold(f64::NAN, |aft, z| {
-            // In `[motor]`'s coordinates, rocket coordinates are `p_0 + s_0 z`.
-            if aft.is_nan() || csys * s0 * z < csys * s0 * aft {
-                z
-            } else {
-                aft
-            }
-        });
-    let nozzle_radius = motors
-        .iter()
-        .map(|m| m.properties.nozzle_radius * m.properties.nozzle_radius)
-        .sum::<f64>()
-        .sqrt();
-
-    Ok(MotorProperties {
-        thrust,
-        burn_start: motors
-            .iter()
-            .map(|m| m.properties.burn_start)
-            .fold(f64::INFINITY, f64::min),
-        burn_out: motors
-            .iter()
-            .map(|m| m.properties.burn_out)
-            .fold(f64::NEG_INFINITY, f64::max),
-        exhaust_velocity,
-        propellant_mass,
-        mass_flow: None,
-        propellant_center_of_mass,
-        propellant_i11,
-        propellant_i33,
-        propellant_parts: parts,
-        dry_mass,
-        center_of_dry_mass,
-        dry_inertia,
-        nozzle_position,
-        nozzle_radius,
-        coordinate_system_sign: first.properties.coordinate_system_sign,
-        reference_pressure: None,
-    })
+    (dry_mass, center_of_dry_mass, dry_inertia)
 }

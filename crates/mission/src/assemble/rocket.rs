@@ -137,36 +137,7 @@ fn build(
         properties.burn_out
     };
 
-    let mut parachutes = Vec::with_capacity(spec.parachutes.len());
-    for (name, p) in &spec.parachutes {
-        let chute = Parachute::new(&airframe::ParachuteSpec {
-            name: name.clone(),
-            cd_s: p.cd_s,
-            trigger: match &p.trigger {
-                schema::Trigger::Apogee => TriggerKind::Apogee,
-                schema::Trigger::HeightAboveGround(h) => TriggerKind::HeightAboveGround(*h),
-                schema::Trigger::Launch(delay) => TriggerKind::Custom(Arc::new(AfterTime(*delay))),
-                schema::Trigger::Burnout(delay) => {
-                    TriggerKind::Custom(Arc::new(AfterTime(burn_out + delay)))
-                }
-                schema::Trigger::Expression(text) => {
-                    let expression = Expression::parse(text).map_err(|e| {
-                        mission.model_error(&format!("rocket.parachutes.{name}.trigger"), e)
-                    })?;
-                    TriggerKind::Custom(Arc::new(ExpressionTrigger(expression)))
-                }
-            },
-            sampling_rate: Some(p.sampling_rate),
-            lag: Some(p.lag),
-            noise: Some(p.noise),
-            radius: p.radius,
-            height: p.height,
-            porosity: p.porosity,
-            drag_coefficient: None,
-        })
-        .map_err(|e| model(format!("rocket.parachutes.{name}"), e))?;
-        parachutes.push(chute);
-    }
+    let parachutes = parachutes(mission, burn_out)?;
 
     let rail_buttons = match &spec.rail_buttons {
         Some(b) => Some(
@@ -213,26 +184,79 @@ fn build(
         parachutes,
         rail_buttons,
     };
-    let rocket = Rocket::new(inputs, properties).map_err(|e| {
-        let section = match &e {
-            AirframeError::NotFinite { component, .. }
-            | AirframeError::NotPositive { component, .. }
-            | AirframeError::Negative { component, .. }
-            | AirframeError::OutOfRange { component, .. }
-            | AirframeError::Geometry { component, .. }
-            | AirframeError::InertiaComponents { component, .. }
-            | AirframeError::Table { component, .. } => {
-                if spec.surfaces.contains_key(component) {
-                    format!("rocket.surfaces.{component}")
-                } else if component == "motor" {
-                    "motor".to_owned()
-                } else {
-                    "rocket".to_owned()
-                }
+    let rocket =
+        Rocket::new(inputs, properties).map_err(|e| model(airframe_error_key(spec, &e), e))?;
+    with_air_brakes(mission, rocket)
+}
+
+/// The mission key an error of the airframe's rocket builder belongs to: the surface it
+/// names, `motor`, or `rocket`.
+fn airframe_error_key(spec: &schema::RocketSpec, e: &AirframeError) -> String {
+    match e {
+        AirframeError::NotFinite { component, .. }
+        | AirframeError::NotPositive { component, .. }
+        | AirframeError::Negative { component, .. }
+        | AirframeError::OutOfRange { component, .. }
+        | AirframeError::Geometry { component, .. }
+        | AirframeError::InertiaComponents { component, .. }
+        | AirframeError::Table { component, .. } => {
+            if spec.surfaces.contains_key(component) {
+                format!("rocket.surfaces.{component}")
+            } else if component == "motor" {
+                "motor".to_owned()
+            } else {
+                "rocket".to_owned()
             }
-        };
-        model(section, e)
-    })?;
+        }
+    }
+}
+
+/// The airframe's parachutes of `[rocket.parachutes]`, in file order; a `"burnout + X"`
+/// trigger counts from `burn_out` (s).
+///
+/// # Errors
+/// A trigger expression that does not parse; impossible parachute inputs, at their table.
+fn parachutes(mission: &Mission, burn_out: f64) -> Result<Vec<Parachute>, MissionError> {
+    let spec = &mission.spec.rocket;
+    let mut parachutes = Vec::with_capacity(spec.parachutes.len());
+    for (name, p) in &spec.parachutes {
+        let chute = Parachute::new(&airframe::ParachuteSpec {
+            name: name.clone(),
+            cd_s: p.cd_s,
+            trigger: match &p.trigger {
+                schema::Trigger::Apogee => TriggerKind::Apogee,
+                schema::Trigger::HeightAboveGround(h) => TriggerKind::HeightAboveGround(*h),
+                schema::Trigger::Launch(delay) => TriggerKind::Custom(Arc::new(AfterTime(*delay))),
+                schema::Trigger::Burnout(delay) => {
+                    TriggerKind::Custom(Arc::new(AfterTime(burn_out + delay)))
+                }
+                schema::Trigger::Expression(text) => {
+                    let expression = Expression::parse(text).map_err(|e| {
+                        mission.model_error(&format!("rocket.parachutes.{name}.trigger"), e)
+                    })?;
+                    TriggerKind::Custom(Arc::new(ExpressionTrigger(expression)))
+                }
+            },
+            sampling_rate: Some(p.sampling_rate),
+            lag: Some(p.lag),
+            noise: Some(p.noise),
+            radius: p.radius,
+            height: p.height,
+            porosity: p.porosity,
+            drag_coefficient: None,
+        })
+        .map_err(|e| mission.model_error(&format!("rocket.parachutes.{name}"), e))?;
+        parachutes.push(chute);
+    }
+    Ok(parachutes)
+}
+
+/// `rocket` with the air brakes of `[rocket.air_brakes]`, if the mission has them.
+///
+/// # Errors
+/// The brakes' drag curve that cannot be read; impossible brake inputs.
+fn with_air_brakes(mission: &Mission, rocket: Rocket) -> Result<Rocket, MissionError> {
+    let spec = &mission.spec.rocket;
     match &spec.air_brakes {
         Some(ab) => {
             let drag = ab
@@ -251,7 +275,7 @@ fn build(
                 override_rocket_drag: ab.override_rocket_drag,
                 initial_level: ab.deployment_level,
             })
-            .map_err(|e| model("rocket.air_brakes".into(), e))?;
+            .map_err(|e| mission.model_error("rocket.air_brakes", e))?;
             Ok(rocket.with_air_brakes(brakes))
         }
         None => Ok(rocket),

@@ -610,26 +610,16 @@ fn fly_tree<A: AtmosphereModel>(
         ignition = stages[count - 1].ignition_delay;
         count -= 1;
     }
-    // The launch vehicle with every launch check.
-    let launch = if count == 0 {
-        top_mission(mission)
-    } else {
-        let (_, above) = build_stack(mission, thrusts, count - 1, 0.0)?;
-        stack_mission(mission, count, Lump::unburnt(&above))
-    };
-    let settings = if ignition == 0.0 {
-        let thrust = thrusts.source(&launch)?;
-        let (_, _, settings, launch_warnings) = checked_models(&launch, base, &thrust, seed)
-            .map_err(|e| match count {
-                0 => e,
-                n => in_stage(e, n - 1),
-            })?;
-        warnings.extend(weather);
-        warnings.extend(launch_warnings);
-        settings
-    } else {
-        flight_settings(mission, seed)
-    };
+    let settings = launch_settings(
+        mission,
+        thrusts,
+        base,
+        count,
+        ignition,
+        weather,
+        seed,
+        &mut warnings,
+    )?;
 
     let launch_checked = ignition == 0.0;
     let mut segments: Vec<Segment> = Vec::new();
@@ -705,48 +695,20 @@ fn fly_tree<A: AtmosphereModel>(
         });
         // The spent stage flies on alone (a massless one has nothing to fly).
         if stage.rocket.mass > 0.0 && stage.motor.is_some() {
-            let alone = stage_mission(mission, index);
-            let motor = stage_motor(&alone, thrusts, index)?;
-            let spent = build_rocket_ignited_at(&alone, &motor, ignition, thrusts)
-                .map_err(|e| in_stage(e, index))?;
-            warnings.extend(
-                spent
-                    .warnings()
-                    .iter()
-                    .map(|w| format!("`stages.{index}.rocket`: {w}")),
-            );
-            let spent_settings = vehicle_settings(&alone, &spent, seed);
-            let mut descent: Vec<Box<dyn SampledProcess + '_>> = Vec::new();
-            if stage.rocket.parachutes.is_empty() {
-                descent.push(Box::new(TumbleTrigger {
-                    atmosphere: environment,
-                    rate: stage.sampling_rate,
-                    drag_area: tumble_drag_area(mission, index, &spent)?,
-                    unstable: spent.static_margin(t) < 0.0,
-                    fired: false,
-                }));
-            }
-            let flight = karman_dynamics::simulate_from(
-                environment,
-                &spent,
-                &spent_settings,
+            let spent = SpentStage {
+                index,
+                ignition,
                 t,
-                moved(&state, stack_cdm, spent.center_of_dry_mass(), csys),
-                Configuration::default(),
-                descent,
-            )
-            .map_err(|e| {
-                mission.model_error(
-                    &format!("stages.{index}"),
-                    format!(
-                        "the stage `{name}` flying alone from its separation at t = {t} s: {e}"
-                    ),
-                )
-            })?;
+                state,
+                stack_cdm,
+                csys,
+            };
+            let (rocket, flight) =
+                fly_spent_stage(mission, thrusts, environment, &spent, seed, &mut warnings)?;
             segments.push(Segment {
                 vehicle: name.clone(),
                 motor_stage: name.clone(),
-                rocket: spent,
+                rocket,
                 flight,
             });
             let mut own = shared.clone();
@@ -773,6 +735,116 @@ fn fly_tree<A: AtmosphereModel>(
         separations,
         warnings,
     })
+}
+
+/// The flight settings of the launch, from the vehicle that leaves the pad (the `count`
+/// bottom-most stages' stack; the top stage alone when `count` is 0) checked with every
+/// launch check when it lights at launch (`ignition` 0), its warnings and the weather's
+/// added to `warnings`; the mission's own settings for a stack lit later.
+///
+/// # Errors
+/// The launch vehicle's models or launch checks, named by the bottom stage's keys.
+#[allow(clippy::too_many_arguments)]
+fn launch_settings(
+    mission: &Mission,
+    thrusts: &ThrustCache,
+    base: &Environment,
+    count: usize,
+    ignition: f64,
+    weather: Vec<String>,
+    seed: u64,
+    warnings: &mut Vec<String>,
+) -> Result<FlightSettings, MissionError> {
+    // The launch vehicle with every launch check.
+    let launch = if count == 0 {
+        top_mission(mission)
+    } else {
+        let (_, above) = build_stack(mission, thrusts, count - 1, 0.0)?;
+        stack_mission(mission, count, Lump::unburnt(&above))
+    };
+    if ignition == 0.0 {
+        let thrust = thrusts.source(&launch)?;
+        let (_, _, settings, launch_warnings) = checked_models(&launch, base, &thrust, seed)
+            .map_err(|e| match count {
+                0 => e,
+                n => in_stage(e, n - 1),
+            })?;
+        warnings.extend(weather);
+        warnings.extend(launch_warnings);
+        Ok(settings)
+    } else {
+        Ok(flight_settings(mission, seed))
+    }
+}
+
+/// A spent lower stage at its separation: its `index` in `[[stages]]`, the ignition time of
+/// its motor, the separation time `t` (s) and the stack's state there about the stack's
+/// centre of dry mass `stack_cdm` (rocket coordinates of sign `csys`).
+struct SpentStage {
+    index: usize,
+    ignition: f64,
+    t: f64,
+    state: State,
+    stack_cdm: f64,
+    csys: f64,
+}
+
+/// Flies spent stage `at` alone from its separation to the ground: its own rocket (its
+/// warnings added to `warnings`), under its parachutes or tumbling when it has none.
+///
+/// # Errors
+/// The stage's models, named by its keys; a flight that fails.
+fn fly_spent_stage<A: AtmosphereModel>(
+    mission: &Mission,
+    thrusts: &ThrustCache,
+    environment: &A,
+    at: &SpentStage,
+    seed: u64,
+    warnings: &mut Vec<String>,
+) -> Result<(Rocket, Flight), MissionError> {
+    let index = at.index;
+    let stage = &mission.spec.stages[index];
+    let name = stage_name(stage, index);
+    let alone = stage_mission(mission, index);
+    let motor = stage_motor(&alone, thrusts, index)?;
+    let spent = build_rocket_ignited_at(&alone, &motor, at.ignition, thrusts)
+        .map_err(|e| in_stage(e, index))?;
+    warnings.extend(
+        spent
+            .warnings()
+            .iter()
+            .map(|w| format!("`stages.{index}.rocket`: {w}")),
+    );
+    let spent_settings = vehicle_settings(&alone, &spent, seed);
+    let mut descent: Vec<Box<dyn SampledProcess + '_>> = Vec::new();
+    if stage.rocket.parachutes.is_empty() {
+        descent.push(Box::new(TumbleTrigger {
+            atmosphere: environment,
+            rate: stage.sampling_rate,
+            drag_area: tumble_drag_area(mission, index, &spent)?,
+            unstable: spent.static_margin(at.t) < 0.0,
+            fired: false,
+        }));
+    }
+    let flight = karman_dynamics::simulate_from(
+        environment,
+        &spent,
+        &spent_settings,
+        at.t,
+        moved(&at.state, at.stack_cdm, spent.center_of_dry_mass(), at.csys),
+        Configuration::default(),
+        descent,
+    )
+    .map_err(|e| {
+        mission.model_error(
+            &format!("stages.{index}"),
+            format!(
+                "the stage `{name}` flying alone from its separation at t = {} s: {e}",
+                at.t
+            ),
+        )
+    })?;
+    Ok((spent, flight))
 }
 
 impl Segment {
