@@ -156,92 +156,31 @@ impl Environment {
     /// non-finite, a non-positive temperature or pressure, a custom pressure that is not
     /// invertible).
     pub fn new(config: &EnvironmentConfig, c: &PhysicalConstants) -> Result<Self, AtmosError> {
-        let check = |what: &str, v: f64, ok: bool, reason: &str| {
-            if v.is_finite() && ok {
-                Ok(())
-            } else {
-                Err(AtmosError::InvalidValue {
-                    what: what.into(),
-                    value: v,
-                    reason: reason.into(),
-                })
-            }
-        };
         let lat = config.latitude_deg;
-        check(
+        checked(
             "latitude",
             lat,
             (-90.0..=90.0).contains(&lat),
             "must be within ±90°",
         )?;
-        check("longitude", config.longitude_deg, true, "must be finite")?;
-        check("elevation", config.elevation, true, "must be finite")?;
+        checked("longitude", config.longitude_deg, true, "must be finite")?;
+        checked("elevation", config.elevation, true, "must be finite")?;
 
         let isa = IsaTables::new(c).map_err(|error| AtmosError::Table {
             source_name: "standard atmosphere".into(),
             quantity: "ISA".into(),
             error,
         })?;
-        let lin = Interpolation::Linear;
-        let hold = Extrapolation::Constant;
 
-        // Pressure, temperature, winds, barometric height; `*_nodes` are the heights of a
-        // tabulated profile (None: constant, which RocketPy holds as a callable).
-        let (pressure, p_nodes, temperature, t_nodes, wind_u, wind_v, barometric_height) =
-            match &config.atmosphere {
-                Atmosphere::Standard => {
-                    let zero = Curve::Constant(0.0).to_table("standard", "wind", lin, hold)?;
-                    let p_nodes = Some(isa.pressure.xs().to_vec());
-                    let t_nodes = Some(isa.temperature.xs().to_vec());
-                    (
-                        isa.pressure,
-                        p_nodes,
-                        isa.temperature,
-                        t_nodes,
-                        zero.clone(),
-                        zero,
-                        isa.barometric_height,
-                    )
-                }
-                Atmosphere::Profiles(p) => {
-                    let src = p.source_name.as_str();
-                    let (pressure, p_nodes) = match &p.pressure {
-                        None => {
-                            let nodes = Some(isa.pressure.xs().to_vec());
-                            (isa.pressure.clone(), nodes)
-                        }
-                        Some(curve) => {
-                            positive(curve, src, "pressure")?;
-                            (curve.to_table(src, "pressure", lin, hold)?, curve.heights())
-                        }
-                    };
-                    let (temperature, t_nodes) = match &p.temperature {
-                        None => {
-                            let nodes = Some(isa.temperature.xs().to_vec());
-                            (isa.temperature.clone(), nodes)
-                        }
-                        Some(curve) => {
-                            positive(curve, src, "temperature")?;
-                            (
-                                curve.to_table(src, "temperature", lin, hold)?,
-                                curve.heights(),
-                            )
-                        }
-                    };
-                    let wind_u = p.wind_u.to_table(src, "wind_u", lin, hold)?;
-                    let wind_v = p.wind_v.to_table(src, "wind_v", lin, hold)?;
-                    let baro = barometric(p, &pressure, &isa)?;
-                    (
-                        pressure,
-                        p_nodes,
-                        temperature,
-                        t_nodes,
-                        wind_u,
-                        wind_v,
-                        baro,
-                    )
-                }
-            };
+        let ProfileTables {
+            pressure,
+            p_nodes,
+            temperature,
+            t_nodes,
+            wind_u,
+            wind_v,
+            barometric_height,
+        } = profiles(&config.atmosphere, isa)?;
 
         let r = c.air_gas_constant;
         let gamma = c.heat_capacity_ratio;
@@ -281,43 +220,7 @@ impl Environment {
             (Derived::Pointwise, Derived::Pointwise)
         };
 
-        let (earth_lat, gravity_top) = match config.earth_model {
-            Some(model) => {
-                check(
-                    "earth_model latitude",
-                    model.latitude_deg,
-                    (-90.0..=90.0).contains(&model.latitude_deg),
-                    "must be within [-90, 90] deg",
-                )?;
-                check(
-                    "earth_model gravity_max_height",
-                    model.gravity_max_height,
-                    model.gravity_max_height > 0.0,
-                    "must be positive",
-                )?;
-                (model.latitude_deg, model.gravity_max_height)
-            }
-            None => (lat, c.table_top_height),
-        };
-        let gravity = match config.gravity {
-            Gravity::Somigliana => Table1::sample(
-                |h| somigliana_gravity(earth_lat, h, c),
-                0.0,
-                gravity_top,
-                100,
-                Interpolation::Spline,
-                Extrapolation::Constant,
-            ),
-            Gravity::Constant(g) => {
-                check("gravity", g, g > 0.0, "must be positive")?;
-                Table1::new(vec![0.0], vec![g], lin, hold)
-            }
-        }
-        .map_err(|error| AtmosError::Table {
-            source_name: "gravity".into(),
-            quantity: "gravity".into(),
-            error,
-        })?;
+        let (earth_lat, gravity) = gravity_table(config, c)?;
 
         let column = AirColumn::new(&ColumnTables {
             pressure: &pressure,
@@ -625,6 +528,147 @@ fn barometric(p: &Profiles, pressure: &Table1, isa: &IsaTables) -> Result<Table1
         }),
         _ => Ok(isa.barometric_height.clone()),
     }
+}
+
+/// `Ok` when `v` is finite and `ok`; otherwise the invalid value `what` with its `reason`.
+fn checked(what: &str, v: f64, ok: bool, reason: &str) -> Result<(), AtmosError> {
+    if v.is_finite() && ok {
+        Ok(())
+    } else {
+        Err(AtmosError::InvalidValue {
+            what: what.into(),
+            value: v,
+            reason: reason.into(),
+        })
+    }
+}
+
+/// The tabulated profiles of an atmosphere: pressure and temperature with the heights of
+/// their nodes (`None`: a constant, which RocketPy holds as a callable), the winds and the
+/// barometric height.
+struct ProfileTables {
+    pressure: Table1,
+    p_nodes: Option<Vec<f64>>,
+    temperature: Table1,
+    t_nodes: Option<Vec<f64>>,
+    wind_u: Table1,
+    wind_v: Table1,
+    barometric_height: Table1,
+}
+
+/// The profiles of `atmosphere`, the standard atmosphere's (`isa`) where it gives none.
+///
+/// # Errors
+/// A curve that is not positive (pressure, temperature) or cannot be tabulated.
+fn profiles(atmosphere: &Atmosphere, isa: IsaTables) -> Result<ProfileTables, AtmosError> {
+    let lin = Interpolation::Linear;
+    let hold = Extrapolation::Constant;
+    Ok(match atmosphere {
+        Atmosphere::Standard => {
+            let zero = Curve::Constant(0.0).to_table("standard", "wind", lin, hold)?;
+            let p_nodes = Some(isa.pressure.xs().to_vec());
+            let t_nodes = Some(isa.temperature.xs().to_vec());
+            ProfileTables {
+                pressure: isa.pressure,
+                p_nodes,
+                temperature: isa.temperature,
+                t_nodes,
+                wind_u: zero.clone(),
+                wind_v: zero,
+                barometric_height: isa.barometric_height,
+            }
+        }
+        Atmosphere::Profiles(p) => {
+            let src = p.source_name.as_str();
+            let (pressure, p_nodes) = match &p.pressure {
+                None => {
+                    let nodes = Some(isa.pressure.xs().to_vec());
+                    (isa.pressure.clone(), nodes)
+                }
+                Some(curve) => {
+                    positive(curve, src, "pressure")?;
+                    (curve.to_table(src, "pressure", lin, hold)?, curve.heights())
+                }
+            };
+            let (temperature, t_nodes) = match &p.temperature {
+                None => {
+                    let nodes = Some(isa.temperature.xs().to_vec());
+                    (isa.temperature.clone(), nodes)
+                }
+                Some(curve) => {
+                    positive(curve, src, "temperature")?;
+                    (
+                        curve.to_table(src, "temperature", lin, hold)?,
+                        curve.heights(),
+                    )
+                }
+            };
+            let wind_u = p.wind_u.to_table(src, "wind_u", lin, hold)?;
+            let wind_v = p.wind_v.to_table(src, "wind_v", lin, hold)?;
+            let baro = barometric(p, &pressure, &isa)?;
+            ProfileTables {
+                pressure,
+                p_nodes,
+                temperature,
+                t_nodes,
+                wind_u,
+                wind_v,
+                barometric_height: baro,
+            }
+        }
+    })
+}
+
+/// The gravity table of `config` (Somigliana's on the latitude of its Earth model, or a
+/// constant) and the latitude the Earth's figure is taken at, deg.
+///
+/// # Errors
+/// An Earth model's latitude outside ±90° or a gravity top that is not positive; a constant
+/// gravity that is not positive.
+fn gravity_table(
+    config: &EnvironmentConfig,
+    c: &PhysicalConstants,
+) -> Result<(f64, Table1), AtmosError> {
+    let lin = Interpolation::Linear;
+    let hold = Extrapolation::Constant;
+    let (earth_lat, gravity_top) = match config.earth_model {
+        Some(model) => {
+            checked(
+                "earth_model latitude",
+                model.latitude_deg,
+                (-90.0..=90.0).contains(&model.latitude_deg),
+                "must be within [-90, 90] deg",
+            )?;
+            checked(
+                "earth_model gravity_max_height",
+                model.gravity_max_height,
+                model.gravity_max_height > 0.0,
+                "must be positive",
+            )?;
+            (model.latitude_deg, model.gravity_max_height)
+        }
+        None => (config.latitude_deg, c.table_top_height),
+    };
+    let gravity = match config.gravity {
+        Gravity::Somigliana => Table1::sample(
+            |h| somigliana_gravity(earth_lat, h, c),
+            0.0,
+            gravity_top,
+            100,
+            Interpolation::Spline,
+            Extrapolation::Constant,
+        ),
+        Gravity::Constant(g) => {
+            checked("gravity", g, g > 0.0, "must be positive")?;
+            Table1::new(vec![0.0], vec![g], lin, hold)
+        }
+    }
+    .map_err(|error| AtmosError::Table {
+        source_name: "gravity".into(),
+        quantity: "gravity".into(),
+        error,
+    })?;
+    Ok((earth_lat, gravity))
 }
 
 #[cfg(test)]

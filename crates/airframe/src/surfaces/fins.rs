@@ -621,6 +621,65 @@ pub(crate) fn free_form(
             reason: format!("fin area {area} m² is too small"),
         });
     }
+    let (lead, trail, length) = stations(pts, span);
+    let last_station = (STATIONS - 1) as f64;
+    let dy = span / last_station;
+    let (mut total, mut mac_len, mut mac_span, mut mac_lead) = (0.0, 0.0, 0.0, 0.0);
+    let (mut g, mut kd_num, mut kd_den, mut cos_sum) = (0.0, 0.0, 0.0, 0.0);
+    for i in 0..STATIONS {
+        let chord = trail[i] - lead[i];
+        let y = i as f64 * dy;
+        mac_len += chord * chord;
+        mac_span += y * chord;
+        mac_lead += lead[i] * chord;
+        total += chord;
+        g += length[i] * (r + y).powi(2);
+        kd_num += r.powi(3) * chord / (r + y).powi(2);
+        kd_den += (r + y) * chord;
+        if i > 0 {
+            let dx = (trail[i] + lead[i]) / 2.0 - (trail[i - 1] + lead[i - 1]) / 2.0;
+            cos_sum += dy / dx.hypot(dy);
+        }
+    }
+    total *= dy;
+    mac_len = mac_len * dy / total;
+    mac_span = mac_span * dy / total;
+    mac_lead = mac_lead * dy / total;
+    let cos_gamma = (cos_sum / last_station).clamp(-1.0, 1.0);
+    let p = Planform {
+        fin_area: area,
+        mid_chord_sweep: cos_gamma.acos(),
+        mean_aerodynamic_span: mac_span,
+        roll_integral: g * dy,
+        // No body (r = 0, where the root station's term is 0/0): no damping interference.
+        roll_damping_interference: if r > 0.0 {
+            1.0 + (kd_num * dy) / (kd_den * dy)
+        } else {
+            1.0
+        },
+        cp_local: mac_lead + 0.25 * mac_len,
+        span,
+        outline: pts.clone(),
+    };
+    finish(
+        name,
+        spec.n,
+        r,
+        rocket_radius,
+        spec.cant_angle_deg,
+        spec.angular_position_deg,
+        root_chord,
+        spec.airfoil.as_ref(),
+        p,
+        warnings,
+    )
+}
+
+/// The free-form outline `pts` cut at [`STATIONS`] span stations (`y = i · span / (STATIONS −
+/// 1)`), as RocketPy 1.13 does: at each station the leading and trailing edges' chordwise
+/// positions and the chord length inside the outline, `(lead, trail, length)`; a station the
+/// outline never reaches is 0, a length kept within its chord.
+fn stations(pts: &[[f64; 2]], span: f64) -> ([f64; STATIONS], [f64; STATIONS], [f64; STATIONS]) {
     let mut lead = [f64::INFINITY; STATIONS];
     let mut trail = [f64::NEG_INFINITY; STATIONS];
     let mut length = [0.0f64; STATIONS];
@@ -677,56 +736,7 @@ pub(crate) fn free_form(
             length[i] = trail[i] - lead[i];
         }
     }
-    let dy = span / last_station;
-    let (mut total, mut mac_len, mut mac_span, mut mac_lead) = (0.0, 0.0, 0.0, 0.0);
-    let (mut g, mut kd_num, mut kd_den, mut cos_sum) = (0.0, 0.0, 0.0, 0.0);
-    for i in 0..STATIONS {
-        let chord = trail[i] - lead[i];
-        let y = i as f64 * dy;
-        mac_len += chord * chord;
-        mac_span += y * chord;
-        mac_lead += lead[i] * chord;
-        total += chord;
-        g += length[i] * (r + y).powi(2);
-        kd_num += r.powi(3) * chord / (r + y).powi(2);
-        kd_den += (r + y) * chord;
-        if i > 0 {
-            let dx = (trail[i] + lead[i]) / 2.0 - (trail[i - 1] + lead[i - 1]) / 2.0;
-            cos_sum += dy / dx.hypot(dy);
-        }
-    }
-    total *= dy;
-    mac_len = mac_len * dy / total;
-    mac_span = mac_span * dy / total;
-    mac_lead = mac_lead * dy / total;
-    let cos_gamma = (cos_sum / last_station).clamp(-1.0, 1.0);
-    let p = Planform {
-        fin_area: area,
-        mid_chord_sweep: cos_gamma.acos(),
-        mean_aerodynamic_span: mac_span,
-        roll_integral: g * dy,
-        // No body (r = 0, where the root station's term is 0/0): no damping interference.
-        roll_damping_interference: if r > 0.0 {
-            1.0 + (kd_num * dy) / (kd_den * dy)
-        } else {
-            1.0
-        },
-        cp_local: mac_lead + 0.25 * mac_len,
-        span,
-        outline: pts.clone(),
-    };
-    finish(
-        name,
-        spec.n,
-        r,
-        rocket_radius,
-        spec.cant_angle_deg,
-        spec.angular_position_deg,
-        root_chord,
-        spec.airfoil.as_ref(),
-        p,
-        warnings,
-    )
+    (lead, trail, length)
 }
 
 #[cfg(test)]
