@@ -441,10 +441,23 @@ pub fn triggers(dir: &Path) -> Vec<Case> {
         s("h > 1.0 # comment"),
         s("h ＞ 1.0"),
         s("vz < 0.0 && h < 300.0"),
+        // Sensor readings (the mission has no sensors: each a located refusal).
+        s("sensors[0] < 1.0"),
+        s("sensors.baro < 1.0"),
+        s("sensors[0].measurement[2] < 1.0"),
+        s("sensors[99999999999999999999999] < 1.0"),
+        s("sensors[-1] < 1.0"),
+        s("sensors[0.5] < 1.0"),
+        s("sensors[0][0][0] < 1.0"),
+        s("sensors. < 1.0"),
+        s("sensors[ < 1.0"),
+        s("sensors < 1.0"),
+        format!("sensors.{} < 1.0", "x".repeat(50_000)),
+        format!("{}sensors[0]{} > 1.0", "(".repeat(60), ")".repeat(60)),
     ];
     let tokens = [
         "h", "vz", "p", "(", ")", "+", "-", "*", "/", ">", "<", "&&", "||", "!", "1.0", "0.0",
-        "1e308", "sqrt(", "abs(", ",", " ", "true", "==",
+        "1e308", "sqrt(", "abs(", ",", " ", "true", "==", "sensors", "[", "]", ".", "0",
     ];
     let mut rng = Rng::new(0x7219_6E55);
     for _ in 0..40 {

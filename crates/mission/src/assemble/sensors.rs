@@ -3,6 +3,14 @@
 //! on the rocket) and sampled as a process of the engine at `j / sampling_rate` in every
 //! phase, measuring the state and the right-hand side of the equations at each instant
 //! (RocketPy's `Flight.__measure_sensors`, docs/physics.md §29.2).
+//!
+//! Each sensor publishes its reading on the engine's signals ([`signal_name`]): component
+//! `c` of sensor `NAME` as `sensors.NAME.c`. The controller (its `sensors` argument) and the
+//! trigger expressions (`sensors[i]`, `sensors.NAME`) read the latest value there. A sensor
+//! comes after the parachutes and the controller in the flight's processes, so at an instant
+//! they share, these read the reading of the sensor's previous instant, as RocketPy 1.13 runs
+//! its overshootable time nodes (parachutes, then controllers, then sensors; docs/physics.md
+//! §29.3).
 
 use karman_airframe::Rocket;
 use karman_atmos::Environment;
@@ -11,6 +19,7 @@ use karman_sensors::{NoiseParameters, Sensor, SensorKind, Surroundings, Truth};
 
 use crate::schema::{SensorKindName, SensorSpec};
 use crate::{Mission, MissionError};
+use karman_script::{SensorSetup, SensorShape};
 
 /// The readings of one sensor over a flight.
 #[derive(Debug, Clone, PartialEq)]
@@ -215,11 +224,17 @@ pub struct SensorProcess<'s> {
     pub surroundings: &'s dyn Surroundings,
     /// Where its readings go.
     pub readings: &'s mut SensorReadings,
+    /// The names of its signals, one per component ([`signal_name`]).
+    pub outputs: Vec<&'s str>,
 }
 
 impl SampledProcess for SensorProcess<'_> {
     fn rate(&self) -> f64 {
         self.sensor.spec().sampling_rate
+    }
+
+    fn outputs(&self) -> &[&str] {
+        &self.outputs
     }
 
     fn on_rail(&self) -> bool {
@@ -239,8 +254,53 @@ impl SampledProcess for SensorProcess<'_> {
         let value = self.sensor.measure(&Truth { u, u_dot }, self.surroundings);
         self.readings.times.push(probe.t());
         self.readings.values.push(value);
+        for (c, v) in value.iter().enumerate().take(self.outputs.len()) {
+            probe.publish(c, *v);
+        }
         None
     }
+}
+
+/// The name of the signal on which sensor `name` publishes component `component` of its
+/// readings: `sensors.<name>.<component>`.
+#[must_use]
+pub fn signal_name(name: &str, component: usize) -> String {
+    format!("sensors.{name}.{component}")
+}
+
+/// The number of components of a reading of `kind` (1 for a barometer, 3 otherwise).
+#[must_use]
+pub fn components(kind: SensorKindName) -> usize {
+    match kind {
+        SensorKindName::Barometer => 1,
+        SensorKindName::Accelerometer | SensorKindName::Gyroscope | SensorKindName::Gnss => 3,
+    }
+}
+
+/// The mission's sensors as a trigger expression reads them, in file order.
+#[must_use]
+pub fn shapes(sensors: &[SensorSpec]) -> Vec<SensorShape<'_>> {
+    sensors
+        .iter()
+        .map(|s| SensorShape {
+            name: &s.name,
+            kind: s.kind.as_str(),
+            components: components(s.kind),
+        })
+        .collect()
+}
+
+/// The mission's sensors as the controller's `sensors` argument describes them.
+#[must_use]
+pub fn setups(sensors: &[SensorSpec]) -> Vec<SensorSetup> {
+    sensors
+        .iter()
+        .map(|s| SensorSetup {
+            name: s.name.clone(),
+            kind: s.kind.as_str().to_owned(),
+            components: components(s.kind),
+        })
+        .collect()
 }
 
 /// Empty readings for each sensor, in order.
