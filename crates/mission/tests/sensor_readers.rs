@@ -154,6 +154,50 @@ fn a_controller_reading_its_barometer_decides_one_reading_after_the_state() {
 }
 
 #[test]
+fn without_time_overshoot_a_controller_reads_the_reading_of_its_instant() {
+    // RocketPy's hard-stop nodes measure the sensors before calling the controllers: the
+    // reader of the barometer decides at the same instant as the reader of the state.
+    let rate = 100.0;
+    let sensor = barometer_at_cdm(rate, "");
+    let fly = |controller: &str| {
+        let text = text_with(
+            &format!("{sensor}\n{}", air_brakes(controller, rate)),
+            "800",
+        )
+        .replacen("[flight]\n", "[flight]\ntime_overshoot = false\n", 1);
+        simulate(&parse(&text)).expect("flies")
+    };
+    let (a, b) = (fly("baro_controller.rhai"), fly("state_controller.rhai"));
+    let (t_sensor, t_state) = (first_opening(&a), first_opening(&b));
+    assert_eq!(
+        t_sensor.to_bits(),
+        t_state.to_bits(),
+        "{t_sensor} s vs {t_state} s"
+    );
+    let (sa, sb) = (calls(&a), calls(&b));
+    let n = sb
+        .iter()
+        .position(|c| c[0] >= t_state)
+        .expect("the decision")
+        + 1;
+    for (k, (x, y)) in sa[..n].iter().zip(&sb[..n]).enumerate() {
+        assert_eq!(x[0].to_bits(), y[0].to_bits(), "call {k}");
+        assert_eq!(x[1].to_bits(), y[0].to_bits(), "reading time, call {k}");
+        assert_eq!(x[2].to_bits(), y[2].to_bits(), "pressure, call {k}");
+    }
+    // The control the call sets cuts the phase at the instant; the barometer still reads
+    // each instant once.
+    let times = &a.sensors[0].times;
+    assert!(
+        times.windows(2).all(|w| w[1] > w[0]),
+        "instants measured twice"
+    );
+    // After the decision the flights go on alike (the same level from the same instant).
+    let apogee = |run: &FlightRun| run.summary().apogee_time_s.map(f64::to_bits);
+    assert_eq!(apogee(&a), apogee(&b));
+}
+
+#[test]
 fn a_trigger_on_a_sensor_fires_one_reading_after_the_state_trigger() {
     let rate = 105.0; // the parachutes' sampling rate in the fixture
     let sensor = barometer_at_cdm(rate, "");
@@ -389,4 +433,55 @@ fn sensor_noise_keys_are_dotted_paths() {
     assert!(
         karman_mission::paths::set_number(spec, "rocket.sensors.2.noise_density", 1.0).is_err()
     );
+}
+
+#[test]
+fn check_s_first_call_sees_the_sensors_as_the_flight_s_first_call() {
+    use karman_mission::assemble::scripts::{compile_controller, first_call};
+    let sensor = barometer_at_cdm(100.0, "");
+    let first = |overshoot: bool| {
+        let mut text = text_with(
+            &format!(
+                "{sensor}\n{}",
+                air_brakes("unguarded_controller.rhai", 100.0)
+            ),
+            "800",
+        );
+        if !overshoot {
+            text = text.replacen("[flight]\n", "[flight]\ntime_overshoot = false\n", 1);
+        }
+        let mission = parse(&text);
+        let models = prepare(&mission, 0).expect("models");
+        let script = compile_controller(&mission)
+            .expect("compiles")
+            .expect("a script");
+        let checked = first_call(&mission, &script, &models.rocket, &models.environment);
+        let flown = simulate(&mission);
+        let chain = |e: &dyn std::error::Error| {
+            let mut text = e.to_string();
+            let mut source = e.source();
+            while let Some(s) = source {
+                text.push_str(": ");
+                text.push_str(&s.to_string());
+                source = s.source();
+            }
+            text
+        };
+        (
+            checked.err().map(|e| chain(&e)),
+            flown.err().map(|e| chain(&e)),
+        )
+    };
+    // On the solver's steps the first call (t = 0) comes before the first reading: check and
+    // the flight both fail, in the script.
+    let (checked, flown) = first(true);
+    let checked = checked.expect("check refuses");
+    assert!(checked.contains("unguarded_controller.rhai:5"), "{checked}");
+    assert!(
+        flown
+            .expect("the flight fails")
+            .contains("unguarded_controller.rhai:5")
+    );
+    // Without time overshoot the barometer reads first: both pass.
+    assert_eq!(first(false), (None, None));
 }

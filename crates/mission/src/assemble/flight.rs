@@ -265,7 +265,8 @@ pub fn fly<A: AtmosphereModel>(
 /// [`fly`] with `sensors` sampled during the flight, measuring with `surroundings`
 /// (docs/physics.md §29.2); returns their readings too, in order. The sensors are sampled
 /// after the parachutes and the controller at the instants they share, so these read the
-/// sensors' previous readings there (RocketPy 1.13's order, docs/physics.md §29.3); the
+/// sensors' previous readings there, except that with `time_overshoot = false` the sensors
+/// come before the controller (RocketPy 1.13's orders, docs/physics.md §29.3); the
 /// controller's `sensors` argument and the trigger expressions read the sensors' signals,
 /// so `sensors` must be the mission's (a flight without them does not start when one of
 /// those reads a sensor). Without sensors or controller the flight is
@@ -303,27 +304,37 @@ pub fn fly_with_sensors<A: AtmosphereModel>(
                 .collect()
         })
         .collect();
-    let mut processes: Vec<Box<dyn karman_dynamics::flight::SampledProcess + '_>> = Vec::new();
-    if let Some(controller) = controller.as_mut() {
-        processes.push(Box::new(ControllerProcess {
-            controller,
-            error: &mut error,
-            overshoot: mission.spec.flight.time_overshoot,
-            sensor_signals: &signals,
-            sensor_ids: Vec::new(),
-        }));
-    }
-    // After the controller (and the parachutes, which the engine puts first): at a shared
-    // instant they read the sensor's previous reading, RocketPy 1.13's order at its
-    // overshootable time nodes (docs/physics.md §29.3).
+    let overshoot = mission.spec.flight.time_overshoot;
+    let mut sensor_processes: Vec<Box<dyn karman_dynamics::flight::SampledProcess + '_>> =
+        Vec::new();
     for ((sensor, readings), names) in sensors.into_iter().zip(readings.iter_mut()).zip(&signals) {
-        processes.push(Box::new(SensorProcess {
+        sensor_processes.push(Box::new(SensorProcess {
             sensor,
             surroundings,
             readings,
             outputs: names.iter().map(String::as_str).collect(),
         }));
     }
+    let mut processes: Vec<Box<dyn karman_dynamics::flight::SampledProcess + '_>> = Vec::new();
+    // RocketPy 1.13's order at an instant (docs/physics.md §29.3): on the solver's steps
+    // (`time_overshoot`) the parachutes (the engine puts them first), the controller, then
+    // the sensors, which the other two therefore read as of the sensors' previous instant;
+    // at its hard stops (`time_overshoot = false`) the sensors before the controller, which
+    // reads the reading of the instant.
+    if !overshoot {
+        processes.append(&mut sensor_processes);
+    }
+    if let Some(controller) = controller.as_mut() {
+        processes.push(Box::new(ControllerProcess {
+            controller,
+            error: &mut error,
+            overshoot,
+            sensor_signals: &signals,
+            sensor_ids: Vec::new(),
+        }));
+    }
+    processes.append(&mut sensor_processes);
+    drop(sensor_processes);
     let flight = karman_dynamics::simulate_with(atmosphere, rocket, settings, processes)
         .map_err(|e| mission.flight_error("flight", e))?;
     if let Some(error) = error {

@@ -108,7 +108,8 @@ pub fn compile_controller(mission: &Mission) -> Result<Option<ControllerScript>,
 /// error, an unknown property or method, a limit of the sandbox, a value the record refuses),
 /// located in the script: at t = 0 s, the rocket at rest on the pad (at the launch site's
 /// elevation, upright, not turning), with the arguments the flight passes, on a controller of
-/// its own (the flight's starts afresh).
+/// its own (the flight's starts afresh): its sensors unread (`()`), or, with `time_overshoot =
+/// false`, where the flight measures them first, each reading the pad at rest.
 ///
 /// # Errors
 /// [`MissionError::Flight`] (section `rocket.air_brakes.controller`), the message the flight
@@ -128,6 +129,22 @@ pub fn first_call(
     let mut state = [0.0; 13];
     state[2] = environment.elevation();
     state[6] = 1.0;
+    if !mission.spec.flight.time_overshoot {
+        // The flight measures the sensors before the controller at t = 0 (docs/physics.md
+        // §29.3): hand the call a reading of each, the pad at rest (where the flight's first
+        // call sees `()` instead, it gets `()` here too).
+        let surroundings = super::sensors::EnvironmentSurroundings(environment);
+        let truth = karman_sensors::Truth {
+            u: state,
+            u_dot: [0.0; 13],
+        };
+        for (i, mut sensor) in super::sensors::build(mission, rocket, 0)?
+            .into_iter()
+            .enumerate()
+        {
+            controller.set_sensor(i, 0.0, sensor.measure(&truth, &surroundings));
+        }
+    }
     let mut row = [0.0; 14];
     row[1..].copy_from_slice(&state);
     controller

@@ -9,8 +9,9 @@
 //! trigger expressions (`sensors[i]`, `sensors.NAME`) read the latest value there. A sensor
 //! comes after the parachutes and the controller in the flight's processes, so at an instant
 //! they share, these read the reading of the sensor's previous instant, as RocketPy 1.13 runs
-//! its overshootable time nodes (parachutes, then controllers, then sensors; docs/physics.md
-//! §29.3).
+//! its overshootable time nodes (parachutes, then controllers, then sensors); with
+//! `time_overshoot = false` it comes before the controller, as RocketPy measures at its
+//! integrator stops (docs/physics.md §29.3).
 
 use karman_airframe::Rocket;
 use karman_atmos::Environment;
@@ -214,9 +215,9 @@ impl Surroundings for EnvironmentSurroundings<'_> {
 /// A sensor as a sampled process of the engine: sampled in every phase (the rail too, as
 /// RocketPy measures at every time node of every phase) over whole steps (docs/physics.md
 /// §29.2's deviation at the apogee step), and at the instant where an action started the
-/// phase (RocketPy clears only the parachutes of that node); it never acts. It comes after
-/// every process that may act, so each instant is measured once. Its readings go to
-/// `readings`.
+/// phase (RocketPy clears only the parachutes of that node); it never acts. Each instant is
+/// measured once: an instant it measured before a process after it acted there (and so cut
+/// the phase) is not measured again at the new phase's start. Its readings go to `readings`.
 pub struct SensorProcess<'s> {
     /// The sensor.
     pub sensor: Sensor,
@@ -250,6 +251,16 @@ impl SampledProcess for SensorProcess<'_> {
     }
 
     fn sample(&mut self, probe: &mut Probe<'_>) -> Option<Action> {
+        // Instants keyed to 1e-7 s, as the engine merges them.
+        let key = |t: f64| (t * 1e7).round() as i64;
+        if self
+            .readings
+            .times
+            .last()
+            .is_some_and(|&last| key(last) == key(probe.t()))
+        {
+            return None;
+        }
         let (u, u_dot) = probe.state_and_rhs();
         let value = self.sensor.measure(&Truth { u, u_dot }, self.surroundings);
         self.readings.times.push(probe.t());
