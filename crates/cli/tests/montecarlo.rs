@@ -372,6 +372,39 @@ fn samples_that_reach_max_time_are_marked_counted_and_fail_the_study() {
 }
 
 #[test]
+fn a_study_of_dispersed_sensor_noise_is_the_same_on_one_and_two_threads() {
+    // The main parachute fires when the noisy barometer and accelerometer say so; their noise
+    // keys are the study's inputs (`rocket.sensors.<i>.<key>`).
+    let mission = PathBuf::from(env!("CARGO_MANIFEST_DIR"))
+        .join("../mission/tests/fixtures/sensors/calisto_sensor_study.toml");
+    let (one, two) = (fresh("sensors-one"), fresh("sensors-two"));
+    for (dir, threads) in [(&one, "1"), (&two, "2")] {
+        let output = montecarlo_of(&mission, dir, &["--threads", threads]);
+        assert_eq!(output.status.code(), Some(0), "{}", stderr(&output));
+    }
+    assert_same_files(&one, &two);
+    // The draws reach the trigger: the samples' apogees differ.
+    let csv = std::fs::read_to_string(one.join("samples.csv")).expect("samples.csv");
+    let header: Vec<&str> = csv.lines().next().expect("header").split(',').collect();
+    assert!(
+        header.contains(&"rocket.sensors.1.noise_density.2"),
+        "{header:?}"
+    );
+    let column = header
+        .iter()
+        .position(|h| *h == "apogee_agl_m")
+        .expect("apogee");
+    let mut apogees: Vec<&str> = csv
+        .lines()
+        .skip(1)
+        .map(|row| row.split(',').nth(column).expect("apogee"))
+        .collect();
+    apogees.sort_unstable();
+    apogees.dedup();
+    assert_eq!(apogees.len(), 12, "{csv}");
+}
+
+#[test]
 fn a_3dof_study_is_the_same_on_one_and_two_threads() {
     let three_dof = [
         "--set",

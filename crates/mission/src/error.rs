@@ -105,8 +105,10 @@ pub enum ProblemKind {
         what: String,
     },
     /// A parachute trigger expression is not in the expression language.
-    #[error("invalid trigger expression")]
+    #[error("invalid trigger expression{}", quoted_expression(text))]
     Expression {
+        /// The expression, as written.
+        text: String,
         /// Where in the expression, and why.
         source: karman_script::ExpressionError,
     },
@@ -416,5 +418,21 @@ impl fmt::Display for DisplayProblem<'_> {
             source = cause.source();
         }
         Ok(())
+    }
+}
+
+/// The most characters of an expression an error quotes.
+const QUOTED_EXPRESSION_CHARS: usize = 80;
+
+/// ` "TEXT"` for an error: the expression's first [`QUOTED_EXPRESSION_CHARS`] characters,
+/// control characters escaped, and the length of what was cut.
+fn quoted_expression(text: &str) -> String {
+    let count = text.chars().count();
+    let head: String = text.chars().take(QUOTED_EXPRESSION_CHARS).collect();
+    let head = head.escape_debug();
+    if count > QUOTED_EXPRESSION_CHARS {
+        format!(" \"{head}…\" ({count} characters)")
+    } else {
+        format!(" \"{head}\"")
     }
 }

@@ -41,11 +41,12 @@
 //! apart, about 1 m per km of drift).
 
 use crate::assemble::environment::{WindAdjusted, build_environment};
-use crate::assemble::flight::{early_ending, fly};
+use crate::assemble::flight::{early_ending, fly_with_sensors};
 use crate::assemble::motors::ThrustCache;
 use crate::assemble::preflight::flight_settings;
 use crate::assemble::rocket::{EstimateScaling, build_rocket_scaled};
 use crate::assemble::scripts::{ControllerEnvironment, compile_controller};
+use crate::assemble::sensors::{self, EnvironmentSurroundings};
 use crate::assemble::{stage_view, stages};
 use crate::paths::{self, DerivedKnob, Input};
 use crate::schema::{AirBrakesCurve, Curve, Distribution, MissionSpec};
@@ -643,7 +644,12 @@ impl MonteCarlo {
         };
         let settings = flight_settings(&mission, noise_seed);
         let atmosphere = WindAdjusted::new(&environment, factor, offset_deg);
-        let (flight, _) = fly(
+        // The sample's sensors, seeded as its parachutes (sensor `i` by the sample's seed and
+        // `i`), so that their readings reach the controller and the triggers as in a single
+        // flight; their noise parameters are the sample's (dispersible by dotted path).
+        let sensors = sensors::build(&mission, rocket, noise_seed).map_err(|e| chain(&e))?;
+        let surroundings = EnvironmentSurroundings(&environment);
+        let (flight, _, _) = fly_with_sensors(
             &mission,
             &atmosphere,
             rocket,
@@ -656,6 +662,7 @@ impl MonteCarlo {
                     offset_deg,
                 ))
             },
+            (sensors, &surroundings),
         )
         .map_err(|e| chain(&e))?;
         let read = read(&flight, &atmosphere, rocket);

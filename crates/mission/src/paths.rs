@@ -20,6 +20,7 @@ use crate::schema::{
     AirBrakesCurve, Atol, Curve, DensitySpec, Discretize, Distribution, ExtraMotorSpec,
     MissionSpec, MotorSpec, RocketSpec, StageSpec, SurfaceSpec, Sweep, TankSpec, Trigger,
 };
+use crate::schema::{Axes, SensorSpec};
 use thiserror::Error;
 
 /// A dispersion knob that is not a stored key but scales or shifts a model
@@ -669,6 +670,11 @@ fn part_component<'a>(
     if let Some(key) = array.strip_prefix("motor.") {
         return motor_component(motor?, key, index);
     }
+    if let Some(rest) = array.strip_prefix("rocket.sensors.") {
+        let (i, key) = rest.split_once('.')?;
+        let sensor = rocket.sensors.get_mut(i.parse::<usize>().ok()?)?;
+        return sensor_component(sensor, key, index);
+    }
     if let Some(name) = array
         .strip_prefix("rocket.parachutes.")
         .and_then(|rest| rest.strip_suffix(".noise"))
@@ -684,6 +690,57 @@ fn part_component<'a>(
             .as_mut()?
             .get_mut(index),
         _ => None,
+    }
+}
+
+/// The per-axis noise parameter `key` of a sensor (`noise_density`, …), when the file sets it.
+fn sensor_axes<'a>(sensor: &'a mut SensorSpec, key: &str) -> Option<&'a mut Axes> {
+    match key {
+        "noise_density" => sensor.noise_density.as_mut(),
+        "noise_variance" => sensor.noise_variance.as_mut(),
+        "random_walk_density" => sensor.random_walk_density.as_mut(),
+        "random_walk_variance" => sensor.random_walk_variance.as_mut(),
+        "constant_bias" => sensor.constant_bias.as_mut(),
+        "temperature_bias" => sensor.temperature_bias.as_mut(),
+        "temperature_scale_factor" => sensor.temperature_scale_factor.as_mut(),
+        "acceleration_sensitivity" => sensor.acceleration_sensitivity.as_mut(),
+        _ => None,
+    }
+}
+
+/// Component `index` of the array `key` of a `[[rocket.sensors]]` entry (its file form:
+/// a position always has three components, a measurement range two, a per-axis parameter
+/// three when the file gives three).
+fn sensor_component<'a>(
+    sensor: &'a mut SensorSpec,
+    key: &str,
+    index: usize,
+) -> Option<&'a mut f64> {
+    match key {
+        "position" => sensor.position.0.get_mut(index),
+        "orientation" => sensor.orientation.as_mut()?.get_mut(index),
+        "measurement_range" => sensor.measurement_range.as_mut()?.0.get_mut(index),
+        _ => match sensor_axes(sensor, key)? {
+            Axes::PerAxis(values) => values.get_mut(index),
+            Axes::All(_) => None,
+        },
+    }
+}
+
+/// The numeric slot `key` of a `[[rocket.sensors]]` entry: its rate, its scalar noise
+/// parameters, and a per-axis parameter the file gives as one number.
+fn sensor_slot<'a>(sensor: &'a mut SensorSpec, key: &str) -> Option<&'a mut f64> {
+    match key {
+        "sampling_rate" => Some(&mut sensor.sampling_rate),
+        "resolution" => sensor.resolution.as_mut(),
+        "operating_temperature" => sensor.operating_temperature.as_mut(),
+        "cross_axis_sensitivity" => sensor.cross_axis_sensitivity.as_mut(),
+        "position_accuracy" => sensor.position_accuracy.as_mut(),
+        "altitude_accuracy" => sensor.altitude_accuracy.as_mut(),
+        _ => match sensor_axes(sensor, key)? {
+            Axes::All(value) => Some(value),
+            Axes::PerAxis(_) => None,
+        },
     }
 }
 
@@ -747,6 +804,11 @@ fn rocket_slot<'a>(rocket: &'a mut RocketSpec, path: &str) -> Option<Slot<'a>> {
             },
             _ => return None,
         }));
+    }
+    if let Some(rest) = path.strip_prefix("sensors.") {
+        let (index, key) = rest.split_once('.')?;
+        let sensor = rocket.sensors.get_mut(index.parse::<usize>().ok()?)?;
+        return sensor_slot(sensor, key).map(Float);
     }
     if let Some(rest) = path.strip_prefix("surfaces.") {
         let (name, key) = rest.rsplit_once('.')?;

@@ -378,7 +378,10 @@ fn stages(c: &mut Checker<'_>, spec: &MissionSpec) {
                 if let Err(source) = karman_script::Expression::parse(text) {
                     c.report(
                         &at("separation.expression"),
-                        ProblemKind::Expression { source },
+                        ProblemKind::Expression {
+                            text: text.clone(),
+                            source,
+                        },
                     );
                 }
             }
@@ -1260,10 +1263,15 @@ fn rocket(c: &mut Checker<'_>, spec: &MissionSpec) {
                 c.non_negative(&key("trigger"), *delay);
             }
             Trigger::Expression(text) => {
-                if let Err(source) = karman_script::Expression::parse(text) {
+                // The rocket's sensors are readable (`sensors[i]`, `sensors.NAME`).
+                let shapes = crate::assemble::sensors::shapes(&r.sensors);
+                if let Err(source) = karman_script::Expression::parse_with(text, &shapes) {
                     c.report(
                         &key("trigger.expression"),
-                        ProblemKind::Expression { source },
+                        ProblemKind::Expression {
+                            text: text.clone(),
+                            source,
+                        },
                     );
                 }
             }

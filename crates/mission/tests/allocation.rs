@@ -142,3 +142,42 @@ fn equations_and_steps_do_not_allocate() {
         );
     }
 }
+
+/// A trigger expression reading sensors is evaluated from the buffer the parachute's
+/// process fills (allocated once, when the flight is set up), and a controller's sensor
+/// handles are written in place: neither allocates per sample.
+#[test]
+fn sensor_reads_do_not_allocate() {
+    use karman_script::{Expression, SensorShape, TriggerInputs};
+    let shapes = [
+        SensorShape {
+            name: "baro",
+            kind: "barometer",
+            components: 1,
+        },
+        SensorShape {
+            name: "imu",
+            kind: "accelerometer",
+            components: 3,
+        },
+    ];
+    let expression = Expression::parse_with(
+        "sensors.baro < 80000.0 && sensors[1][2] > 0.0 && sqrt(sensors.imu[0]) < vz",
+        &shapes,
+    )
+    .expect("parses");
+    let inputs = TriggerInputs {
+        pressure: 1.0,
+        height: 2.0,
+        state: [0.5; 13],
+    };
+    let values = [79_000.0, 1.0, 0.01];
+    let mut fired = 0;
+    let counted = allocation_counter::measure(|| {
+        for _ in 0..1000 {
+            fired += usize::from(expression.evaluate_with(&inputs, std::hint::black_box(&values)));
+        }
+    });
+    assert_eq!(fired, 1000);
+    assert_eq!(counted.count_total, 0, "{counted:?}");
+}

@@ -15,6 +15,7 @@ mod ork;
 mod overrides;
 mod paths;
 mod scripts;
+mod sensor_readers;
 mod sensors;
 mod stages;
 mod tanks;

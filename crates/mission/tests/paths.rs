@@ -437,6 +437,15 @@ fn typed_slots_match_the_file_form() {
     let airstart =
         std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../../fixtures/airstart.toml");
     specs.push(load(&airstart, &[]).unwrap_or_else(|e| panic!("{e}")).spec);
+    // Sensors: scalar keys, per-axis keys as one number and as three, positions, ranges.
+    let sensors = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/fixtures/sensors");
+    for name in ["calisto_sensors.toml", "calisto_sensor_study.toml"] {
+        specs.push(
+            load(&sensors.join(name), &[])
+                .unwrap_or_else(|e| panic!("{e}"))
+                .spec,
+        );
+    }
     let mut seen = std::collections::BTreeSet::new();
     for spec in &specs {
         for (path, value) in paths::numeric_inputs(spec) {
@@ -476,6 +485,11 @@ fn typed_slots_match_the_file_form() {
         "motor.burn_time.0",
         "motor.reshape_thrust_curve.1",
         "rocket.parachutes.main.noise.2",
+        "rocket.sensors.0.constant_bias",
+        "rocket.sensors.0.sampling_rate",
+        "rocket.sensors.0.position.2",
+        "rocket.sensors.1.noise_density.2",
+        "rocket.sensors.1.orientation.1",
         "stages.0.separation",
         "stages.0.sampling_rate",
         "stages.0.ignition_delay",

@@ -26,6 +26,28 @@ pub trait TriggerCondition: fmt::Debug + Send + Sync {
     /// signal `pressure` (Pa), the barometric height above ground derived from it `height`
     /// (m, docs/physics.md §4.4) and the 13-component `state` there.
     fn fires(&self, t: f64, pressure: f64, height: f64, state: &[f64; 13]) -> bool;
+
+    /// The names of the flight's signals the condition also reads (the values other sampled
+    /// processes publish, such as a sensor's readings: RocketPy's `trigger(p, h, y,
+    /// sensors)`), in the order [`TriggerCondition::fires_reading`] takes their values; the
+    /// flight does not start when one is not published. Default: none.
+    fn signals(&self) -> &[String] {
+        &[]
+    }
+
+    /// [`TriggerCondition::fires`] with the latest value of each of
+    /// [`TriggerCondition::signals`], NaN for a signal not published yet. Default: `fires`,
+    /// the signals unread.
+    fn fires_reading(
+        &self,
+        t: f64,
+        pressure: f64,
+        height: f64,
+        state: &[f64; 13],
+        _signals: &[f64],
+    ) -> bool {
+        self.fires(t, pressure, height, state)
+    }
 }
 
 /// What fires a parachute (docs/physics.md §9.4, §17).

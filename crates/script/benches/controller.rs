@@ -1,10 +1,12 @@
 //! One call of a closed-loop air-brake controller (the apogee predictor of the test missions'
 //! `closed_loop.rhai`): the per-call cost a controller adds to a flight, arguments built,
-//! script run and record kept. `cargo xtask bench` prints the median per call.
+//! script run and record kept; and an interpreted controller reading two sensors of its
+//! `sensors` argument (their readings stored before each call, as the engine does), against
+//! the same script handed no sensors. `cargo xtask bench` prints the median per call.
 
 use criterion::{Criterion, Throughput, criterion_group, criterion_main};
 use karman_script::{
-    AirBrakesSetup, Controller, ControllerScript, ControllerSetup, EnvironmentQuery,
+    AirBrakesSetup, Controller, ControllerScript, ControllerSetup, EnvironmentQuery, SensorSetup,
 };
 use std::hint::black_box;
 use std::path::Path;
@@ -79,8 +81,71 @@ fn controller(c: &mut Criterion) {
             black_box(controller.call(t, &state, &row).expect("call"))
         });
     });
+    // A controller reading a barometer and an accelerometer (interpreted: `sensors` is
+    // outside the compiled subset), and the same arguments to a script that reads none.
+    let reading =
+        ControllerScript::compile(Path::new("sensors.rhai"), SENSOR_SCRIPT).expect("compiles");
+    let ignoring =
+        ControllerScript::compile(Path::new("ignoring.rhai"), IGNORING_SCRIPT).expect("compiles");
+    let sensors = [
+        SensorSetup {
+            name: "baro".into(),
+            kind: "barometer".into(),
+            components: 1,
+        },
+        SensorSetup {
+            name: "imu".into(),
+            kind: "accelerometer".into(),
+            components: 3,
+        },
+    ];
+    for (name, script, with) in [
+        ("sensor_reading_call", &reading, &sensors[..]),
+        ("sensor_ignoring_call", &ignoring, &sensors[..]),
+        ("no_sensor_call", &ignoring, &[][..]),
+    ] {
+        group.bench_function(name, |b| {
+            let mut controller = Controller::new(script, setup.clone())
+                .expect("controller")
+                .with_sensors(with);
+            let mut t = 5.0;
+            b.iter(|| {
+                t += 0.01;
+                row[0] = t + 0.005;
+                controller.set_sensor(0, t - 0.01, [70_000.0 - t, 0.0, 0.0]);
+                controller.set_sensor(1, t - 0.01, [0.1, -0.2, -9.0 - t]);
+                black_box(controller.call(t, &state, &row).expect("call"))
+            });
+        });
+    }
     group.finish();
 }
+
+/// Reads both sensors and opens the brakes on the barometer (interpreted).
+const SENSOR_SCRIPT: &str = "
+fn controller_function(time, sampling_rate, state, state_history, observed_variables,
+                       air_brakes, sensors) {
+    let p = sensors[0].measurement;
+    let az = sensors[1].measurement[2];
+    if p != () && p < 69990.0 && az < 0.0 {
+        air_brakes.deployment_level = 1.0;
+    }
+    return ();
+}
+";
+
+/// The same signature, reading no sensor (interpreted: it loops once).
+const IGNORING_SCRIPT: &str = "
+fn controller_function(time, sampling_rate, state, state_history, observed_variables,
+                       air_brakes, sensors) {
+    let p = 0.0;
+    for i in 0..1 { p = state[2]; }
+    if p > 1.0e9 {
+        air_brakes.deployment_level = 1.0;
+    }
+    return ();
+}
+";
 
 criterion_group!(benches, controller);
 criterion_main!(benches);

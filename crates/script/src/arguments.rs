@@ -97,3 +97,70 @@ pub(crate) fn stored_level(clamp: bool, value: f64) -> f64 {
 /// The `environment` argument.
 #[derive(Clone)]
 pub(crate) struct EnvironmentHandle(pub(crate) Arc<dyn EnvironmentQuery>);
+
+/// What a controller knows of one of the rocket's sensors before the flight: its name, its
+/// kind's name (`"accelerometer"`, `"gyroscope"`, `"barometer"`, `"gnss"`) and the number of
+/// components of its reading (1 for a barometer, 3 otherwise).
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct SensorSetup {
+    /// The sensor's name (unique in the flight).
+    pub name: String,
+    /// Its kind's name.
+    pub kind: String,
+    /// Components of a reading, 1 to 3.
+    pub components: usize,
+}
+
+/// One sensor as the `sensors` argument holds it: its setup and its latest reading, written
+/// by the engine before each call ([`crate::Controller::set_sensor`]) and shared by every
+/// copy of the handle, so that the array of handles is built once per flight. The time is
+/// NaN before the sensor's first reading.
+#[derive(Debug)]
+pub(crate) struct SensorSlot {
+    pub(crate) name: rhai::ImmutableString,
+    pub(crate) kind: rhai::ImmutableString,
+    pub(crate) components: usize,
+    /// The bits of `[t, v₀, v₁, v₂]`.
+    cells: [AtomicU64; 4],
+}
+
+/// The handle of one sensor in the `sensors` argument (the Rhai type `Sensor`).
+#[derive(Debug, Clone)]
+pub(crate) struct SensorHandle(pub(crate) Arc<SensorSlot>);
+
+impl SensorHandle {
+    pub(crate) fn new(setup: &SensorSetup) -> Self {
+        let nan = f64::NAN.to_bits();
+        SensorHandle(Arc::new(SensorSlot {
+            name: setup.name.as_str().into(),
+            kind: setup.kind.as_str().into(),
+            components: setup.components.clamp(1, 3),
+            cells: [
+                AtomicU64::new(nan),
+                AtomicU64::new(nan),
+                AtomicU64::new(nan),
+                AtomicU64::new(nan),
+            ],
+        }))
+    }
+
+    /// Stores the reading `values` taken at `t`.
+    pub(crate) fn set(&self, t: f64, values: [f64; 3]) {
+        let cells = &self.0.cells;
+        cells[0].store(t.to_bits(), Ordering::Relaxed);
+        for (cell, v) in cells[1..].iter().zip(values) {
+            cell.store(v.to_bits(), Ordering::Relaxed);
+        }
+    }
+
+    /// The instant of the latest reading, `None` before the first.
+    pub(crate) fn time(&self) -> Option<f64> {
+        let t = f64::from_bits(self.0.cells[0].load(Ordering::Relaxed));
+        (!t.is_nan()).then_some(t)
+    }
+
+    /// Component `i` of the latest reading.
+    pub(crate) fn value(&self, i: usize) -> f64 {
+        f64::from_bits(self.0.cells[1 + i].load(Ordering::Relaxed))
+    }
+}

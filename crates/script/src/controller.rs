@@ -33,8 +33,8 @@
 //! ([`ControllerScript::interpreted_because`] says why). Without loops or script-function calls a
 //! compiled call is bounded by the tree's size, far below the operation limit.
 
-use crate::arguments::{AirBrakesHandle, EnvironmentHandle};
-pub use crate::arguments::{AirBrakesSetup, EnvironmentQuery};
+use crate::arguments::{AirBrakesHandle, EnvironmentHandle, SensorHandle};
+pub use crate::arguments::{AirBrakesSetup, EnvironmentQuery, SensorSetup};
 use crate::compiled::{self, Bound, Compiled, Inputs};
 use crate::sandbox;
 use rhai::{
@@ -463,6 +463,11 @@ pub struct Controller {
     fast: Option<Bound>,
     /// Calls made compiled.
     compiled_calls: usize,
+    /// The `sensors` argument: one handle per sensor, in the mission's order, built once
+    /// ([`Controller::with_sensors`]); each call hands the script a copy of the array.
+    sensors: Array,
+    /// The handles of `sensors`, which [`Controller::set_sensor`] writes.
+    sensor_handles: Vec<SensorHandle>,
 }
 
 impl fmt::Debug for Controller {
@@ -557,7 +562,41 @@ impl Controller {
             scope: Scope::new(),
             fast,
             compiled_calls: 0,
+            sensors: Array::new(),
+            sensor_handles: Vec::new(),
         })
+    }
+
+    /// This controller with the rocket's sensors as its `sensors` argument, in order (each a
+    /// `Sensor` with `name`, `kind`, `measurement` and `time`; mission-format.md, "The
+    /// controller script"); without this call `sensors` is empty. A script that reads
+    /// `sensors` runs in the interpreter (module documentation, "Compiled calls").
+    #[must_use]
+    pub fn with_sensors(mut self, sensors: &[SensorSetup]) -> Self {
+        self.sensor_handles = sensors.iter().map(SensorHandle::new).collect();
+        self.sensors = self
+            .sensor_handles
+            .iter()
+            .map(|h| Dynamic::from(h.clone()))
+            .collect();
+        self
+    }
+
+    /// Number of sensors of the `sensors` argument.
+    #[must_use]
+    pub fn sensor_count(&self) -> usize {
+        self.sensor_handles.len()
+    }
+
+    /// Stores the latest reading of sensor `index` (of [`Controller::with_sensors`]'s list),
+    /// taken at `time`: what the next calls see as its `measurement` (the first
+    /// `components` of `values`) and `time`. Before the first store a sensor's `measurement`
+    /// and `time` are `()`, as RocketPy's `measurement` is `None` before the sensor's first
+    /// reading. An index past the list is ignored. Allocation-free.
+    pub fn set_sensor(&mut self, index: usize, time: f64, values: [f64; 3]) {
+        if let Some(handle) = self.sensor_handles.get(index) {
+            handle.set(time, values);
+        }
     }
 
     /// This controller with a budget of `operations` for its flight's interpreted calls
@@ -681,7 +720,7 @@ impl Controller {
             Dynamic::from(self.air_brakes.clone()),
         ];
         if self.parameters >= 7 {
-            args.push(Array::new().into());
+            args.push(self.sensors.clone().into());
         }
         if self.parameters >= 8 {
             args.push(Dynamic::from(self.environment.clone()));

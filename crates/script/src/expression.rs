@@ -5,7 +5,13 @@
 //! the same in both: float literals (`5.0`, `2.5e2`, `1e3`), the variables `p`, `h` and the 13
 //! state components by name, `+ - * /`, unary `-` and `!`, one comparison
 //! `< <= > >= == !=` (comparisons do not chain), `&&`, `||`, parentheses, `true`, `false`,
-//! `abs`, `sqrt`, `min` and `max`. Rhai's precedence: unary operators bind tightest, then
+//! `abs`, `sqrt`, `min` and `max`, and the latest readings of the rocket's sensors
+//! (RocketPy's `trigger(p, h, y, sensors)`): `sensors[i]` by index in `[[rocket.sensors]]`
+//! order or `sensors.NAME` by name, RocketPy's `sensors[i].measurement` spelling accepted too,
+//! a barometer's reading as it stands and a component of a three-component reading by a
+//! literal index, `sensors[0][2]` or `sensors.imu[2]` (the sensors are known when the
+//! expression is parsed, [`Expression::parse_with`], so an unknown name, an index past the
+//! list or a component of a single number is a parse error). Rhai's precedence: unary operators bind tightest, then
 //! `* /`, `+ -`, one comparison, `&&`, `||`. Numbers and booleans never mix, and the whole
 //! expression is a boolean; both are checked when the expression is parsed, so evaluation
 //! cannot fail. Arithmetic is IEEE 754: a division by zero gives ±inf or NaN; a literal
@@ -56,6 +62,22 @@ pub struct TriggerInputs {
     /// `x, y, z, vx, vy, vz, e0, e1, e2, e3, wx, wy, wz` (SI, `z` above sea level).
     pub state: [f64; 13],
 }
+
+/// A sensor as a trigger expression reads it: its name, its kind's name and the number of
+/// components of its reading (1 for a barometer, 3 for the others).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct SensorShape<'a> {
+    /// The sensor's name.
+    pub name: &'a str,
+    /// Its kind's name, for messages.
+    pub kind: &'a str,
+    /// Components of its reading.
+    pub components: usize,
+}
+
+/// The largest sensor index or component an expression may write (a larger literal is not
+/// an index of any rocket's sensors).
+const MAX_INDEX: usize = 1 << 20;
 
 /// A syntax or type error of an expression, at a character of its text.
 #[derive(Debug, Clone, PartialEq, Eq, Error)]
@@ -130,6 +152,8 @@ enum Node {
     Boolean(bool),
     /// Index into `[p, h, x, y, z, …]`.
     Variable(usize),
+    /// Index into the sensor readings the expression reads ([`Expression::reads`]).
+    Sensor(usize),
     Negate(Box<Node>),
     Not(Box<Node>),
     Call(Function, Vec<Node>),
@@ -141,6 +165,15 @@ enum Node {
 pub struct Expression {
     text: String,
     root: Node,
+    /// The `(sensor, component)` pairs read, in order of first appearance.
+    reads: Vec<(usize, usize)>,
+}
+
+/// What the evaluator reads: `[p, h, state…]` and the sensor readings of
+/// [`Expression::reads`].
+struct Values<'v> {
+    base: [f64; 15],
+    sensors: &'v [f64],
 }
 
 impl Expression {
@@ -151,12 +184,24 @@ impl Expression {
     /// boolean (or the reverse), a chained comparison, an unknown name or a wrong number of
     /// function arguments.
     pub fn parse(text: &str) -> Result<Self, ExpressionError> {
+        Self::parse_with(text, &[])
+    }
+
+    /// Parses and checks `text` for a rocket with `sensors` (in `[[rocket.sensors]]` order).
+    ///
+    /// # Errors
+    /// As [`Expression::parse`], and for a sensor that is not in `sensors` (a name, or an
+    /// index past the list), a three-component reading used without a component, a component
+    /// of a one-number reading or past the reading's components.
+    pub fn parse_with(text: &str, sensors: &[SensorShape<'_>]) -> Result<Self, ExpressionError> {
         let tokens = tokenize(text)?;
         let mut parser = Parser {
             tokens: &tokens,
             next: 0,
             end: text.chars().count() + 1,
             depth: 0,
+            sensors,
+            reads: Vec::new(),
         };
         let (root, ty, _) = parser.or()?;
         if let Some(token) = parser.peek() {
@@ -171,7 +216,15 @@ impl Expression {
         Ok(Expression {
             text: text.to_owned(),
             root,
+            reads: parser.reads,
         })
+    }
+
+    /// The `(sensor index, component)` pairs the expression reads, in order of first
+    /// appearance: [`Expression::evaluate_with`] takes their values in this order.
+    #[must_use]
+    pub fn reads(&self) -> &[(usize, usize)] {
+        &self.reads
     }
 
     /// The expression as written.
@@ -183,18 +236,28 @@ impl Expression {
     /// Whether the trigger fires for `inputs`.
     #[must_use]
     pub fn evaluate(&self, inputs: &TriggerInputs) -> bool {
-        let mut values = [0.0; 15];
-        values[PRESSURE] = inputs.pressure;
-        values[HEIGHT] = inputs.height;
-        values[2..].copy_from_slice(&inputs.state);
-        boolean(&self.root, &values)
+        self.evaluate_with(inputs, &[])
+    }
+
+    /// Whether the trigger fires for `inputs` and the sensor readings `sensors`, one value
+    /// per pair of [`Expression::reads`] in its order; a value missing from `sensors` (or a
+    /// sensor not read yet, given as NaN) reads NaN, which no comparison but `!=` holds for.
+    /// Allocation-free.
+    #[must_use]
+    pub fn evaluate_with(&self, inputs: &TriggerInputs, sensors: &[f64]) -> bool {
+        let mut base = [0.0; 15];
+        base[PRESSURE] = inputs.pressure;
+        base[HEIGHT] = inputs.height;
+        base[2..].copy_from_slice(&inputs.state);
+        boolean(&self.root, &Values { base, sensors })
     }
 }
 
-fn number(node: &Node, values: &[f64; 15]) -> f64 {
+fn number(node: &Node, values: &Values<'_>) -> f64 {
     match node {
         Node::Number(value) => *value,
-        Node::Variable(index) => values[*index],
+        Node::Variable(index) => values.base[*index],
+        Node::Sensor(slot) => values.sensors.get(*slot).copied().unwrap_or(f64::NAN),
         Node::Negate(inner) => -number(inner, values),
         Node::Call(function, args) => {
             let a = number(&args[0], values);
@@ -227,7 +290,7 @@ fn number(node: &Node, values: &[f64; 15]) -> f64 {
     }
 }
 
-fn boolean(node: &Node, values: &[f64; 15]) -> bool {
+fn boolean(node: &Node, values: &Values<'_>) -> bool {
     match node {
         Node::Boolean(value) => *value,
         Node::Not(inner) => !boolean(inner, values),
@@ -249,7 +312,11 @@ fn boolean(node: &Node, values: &[f64; 15]) -> bool {
             }
         }
         // The type check admits only boolean nodes here.
-        Node::Number(_) | Node::Variable(_) | Node::Negate(_) | Node::Call(..) => false,
+        Node::Number(_)
+        | Node::Variable(_)
+        | Node::Sensor(_)
+        | Node::Negate(_)
+        | Node::Call(..) => false,
     }
 }
 
@@ -260,7 +327,11 @@ fn is_boolean(node: &Node) -> bool {
         Node::Binary(op, ..) => {
             !matches!(op, Binary::Add | Binary::Sub | Binary::Mul | Binary::Div)
         }
-        Node::Number(_) | Node::Variable(_) | Node::Negate(_) | Node::Call(..) => false,
+        Node::Number(_)
+        | Node::Variable(_)
+        | Node::Sensor(_)
+        | Node::Negate(_)
+        | Node::Call(..) => false,
     }
 }
 
@@ -298,8 +369,10 @@ fn error(column: usize, message: impl Into<String>) -> ExpressionError {
 #[derive(Debug, Clone, PartialEq)]
 enum TokenKind {
     Number(f64),
+    /// Digits inside brackets: a sensor index or a component.
+    Index(usize),
     Name(String),
-    /// An operator or punctuation: `+ - * / ( ) , < <= > >= == != && || !`.
+    /// An operator or punctuation: `+ - * / ( ) , < <= > >= == != && || ! [ ] .`.
     Symbol(&'static str),
 }
 
@@ -309,8 +382,9 @@ struct Token {
     column: usize,
 }
 
-const SYMBOLS: [&str; 16] = [
-    "<=", ">=", "==", "!=", "&&", "||", "+", "-", "*", "/", "(", ")", ",", "<", ">", "!",
+const SYMBOLS: [&str; 19] = [
+    "<=", ">=", "==", "!=", "&&", "||", "+", "-", "*", "/", "(", ")", ",", "<", ">", "!", "[", "]",
+    ".",
 ];
 
 fn tokenize(text: &str) -> Result<Vec<Token>, ExpressionError> {
@@ -320,9 +394,43 @@ fn tokenize(text: &str) -> Result<Vec<Token>, ExpressionError> {
     while i < chars.len() {
         let c = chars[i];
         let column = i + 1;
+        let member = c == '.'
+            && chars
+                .get(i + 1)
+                .is_some_and(|n| n.is_ascii_alphabetic() || *n == '_');
+        let in_brackets = matches!(
+            tokens.last(),
+            Some(Token {
+                kind: TokenKind::Symbol("["),
+                ..
+            })
+        );
         if c.is_whitespace() {
             i += 1;
-        } else if c.is_ascii_digit() || c == '.' {
+        } else if c.is_ascii_digit() && in_brackets {
+            // An index: digits only (a float or a name inside brackets is refused by the
+            // parser, which expects an index there).
+            let start = i;
+            while i < chars.len() && chars[i].is_ascii_alphanumeric() {
+                i += 1;
+            }
+            let literal: String = chars[start..i].iter().collect();
+            let index = literal
+                .parse::<usize>()
+                .ok()
+                .filter(|n| *n <= MAX_INDEX)
+                .ok_or_else(|| {
+                    let literal = quoted(&literal);
+                    error(
+                        column,
+                        format!("`{literal}` is not an index (digits, at most {MAX_INDEX})"),
+                    )
+                })?;
+            tokens.push(Token {
+                kind: TokenKind::Index(index),
+                column,
+            });
+        } else if (c.is_ascii_digit() || c == '.') && !member {
             let start = i;
             while i < chars.len() && (chars[i].is_ascii_alphanumeric() || chars[i] == '.') {
                 // An exponent sign belongs to the literal.
@@ -414,6 +522,10 @@ struct Parser<'t> {
     end: usize,
     /// How many parentheses, unary operators and calls enclose the current token.
     depth: usize,
+    /// The rocket's sensors.
+    sensors: &'t [SensorShape<'t>],
+    /// The `(sensor, component)` pairs read so far.
+    reads: Vec<(usize, usize)>,
 }
 
 impl Parser<'_> {
@@ -569,6 +681,8 @@ impl Parser<'_> {
                 Ok(inner)
             }
             TokenKind::Symbol(s) => Err(error(column, format!("unexpected `{s}`"))),
+            TokenKind::Index(_) => Err(error(column, "unexpected index")),
+            TokenKind::Name(name) if name == "sensors" => self.sensor(column),
             TokenKind::Name(name) => self.name(&name, column),
         }
     }
@@ -589,7 +703,8 @@ impl Parser<'_> {
             return Err(error(
                 column,
                 format!(
-                    "unknown name `{name}` (variables: p, h, {}; functions: abs, sqrt, min, max)",
+                    "unknown name `{name}` (variables: p, h, {}, sensors[i], sensors.NAME; \
+                     functions: abs, sqrt, min, max)",
                     STATE_NAMES.join(", ")
                 ),
             ));
@@ -627,6 +742,137 @@ impl Parser<'_> {
             ));
         }
         Ok((Node::Call(function, args), Type::Number, height))
+    }
+}
+
+impl Parser<'_> {
+    /// An index in brackets, the `[` already read at `open`.
+    fn index(&mut self, open: usize) -> Result<(usize, usize), ExpressionError> {
+        let column = self.column();
+        let index = match self.peek() {
+            Some(Token {
+                kind: TokenKind::Index(index),
+                ..
+            }) => *index,
+            _ => {
+                return Err(error(
+                    column,
+                    "expected an index (digits, as in sensors[0])",
+                ));
+            }
+        };
+        self.next += 1;
+        self.expect("]").map_err(|_| {
+            error(
+                self.column(),
+                format!("expected `]` closing the `[` at character {open}"),
+            )
+        })?;
+        Ok((index, column))
+    }
+
+    /// A sensor reading after the name `sensors` (at `column`): `[i]` or `.NAME`, RocketPy's
+    /// `.measurement` optionally, then `[c]` for a component of a three-component reading.
+    fn sensor(&mut self, column: usize) -> Result<Parsed, ExpressionError> {
+        let listed = || {
+            if self.sensors.is_empty() {
+                "the rocket has no [[rocket.sensors]]".to_owned()
+            } else {
+                let names: Vec<String> = self
+                    .sensors
+                    .iter()
+                    .enumerate()
+                    .map(|(i, s)| format!("{i}: {}", quoted(s.name)))
+                    .collect();
+                format!("the rocket's sensors are {}", names.join(", "))
+            }
+        };
+        let sensor = if let Some((_, open)) = self.symbol(&["["]) {
+            let (index, at) = self.index(open)?;
+            if index >= self.sensors.len() {
+                return Err(error(
+                    at,
+                    format!("no sensor at index {index}: {}", listed()),
+                ));
+            }
+            index
+        } else if self.symbol(&["."]).is_some() {
+            let at = self.column();
+            let Some(Token {
+                kind: TokenKind::Name(name),
+                ..
+            }) = self.peek().cloned()
+            else {
+                return Err(error(at, "expected a sensor's name after `sensors.`"));
+            };
+            self.next += 1;
+            let Some(index) = self.sensors.iter().position(|s| s.name == name) else {
+                let name = quoted(&name);
+                return Err(error(at, format!("no sensor named `{name}`: {}", listed())));
+            };
+            index
+        } else {
+            return Err(error(
+                self.column(),
+                "`sensors` is read as sensors[i] (in [[rocket.sensors]] order) or sensors.NAME",
+            ));
+        };
+        // RocketPy's spelling, `sensors[i].measurement`.
+        if let Some(Token {
+            kind: TokenKind::Symbol("."),
+            ..
+        }) = self.peek()
+            && matches!(
+                self.tokens.get(self.next + 1),
+                Some(Token { kind: TokenKind::Name(n), .. }) if n == "measurement"
+            )
+        {
+            self.next += 2;
+        }
+        let shape = self.sensors[sensor];
+        let name = quoted(shape.name);
+        let component = if let Some((_, open)) = self.symbol(&["["]) {
+            let (c, at) = self.index(open)?;
+            if shape.components < 2 {
+                return Err(error(
+                    at,
+                    format!(
+                        "sensor `{name}` ({}) reads one number: it has no components; \
+                         write it without `[{c}]`",
+                        shape.kind
+                    ),
+                ));
+            }
+            if c >= shape.components {
+                return Err(error(
+                    at,
+                    format!(
+                        "sensor `{name}` ({}) has components 0 to {}, not {c}",
+                        shape.kind,
+                        shape.components - 1
+                    ),
+                ));
+            }
+            c
+        } else if shape.components > 1 {
+            return Err(error(
+                column,
+                format!(
+                    "sensor `{name}` ({}) reads {} numbers; pick one, as in `sensors.{name}[0]`",
+                    shape.kind, shape.components
+                ),
+            ));
+        } else {
+            0
+        };
+        let slot = match self.reads.iter().position(|r| *r == (sensor, component)) {
+            Some(slot) => slot,
+            None => {
+                self.reads.push((sensor, component));
+                self.reads.len() - 1
+            }
+        };
+        Ok((Node::Sensor(slot), Type::Number, 1))
     }
 }
 
@@ -728,5 +974,73 @@ mod tests {
         assert_eq!(column("vz # 1.0"), 4);
         assert_eq!(column("true == 1.0"), 6);
         assert_eq!(column(""), 1);
+    }
+
+    const SENSORS: [SensorShape<'static>; 2] = [
+        SensorShape {
+            name: "baro",
+            kind: "barometer",
+            components: 1,
+        },
+        SensorShape {
+            name: "imu",
+            kind: "accelerometer",
+            components: 3,
+        },
+    ];
+
+    #[test]
+    fn sensors_by_index_and_name() {
+        let parse = |text: &str| {
+            Expression::parse_with(text, &SENSORS).unwrap_or_else(|e| panic!("{text}: {e}"))
+        };
+        let e = parse("sensors[0] < 80000.0 && sensors.imu[2] > 1.0 && sensors[1][2] < 9.0");
+        assert_eq!(e.reads(), &[(0, 0), (1, 2)]);
+        let fires = |e: &Expression, values: &[f64]| e.evaluate_with(&inputs(0.0, 0.0), values);
+        assert!(fires(&e, &[79_999.0, 5.0]));
+        assert!(!fires(&e, &[80_001.0, 5.0]));
+        // Before the first reading (NaN) no comparison holds.
+        assert!(!fires(&e, &[f64::NAN, 5.0]));
+        assert!(!fires(&e, &[]));
+        let rocketpy = parse("sensors[0].measurement < 1.0 && sensors.imu.measurement[1] > 0.0");
+        assert_eq!(rocketpy.reads(), &[(0, 0), (1, 1)]);
+        assert!(fires(&rocketpy, &[0.5, 1.0]));
+        // Mixed with the state and p.
+        assert!(fires(&parse("sensors.baro == p"), &[90_000.0]));
+    }
+
+    #[test]
+    fn sensor_errors_are_located() {
+        let fail = |text: &str| {
+            Expression::parse_with(text, &SENSORS)
+                .map(|_| ())
+                .expect_err(text)
+        };
+        let e = fail("sensors.bar < 1.0");
+        assert_eq!(e.column, 9);
+        assert!(e.message.contains("no sensor named `bar`"), "{}", e.message);
+        assert!(e.message.contains("0: baro, 1: imu"), "{}", e.message);
+        let e = fail("sensors[2] < 1.0");
+        assert_eq!(e.column, 9);
+        assert!(e.message.contains("no sensor at index 2"), "{}", e.message);
+        let e = fail("sensors[0][1] < 1.0");
+        assert_eq!(e.column, 12);
+        assert!(e.message.contains("reads one number"), "{}", e.message);
+        let e = fail("sensors.imu[3] < 1.0");
+        assert!(e.message.contains("components 0 to 2"), "{}", e.message);
+        let e = fail("sensors.imu < 1.0");
+        assert!(e.message.contains("reads 3 numbers"), "{}", e.message);
+        assert_eq!(fail("sensors < 1.0").column, 9);
+        assert_eq!(fail("sensors[0.0] < 1.0").column, 10);
+        assert_eq!(fail("sensors[0 < 1.0").column, 11);
+        assert_eq!(fail("sensors[99999999999999999999] < 1.0").column, 9);
+        let none = Expression::parse("sensors[0] < 1.0").expect_err("no sensors");
+        assert!(
+            none.message.contains("has no [[rocket.sensors]]"),
+            "{}",
+            none.message
+        );
+        // `.5` is still refused as a literal.
+        assert_eq!(fail("vz < .5").column, 6);
     }
 }

@@ -37,9 +37,9 @@ pub mod sandbox;
 
 pub use controller::{
     AirBrakesSetup, Controller, ControllerRecord, ControllerScript, ControllerSetup,
-    EnvironmentQuery, LevelRecord, ScriptError,
+    EnvironmentQuery, LevelRecord, ScriptError, SensorSetup,
 };
-pub use expression::{Expression, ExpressionError, TriggerInputs};
+pub use expression::{Expression, ExpressionError, SensorShape, TriggerInputs};
 
 /// The README's example, compiled and run by `cargo test --doc`.
 #[cfg(doctest)]

@@ -6,12 +6,12 @@
 //! are also counted by the controller itself, through the engine's progress callback, because
 //! Rhai's own count runs on a copy inside a closure called by a native function (a `sort`
 //! comparator) and its limit error is discarded there. What the engine adds: the `motor`
-//! module, and the `AirBrakes` and `Environment` types of the controller's arguments.
+//! module, and the `AirBrakes`, `Environment` and `Sensor` types of the controller's arguments.
 
-use crate::arguments::{AirBrakesHandle, EnvironmentHandle};
+use crate::arguments::{AirBrakesHandle, EnvironmentHandle, SensorHandle};
 use rhai::module_resolvers::DummyModuleResolver;
 use rhai::packages::{Package, StandardPackage};
-use rhai::{Engine, FLOAT, Module, Shared};
+use rhai::{Array, Dynamic, Engine, FLOAT, ImmutableString, Module, Shared};
 use std::sync::OnceLock;
 
 /// Operations one call may run (an operation is roughly one expression node or statement).
@@ -119,5 +119,30 @@ pub(crate) fn engine(motor: &Shared<Module>) -> Engine {
         dynamic_viscosity,
         gravity
     );
+    // RocketPy's `Sensor.measurement`: `()` (RocketPy's `None`) before the first reading, a
+    // number for a barometer, an array of three numbers otherwise; `time`, the instant of
+    // that reading (RocketPy's `measured_data[-1][0]`), also `()` before it.
+    engine.register_type_with_name::<SensorHandle>("Sensor");
+    engine.register_get("name", |s: &mut SensorHandle| -> ImmutableString {
+        s.0.name.clone()
+    });
+    engine.register_get("kind", |s: &mut SensorHandle| -> ImmutableString {
+        s.0.kind.clone()
+    });
+    engine.register_get("time", |s: &mut SensorHandle| -> Dynamic {
+        s.time().map_or(Dynamic::UNIT, Dynamic::from_float)
+    });
+    engine.register_get("measurement", |s: &mut SensorHandle| -> Dynamic {
+        if s.time().is_none() {
+            return Dynamic::UNIT;
+        }
+        if s.0.components == 1 {
+            return Dynamic::from_float(s.value(0));
+        }
+        (0..s.0.components)
+            .map(|i| Dynamic::from_float(s.value(i)))
+            .collect::<Array>()
+            .into()
+    });
     engine
 }

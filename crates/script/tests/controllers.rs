@@ -3,6 +3,7 @@
 
 use karman_script::{
     AirBrakesSetup, Controller, ControllerScript, ControllerSetup, EnvironmentQuery, ScriptError,
+    SensorSetup,
 };
 use std::path::Path;
 use std::sync::Arc;
@@ -164,6 +165,86 @@ fn arguments_follow_the_contract() {
     assert_eq!(last["overrides"], true);
     assert_eq!(last["clamps"], true);
     assert_eq!(last["calls"], 1.0);
+}
+
+#[test]
+fn sensors_hand_over_their_latest_reading() {
+    let script = compile(
+        r#"
+        fn controller_function(time, sampling_rate, state, state_history, observed_variables,
+                               air_brakes, sensors) {
+            let baro = sensors[0];
+            let imu = sensors[1];
+            if baro.measurement == () {
+                return #{ first: true, time: baro.time, imu: imu.measurement };
+            }
+            air_brakes.deployment_level = if baro.measurement < 80000.0 { 1.0 } else { 0.0 };
+            return #{
+                names: baro.name + "," + imu.name,
+                kinds: baro.kind + "," + imu.kind,
+                p: baro.measurement,
+                t: baro.time,
+                az: imu.measurement[2],
+                n: imu.measurement.len(),
+            };
+        }
+        "#,
+    )
+    .expect("compiles");
+    let mut s = setup(true);
+    s.initial_observed_variables = None;
+    let sensors = [
+        SensorSetup {
+            name: "baro".into(),
+            kind: "barometer".into(),
+            components: 1,
+        },
+        SensorSetup {
+            name: "imu".into(),
+            kind: "accelerometer".into(),
+            components: 3,
+        },
+    ];
+    let mut c = Controller::new(&script, s)
+        .expect("controller")
+        .with_sensors(&sensors);
+    assert_eq!(c.sensor_count(), 2);
+    // Before any reading: `()` (RocketPy's `None`).
+    c.call(0.0, &STATE, &row(0.05)).expect("first call");
+    let first = &c.record().observed_variables[0];
+    assert_eq!(first["first"], true);
+    assert!(first["time"].is_null() && first["imu"].is_null(), "{first}");
+    c.set_sensor(0, 0.09, [79_000.0, 0.0, 0.0]);
+    c.set_sensor(1, 0.09, [0.5, -0.25, 9.5]);
+    c.set_sensor(7, 0.09, [0.0; 3]); // past the list: ignored
+    let level = c.call(0.1, &STATE, &row(0.15)).expect("second call");
+    assert_eq!(level.to_bits(), 1.0f64.to_bits());
+    let last = &c.record().observed_variables[1];
+    assert_eq!(last["names"], "baro,imu");
+    assert_eq!(last["kinds"], "barometer,accelerometer");
+    assert_eq!(last["p"], 79_000.0);
+    assert_eq!(last["t"], 0.09);
+    assert_eq!(last["az"], 9.5);
+    assert_eq!(last["n"], 3);
+    // A script that writes into its copy of the array does not change the next call's.
+    let vandal = compile(
+        r#"
+        fn controller_function(time, sampling_rate, state, state_history, observed_variables,
+                               air_brakes, sensors) {
+            let kind = sensors[0].kind;
+            sensors[0] = 5.0;
+            return kind;
+        }
+        "#,
+    )
+    .expect("compiles");
+    let mut c = Controller::new(&vandal, setup(true))
+        .expect("controller")
+        .with_sensors(&sensors);
+    c.call(0.0, &STATE, &row(0.05)).expect("first call");
+    c.call(0.1, &STATE, &row(0.15)).expect("second call");
+    let record = c.record();
+    assert_eq!(record.observed_variables.last().unwrap(), "barometer");
 }
 
 #[test]

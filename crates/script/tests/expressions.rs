@@ -1,6 +1,6 @@
 //! Trigger expressions: arbitrary text never panics; accepted expressions evaluate.
 
-use karman_script::{Expression, TriggerInputs};
+use karman_script::{Expression, SensorShape, TriggerInputs};
 use proptest::prelude::*;
 
 proptest! {
@@ -18,6 +18,34 @@ proptest! {
         let text = tokens.join(" ");
         if let Ok(expression) = Expression::parse(&text) {
             let _ = expression.evaluate(&TriggerInputs { pressure: 1.0, height: 2.0, state: [0.5; 13] });
+        }
+    }
+}
+
+const SENSORS: [SensorShape<'static>; 2] = [
+    SensorShape {
+        name: "baro",
+        kind: "barometer",
+        components: 1,
+    },
+    SensorShape {
+        name: "imu",
+        kind: "accelerometer",
+        components: 3,
+    },
+];
+
+proptest! {
+    #[test]
+    fn sensor_token_soup_never_panics(tokens in proptest::collection::vec(
+        prop::sample::select(vec!["sensors", "[", "]", ".", "0", "1", "2", "3", "baro", "imu",
+            "measurement", "<", "1.0", "&&", "(", ")", "-", "vz", "99999999999999999999"]), 0..16),
+        values in proptest::collection::vec(-1e6f64..1e6, 0..5)) {
+        let text = tokens.join("");
+        if let Ok(expression) = Expression::parse_with(&text, &SENSORS) {
+            prop_assert!(expression.reads().iter().all(|&(s, c)| s < 2 && c < SENSORS[s].components));
+            let inputs = TriggerInputs { pressure: 1.0, height: 2.0, state: [0.5; 13] };
+            let _ = expression.evaluate_with(&inputs, &values);
         }
     }
 }

@@ -354,6 +354,71 @@ pub fn missions(dir: &Path) -> Vec<Case> {
         .into_bytes(),
         Some("rocket.inertia"),
     );
+    // Sensors, and triggers reading them: each flies, or is refused naming the key.
+    let baro = "\n[[rocket.sensors]]\nkind = \"barometer\"\nname = \"baro\"\nsampling_rate = 100\nposition = 0\n";
+    let sensor_cases: &[(&str, &str, &str, Option<&str>)] = &[
+        (
+            "a barometer read by the drogue's trigger",
+            baro,
+            "trigger = { expression = \"sensors.baro > 80000.0 && vz < 0.0\" }",
+            None,
+        ),
+        (
+            "a trigger reading a sensor past the list",
+            baro,
+            "trigger = { expression = \"sensors[1] < 1.0\" }",
+            Some("rocket.parachutes.drogue.trigger"),
+        ),
+        (
+            "a trigger reading a component of a barometer",
+            baro,
+            "trigger = { expression = \"sensors[0][0] < 1.0\" }",
+            Some("rocket.parachutes.drogue.trigger"),
+        ),
+        (
+            "a trigger reading an unknown sensor",
+            baro,
+            "trigger = { expression = \"sensors.gps[2] < 1.0\" }",
+            Some("rocket.parachutes.drogue.trigger"),
+        ),
+        (
+            "a barometer of enormous noise",
+            "\n[[rocket.sensors]]\nkind = \"barometer\"\nname = \"baro\"\nsampling_rate = 100\nposition = 0\nnoise_density = 1e308\nrandom_walk_density = 1e308\n",
+            "trigger = { expression = \"sensors.baro > 80000.0 && vz < 0.0\" }",
+            None,
+        ),
+        (
+            "a sensor rate of 1e10",
+            "\n[[rocket.sensors]]\nkind = \"gyroscope\"\nname = \"w\"\nsampling_rate = 1e10\nposition = 0\n",
+            "trigger = 300",
+            Some("rocket.sensors.0.sampling_rate"),
+        ),
+        (
+            "a sensor far outside the rocket",
+            "\n[[rocket.sensors]]\nkind = \"gnss\"\nname = \"g\"\nsampling_rate = 1\nposition = [1e308, 0, 0]\n",
+            "trigger = 300",
+            Some("rocket.sensors.0.position"),
+        ),
+        (
+            "a sensor range of NaN",
+            "\n[[rocket.sensors]]\nkind = \"accelerometer\"\nname = \"a\"\nsampling_rate = 100\nposition = 0\nmeasurement_range = [nan, 1]\n",
+            "trigger = 300",
+            Some("measurement_range"),
+        ),
+        (
+            "a sensor named by 10,000 characters",
+            &format!(
+                "\n[[rocket.sensors]]\nkind = \"barometer\"\nname = \"{}\"\nsampling_rate = 10\nposition = 0\n",
+                "b".repeat(10_000)
+            ),
+            "trigger = 300",
+            None,
+        ),
+    ];
+    for (name, sensors, trigger, key) in sensor_cases {
+        let text = replace_line(&base, "trigger", trigger) + *sensors;
+        push(name, text.into_bytes(), *key);
+    }
 
     let mut rng = Rng::new(0x6D15_5104);
     for i in 0..25 {
@@ -441,10 +506,23 @@ pub fn triggers(dir: &Path) -> Vec<Case> {
         s("h > 1.0 # comment"),
         s("h ＞ 1.0"),
         s("vz < 0.0 && h < 300.0"),
+        // Sensor readings (the mission has no sensors: each a located refusal).
+        s("sensors[0] < 1.0"),
+        s("sensors.baro < 1.0"),
+        s("sensors[0].measurement[2] < 1.0"),
+        s("sensors[99999999999999999999999] < 1.0"),
+        s("sensors[-1] < 1.0"),
+        s("sensors[0.5] < 1.0"),
+        s("sensors[0][0][0] < 1.0"),
+        s("sensors. < 1.0"),
+        s("sensors[ < 1.0"),
+        s("sensors < 1.0"),
+        format!("sensors.{} < 1.0", "x".repeat(50_000)),
+        format!("{}sensors[0]{} > 1.0", "(".repeat(60), ")".repeat(60)),
     ];
     let tokens = [
         "h", "vz", "p", "(", ")", "+", "-", "*", "/", ">", "<", "&&", "||", "!", "1.0", "0.0",
-        "1e308", "sqrt(", "abs(", ",", " ", "true", "==",
+        "1e308", "sqrt(", "abs(", ",", " ", "true", "==", "sensors", "[", "]", ".", "0",
     ];
     let mut rng = Rng::new(0x7219_6E55);
     for _ in 0..40 {

@@ -1,10 +1,11 @@
 //! The parachute triggers as sampled processes (docs/physics.md §9.4): an apogee trigger, or a
 //! barometric height trigger reading the pressure with an AR(1) noise ([`NoiseStream`]).
 
-use karman_model::{AtmosphereModel, ParachuteSpec, TriggerCondition, TriggerKind};
+use karman_model::{AtmosphereModel, ParachuteSpec, TriggerKind};
 
 use super::actions::Action;
-use super::process::{DenseOutput, Probe, SampledProcess, StepBounds};
+use super::process::{Connections, DenseOutput, Probe, SampledProcess, SignalId, StepBounds};
+use crate::DynamicsError;
 use crate::noise::NoiseStream;
 
 /// Resolution of the height above which a noisy height trigger is out of reach within a step,
@@ -78,6 +79,10 @@ pub(super) struct ParachuteTrigger<'a, A> {
     /// over them in one draw when the stream is next read, or when the step ends).
     undrawn: usize,
     fired: bool,
+    /// The signals a custom condition reads ([`karman_model::TriggerCondition::signals`]), connected when
+    /// the flight is set up, and the buffer their values are read into at each sample.
+    signals: Vec<SignalId>,
+    signal_values: Vec<f64>,
 }
 
 impl<'a, A: AtmosphereModel> ParachuteTrigger<'a, A> {
@@ -105,6 +110,8 @@ impl<'a, A: AtmosphereModel> ParachuteTrigger<'a, A> {
             band,
             undrawn: 0,
             fired: false,
+            signals: Vec::new(),
+            signal_values: Vec::new(),
         }
     }
 
@@ -113,11 +120,28 @@ impl<'a, A: AtmosphereModel> ParachuteTrigger<'a, A> {
     /// least the band above the trigger height.
     /// A custom condition at the probe's instant: the noisy pressure `P(z) + noise`, its
     /// barometric height above ground and the state (docs/physics.md §17).
-    fn custom(&self, condition: &dyn TriggerCondition, probe: &mut Probe<'_>, noise: f64) -> bool {
+    /// With the latest values of the signals it reads (NaN before their first), read into
+    /// the trigger's buffer: no allocation.
+    fn custom(&mut self, probe: &mut Probe<'_>, noise: f64) -> bool {
+        let TriggerKind::Custom(condition) = &self.trigger else {
+            return false;
+        };
         let atm = self.atmosphere;
         let pressure = atm.pressure(probe.z()) + noise;
         let height = atm.barometric_height(pressure) - self.elevation;
-        condition.fires(probe.t(), pressure, height, &probe.state())
+        if self.signals.is_empty() {
+            return condition.fires(probe.t(), pressure, height, &probe.state());
+        }
+        for (value, id) in self.signal_values.iter_mut().zip(&self.signals) {
+            *value = probe.read(*id).map_or(f64::NAN, |s| s.value);
+        }
+        condition.fires_reading(
+            probe.t(),
+            pressure,
+            height,
+            &probe.state(),
+            &self.signal_values,
+        )
     }
 
     fn out_of_reach(&self, z: f64, bound: f64, h: f64) -> bool {
@@ -133,6 +157,19 @@ impl<A: AtmosphereModel> SampledProcess for ParachuteTrigger<'_, A> {
 
     fn whole_step(&self) -> bool {
         matches!(self.trigger, TriggerKind::Custom(_))
+    }
+
+    /// A custom condition's signals ([`karman_model::TriggerCondition::signals`]).
+    fn connect(&mut self, connections: &Connections<'_>) -> Result<(), DynamicsError> {
+        if let TriggerKind::Custom(condition) = &self.trigger {
+            self.signals = condition
+                .signals()
+                .iter()
+                .map(|name| connections.signal(name))
+                .collect::<Result<_, _>>()?;
+            self.signal_values = vec![f64::NAN; self.signals.len()];
+        }
+        Ok(())
     }
 
     /// A silent (noise-free) parachute certainly cannot fire inside the step when `v_z > 0`
@@ -232,7 +269,7 @@ impl<A: AtmosphereModel> SampledProcess for ParachuteTrigger<'_, A> {
             0.0
         };
         let fires = match &self.trigger {
-            TriggerKind::Custom(condition) => self.custom(condition.as_ref(), probe, noise),
+            TriggerKind::Custom(_) => self.custom(probe, noise),
             _ => {
                 probe.vz() < 0.0
                     && match self.trigger {
@@ -274,7 +311,7 @@ impl<A: AtmosphereModel> SampledProcess for ParachuteTrigger<'_, A> {
     fn sample_directly(&mut self, probe: &mut Probe<'_>) -> Option<Action> {
         let noise = self.stream.next_value();
         let fires = match &self.trigger {
-            TriggerKind::Custom(condition) => self.custom(condition.as_ref(), probe, noise),
+            TriggerKind::Custom(_) => self.custom(probe, noise),
             _ => {
                 probe.vz() < 0.0
                     && match self.trigger {

@@ -228,8 +228,13 @@ pub fn fly<A: AtmosphereModel>(
 
 /// [`fly`] with `sensors` sampled during the flight, measuring with `surroundings`
 /// (docs/physics.md §29.2); returns their readings too, in order. The sensors are sampled
-/// after the controller at the instants they share. Without sensors or controller the flight
-/// is [`karman_dynamics::simulate`]'s, with the same bytes as before sensors existed.
+/// after the parachutes and the controller at the instants they share, so these read the
+/// sensors' previous readings there, except that with `time_overshoot = false` the sensors
+/// come before the controller (RocketPy 1.13's orders, docs/physics.md §29.3); the
+/// controller's `sensors` argument and the trigger expressions read the sensors' signals,
+/// so `sensors` must be the mission's (a flight without them does not start when one of
+/// those reads a sensor). Without sensors or controller the flight is
+/// [`karman_dynamics::simulate`]'s, with the same bytes as before sensors existed.
 ///
 /// # Errors
 /// As [`fly`].
@@ -253,21 +258,47 @@ pub fn fly_with_sensors<A: AtmosphereModel>(
         return Ok((flight, None, readings));
     }
     let mut error = None;
+    // The signals of each sensor's components (`sensors::signal_name`), which the sensors
+    // publish and the controller and the trigger expressions read.
+    let signals: Vec<Vec<String>> = sensors
+        .iter()
+        .map(|s| {
+            (0..s.len())
+                .map(|c| sensors::signal_name(&s.spec().name, c))
+                .collect()
+        })
+        .collect();
+    let overshoot = mission.spec.flight.time_overshoot;
+    let mut sensor_processes: Vec<Box<dyn karman_dynamics::flight::SampledProcess + '_>> =
+        Vec::new();
+    for ((sensor, readings), names) in sensors.into_iter().zip(readings.iter_mut()).zip(&signals) {
+        sensor_processes.push(Box::new(SensorProcess {
+            sensor,
+            surroundings,
+            readings,
+            outputs: names.iter().map(String::as_str).collect(),
+        }));
+    }
     let mut processes: Vec<Box<dyn karman_dynamics::flight::SampledProcess + '_>> = Vec::new();
+    // RocketPy 1.13's order at an instant (docs/physics.md §29.3): on the solver's steps
+    // (`time_overshoot`) the parachutes (the engine puts them first), the controller, then
+    // the sensors, which the other two therefore read as of the sensors' previous instant;
+    // at its hard stops (`time_overshoot = false`) the sensors before the controller, which
+    // reads the reading of the instant.
+    if !overshoot {
+        processes.append(&mut sensor_processes);
+    }
     if let Some(controller) = controller.as_mut() {
         processes.push(Box::new(ControllerProcess {
             controller,
             error: &mut error,
-            overshoot: mission.spec.flight.time_overshoot,
+            overshoot,
+            sensor_signals: &signals,
+            sensor_ids: Vec::new(),
         }));
     }
-    for (sensor, readings) in sensors.into_iter().zip(readings.iter_mut()) {
-        processes.push(Box::new(SensorProcess {
-            sensor,
-            surroundings,
-            readings,
-        }));
-    }
+    processes.append(&mut sensor_processes);
+    drop(sensor_processes);
     let flight = karman_dynamics::simulate_with(atmosphere, rocket, settings, processes)
         .map_err(|e| mission.flight_error("flight", e))?;
     if let Some(error) = error {

@@ -231,10 +231,12 @@ fn parachutes(mission: &Mission, burn_out: f64) -> Result<Vec<Parachute>, Missio
                     TriggerKind::Custom(Arc::new(AfterTime(burn_out + delay)))
                 }
                 schema::Trigger::Expression(text) => {
-                    let expression = Expression::parse(text).map_err(|e| {
-                        mission.model_error(&format!("rocket.parachutes.{name}.trigger"), e)
-                    })?;
-                    TriggerKind::Custom(Arc::new(ExpressionTrigger(expression)))
+                    let sensors = &mission.spec.rocket.sensors;
+                    let expression = Expression::parse_with(text, &super::sensors::shapes(sensors))
+                        .map_err(|e| {
+                            mission.model_error(&format!("rocket.parachutes.{name}.trigger"), e)
+                        })?;
+                    TriggerKind::Custom(Arc::new(ExpressionTrigger::new(expression, sensors)))
                 }
             },
             sampling_rate: Some(p.sampling_rate),

@@ -7,7 +7,8 @@ use std::sync::Arc;
 
 use karman_airframe::{AIR_BRAKES_CONTROL, Rocket};
 use karman_atmos::Environment;
-use karman_dynamics::flight::{Action, Probe, SampledProcess};
+use karman_dynamics::DynamicsError;
+use karman_dynamics::flight::{Action, Connections, Probe, SampledProcess, SignalId};
 use karman_model::TriggerCondition;
 use karman_script::{
     AirBrakesSetup, Controller, ControllerScript, ControllerSetup, EnvironmentQuery, Expression,
@@ -16,17 +17,58 @@ use karman_script::{
 
 use crate::{Mission, MissionError};
 
-/// A trigger expression as an engine trigger condition.
+/// A trigger expression as an engine trigger condition: RocketPy's `trigger(p, h, y,
+/// sensors)`, the sensor readings it reads ([`Expression::reads`]) taken from the signals
+/// the flight's sensors publish (`super::sensors::signal_name`).
 #[derive(Debug)]
-pub struct ExpressionTrigger(pub Expression);
+pub struct ExpressionTrigger {
+    expression: Expression,
+    /// The signal of each of the expression's reads, in its order.
+    signals: Vec<String>,
+}
+
+impl ExpressionTrigger {
+    /// The trigger of `expression`, parsed for the rocket's `sensors` (in file order).
+    #[must_use]
+    pub fn new(expression: Expression, sensors: &[crate::schema::SensorSpec]) -> Self {
+        let signals = expression
+            .reads()
+            .iter()
+            .map(|&(sensor, component)| {
+                let name = sensors.get(sensor).map_or("", |s| s.name.as_str());
+                super::sensors::signal_name(name, component)
+            })
+            .collect();
+        Self {
+            expression,
+            signals,
+        }
+    }
+}
 
 impl TriggerCondition for ExpressionTrigger {
-    fn fires(&self, _t: f64, pressure: f64, height: f64, state: &[f64; 13]) -> bool {
-        self.0.evaluate(&TriggerInputs {
+    fn fires(&self, t: f64, pressure: f64, height: f64, state: &[f64; 13]) -> bool {
+        self.fires_reading(t, pressure, height, state, &[])
+    }
+
+    fn signals(&self) -> &[String] {
+        &self.signals
+    }
+
+    fn fires_reading(
+        &self,
+        _t: f64,
+        pressure: f64,
+        height: f64,
+        state: &[f64; 13],
+        signals: &[f64],
+    ) -> bool {
+        let inputs = TriggerInputs {
             pressure,
             height,
             state: *state,
-        })
+        };
+        self.expression.evaluate_with(&inputs, signals)
     }
 }
 
@@ -66,7 +108,8 @@ pub fn compile_controller(mission: &Mission) -> Result<Option<ControllerScript>,
 /// error, an unknown property or method, a limit of the sandbox, a value the record refuses),
 /// located in the script: at t = 0 s, the rocket at rest on the pad (at the launch site's
 /// elevation, upright, not turning), with the arguments the flight passes, on a controller of
-/// its own (the flight's starts afresh).
+/// its own (the flight's starts afresh): its sensors unread (`()`), or, with `time_overshoot =
+/// false`, where the flight measures them first, each reading the pad at rest.
 ///
 /// # Errors
 /// [`MissionError::Flight`] (section `rocket.air_brakes.controller`), the message the flight
@@ -86,6 +129,22 @@ pub fn first_call(
     let mut state = [0.0; 13];
     state[2] = environment.elevation();
     state[6] = 1.0;
+    if !mission.spec.flight.time_overshoot {
+        // The flight measures the sensors before the controller at t = 0 (docs/physics.md
+        // §29.3): hand the call a reading of each, the pad at rest (where the flight's first
+        // call sees `()` instead, it gets `()` here too).
+        let surroundings = super::sensors::EnvironmentSurroundings(environment);
+        let truth = karman_sensors::Truth {
+            u: state,
+            u_dot: [0.0; 13],
+        };
+        for (i, mut sensor) in super::sensors::build(mission, rocket, 0)?
+            .into_iter()
+            .enumerate()
+        {
+            controller.set_sensor(i, 0.0, sensor.measure(&truth, &surroundings));
+        }
+    }
     let mut row = [0.0; 14];
     row[1..].copy_from_slice(&state);
     controller
@@ -196,13 +255,19 @@ pub fn controller(
             .map(|(name, value)| (name.clone(), *value))
             .collect(),
     };
-    Controller::new(script, setup).map_err(|e| fail(Box::new(e)))
+    let sensors = super::sensors::setups(&mission.spec.rocket.sensors);
+    Controller::new(script, setup)
+        .map(|c| c.with_sensors(&sensors))
+        .map_err(|e| fail(Box::new(e)))
 }
 
 /// The controller as a sampled process of the engine: called at `j / sampling_rate` in every
 /// phase (the rail too), in time order after the parachutes due at the same instant; a new
 /// level acts from the end of the solver step (`time_overshoot`) or from the instant itself.
 /// A script error ends the flight there ([`Action::Terminate`]) and is kept in `error`.
+/// Before each call it hands the controller the latest reading of each sensor of its
+/// `sensors` argument, read from the signals the sensors publish (none before a sensor's
+/// first reading: its `measurement` stays `()`).
 pub struct ControllerProcess<'c> {
     /// The flight's controller.
     pub controller: &'c mut Controller,
@@ -210,6 +275,11 @@ pub struct ControllerProcess<'c> {
     pub error: &'c mut Option<ScriptError>,
     /// RocketPy's `time_overshoot`.
     pub overshoot: bool,
+    /// The signal names of each sensor's components, in the order of the controller's
+    /// `sensors` argument (`super::sensors::signal_name`).
+    pub sensor_signals: &'c [Vec<String>],
+    /// Their ids, found when the flight is set up.
+    pub sensor_ids: Vec<Vec<SignalId>>,
 }
 
 impl SampledProcess for ControllerProcess<'_> {
@@ -225,9 +295,28 @@ impl SampledProcess for ControllerProcess<'_> {
         true
     }
 
+    fn connect(&mut self, connections: &Connections<'_>) -> Result<(), DynamicsError> {
+        self.sensor_ids = self
+            .sensor_signals
+            .iter()
+            .map(|names| names.iter().map(|n| connections.signal(n)).collect())
+            .collect::<Result<_, _>>()?;
+        Ok(())
+    }
+
     fn sample(&mut self, probe: &mut Probe<'_>) -> Option<Action> {
         if self.error.is_some() {
             return None;
+        }
+        for (i, ids) in self.sensor_ids.iter().enumerate() {
+            let Some(first) = ids.first().and_then(|id| probe.read(*id)) else {
+                continue;
+            };
+            let mut values = [f64::NAN; 3];
+            for (value, id) in values.iter_mut().zip(ids) {
+                *value = probe.read(*id).map_or(f64::NAN, |s| s.value);
+            }
+            self.controller.set_sensor(i, first.t, values);
         }
         let state = probe.state();
         let (t_end, end) = probe.step_end();

@@ -3,6 +3,15 @@
 //! on the rocket) and sampled as a process of the engine at `j / sampling_rate` in every
 //! phase, measuring the state and the right-hand side of the equations at each instant
 //! (RocketPy's `Flight.__measure_sensors`, docs/physics.md §29.2).
+//!
+//! Each sensor publishes its reading on the engine's signals ([`signal_name`]): component
+//! `c` of sensor `NAME` as `sensors.NAME.c`. The controller (its `sensors` argument) and the
+//! trigger expressions (`sensors[i]`, `sensors.NAME`) read the latest value there. A sensor
+//! comes after the parachutes and the controller in the flight's processes, so at an instant
+//! they share, these read the reading of the sensor's previous instant, as RocketPy 1.13 runs
+//! its overshootable time nodes (parachutes, then controllers, then sensors); with
+//! `time_overshoot = false` it comes before the controller, as RocketPy measures at its
+//! integrator stops (docs/physics.md §29.3).
 
 use karman_airframe::Rocket;
 use karman_atmos::Environment;
@@ -11,6 +20,7 @@ use karman_sensors::{NoiseParameters, Sensor, SensorKind, Surroundings, Truth};
 
 use crate::schema::{SensorKindName, SensorSpec};
 use crate::{Mission, MissionError};
+use karman_script::{SensorSetup, SensorShape};
 
 /// The readings of one sensor over a flight.
 #[derive(Debug, Clone, PartialEq)]
@@ -205,9 +215,9 @@ impl Surroundings for EnvironmentSurroundings<'_> {
 /// A sensor as a sampled process of the engine: sampled in every phase (the rail too, as
 /// RocketPy measures at every time node of every phase) over whole steps (docs/physics.md
 /// §29.2's deviation at the apogee step), and at the instant where an action started the
-/// phase (RocketPy clears only the parachutes of that node); it never acts. It comes after
-/// every process that may act, so each instant is measured once. Its readings go to
-/// `readings`.
+/// phase (RocketPy clears only the parachutes of that node); it never acts. Each instant is
+/// measured once: an instant it measured before a process after it acted there (and so cut
+/// the phase) is not measured again at the new phase's start. Its readings go to `readings`.
 pub struct SensorProcess<'s> {
     /// The sensor.
     pub sensor: Sensor,
@@ -215,11 +225,17 @@ pub struct SensorProcess<'s> {
     pub surroundings: &'s dyn Surroundings,
     /// Where its readings go.
     pub readings: &'s mut SensorReadings,
+    /// The names of its signals, one per component ([`signal_name`]).
+    pub outputs: Vec<&'s str>,
 }
 
 impl SampledProcess for SensorProcess<'_> {
     fn rate(&self) -> f64 {
         self.sensor.spec().sampling_rate
+    }
+
+    fn outputs(&self) -> &[&str] {
+        &self.outputs
     }
 
     fn on_rail(&self) -> bool {
@@ -235,12 +251,67 @@ impl SampledProcess for SensorProcess<'_> {
     }
 
     fn sample(&mut self, probe: &mut Probe<'_>) -> Option<Action> {
+        // Instants keyed to 1e-7 s, as the engine merges them.
+        let key = |t: f64| (t * 1e7).round() as i64;
+        if self
+            .readings
+            .times
+            .last()
+            .is_some_and(|&last| key(last) == key(probe.t()))
+        {
+            return None;
+        }
         let (u, u_dot) = probe.state_and_rhs();
         let value = self.sensor.measure(&Truth { u, u_dot }, self.surroundings);
         self.readings.times.push(probe.t());
         self.readings.values.push(value);
+        for (c, v) in value.iter().enumerate().take(self.outputs.len()) {
+            probe.publish(c, *v);
+        }
         None
     }
+}
+
+/// The name of the signal on which sensor `name` publishes component `component` of its
+/// readings: `sensors.<name>.<component>`.
+#[must_use]
+pub fn signal_name(name: &str, component: usize) -> String {
+    format!("sensors.{name}.{component}")
+}
+
+/// The number of components of a reading of `kind` (1 for a barometer, 3 otherwise).
+#[must_use]
+pub fn components(kind: SensorKindName) -> usize {
+    match kind {
+        SensorKindName::Barometer => 1,
+        SensorKindName::Accelerometer | SensorKindName::Gyroscope | SensorKindName::Gnss => 3,
+    }
+}
+
+/// The mission's sensors as a trigger expression reads them, in file order.
+#[must_use]
+pub fn shapes(sensors: &[SensorSpec]) -> Vec<SensorShape<'_>> {
+    sensors
+        .iter()
+        .map(|s| SensorShape {
+            name: &s.name,
+            kind: s.kind.as_str(),
+            components: components(s.kind),
+        })
+        .collect()
+}
+
+/// The mission's sensors as the controller's `sensors` argument describes them.
+#[must_use]
+pub fn setups(sensors: &[SensorSpec]) -> Vec<SensorSetup> {
+    sensors
+        .iter()
+        .map(|s| SensorSetup {
+            name: s.name.clone(),
+            kind: s.kind.as_str().to_owned(),
+            components: components(s.kind),
+        })
+        .collect()
 }
 
 /// Empty readings for each sensor, in order.

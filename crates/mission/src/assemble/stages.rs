@@ -434,7 +434,7 @@ fn condition(mission: &Mission, index: usize, burn_out: f64) -> Result<Condition
             let expression = Expression::parse(text).map_err(|e| {
                 mission.model_error(&format!("stages.{index}.separation.expression"), e)
             })?;
-            Condition::Custom(Arc::new(ExpressionTrigger(expression)))
+            Condition::Custom(Arc::new(ExpressionTrigger::new(expression, &[])))
         }
     })
 }
