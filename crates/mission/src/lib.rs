@@ -47,6 +47,7 @@ pub use karman_dynamics as dynamics;
 pub use karman_math as math;
 pub use karman_model as model;
 pub use karman_propulsion as propulsion;
+pub use karman_script as script;
 pub use karman_sensors as sensors;
 
 use document::Document;

@@ -654,7 +654,7 @@ impl MonteCarlo {
             &atmosphere,
             rocket,
             &settings,
-            self.controller.as_ref(),
+            self.controller.as_ref().into(),
             || {
                 Arc::new(ControllerEnvironment::new(
                     Arc::clone(&environment),

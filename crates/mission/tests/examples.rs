@@ -47,3 +47,83 @@ fn the_example_flies_the_mission_and_its_study_in_memory() {
         findings.apogee_agl_m
     );
 }
+
+#[path = "../examples/rust_controller.rs"]
+#[allow(dead_code)]
+mod rust_controller;
+
+/// The Rust twin of the Rhai apogee controller flies the Rhai controller's flight, bit for
+/// bit: every stored point (time and state), every event, the same number of calls.
+#[test]
+fn the_rust_controller_flies_the_rhai_controller_s_flight() {
+    use karman_mission::assemble::flight::PreparedFlight;
+    let path = rust_controller::example_mission();
+    let mission = load(&path, &[]).expect("loads");
+    let prepared = PreparedFlight::new(&mission).expect("prepares");
+    let rhai = prepared
+        .fly(&mission, 0)
+        .expect("the Rhai controller flies");
+    let mut controller = rust_controller::ApogeeController::default();
+    let rust = prepared
+        .fly_with_controller(&mission, 0, &mut controller)
+        .expect("the Rust controller flies");
+    let bits = |run: &karman_mission::assemble::flight::FlightRun| -> Vec<u64> {
+        run.flight
+            .points
+            .iter()
+            .flat_map(|p| std::iter::once(p.t).chain(p.state))
+            .map(f64::to_bits)
+            .collect()
+    };
+    assert!(!rhai.flight.points.is_empty());
+    assert_eq!(bits(&rhai), bits(&rust), "the stored points differ");
+    assert_eq!(
+        format!("{:?}", rhai.summary()),
+        format!("{:?}", rust.summary())
+    );
+    // The Rhai controller's record has one level per call; the Rust one was called as often.
+    let record = rhai.controller.as_ref().expect("the Rhai run's record");
+    assert_eq!(record.levels.len(), controller.calls);
+    assert!(
+        rust.controller.is_none(),
+        "a Rust controller keeps no record"
+    );
+    // And the brakes did act: the apogee is below the brakes-shut flight's.
+    let (apogee, _) = rust_controller::run(&path).expect("runs");
+    assert!((apogee - 3047.0).abs() < 0.1, "{apogee}");
+}
+
+/// A Rust controller's error ends the flight there, named by the controller's key.
+#[test]
+fn a_failing_rust_controller_ends_the_flight_with_its_message() {
+    use karman_mission::assemble::flight::PreparedFlight;
+    use karman_mission::script::{AirBrakeController, AirBrakesControl, ControlInputs};
+    struct Fails;
+    impl AirBrakeController for Fails {
+        fn control(
+            &mut self,
+            inputs: &ControlInputs<'_>,
+            _: &mut AirBrakesControl<'_>,
+        ) -> Result<(), String> {
+            if inputs.time >= 2.0 {
+                Err("lost the IMU".to_owned())
+            } else {
+                Ok(())
+            }
+        }
+    }
+    let mission = load(&rust_controller::example_mission(), &[]).expect("loads");
+    let prepared = PreparedFlight::new(&mission).expect("prepares");
+    let error = prepared
+        .fly_with_controller(&mission, 0, &mut Fails)
+        .expect_err("the controller fails");
+    // The message and its causes, as the CLI prints them.
+    let mut e = error.to_string();
+    let mut source = std::error::Error::source(&error);
+    while let Some(cause) = source {
+        e.push_str(&format!(": {cause}"));
+        source = cause.source();
+    }
+    assert!(e.contains("rocket.air_brakes.controller"), "{e}");
+    assert!(e.contains("lost the IMU") && e.contains("t = 2 s"), "{e}");
+}

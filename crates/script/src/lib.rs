@@ -12,6 +12,8 @@
 //!   and data sizes per call); a script of the controllers' common subset also compiled to a
 //!   natively evaluated tree with Rhai's semantics, the interpreter making whatever that tree
 //!   cannot decide (module `controller`, "Compiled calls").
+//! - Air-brake controllers written in Rust ([`AirBrakeController`]), called by the flight
+//!   exactly as the Rhai ones are ([`NativeController`]).
 //!
 //! ```
 //! use karman_script::ControllerScript;
@@ -33,6 +35,7 @@ mod arguments;
 mod compiled;
 pub mod controller;
 pub mod expression;
+mod native;
 pub mod sandbox;
 
 pub use controller::{
@@ -40,6 +43,10 @@ pub use controller::{
     EnvironmentQuery, LevelRecord, ScriptError, SensorSetup,
 };
 pub use expression::{Expression, ExpressionError, SensorShape, TriggerInputs};
+pub use native::{
+    AirBrakeController, AirBrakesControl, ControlInputs, NativeController, NativeError,
+    SensorReading,
+};
 
 /// The README's example, compiled and run by `cargo test --doc`.
 #[cfg(doctest)]

@@ -12,11 +12,13 @@ use karman_airframe::Rocket;
 use karman_atmos::Environment;
 use karman_dynamics::{AtmosphereModel, Flight, FlightSettings, Sample, Summary, Termination};
 use karman_propulsion::Motor;
-use karman_script::{ControllerRecord, ControllerScript, EnvironmentQuery};
+use karman_script::{AirBrakeController, ControllerRecord, ControllerScript, EnvironmentQuery};
 use karman_sensors::{Sensor, Surroundings};
 
 use super::preflight::{Models, prepare};
-use super::scripts::{self, ControllerEnvironment, ControllerProcess, compile_controller};
+use super::scripts::{
+    self, ControllerCalls, ControllerEnvironment, ControllerProcess, compile_controller,
+};
 use super::sensors::{self, EnvironmentSurroundings, SensorProcess, SensorReadings};
 use crate::{Mission, MissionError};
 
@@ -141,6 +143,34 @@ impl PreparedFlight {
     /// non-finite state, a stiff or unstable model), or the controller's section for a
     /// script error.
     pub fn fly(&self, mission: &Mission, seed: u64) -> Result<FlightRun, MissionError> {
+        self.fly_controlled(mission, seed, self.script.as_ref().into())
+    }
+
+    /// [`PreparedFlight::fly`] with the air brakes driven by `controller`, written in Rust,
+    /// instead of the mission's Rhai script: called at the same instants with the same
+    /// arguments (`karman_script::AirBrakeController`), so that a controller written in both
+    /// gives the same flight. The mission must have `[rocket.air_brakes]` (its curve and
+    /// `sampling_rate`; its `controller` script is not run). The run has no controller record.
+    ///
+    /// # Errors
+    /// As [`PreparedFlight::fly`]; the controller's errors end the flight with section
+    /// `rocket.air_brakes.controller`.
+    pub fn fly_with_controller(
+        &self,
+        mission: &Mission,
+        seed: u64,
+        controller: &mut dyn AirBrakeController,
+    ) -> Result<FlightRun, MissionError> {
+        self.fly_controlled(mission, seed, Control::Native(controller))
+    }
+
+    /// [`PreparedFlight::fly`] with `control`.
+    fn fly_controlled(
+        &self,
+        mission: &Mission,
+        seed: u64,
+        control: Control<'_>,
+    ) -> Result<FlightRun, MissionError> {
         let mut settings = self.settings.clone();
         settings.noise_seed = seed;
         let sensors = sensors::build(mission, &self.rocket, seed)?;
@@ -150,7 +180,7 @@ impl PreparedFlight {
             &*self.environment,
             &self.rocket,
             &settings,
-            self.script.as_ref(),
+            control,
             || {
                 Arc::new(ControllerEnvironment::new(
                     Arc::clone(&self.environment),
@@ -219,11 +249,27 @@ pub fn fly<A: AtmosphereModel>(
         atmosphere,
         rocket,
         settings,
-        script,
+        script.into(),
         queries,
         (Vec::new(), &Nowhere),
     )?;
     Ok((flight, record))
+}
+
+/// The air-brake controller a flight is flown with.
+pub enum Control<'a> {
+    /// None: the brakes stay at their level (or the rocket has none).
+    None,
+    /// The mission's Rhai controller, compiled.
+    Script(&'a ControllerScript),
+    /// A controller written in Rust, in place of the mission's script.
+    Native(&'a mut dyn AirBrakeController),
+}
+
+impl<'a> From<Option<&'a ControllerScript>> for Control<'a> {
+    fn from(script: Option<&'a ControllerScript>) -> Self {
+        script.map_or(Control::None, Control::Script)
+    }
 }
 
 /// [`fly`] with `sensors` sampled during the flight, measuring with `surroundings`
@@ -243,14 +289,24 @@ pub fn fly_with_sensors<A: AtmosphereModel>(
     atmosphere: &A,
     rocket: &Rocket,
     settings: &FlightSettings,
-    script: Option<&ControllerScript>,
+    control: Control<'_>,
     queries: impl FnOnce() -> Arc<dyn EnvironmentQuery>,
     (sensors, surroundings): (Vec<Sensor>, &dyn Surroundings),
 ) -> Result<(Flight, Option<ControllerRecord>, Vec<SensorReadings>), MissionError> {
     let mut readings = sensors::empty_readings(&sensors);
-    let mut controller = match script {
-        Some(script) => Some(scripts::controller(mission, script, rocket, queries())?),
-        None => None,
+    let mut script = None;
+    let mut native = None;
+    match control {
+        Control::None => {}
+        Control::Script(s) => script = Some(scripts::controller(mission, s, rocket, queries())?),
+        Control::Native(c) => {
+            native = Some(scripts::native_controller(mission, c, rocket, queries())?);
+        }
+    }
+    let controller: Option<&mut dyn ControllerCalls> = match (&mut script, &mut native) {
+        (Some(c), _) => Some(c),
+        (None, Some(c)) => Some(c),
+        (None, None) => None,
     };
     if controller.is_none() && sensors.is_empty() {
         let flight = karman_dynamics::simulate(atmosphere, rocket, settings)
@@ -288,7 +344,7 @@ pub fn fly_with_sensors<A: AtmosphereModel>(
     if !overshoot {
         processes.append(&mut sensor_processes);
     }
-    if let Some(controller) = controller.as_mut() {
+    if let Some(controller) = controller {
         processes.push(Box::new(ControllerProcess {
             controller,
             error: &mut error,
@@ -304,7 +360,7 @@ pub fn fly_with_sensors<A: AtmosphereModel>(
     if let Some(error) = error {
         return Err(mission.flight_error("rocket.air_brakes.controller", error));
     }
-    Ok((flight, controller.map(|c| c.record()), readings))
+    Ok((flight, script.map(|c| c.record()), readings))
 }
 
 /// [`simulate_with_seed`] with seed 0.

@@ -11,8 +11,8 @@ use karman_dynamics::DynamicsError;
 use karman_dynamics::flight::{Action, Connections, Probe, SampledProcess, SignalId};
 use karman_model::TriggerCondition;
 use karman_script::{
-    AirBrakesSetup, Controller, ControllerScript, ControllerSetup, EnvironmentQuery, Expression,
-    ScriptError, TriggerInputs,
+    AirBrakeController, AirBrakesSetup, Controller, ControllerScript, ControllerSetup,
+    EnvironmentQuery, Expression, NativeController, ScriptError, TriggerInputs,
 };
 
 use crate::{Mission, MissionError};
@@ -164,7 +164,7 @@ pub struct ControllerEnvironment {
 
 impl ControllerEnvironment {
     /// The environment with the wind multiplied by `factor` and turned clockwise by
-    /// `offset_deg` (as `crate::montecarlo::WindAdjusted`).
+    /// `offset_deg` (as `super::environment::WindAdjusted`).
     #[must_use]
     pub fn new(environment: Arc<Environment>, factor: f64, offset_deg: f64) -> Self {
         let (sin, cos) = offset_deg.to_radians().sin_cos();
@@ -218,6 +218,29 @@ impl EnvironmentQuery for ControllerEnvironment {
     }
 }
 
+/// The air brakes of `rocket` as a controller sees them, with the sampling rate of the
+/// mission's `[rocket.air_brakes]`.
+///
+/// # Errors
+/// [`MissionError::Model`] (section `rocket.air_brakes`) when the rocket has no air brakes.
+fn air_brakes_setup(
+    mission: &Mission,
+    rocket: &Rocket,
+) -> Result<(AirBrakesSetup, f64), MissionError> {
+    let (Some(spec), Some(brakes)) = (&mission.spec.rocket.air_brakes, rocket.air_brakes()) else {
+        return Err(mission.model_error("rocket.air_brakes", "the rocket has no air brakes"));
+    };
+    let curve = brakes.clone();
+    let setup = AirBrakesSetup {
+        clamp: brakes.clamp(),
+        override_rocket_drag: brakes.override_rocket_drag(),
+        reference_area: brakes.reference_area(),
+        initial_level: brakes.initial_level(),
+        drag_coefficient: Arc::new(move |level, mach| curve.drag_coefficient(level, mach)),
+    };
+    Ok((setup, spec.sampling_rate))
+}
+
 /// A flight's controller for `rocket`'s air brakes, from the compiled `script`.
 ///
 /// # Errors
@@ -229,36 +252,112 @@ pub fn controller(
     rocket: &Rocket,
     environment: Arc<dyn EnvironmentQuery>,
 ) -> Result<Controller, MissionError> {
-    let fail = |source: Box<dyn std::error::Error + Send + Sync>| {
-        mission.model_error("rocket.air_brakes", source)
-    };
-    let (Some(spec), Some(brakes)) = (&mission.spec.rocket.air_brakes, rocket.air_brakes()) else {
-        return Err(fail("the rocket has no air brakes".into()));
-    };
-    let curve = brakes.clone();
+    let (air_brakes, sampling_rate) = air_brakes_setup(mission, rocket)?;
+    let spec = mission.spec.rocket.air_brakes.as_ref();
     let setup = ControllerSetup {
-        sampling_rate: spec.sampling_rate,
-        air_brakes: AirBrakesSetup {
-            clamp: brakes.clamp(),
-            override_rocket_drag: brakes.override_rocket_drag(),
-            reference_area: brakes.reference_area(),
-            initial_level: brakes.initial_level(),
-            drag_coefficient: Arc::new(move |level, mach| curve.drag_coefficient(level, mach)),
-        },
+        sampling_rate,
+        air_brakes,
         burn_start: rocket.burn_start(),
         burn_out: rocket.burn_out(),
         environment,
-        initial_observed_variables: spec.initial_observed_variables.clone(),
+        initial_observed_variables: spec.and_then(|s| s.initial_observed_variables.clone()),
         constants: spec
-            .constants
-            .iter()
-            .map(|(name, value)| (name.clone(), *value))
-            .collect(),
+            .map(|s| {
+                s.constants
+                    .iter()
+                    .map(|(name, value)| (name.clone(), *value))
+                    .collect()
+            })
+            .unwrap_or_default(),
     };
     let sensors = super::sensors::setups(&mission.spec.rocket.sensors);
     Controller::new(script, setup)
         .map(|c| c.with_sensors(&sensors))
-        .map_err(|e| fail(Box::new(e)))
+        .map_err(|e| mission.model_error("rocket.air_brakes", e))
+}
+
+/// The calls of a Rust `controller` of `rocket`'s air brakes in a flight of `mission`, at the
+/// sampling rate of its `[rocket.air_brakes]`, with its sensors.
+///
+/// # Errors
+/// [`MissionError::Model`] (section `rocket.air_brakes`) when the rocket has no air brakes.
+pub fn native_controller<'c>(
+    mission: &Mission,
+    controller: &'c mut dyn AirBrakeController,
+    rocket: &Rocket,
+    environment: Arc<dyn EnvironmentQuery>,
+) -> Result<NativeController<'c>, MissionError> {
+    let (setup, sampling_rate) = air_brakes_setup(mission, rocket)?;
+    Ok(NativeController::new(
+        controller,
+        setup,
+        sampling_rate,
+        rocket.burn_out(),
+        environment,
+        mission.spec.rocket.sensors.len(),
+    ))
+}
+
+/// A flight's calls of its air-brake controller, whichever language it is written in: the
+/// Rhai [`Controller`] and the Rust [`NativeController`] are driven by the same
+/// [`ControllerProcess`], so they are called at the same instants with the same arguments.
+pub trait ControllerCalls {
+    /// Calls per second.
+    fn sampling_rate(&self) -> f64;
+    /// The current deployment level.
+    fn level(&self) -> f64;
+    /// Hands sensor `index` its latest reading, taken at `time`.
+    fn set_sensor(&mut self, index: usize, time: f64, values: [f64; 3]);
+    /// One call at sampling instant `time`; the level it leaves.
+    ///
+    /// # Errors
+    /// The controller's error (a Rhai script's located in the script).
+    fn call(
+        &mut self,
+        time: f64,
+        state: &[f64; 13],
+        last_row: &[f64; 14],
+    ) -> Result<f64, Box<dyn std::error::Error + Send + Sync>>;
+}
+
+impl ControllerCalls for Controller {
+    fn sampling_rate(&self) -> f64 {
+        Controller::sampling_rate(self)
+    }
+    fn level(&self) -> f64 {
+        Controller::level(self)
+    }
+    fn set_sensor(&mut self, index: usize, time: f64, values: [f64; 3]) {
+        Controller::set_sensor(self, index, time, values);
+    }
+    fn call(
+        &mut self,
+        time: f64,
+        state: &[f64; 13],
+        last_row: &[f64; 14],
+    ) -> Result<f64, Box<dyn std::error::Error + Send + Sync>> {
+        Controller::call(self, time, state, last_row).map_err(|e: ScriptError| e.into())
+    }
+}
+
+impl ControllerCalls for NativeController<'_> {
+    fn sampling_rate(&self) -> f64 {
+        NativeController::sampling_rate(self)
+    }
+    fn level(&self) -> f64 {
+        NativeController::level(self)
+    }
+    fn set_sensor(&mut self, index: usize, time: f64, values: [f64; 3]) {
+        NativeController::set_sensor(self, index, time, values);
+    }
+    fn call(
+        &mut self,
+        time: f64,
+        state: &[f64; 13],
+        last_row: &[f64; 14],
+    ) -> Result<f64, Box<dyn std::error::Error + Send + Sync>> {
+        NativeController::call(self, time, state, last_row).map_err(Into::into)
+    }
 }
 
 /// The controller as a sampled process of the engine: called at `j / sampling_rate` in every
@@ -270,9 +369,9 @@ pub fn controller(
 /// first reading: its `measurement` stays `()`).
 pub struct ControllerProcess<'c> {
     /// The flight's controller.
-    pub controller: &'c mut Controller,
-    /// The first script error, if any.
-    pub error: &'c mut Option<ScriptError>,
+    pub controller: &'c mut dyn ControllerCalls,
+    /// The first controller error, if any.
+    pub error: &'c mut Option<Box<dyn std::error::Error + Send + Sync>>,
     /// RocketPy's `time_overshoot`.
     pub overshoot: bool,
     /// The signal names of each sensor's components, in the order of the controller's

@@ -13,7 +13,7 @@
 //! parachute trigger without noise), the stack's flight ends ([`Action::SeparateStage`]) and two
 //! bodies fly on from the separation state with [`karman_dynamics::simulate_from`]: the stack
 //! above, whose motor ignites `ignition_delay` s later (its time tables moved there,
-//! [`super::rocket::delayed`]), and the spent stage with its own airframe, motor, drag and
+//! [`super::motor::delayed`]), and the spent stage with its own airframe, motor, drag and
 //! parachutes, to its own impact; one without parachutes tumbles past its apogee, or once it turns
 //! over when it is unstable (`TumbleTrigger`), a point mass under Niskanen's tumble drag
 //! (OpenRocket technical documentation §3.5, `tumble_drag_area`; docs/physics.md §23.4). Each
