@@ -11,6 +11,7 @@ mod import;
 mod inspect;
 mod log;
 mod montecarlo;
+mod sil;
 mod simulate;
 mod sweep;
 mod weather;

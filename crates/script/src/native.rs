@@ -120,7 +120,7 @@ impl std::fmt::Display for NativeError {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
         write!(
             f,
-            "the Rust controller failed at t = {} s: {}",
+            "the controller failed at the call at t = {} s: {}",
             self.time, self.message
         )
     }

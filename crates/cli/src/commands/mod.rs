@@ -8,6 +8,7 @@ mod inspect;
 mod log;
 mod merge;
 mod montecarlo;
+mod sil;
 mod simulate;
 mod sweep;
 mod weather;
@@ -50,6 +51,10 @@ pub enum Command {
     /// Launch-day weather: download a forecast or sounding once (`fetch`), print and plot
     /// the profile a weather file gives (`show`).
     Weather(weather::WeatherArgs),
+    /// Software in the loop: fly the mission with its air brakes driven by an outside program
+    /// (flight software) that reads a line of state and sensors per controller call on its
+    /// input and answers the level on its output.
+    Sil(sil::SilArgs),
 }
 
 /// The mission file and its `--set` overrides, shared by every command that reads a mission.
@@ -120,6 +125,7 @@ pub fn run(command: Command) -> anyhow::Result<()> {
         Command::Import(args) => import::run(&args),
         Command::Inspect(args) => inspect::run(&args),
         Command::Simulate(args) => simulate::run(&args),
+        Command::Sil(args) => sil::run(&args),
         Command::Montecarlo(args) => montecarlo::run(&args),
         Command::Merge(args) => merge::run(&args),
         Command::Sweep(args) => sweep::run(&args),

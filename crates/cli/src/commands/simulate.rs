@@ -182,7 +182,7 @@ pub fn staged_text(run: &StagedRun) -> String {
 /// after checking that every one can be). A run that fails while writing leaves `dir` as it
 /// was: never a new `summary.json` beside the previous run's `trajectory.csv`. Files of `dir`
 /// that this run does not write are left as they are.
-fn write_whole(dir: &Path, write: impl FnOnce(&Path) -> Result<()>) -> Result<()> {
+pub(super) fn write_whole(dir: &Path, write: impl FnOnce(&Path) -> Result<()>) -> Result<()> {
     let parent = dir
         .parent()
         .filter(|p| !p.as_os_str().is_empty())
@@ -312,7 +312,7 @@ fn write_staged(run: &StagedRun, name: &str, seed: u64, dir: &Path) -> Result<()
 /// Writes the files of `--out`, each atomically ([`write_atomic`]): a file is the whole new
 /// content or absent (a full disk leaves no truncated file under its name), and an I/O error
 /// names the file.
-fn write_outputs(run: &FlightRun, name: &str, seed: u64, dir: &Path) -> Result<()> {
+pub(super) fn write_outputs(run: &FlightRun, name: &str, seed: u64, dir: &Path) -> Result<()> {
     std::fs::create_dir_all(dir).with_context(|| format!("cannot create {}", dir.display()))?;
     let summary = run.summary();
     let mut json = serde_json::to_value(&summary)?;

@@ -135,6 +135,18 @@ impl PreparedFlight {
         &self.warnings
     }
 
+    /// The launch environment.
+    #[must_use]
+    pub fn environment(&self) -> &Environment {
+        &self.environment
+    }
+
+    /// The rocket with its motor.
+    #[must_use]
+    pub fn rocket(&self) -> &Rocket {
+        &self.rocket
+    }
+
     /// Flies the prepared models of `mission` (the mission they were prepared from) with
     /// parachute trigger noise seeded by `seed` (recorded in the flight).
     ///
