@@ -602,3 +602,59 @@ fn compiled_controllers_fly_as_the_interpreter_bit_for_bit() {
         );
     }
 }
+
+/// Camoes's controller (the open-loop replay of the team's actuation,
+/// `fixtures/validation/camoes/camoes_controller.rhai`) written in Rust flies the Rhai
+/// controller's flight, bit for bit: the validation flight's parity with RocketPy 1.13 holds
+/// for a controller in either language.
+#[test]
+fn camoes_with_its_controller_in_rust_flies_the_rhai_flight() {
+    use karman_mission::assemble::flight::PreparedFlight;
+    use karman_mission::script::{AirBrakeController, AirBrakesControl, ControlInputs};
+    struct Replay;
+    impl AirBrakeController for Replay {
+        fn control(
+            &mut self,
+            inputs: &ControlInputs<'_>,
+            air_brakes: &mut AirBrakesControl<'_>,
+        ) -> Result<(), String> {
+            let time = inputs.time;
+            // Rhai's `**` with a float exponent is `powf`; its sums run left to right.
+            let mut level = if time <= 11.4 {
+                1.0
+            } else {
+                -0.002906 * time.powf(3.0) + 0.1497 * time.powf(2.0) + -2.563 * time + 14.96
+            };
+            if time > 19.6 {
+                level = 0.0;
+            }
+            if time < 3.8 {
+                level = 0.0;
+            }
+            air_brakes.set_deployment_level(level);
+            Ok(())
+        }
+    }
+    let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("../../fixtures/validation/camoes/mission.toml");
+    let mission = karman_mission::load(&path, &[]).expect("camoes loads");
+    let prepared = PreparedFlight::new(&mission).expect("prepares");
+    let rhai = prepared.fly(&mission, 0).expect("Rhai flies");
+    let rust = prepared
+        .fly_with_controller(&mission, 0, &mut Replay)
+        .expect("Rust flies");
+    let bits = |run: &karman_mission::assemble::flight::FlightRun| -> Vec<u64> {
+        run.flight
+            .points
+            .iter()
+            .flat_map(|p| std::iter::once(p.t).chain(p.state))
+            .map(f64::to_bits)
+            .collect()
+    };
+    assert!(rhai.flight.points.len() > 100);
+    assert_eq!(bits(&rhai), bits(&rust));
+    assert_eq!(
+        format!("{:?}", rhai.summary()),
+        format!("{:?}", rust.summary())
+    );
+}
