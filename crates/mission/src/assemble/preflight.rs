@@ -38,6 +38,7 @@ use super::environment::build_environment_checked;
 use super::flight::flight_settings;
 use super::motor::{build_motor_with, thrust_source};
 use super::rocket::build_rocket;
+use crate::error::shown_number;
 use crate::schema::AtmosphereModel;
 use crate::{Mission, MissionError};
 
@@ -306,9 +307,11 @@ fn check_layout(
             mission,
             "flight.rail_length",
             format!(
-                "{} m is not longer than the nozzle-to-upper-rail-button distance {needed:.4} m: \
-                 the rocket cannot slide on it",
-                settings.rail_length
+                "{} m is not longer than the nozzle-to-upper-rail-button distance {} m \
+                 (`rocket.rail_buttons.upper_position`, `rocket.motor_position`): the rocket \
+                 cannot slide on it",
+                shown_number(settings.rail_length, None),
+                shown_number(needed, Some(4))
             ),
         ));
     }
@@ -383,7 +386,8 @@ fn check_rail(
         let message = if best_excess <= 0.0 {
             format!(
                 "the rocket is stuck on the rail: its thrust never exceeds its weight along the \
-                 rail (by at best {best_excess:.1} N), so it does not leave the pad"
+                 rail (by at best {} N), so it does not leave the pad",
+                shown_number(best_excess, Some(1))
             )
         } else if s <= 0.0 {
             format!(
