@@ -257,7 +257,8 @@ fn hostile_flight_logs() {
     run_class("logs", generate::flight_logs);
 }
 
-/// Every file of a folder (recursively) and its bytes.
+/// Every file of a folder (recursively) and its bytes; a symbolic link as its target and any
+/// other file that is not regular (a FIFO a tamper made) as its kind, never opened.
 fn snapshot(dir: &Path) -> BTreeMap<PathBuf, Vec<u8>> {
     let mut files = BTreeMap::new();
     let mut stack = vec![dir.to_path_buf()];
@@ -267,10 +268,20 @@ fn snapshot(dir: &Path) -> BTreeMap<PathBuf, Vec<u8>> {
         };
         for entry in entries.flatten() {
             let path = entry.path();
-            if path.is_dir() {
+            let Ok(kind) = entry.file_type() else {
+                continue;
+            };
+            if kind.is_dir() {
                 stack.push(path);
             } else {
-                let bytes = std::fs::read(&path).unwrap_or_default();
+                let bytes = if kind.is_symlink() {
+                    let target = std::fs::read_link(&path).unwrap_or_default();
+                    format!("link to {}", target.display()).into_bytes()
+                } else if kind.is_file() {
+                    std::fs::read(&path).unwrap_or_default()
+                } else {
+                    format!("{kind:?}").into_bytes()
+                };
                 files.insert(path.strip_prefix(dir).unwrap_or(&path).to_path_buf(), bytes);
             }
         }

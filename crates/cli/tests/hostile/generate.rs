@@ -345,6 +345,11 @@ pub fn missions(dir: &Path) -> Vec<Case> {
         Some("rocket.surfaces.x"),
     );
     push(
+        "rail buttons 1e300 m away",
+        replace_line(&base, "upper_position", "upper_position = 1e300").into_bytes(),
+        Some("rocket.rail_buttons.upper_position"),
+    );
+    push(
         "array of 1,000,000 numbers",
         replace_line(
             &base,
@@ -509,6 +514,9 @@ pub fn scripts(dir: &Path) -> Vec<Case> {
         (s("integer level"), body("air_brakes.deployment_level = 1;").into_bytes()),
         (s("recursion"), format!("fn f(x) {{ f(x) }}\n{}", body("f(1)")).into_bytes()),
         (s("top-level endless loop"), format!("loop {{ }}\n{}", body("")).into_bytes()),
+        (s("sleep"), body("sleep(100);").into_bytes()),
+        (s("sleep through a function pointer"), body("Fn(\"sleep\").call(100.0);").into_bytes()),
+        (s("curried arguments growing"), body("let f = Fn(\"abs\"); for i in 0..100000 { f = f.curry(i); }").into_bytes()),
     ];
     let example = std::fs::read_to_string(repository("fixtures/airbrakes/docs_controller.rhai"))
         .expect("the example controller");
@@ -670,6 +678,13 @@ pub fn designs(dir: &Path) -> Vec<Case> {
             .1,
     )]);
     designs.push((s("zipped deep tree"), deep_zip, vec![]));
+    let crowded: String = (0..100_000).map(|i| format!(" a{i}=\"1\"")).collect();
+    designs.push((
+        s("an element of 100,000 attributes"),
+        xml.replacen("<openrocket ", &format!("<openrocket{crowded} "), 1)
+            .into_bytes(),
+        vec![],
+    ));
 
     let mut rng = Rng::new(0x0A4C_0001);
     for i in 0..20 {
@@ -897,6 +912,17 @@ pub fn thrust_files(dir: &Path) -> Vec<Case> {
             false,
         ),
         (
+            s("rse element of 100,000 attributes"),
+            "rse",
+            format!(
+                "<engine-database><engine-list><engine{} code=\"K1\"><data>{}</data></engine></engine-list></engine-database>\n",
+                (0..100_000).map(|i| format!(" a{i}=\"1\"")).collect::<String>(),
+                point("0.1", "900")
+            )
+            .into_bytes(),
+            true,
+        ),
+        (
             s("rse negative"),
             "rse",
             rse(&(point("0.1", "-900") + &*point("1", "0"))).into_bytes(),
@@ -1015,6 +1041,23 @@ pub fn flight_logs(dir: &Path) -> Vec<Case> {
             });
         }
     }
+    // Logs that are not regular files: a FIFO blocks whoever opens it, a device never ends.
+    let fifo = dir.join("fifo.csv");
+    replace_with_fifo(&fifo);
+    let zero = dir.join("zero.csv");
+    replace_with_link(&zero, Path::new("/dev/zero"));
+    for log in [fifo, zero] {
+        for args in [
+            vec![s("log"), s("show"), path_arg(&log)],
+            vec![s("compare"), path_arg(&mission), path_arg(&log)],
+        ] {
+            cases.push(Case {
+                name: format!("{} {}", args[0], file_name(&log)),
+                args,
+                expect: Expect::Either(vec![file_name(&log), s("not a regular file")]),
+            });
+        }
+    }
     cases
 }
 
@@ -1042,6 +1085,22 @@ fn tamper(
         located: located.iter().map(|l| (*l).to_owned()).collect(),
         may_succeed,
     }
+}
+
+/// Replaces `path` by a FIFO (`mkfifo`).
+fn replace_with_fifo(path: &Path) {
+    let _ = std::fs::remove_file(path);
+    let made = std::process::Command::new("mkfifo")
+        .arg(path)
+        .status()
+        .expect("mkfifo runs");
+    assert!(made.success(), "mkfifo {}", path.display());
+}
+
+/// Replaces `path` by a symbolic link to `target`.
+fn replace_with_link(path: &Path, target: &Path) {
+    let _ = std::fs::remove_file(path);
+    std::os::unix::fs::symlink(target, path).expect("a symbolic link");
 }
 
 /// Tamperings of a finished study (`files`: its files and bytes): cut, edited, reordered,
@@ -1175,6 +1234,46 @@ pub fn study_tampers(files: &BTreeMap<PathBuf, Vec<u8>>) -> Vec<Tamper> {
             std::fs::create_dir(d.join("samples.csv")).expect("mkdir");
         }),
         tamper("a stale lock", &[], true, set("study.lock", s("12345"))),
+        // Files that are not regular: a FIFO blocks whoever opens it, a device never ends.
+        tamper(
+            "samples.csv a FIFO",
+            &["samples.csv", "not a regular file"],
+            false,
+            |d| replace_with_fifo(&d.join("samples.csv")),
+        ),
+        tamper(
+            "study.json a FIFO",
+            &["study.json", "not a regular file"],
+            false,
+            |d| replace_with_fifo(&d.join("study.json")),
+        ),
+        tamper(
+            "study.lock a FIFO",
+            &["study.lock", "not a regular file"],
+            false,
+            |d| replace_with_fifo(&d.join("study.lock")),
+        ),
+        tamper(
+            "samples.csv a link to /dev/zero",
+            &["samples.csv", "not a regular file"],
+            false,
+            |d| replace_with_link(&d.join("samples.csv"), Path::new("/dev/zero")),
+        ),
+        tamper(
+            "study.json a link to /dev/zero",
+            &["study.json", "not a regular file"],
+            false,
+            |d| replace_with_link(&d.join("study.json"), Path::new("/dev/zero")),
+        ),
+        tamper(
+            "samples.csv of 20 MB without a line end",
+            &["samples.csv", "a line longer than"],
+            false,
+            set(
+                "samples.csv",
+                format!("{}{}", samples, "7".repeat(20 << 20)),
+            ),
+        ),
     ];
     let mut rng = Rng::new(0x57D1_0000);
     for i in 0..6 {
