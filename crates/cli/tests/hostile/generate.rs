@@ -277,6 +277,22 @@ pub fn missions(dir: &Path) -> Vec<Case> {
         ("inertia", "rocket.inertia", "inertia = [nan, 0.7, 0.0021]"),
         ("date", "environment.date", "date = \"yesterday\""),
         ("kind", "motor.kind", "kind = \"nuclear\""),
+        // Beyond any input: refused at the key, not as an infinity inside a model.
+        (
+            "grain_separation",
+            "motor.grain_separation",
+            "grain_separation = 1e300",
+        ),
+        (
+            "center_of_mass_without_motor",
+            "rocket.center_of_mass_without_motor",
+            "center_of_mass_without_motor = -1e300",
+        ),
+        (
+            "grain_density",
+            "motor.grain_density",
+            "grain_density = 1e300",
+        ),
     ];
     for (key, full, line) in number_cases {
         let text = replace_line(&base, key, line);
