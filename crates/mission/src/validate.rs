@@ -56,6 +56,11 @@ const RTOL_RANGE: (f64, f64) = (1e-12, 1e-2);
 /// dimensionless).
 const MAX_ATOL: f64 = 1.0;
 
+/// Smallest absolute tolerance of a state component (`[flight] atol`): below it (1e-30 and
+/// under) the error estimate asks for steps below the integrator's minimum at the first
+/// instant, so the flight would fail whatever the mission; `rtol`'s lower bound too.
+const MIN_ATOL: f64 = 1e-12;
+
 /// Smallest `max_time_step`, s: a 600 s flight at 1e-4 s already takes six million steps.
 const MIN_MAX_TIME_STEP: f64 = 1e-4;
 
@@ -1512,8 +1517,8 @@ fn flight(c: &mut Checker<'_>, spec: &MissionSpec) {
             c.range(
                 "flight.atol",
                 value,
-                value > 0.0 && value <= MAX_ATOL,
-                "every component must be in (0, 1]",
+                (MIN_ATOL..=MAX_ATOL).contains(&value),
+                "every component must be in [1e-12, 1]",
             );
         }
     }

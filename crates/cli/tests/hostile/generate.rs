@@ -197,7 +197,7 @@ const HOSTILE_NUMBERS: &[&str] = &[
 /// Hostile missions: unreadable files, nesting and number limits of the TOML reader,
 /// impossible and huge values, odd names, and seeded cuts and edits of a valid mission.
 pub fn missions(dir: &Path) -> Vec<Case> {
-    let (_, base) = corpus_mission(dir);
+    let (base_path, base) = corpus_mission(dir);
     let mut cases = Vec::new();
     let mut push = |name: &str, text: Vec<u8>, key: Option<&str>| {
         let index = cases.len();
@@ -428,6 +428,15 @@ pub fn missions(dir: &Path) -> Vec<Case> {
             (edited.join("\n") + "\n").into_bytes(),
             None,
         );
+    }
+    // Tolerances no flight can be integrated with: refused by `check`, not by the flight.
+    for atol in ["1e-300", "[1e-30, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1]"] {
+        cases.push(flies(
+            &format!("atol = {atol}"),
+            &base_path,
+            &[format!("flight.atol={atol}")],
+            vec![s("flight.atol")],
+        ));
     }
     cases
 }
