@@ -298,9 +298,13 @@ fn extra_motors(c: &mut Checker<'_>, spec: &MissionSpec) {
         c.stage = Some(format!("extra_motors.{index}"));
         motor(c, &alone);
         c.stage = None;
-        c.non_negative(
+        // Within the longest flight: a later ignition never happens (and at 1e15 s the
+        // thrust curve's times no longer resolve its burn).
+        c.range(
             &format!("extra_motors.{index}.ignition_delay"),
             extra.ignition_delay,
+            (0.0..=MAX_FLIGHT_TIME).contains(&extra.ignition_delay),
+            "must be in [0, 86400] s",
         );
     }
 }
@@ -411,7 +415,12 @@ fn stages(c: &mut Checker<'_>, spec: &MissionSpec) {
             stage.sampling_rate > 0.0 && stage.sampling_rate <= MAX_SAMPLING_RATE,
             "must be in (0, 10000] Hz",
         );
-        c.non_negative(&at("ignition_delay"), stage.ignition_delay);
+        c.range(
+            &at("ignition_delay"),
+            stage.ignition_delay,
+            (0.0..=MAX_FLIGHT_TIME).contains(&stage.ignition_delay),
+            "must be in [0, 86400] s",
+        );
         if let Some(area) = stage.tumble_drag_area {
             c.positive(&at("tumble_drag_area"), area);
         }
