@@ -405,6 +405,34 @@ fn hostile_study_folders() {
             ));
         }
     }
+    // A folder that is not a study's (no study.json) holding a file a study writes: a study
+    // or a merge into it is refused, naming the file, and replaces nothing.
+    for name in ["summary.json", "landing.svg", "samples.csv"] {
+        let mine = dir.join(format!("mine-{name}"));
+        std::fs::create_dir_all(&mine).expect("a folder of the user's");
+        std::fs::write(mine.join(name), "the user's own file\n").expect("the user's file");
+        let merge = vec![
+            "merge".to_owned(),
+            mine.display().to_string(),
+            base.display().to_string(),
+        ];
+        for (operation, args) in [("montecarlo", study_args(&mine)), ("merge", merge)] {
+            let outcome = bounded(&args, &dir);
+            let kept = std::fs::read_to_string(mine.join(name)).unwrap_or_default();
+            if outcome.code != Some(1)
+                || !outcome.stderr.contains(name)
+                || kept != "the user's own file\n"
+            {
+                failures.push(format!(
+                    "study / {operation} into a folder holding the user's {name}: exit {:?}, \
+                     file kept: {}, {}",
+                    outcome.code,
+                    kept == "the user's own file\n",
+                    tail(&outcome.stderr)
+                ));
+            }
+        }
+    }
     eprintln!(
         "hostile studies: {} tampered folders in {:.1} s",
         tampers.len(),

@@ -277,6 +277,16 @@ const WRITTEN: [&str; 6] = [
     HISTOGRAM_PLOT_FILE,
 ];
 
+/// The first output file of a study (other than `study.json` and `samples.csv`, which the
+/// caller checks) that already exists in `dir`: in a folder without `study.json` such a file
+/// is not a study's, and writing the study there would replace it.
+pub(crate) fn foreign_output(dir: &Path) -> Option<&'static str> {
+    WRITTEN[2..]
+        .iter()
+        .copied()
+        .find(|name| std::fs::symlink_metadata(dir.join(name)).is_ok())
+}
+
 /// Whether `name` is a temporary file [`write_atomic`] (or a merge) makes for one of the
 /// files a study writes: `.NAME.PID.N.tmp`.
 fn is_temporary(name: &str) -> bool {
