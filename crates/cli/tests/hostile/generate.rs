@@ -937,6 +937,18 @@ pub fn thrust_files(dir: &Path) -> Vec<Case> {
             false,
         ),
         (
+            s("every point at t = 0"),
+            "eng",
+            format!("{eng_head}0 900\n0 0\n").into_bytes(),
+            false,
+        ),
+        (
+            s("csv every point at t = 2"),
+            "csv",
+            b"time,thrust\n2,900\n2,0\n".to_vec(),
+            false,
+        ),
+        (
             s("rse element of 100,000 attributes"),
             "rse",
             format!(
