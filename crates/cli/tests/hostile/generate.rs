@@ -429,6 +429,28 @@ pub fn missions(dir: &Path) -> Vec<Case> {
             None,
         );
     }
+    // A sounding of impossible winds (a million knots): the file is named, as it is wrong.
+    let rule = "-".repeat(77);
+    let row =
+        |p: u32, z: u32| format!(" {p}.0  {z}  10.0  5.0  50  5  90  1000000  290  300  291\n");
+    let sounding = write(
+        &dir.join("winds.txt"),
+        format!(
+            "{rule}\n   PRES   HGHT   TEMP   DWPT   RELH   MIXR   DRCT   SKNT   THTA   THTE   THTV\n    hPa     m      C      C      %    g/kg    deg   knot     K      K      K \n{rule}\n{}{}{}",
+            row(1000, 100),
+            row(900, 2000),
+            row(800, 3000)
+        ),
+    );
+    cases.push(flies(
+        "sounding of a million knots",
+        &base_path,
+        &[format!(
+            "environment.atmosphere={{ model = \"sounding\", file = {}, format = \"wyoming\" }}",
+            toml_string(&path_arg(&sounding))
+        )],
+        vec![s("winds.txt"), s("environment.atmosphere.file")],
+    ));
     // Tolerances no flight can be integrated with: refused by `check`, not by the flight.
     for atol in ["1e-300", "[1e-30, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1]"] {
         cases.push(flies(

@@ -236,9 +236,23 @@ fn check_atmosphere(
                 mission,
                 wind_key(mission, east),
                 format!(
-                    "the {} wind is {value} m/s at {z:.0} m above sea level; no atmosphere has \
+                    "{}the {} wind is {} m/s at {z:.0} m above sea level; no atmosphere has \
                      winds above {ABSURD_WIND} m/s (is the unit right?)",
-                    if east { "east" } else { "north" }
+                    // A weather file's wind: the file named, as it is the file that is wrong.
+                    match (
+                        &mission.spec.environment.atmosphere.file,
+                        mission.spec.environment.atmosphere.model
+                    ) {
+                        (Some(file), model)
+                            if model != AtmosphereModel::Custom
+                                && model != AtmosphereModel::Standard =>
+                        {
+                            format!("{}: ", mission.dir.join(file).display())
+                        }
+                        _ => String::new(),
+                    },
+                    if east { "east" } else { "north" },
+                    shown_number(value, None)
                 ),
             ));
         }
