@@ -257,7 +257,8 @@ fn hostile_flight_logs() {
     run_class("logs", generate::flight_logs);
 }
 
-/// Every file of a folder (recursively) and its bytes.
+/// Every file of a folder (recursively) and its bytes; a symbolic link as its target and any
+/// other file that is not regular (a FIFO a tamper made) as its kind, never opened.
 fn snapshot(dir: &Path) -> BTreeMap<PathBuf, Vec<u8>> {
     let mut files = BTreeMap::new();
     let mut stack = vec![dir.to_path_buf()];
@@ -267,10 +268,20 @@ fn snapshot(dir: &Path) -> BTreeMap<PathBuf, Vec<u8>> {
         };
         for entry in entries.flatten() {
             let path = entry.path();
-            if path.is_dir() {
+            let Ok(kind) = entry.file_type() else {
+                continue;
+            };
+            if kind.is_dir() {
                 stack.push(path);
             } else {
-                let bytes = std::fs::read(&path).unwrap_or_default();
+                let bytes = if kind.is_symlink() {
+                    let target = std::fs::read_link(&path).unwrap_or_default();
+                    format!("link to {}", target.display()).into_bytes()
+                } else if kind.is_file() {
+                    std::fs::read(&path).unwrap_or_default()
+                } else {
+                    format!("{kind:?}").into_bytes()
+                };
                 files.insert(path.strip_prefix(dir).unwrap_or(&path).to_path_buf(), bytes);
             }
         }
@@ -392,6 +403,34 @@ fn hostile_study_folders() {
                 "study / merge of {name}: not said to not exist: {}",
                 tail(&outcome.stderr)
             ));
+        }
+    }
+    // A folder that is not a study's (no study.json) holding a file a study writes: a study
+    // or a merge into it is refused, naming the file, and replaces nothing.
+    for name in ["summary.json", "landing.svg", "samples.csv"] {
+        let mine = dir.join(format!("mine-{name}"));
+        std::fs::create_dir_all(&mine).expect("a folder of the user's");
+        std::fs::write(mine.join(name), "the user's own file\n").expect("the user's file");
+        let merge = vec![
+            "merge".to_owned(),
+            mine.display().to_string(),
+            base.display().to_string(),
+        ];
+        for (operation, args) in [("montecarlo", study_args(&mine)), ("merge", merge)] {
+            let outcome = bounded(&args, &dir);
+            let kept = std::fs::read_to_string(mine.join(name)).unwrap_or_default();
+            if outcome.code != Some(1)
+                || !outcome.stderr.contains(name)
+                || kept != "the user's own file\n"
+            {
+                failures.push(format!(
+                    "study / {operation} into a folder holding the user's {name}: exit {:?}, \
+                     file kept: {}, {}",
+                    outcome.code,
+                    kept == "the user's own file\n",
+                    tail(&outcome.stderr)
+                ));
+            }
         }
     }
     eprintln!(

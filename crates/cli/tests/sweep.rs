@@ -75,6 +75,16 @@ fn bad_sweeps_are_clear_errors() {
         "height",
     ]);
     assert!(text.contains("--series `height`: no such series"), "{text}");
+    // A value that is not TOML, or out of range, is named as the `--vary` value it is.
+    for (vary, shown) in [
+        ("rocket.mass=2.6,a", "--vary rocket.mass: the value `a`"),
+        ("rocket.mass=[1,2", "--vary rocket.mass: the value `[1,2`"),
+        ("rocket.mass=2.6,nan", "--vary rocket.mass: the value `nan`"),
+        ("rocket.mass=-1,2.6", "--vary rocket.mass: the value `-1`"),
+    ] {
+        let text = failure(&["sweep", &mission, "--vary", vary]);
+        assert!(text.contains(shown), "{vary}: {text}");
+    }
 }
 
 #[test]

@@ -83,6 +83,18 @@ pub enum DispersionError {
         /// The sample index.
         index: u64,
     },
+    /// An output directory without `study.json` holds a file the study would write (a
+    /// `summary.json` of the user's own): it is not a study's folder, and nothing is replaced.
+    #[error(
+        "{} holds {file} but no study.json: it is not a study's folder, and the study would replace that file; use another --out directory",
+        dir.display()
+    )]
+    ForeignOutput {
+        /// The output directory.
+        dir: PathBuf,
+        /// The file the study would replace.
+        file: &'static str,
+    },
     /// `samples.csv` exists without the `study.json` that identifies it.
     #[error("{} has samples.csv but no study.json; it was not written by this program", dir.display())]
     MissingStudy {

@@ -6,7 +6,7 @@ use crate::error::DispersionError;
 use crate::sampling::draw;
 use crate::study::Record;
 use std::fs::{File, OpenOptions};
-use std::io::{BufRead, BufReader, Write as _};
+use std::io::{BufRead, BufReader, Read as _, Write as _};
 use std::path::{Path, PathBuf};
 use std::sync::atomic::{AtomicU64, Ordering};
 
@@ -58,6 +58,35 @@ fn foreign_header(line: &[u8]) -> String {
     }
 }
 
+/// Bytes of one line of `samples.csv` beyond which the file is corrupt: a row is its index,
+/// status, message and numbers, far below this; the bound keeps a file of gigabytes without a
+/// line end (or a link to a device) from being read into memory whole.
+const MAX_ROW_BYTES: u64 = 16 << 20;
+
+/// Bytes `study.json` may have: the record of a study is its inputs and a few numbers, far
+/// below this.
+pub(crate) const MAX_STUDY_BYTES: u64 = 64 << 20;
+
+/// Opens one of a study's files for reading, `Ok(None)` when it does not exist. Only a regular
+/// file (or a link to one) is opened: a FIFO would block the run forever and a device such as
+/// `/dev/zero` never ends, so anything else is an error naming the file.
+pub(crate) fn open_regular(path: &Path) -> Result<Option<File>, DispersionError> {
+    match std::fs::metadata(path) {
+        Err(e) if e.kind() == std::io::ErrorKind::NotFound => return Ok(None),
+        Err(e) => return Err(DispersionError::io(path)(e)),
+        Ok(metadata) if !metadata.is_file() => {
+            return Err(DispersionError::io(path)(std::io::Error::new(
+                std::io::ErrorKind::InvalidInput,
+                "not a regular file (a directory, FIFO, socket or device)",
+            )));
+        }
+        Ok(_) => {}
+    }
+    File::open(path)
+        .map(Some)
+        .map_err(DispersionError::io(path))
+}
+
 /// Scans `samples.csv` of `record`: the header must be the study's and every complete row
 /// must be the next sample of the shard with the inputs the study draws for it and a digest
 /// that is the digest of its cells keyed by the study's fingerprint
@@ -72,10 +101,8 @@ pub(crate) fn scan(path: &Path, record: &Record) -> Result<Scan, DispersionError
         has_header: false,
         ends: Vec::new(),
     };
-    let file = match File::open(path) {
-        Ok(file) => file,
-        Err(e) if e.kind() == std::io::ErrorKind::NotFound => return Ok(scan),
-        Err(e) => return Err(DispersionError::io(path)(e)),
+    let Some(file) = open_regular(path)? else {
+        return Ok(scan);
     };
     let study = record.study();
     let header = csv::header(&study.columns());
@@ -90,9 +117,16 @@ pub(crate) fn scan(path: &Path, record: &Record) -> Result<Scan, DispersionError
     let shard_len = record.shard.len(record.samples);
     loop {
         buffer.clear();
-        let n = reader
+        let n = (&mut reader)
+            .take(MAX_ROW_BYTES + 1)
             .read_until(b'\n', &mut buffer)
             .map_err(DispersionError::io(path))?;
+        if n as u64 > MAX_ROW_BYTES {
+            return Err(corrupt(
+                line_number + 1,
+                format!("a line longer than {MAX_ROW_BYTES} bytes (no sample row is)"),
+            ));
+        }
         if n == 0 || buffer.last() != Some(&b'\n') {
             // End of file, or a partial last line.
             if !scan.has_header && !header.as_bytes().starts_with(&buffer) {
@@ -243,6 +277,16 @@ const WRITTEN: [&str; 6] = [
     HISTOGRAM_PLOT_FILE,
 ];
 
+/// The first output file of a study (other than `study.json` and `samples.csv`, which the
+/// caller checks) that already exists in `dir`: in a folder without `study.json` such a file
+/// is not a study's, and writing the study there would replace it.
+pub(crate) fn foreign_output(dir: &Path) -> Option<&'static str> {
+    WRITTEN[2..]
+        .iter()
+        .copied()
+        .find(|name| std::fs::symlink_metadata(dir.join(name)).is_ok())
+}
+
 /// Whether `name` is a temporary file [`write_atomic`] (or a merge) makes for one of the
 /// files a study writes: `.NAME.PID.N.tmp`.
 fn is_temporary(name: &str) -> bool {
@@ -389,6 +433,10 @@ pub(crate) fn lock(dir: &Path, create: bool) -> Result<DirLock, DispersionError>
     #[cfg(not(unix))]
     let directory = None;
     let path = dir.join(LOCK_FILE);
+    // An existing lock file must be a regular file: opening a FIFO blocks.
+    if std::fs::symlink_metadata(&path).is_ok() {
+        open_regular(&path)?;
+    }
     let file = if create {
         OpenOptions::new()
             .create(true)

@@ -134,6 +134,19 @@ pub fn merge(out: &Path, dirs: &[PathBuf]) -> Result<Summary, DispersionError> {
                 fields,
             });
         }
+    } else {
+        // A folder that is not a study's: none of its files is replaced.
+        if std::fs::symlink_metadata(out.join(SAMPLES_FILE)).is_ok() {
+            return Err(DispersionError::MissingStudy {
+                dir: out.to_owned(),
+            });
+        }
+        if let Some(file) = files::foreign_output(out) {
+            return Err(DispersionError::ForeignOutput {
+                dir: out.to_owned(),
+                file,
+            });
+        }
     }
     files::write_atomic(&out.join(STUDY_FILE), whole.to_json().as_bytes())?;
     let samples_path = out.join(SAMPLES_FILE);

@@ -187,6 +187,12 @@ where
                     dir: dir.to_owned(),
                 });
             }
+            if let Some(file) = files::foreign_output(dir) {
+                return Err(DispersionError::ForeignOutput {
+                    dir: dir.to_owned(),
+                    file,
+                });
+            }
             files::write_atomic(&study_path, record.to_json().as_bytes())?;
         }
     }

@@ -325,15 +325,25 @@ impl Record {
 
     /// Reads `study.json`; `Ok(None)` when it does not exist.
     pub fn read(path: &Path) -> Result<Option<Self>, DispersionError> {
-        let text = match std::fs::read_to_string(path) {
-            Ok(text) => text,
-            Err(e) if e.kind() == std::io::ErrorKind::NotFound => return Ok(None),
-            Err(e) => return Err(DispersionError::io(path)(e)),
-        };
         let json = |message: String| DispersionError::Json {
             path: path.to_owned(),
             message,
         };
+        let Some(file) = crate::files::open_regular(path)? else {
+            return Ok(None);
+        };
+        let mut text = String::new();
+        std::io::Read::read_to_string(
+            &mut std::io::Read::take(file, crate::files::MAX_STUDY_BYTES + 1),
+            &mut text,
+        )
+        .map_err(DispersionError::io(path))?;
+        if text.len() as u64 > crate::files::MAX_STUDY_BYTES {
+            return Err(json(format!(
+                "larger than {} bytes: not a study record",
+                crate::files::MAX_STUDY_BYTES
+            )));
+        }
         let version: Version = serde_json::from_str(&text).map_err(|e| json(e.to_string()))?;
         if version.format != FORMAT {
             return Err(json(format!(

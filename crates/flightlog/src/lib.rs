@@ -140,10 +140,19 @@ pub fn read_with(
 ) -> Result<FlightLog, FlightLogError> {
     let path = path.as_ref();
     let file = path.display().to_string();
-    let bytes = std::fs::read(path).map_err(|e| FlightLogError::Io {
+    let io = |message: String| FlightLogError::Io {
         file: file.clone(),
-        message: e.to_string(),
-    })?;
+        message,
+    };
+    // Only a regular file (or a link to one) is read: a FIFO blocks whoever opens it and a
+    // device such as `/dev/zero` never ends.
+    let metadata = std::fs::metadata(path).map_err(|e| io(e.to_string()))?;
+    if !metadata.is_file() {
+        return Err(io(
+            "not a regular file (a directory, FIFO, socket or device)".to_owned(),
+        ));
+    }
+    let bytes = std::fs::read(path).map_err(|e| io(e.to_string()))?;
     let raw = read_raw(&bytes, &file, options)?;
     // The text is not needed once its rows are read: normalising works without it.
     drop(bytes);

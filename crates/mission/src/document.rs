@@ -17,6 +17,16 @@ use std::ops::Range;
 use toml::Spanned;
 use toml::de::{DeArray, DeTable, DeValue};
 
+/// The largest magnitude of a float a mission may hold: no physical input (a thrust of at most
+/// 1e9 N, a tank pressure, a height) comes near it, and below it the products and squares the
+/// models form stay finite, so an absurd value (`1e300`) is refused at its key rather than
+/// ending as an infinity inside a model built from it.
+pub(crate) const MAX_INPUT_MAGNITUDE: f64 = 1e15;
+
+/// The `expected` of the [`ProblemKind::OutOfRange`] of a float beyond
+/// [`MAX_INPUT_MAGNITUDE`] (a problem dropped when the key's own check reports it too).
+pub(crate) const BEYOND_ANY_INPUT: &str = "no input of a mission exceeds 1e15 in magnitude";
+
 /// Largest number of schema errors collected from one file before giving up.
 const MAX_SCHEMA_ERRORS: usize = 50;
 
@@ -331,7 +341,9 @@ impl<'a> Document<'a> {
         out
     }
 
-    /// Every NaN or infinite float of the document, except a `+inf` at one of `allow_inf`.
+    /// Every NaN or infinite float of the document, except a `+inf` at one of `allow_inf`, and
+    /// every float beyond [`MAX_INPUT_MAGNITUDE`] (an [`ProblemKind::OutOfRange`] whose
+    /// `expected` is [`BEYOND_ANY_INPUT`]).
     pub fn non_finite(&self, allow_inf: &[&str]) -> Vec<Problem> {
         fn walk(
             doc: &Document<'_>,
@@ -349,6 +361,15 @@ impl<'a> Document<'a> {
                             location: doc.location(value.span().start),
                             key: path.to_owned(),
                             kind: ProblemKind::NotFinite { value: number },
+                        });
+                    } else if number.is_finite() && number.abs() > MAX_INPUT_MAGNITUDE {
+                        out.push(Problem {
+                            location: doc.location(value.span().start),
+                            key: path.to_owned(),
+                            kind: ProblemKind::OutOfRange {
+                                value: number,
+                                expected: BEYOND_ANY_INPUT,
+                            },
                         });
                     }
                 }

@@ -325,6 +325,21 @@ pub enum OverrideError {
 
 /// A `--set PATH=VALUE` argument as a message echoes it: the path whole, the value cut to
 /// [`karman_math::text::SHOWN_CHARS`] characters (a 100,000-digit number is not repeated).
+/// A number for a message with `decimals` digits after the point (as Rust writes it when
+/// `None`), unless its magnitude is absurd (1e9 or more) or too small for those digits: then
+/// as [`karman_math::text::number`] shows it, so that `1e300` does not become 301 digits
+/// and `1e-300` not a zero.
+pub(crate) fn shown_number(value: f64, decimals: Option<usize>) -> String {
+    let tiny = 10f64.powi(-i32::try_from(decimals.unwrap_or(4)).unwrap_or(4));
+    match decimals {
+        _ if value.is_finite() && value != 0.0 && !(tiny..1e9).contains(&value.abs()) => {
+            format!("{value:e}")
+        }
+        Some(decimals) => format!("{value:.decimals$}"),
+        None => karman_math::text::number(value),
+    }
+}
+
 fn shown_override(text: &str) -> String {
     match text.split_once('=') {
         Some((path, value)) => format!("{path}={}", karman_math::text::value(value)),

@@ -191,6 +191,14 @@ pub(crate) fn load_with(
     parse_with(text, path, overrides, fetching)
 }
 
+/// Whether `problem` is the magnitude bound of [`document::MAX_INPUT_MAGNITUDE`].
+fn is_beyond_any_input(problem: &Problem) -> bool {
+    matches!(
+        problem.kind,
+        ProblemKind::OutOfRange { expected, .. } if expected == document::BEYOND_ANY_INPUT
+    )
+}
+
 /// Parses, overrides, deserializes and validates mission `text`; `path` names the file in
 /// messages and its directory resolves relative data paths.
 pub fn parse(text: &str, path: &Path, overrides: &[Override]) -> Result<Mission, MissionError> {
@@ -234,6 +242,13 @@ fn parse_with(
             None
         }
     };
+    // A float beyond any input is reported once: by its key's own range check when it has one.
+    let own: std::collections::BTreeSet<String> = problems
+        .iter()
+        .filter(|p| !is_beyond_any_input(p))
+        .map(|p| p.key.clone())
+        .collect();
+    problems.retain(|p| !is_beyond_any_input(p) || !own.contains(&p.key));
     match spec {
         Some(spec) if problems.is_empty() => Ok(Mission {
             path: path.to_owned(),

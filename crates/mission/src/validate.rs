@@ -56,6 +56,11 @@ const RTOL_RANGE: (f64, f64) = (1e-12, 1e-2);
 /// dimensionless).
 const MAX_ATOL: f64 = 1.0;
 
+/// Smallest absolute tolerance of a state component (`[flight] atol`): below it (1e-30 and
+/// under) the error estimate asks for steps below the integrator's minimum at the first
+/// instant, so the flight would fail whatever the mission; `rtol`'s lower bound too.
+const MIN_ATOL: f64 = 1e-12;
+
 /// Smallest `max_time_step`, s: a 600 s flight at 1e-4 s already takes six million steps.
 const MIN_MAX_TIME_STEP: f64 = 1e-4;
 
@@ -293,9 +298,13 @@ fn extra_motors(c: &mut Checker<'_>, spec: &MissionSpec) {
         c.stage = Some(format!("extra_motors.{index}"));
         motor(c, &alone);
         c.stage = None;
-        c.non_negative(
+        // Within the longest flight: a later ignition never happens (and at 1e15 s the
+        // thrust curve's times no longer resolve its burn).
+        c.range(
             &format!("extra_motors.{index}.ignition_delay"),
             extra.ignition_delay,
+            (0.0..=MAX_FLIGHT_TIME).contains(&extra.ignition_delay),
+            "must be in [0, 86400] s",
         );
     }
 }
@@ -409,7 +418,12 @@ fn stages(c: &mut Checker<'_>, spec: &MissionSpec) {
             stage.sampling_rate > 0.0 && stage.sampling_rate <= MAX_SAMPLING_RATE,
             "must be in (0, 10000] Hz",
         );
-        c.non_negative(&at("ignition_delay"), stage.ignition_delay);
+        c.range(
+            &at("ignition_delay"),
+            stage.ignition_delay,
+            (0.0..=MAX_FLIGHT_TIME).contains(&stage.ignition_delay),
+            "must be in [0, 86400] s",
+        );
         if let Some(area) = stage.tumble_drag_area {
             c.positive(&at("tumble_drag_area"), area);
         }
@@ -1520,8 +1534,8 @@ fn flight(c: &mut Checker<'_>, spec: &MissionSpec) {
             c.range(
                 "flight.atol",
                 value,
-                value > 0.0 && value <= MAX_ATOL,
-                "every component must be in (0, 1]",
+                (MIN_ATOL..=MAX_ATOL).contains(&value),
+                "every component must be in [1e-12, 1]",
             );
         }
     }

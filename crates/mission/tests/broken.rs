@@ -475,6 +475,48 @@ fn values_beyond_any_flight_are_out_of_range() {
     }
 }
 
+/// A float beyond any physical input (1e15 in magnitude) is refused at its key, once, before
+/// a model is built from it: such a value used to overflow inside the model it fed (a grain
+/// spacing of 1e300 m gave "propellant I11: value inf is not finite", naming no key).
+#[test]
+fn a_float_beyond_any_input_is_refused_at_its_key() {
+    for (set, key) in [
+        ("motor.grain_separation=1e300", "motor.grain_separation"),
+        (
+            "rocket.center_of_mass_without_motor=-1e300",
+            "rocket.center_of_mass_without_motor",
+        ),
+        ("rocket.motor_position=2e15", "rocket.motor_position"),
+    ] {
+        let override_item: Override = set.parse().expect("an override");
+        let Err(MissionError::Invalid { problems, .. }) =
+            parse(&edited(&[]), &fixture("broken.toml"), &[override_item])
+        else {
+            panic!("{set} accepted");
+        };
+        assert_eq!(problems.len(), 1, "{set}: {problems:?}");
+        assert_eq!(problems[0].key, key);
+        let text = problems[0].display(Path::new("m.toml")).to_string();
+        assert!(text.contains("exceeds 1e15") && text.len() < 200, "{text}");
+    }
+    // An input with its own range reports that range alone.
+    let item: Override = "flight.rail_length=1e300".parse().expect("an override");
+    let Err(MissionError::Invalid { problems, .. }) =
+        parse(&edited(&[]), &fixture("broken.toml"), &[item])
+    else {
+        panic!("accepted");
+    };
+    assert_eq!(problems.len(), 1, "{problems:?}");
+    assert!(
+        !problems[0]
+            .display(Path::new("m.toml"))
+            .to_string()
+            .contains("1e15")
+    );
+    // 1e15 itself is not refused by the bound.
+    load_text(&edited(&[("lag = 0.5", "lag = 1e15")]));
+}
+
 /// A `--set` value of 100,000 digits is echoed as its beginning and end, not whole.
 #[test]
 fn a_huge_override_value_is_cut_in_the_message() {

@@ -249,6 +249,21 @@ fn line_of(text: &str, needle: &str) -> usize {
         + 1
 }
 
+/// An ignition after the longest flight (a day) is refused at its key: at 1e15 s the summed
+/// thrust curve's times no longer resolve the burn ("does not increase" from the table).
+#[test]
+fn an_ignition_beyond_any_flight_is_located() {
+    let text = text_of("airstart.toml").replace("ignition_delay = 3.0", "ignition_delay = 1e15");
+    let found = located(&text, "airstart.toml");
+    assert_eq!(
+        found,
+        vec![(
+            "extra_motors.0.ignition_delay".to_owned(),
+            line_of(&text, "ignition_delay = 1e15")
+        )]
+    );
+}
+
 #[test]
 fn extra_motor_mistakes_are_located() {
     let text = text_of("airstart.toml")

@@ -451,6 +451,17 @@ impl Design {
     /// [`OrkError`]: malformed XML, an unknown version, no stage, parallel boosters, a value
     /// that is not a number.
     pub fn parse(file: &Path, text: &str) -> Result<Design, OrkError> {
+        // The XML parser compares every attribute of an element with every other: a crowded
+        // element is refused before it is parsed (as the thrust files' `.rse` reader does).
+        if let Some((line, count)) = karman_propulsion::rse::crowded_element(text) {
+            return Err(OrkError::Xml {
+                file: file.to_owned(),
+                message: format!(
+                    "an element with {count} attributes at line {line} (at most {})",
+                    karman_propulsion::rse::MAX_XML_ATTRIBUTES
+                ),
+            });
+        }
         let doc = roxmltree::Document::parse(text).map_err(|e| OrkError::Xml {
             file: file.to_owned(),
             message: e.to_string(),

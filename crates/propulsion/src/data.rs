@@ -192,6 +192,15 @@ impl PointsBuilder {
                 needed,
             });
         }
+        // Times never decrease (`push`), so the first and last equal means all equal.
+        if let (Some(&first), Some(&last)) = (self.times.first(), self.times.last()) {
+            if self.times.len() >= 2 && last <= first {
+                return Err(PropulsionError::NoDuration {
+                    source_name: self.source_name,
+                    time: first,
+                });
+            }
+        }
         Ok(ThrustData {
             source_name: self.source_name,
             format: self.format,

@@ -66,6 +66,14 @@ pub enum PropulsionError {
         /// Points needed.
         needed: usize,
     },
+    /// Every point of a thrust curve is at one time: the curve has no burn.
+    #[error("{source_name}: every thrust point is at t = {time} s: the curve has no duration")]
+    NoDuration {
+        /// The file or data label.
+        source_name: String,
+        /// The one time of every point.
+        time: f64,
+    },
     /// A repeated time (a step) in a thrust curve whose interpolation is not linear.
     #[error(
         "{source_name}: the time {time} s repeats (a step), which only a linear thrust curve \

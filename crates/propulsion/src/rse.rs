@@ -18,6 +18,74 @@ use roxmltree::{Document, Node, ParsingOptions};
 use crate::PropulsionError;
 use crate::data::{MotorHeader, PointsBuilder, ThrustData, ThrustFormat, parse_number};
 
+/// Attributes one XML element may have before the text is refused unparsed: the XML parser
+/// compares every attribute of an element with every other (duplicates are an error), so an
+/// element of 100,000 attributes (a megabyte of text) would take minutes. RockSim and
+/// OpenRocket write at most a dozen; the `.ork` reader (karman-openrocket) applies the same
+/// limit.
+pub const MAX_XML_ATTRIBUTES: usize = 1000;
+
+/// The 1-based line and attribute count of the first element of `text` with more than
+/// [`MAX_XML_ATTRIBUTES`] attributes, `None` when there is none. A linear scan of the start
+/// tags (an `=` outside quotes is one attribute), which skips comments, CDATA sections,
+/// processing instructions and declarations; it never rejects a document the parser would
+/// read in reasonable time, and what it lets through the parser checks in full.
+pub fn crowded_element(text: &str) -> Option<(usize, usize)> {
+    let bytes = text.as_bytes();
+    let mut line = 1;
+    let mut i = 0;
+    let skip_to = |from: usize, end: &[u8]| {
+        bytes[from..]
+            .windows(end.len())
+            .position(|w| w == end)
+            .map_or(bytes.len(), |p| from + p + end.len())
+    };
+    while i < bytes.len() {
+        match bytes[i] {
+            b'\n' => {
+                line += 1;
+                i += 1;
+            }
+            b'<' => {
+                let rest = &bytes[i..];
+                let end = if rest.starts_with(b"<!--") {
+                    skip_to(i + 4, b"-->")
+                } else if rest.starts_with(b"<![CDATA[") {
+                    skip_to(i + 9, b"]]>")
+                } else if rest.starts_with(b"<!") || rest.starts_with(b"<?") {
+                    skip_to(i + 2, b">")
+                } else {
+                    let (start_line, mut count, mut quote) = (line, 0, None);
+                    let mut j = i + 1;
+                    while j < bytes.len() {
+                        let b = bytes[j];
+                        match quote {
+                            Some(q) if b == q => quote = None,
+                            Some(_) => {}
+                            None if b == b'"' || b == b'\'' => quote = Some(b),
+                            None if b == b'=' => count += 1,
+                            None if b == b'>' => break,
+                            None => {}
+                        }
+                        j += 1;
+                    }
+                    if count > MAX_XML_ATTRIBUTES {
+                        return Some((start_line, count));
+                    }
+                    j
+                };
+                line += bytes[i..end.min(bytes.len())]
+                    .iter()
+                    .filter(|&&b| b == b'\n')
+                    .count();
+                i = end.max(i + 1);
+            }
+            _ => i += 1,
+        }
+    }
+    None
+}
+
 /// Parses the text of a RockSim `.rse` file; `source_name` names it in errors.
 ///
 /// # Errors
@@ -37,6 +105,12 @@ pub fn parse(text: &str, source_name: &str) -> Result<ThrustData, PropulsionErro
         allow_dtd: true,
         ..ParsingOptions::default()
     };
+    if let Some((line, count)) = crowded_element(text) {
+        return Err(xml_error(
+            line as u32,
+            format!("an element with {count} attributes (at most {MAX_XML_ATTRIBUTES})"),
+        ));
+    }
     let document = Document::parse_with_options(text, options)
         .map_err(|e| xml_error(e.pos().row, e.to_string()))?;
     let line = |node: Node<'_, '_>| document.text_pos_at(node.range().start).row as usize;
@@ -133,6 +207,24 @@ mod tests {
         assert_eq!(h.designation, "M1670");
         assert!((h.dry_mass().unwrap() - 2.13).abs() < 1e-12);
         assert!((h.diameter.unwrap() - 0.075).abs() < 1e-15);
+    }
+
+    #[test]
+    fn an_element_of_too_many_attributes_is_refused_unparsed() {
+        assert_eq!(crowded_element(SAMPLE), None);
+        let many: String = (0..=MAX_XML_ATTRIBUTES)
+            .map(|i| format!(" a{i}='=>'"))
+            .collect();
+        let crowded = SAMPLE.replace("<engine code=\"second\"", &format!("<engine{many}"));
+        assert_eq!(
+            crowded_element(&crowded),
+            Some((13, MAX_XML_ATTRIBUTES + 1))
+        );
+        let e = parse(&crowded, "m.rse").unwrap_err();
+        assert!(matches!(e, PropulsionError::Xml { line: 13, .. }), "{e}");
+        // Inside a comment or CDATA the `=` are text.
+        let text = format!("<a><!--<b{many}>--><![CDATA[<b{many}>]]></a>");
+        assert_eq!(crowded_element(&text), None);
     }
 
     #[test]

@@ -1,5 +1,9 @@
-//! The Rhai engine scripts run in: the standard library without clock (`no_time`), no module
-//! resolver (`import` fails), `eval` disabled, `print`/`debug` discarded, strict variables (an
+//! The Rhai engine scripts run in: the standard library without clock (`no_time`) and without
+//! `sleep` (a call of it is an error: it would block the flight's thread unbounded by the
+//! operation limits), no `curry` (each curried function pointer copies every argument curried
+//! before, so a loop of a few thousand operations does quadratic work the limits do not
+//! count), no module resolver (`import` fails), `eval` disabled, `print`/`debug` discarded,
+//! strict variables (an
 //! undefined name is a compile error), and limits on every call so that no script can hang or
 //! exhaust memory; across the calls of one flight, a budget of interpreted operations
 //! ([`MAX_FLIGHT_OPERATIONS`]) and of recorded values ([`MAX_RECORD_VALUES`]). The operations
@@ -11,7 +15,7 @@
 use crate::arguments::{AirBrakesHandle, EnvironmentHandle, SensorHandle};
 use rhai::module_resolvers::DummyModuleResolver;
 use rhai::packages::{Package, StandardPackage};
-use rhai::{Array, Dynamic, Engine, FLOAT, ImmutableString, Module, Shared};
+use rhai::{Array, Dynamic, Engine, EvalAltResult, FLOAT, INT, ImmutableString, Module, Shared};
 use std::sync::OnceLock;
 
 /// Operations one call may run (an operation is roughly one expression node or statement).
@@ -61,6 +65,10 @@ pub(crate) fn motor_module(burn_start: f64, burn_out: f64) -> Shared<Module> {
     module.into()
 }
 
+/// The error of a call of `sleep` (which the standard library has, and which would block the
+/// flight's thread for as long as the script asks).
+const NO_SLEEP: &str = "`sleep` is not available to a controller (a controller must not block)";
+
 /// A sandboxed engine with the controller's types and `motor`.
 pub(crate) fn engine(motor: &Shared<Module>) -> Engine {
     let mut engine = Engine::new_raw();
@@ -68,6 +76,13 @@ pub(crate) fn engine(motor: &Shared<Module>) -> Engine {
     engine.register_static_module("motor", motor.clone());
     engine.set_module_resolver(DummyModuleResolver::new());
     engine.disable_symbol("eval");
+    engine.disable_symbol("curry");
+    engine.register_fn("sleep", |_: FLOAT| -> Result<(), Box<EvalAltResult>> {
+        Err(NO_SLEEP.into())
+    });
+    engine.register_fn("sleep", |_: INT| -> Result<(), Box<EvalAltResult>> {
+        Err(NO_SLEEP.into())
+    });
     engine.on_print(|_| {});
     engine.on_debug(|_, _, _| {});
     engine.set_strict_variables(true);

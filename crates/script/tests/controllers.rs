@@ -430,6 +430,11 @@ fn the_sandbox_has_no_clock_modules_or_eval() {
         "import \"file\" as f;",
         "eval(\"1\");",
         "print(\"hello\"); let x = y;",
+        "sleep(100);",
+        "sleep(0.5);",
+        "let f = Fn(\"sleep\"); f.call(100);",
+        "let f = Fn(\"abs\"); for i in 0..100000 { f = f.curry(i); }",
+        "let f = Fn(\"abs\"); let g = curry(f, 1);",
     ] {
         let source = format!(
             "fn controller_function(time, sampling_rate, state, state_history, observed_variables, air_brakes) {{\n    {body}\n}}"

@@ -163,9 +163,12 @@ pub fn run(args: &SweepArgs) -> Result<()> {
     let missions = values
         .iter()
         .map(|value| {
+            // Each variant's error names the `--vary` value it came from (the mission's
+            // own message names the input as an override, `--set PATH=VALUE`).
+            let vary = || format!("--vary {path}: the value `{value}`");
             let mut overrides = args.mission.overrides.clone();
-            overrides.push(Override::new(path, value)?);
-            Ok(karman_mission::load(&args.mission.mission, &overrides)?)
+            overrides.push(Override::new(path, value).with_context(vary)?);
+            karman_mission::load(&args.mission.mission, &overrides).with_context(vary)
         })
         .collect::<Result<Vec<_>>>()?;
     // Every variant has the stages of the first (their columns).

@@ -197,7 +197,7 @@ const HOSTILE_NUMBERS: &[&str] = &[
 /// Hostile missions: unreadable files, nesting and number limits of the TOML reader,
 /// impossible and huge values, odd names, and seeded cuts and edits of a valid mission.
 pub fn missions(dir: &Path) -> Vec<Case> {
-    let (_, base) = corpus_mission(dir);
+    let (base_path, base) = corpus_mission(dir);
     let mut cases = Vec::new();
     let mut push = |name: &str, text: Vec<u8>, key: Option<&str>| {
         let index = cases.len();
@@ -277,6 +277,22 @@ pub fn missions(dir: &Path) -> Vec<Case> {
         ("inertia", "rocket.inertia", "inertia = [nan, 0.7, 0.0021]"),
         ("date", "environment.date", "date = \"yesterday\""),
         ("kind", "motor.kind", "kind = \"nuclear\""),
+        // Beyond any input: refused at the key, not as an infinity inside a model.
+        (
+            "grain_separation",
+            "motor.grain_separation",
+            "grain_separation = 1e300",
+        ),
+        (
+            "center_of_mass_without_motor",
+            "rocket.center_of_mass_without_motor",
+            "center_of_mass_without_motor = -1e300",
+        ),
+        (
+            "grain_density",
+            "motor.grain_density",
+            "grain_density = 1e300",
+        ),
     ];
     for (key, full, line) in number_cases {
         let text = replace_line(&base, key, line);
@@ -343,6 +359,11 @@ pub fn missions(dir: &Path) -> Vec<Case> {
         "unknown surface type",
         format!("{base}\n[rocket.surfaces.x]\ntype = \"warp\"\nposition = 0\n").into_bytes(),
         Some("rocket.surfaces.x"),
+    );
+    push(
+        "rail buttons 1e300 m away",
+        replace_line(&base, "upper_position", "upper_position = 1e300").into_bytes(),
+        Some("rocket.rail_buttons.upper_position"),
     );
     push(
         "array of 1,000,000 numbers",
@@ -473,6 +494,37 @@ pub fn missions(dir: &Path) -> Vec<Case> {
             None,
         );
     }
+    // A sounding of impossible winds (a million knots): the file is named, as it is wrong.
+    let rule = "-".repeat(77);
+    let row =
+        |p: u32, z: u32| format!(" {p}.0  {z}  10.0  5.0  50  5  90  1000000  290  300  291\n");
+    let sounding = write(
+        &dir.join("winds.txt"),
+        format!(
+            "{rule}\n   PRES   HGHT   TEMP   DWPT   RELH   MIXR   DRCT   SKNT   THTA   THTE   THTV\n    hPa     m      C      C      %    g/kg    deg   knot     K      K      K \n{rule}\n{}{}{}",
+            row(1000, 100),
+            row(900, 2000),
+            row(800, 3000)
+        ),
+    );
+    cases.push(flies(
+        "sounding of a million knots",
+        &base_path,
+        &[format!(
+            "environment.atmosphere={{ model = \"sounding\", file = {}, format = \"wyoming\" }}",
+            toml_string(&path_arg(&sounding))
+        )],
+        vec![s("winds.txt"), s("environment.atmosphere.file")],
+    ));
+    // Tolerances no flight can be integrated with: refused by `check`, not by the flight.
+    for atol in ["1e-300", "[1e-30, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1]"] {
+        cases.push(flies(
+            &format!("atol = {atol}"),
+            &base_path,
+            &[format!("flight.atol={atol}")],
+            vec![s("flight.atol")],
+        ));
+    }
     cases
 }
 
@@ -587,6 +639,9 @@ pub fn scripts(dir: &Path) -> Vec<Case> {
         (s("integer level"), body("air_brakes.deployment_level = 1;").into_bytes()),
         (s("recursion"), format!("fn f(x) {{ f(x) }}\n{}", body("f(1)")).into_bytes()),
         (s("top-level endless loop"), format!("loop {{ }}\n{}", body("")).into_bytes()),
+        (s("sleep"), body("sleep(100);").into_bytes()),
+        (s("sleep through a function pointer"), body("Fn(\"sleep\").call(100.0);").into_bytes()),
+        (s("curried arguments growing"), body("let f = Fn(\"abs\"); for i in 0..100000 { f = f.curry(i); }").into_bytes()),
     ];
     let example = std::fs::read_to_string(repository("fixtures/airbrakes/docs_controller.rhai"))
         .expect("the example controller");
@@ -748,6 +803,13 @@ pub fn designs(dir: &Path) -> Vec<Case> {
             .1,
     )]);
     designs.push((s("zipped deep tree"), deep_zip, vec![]));
+    let crowded: String = (0..100_000).map(|i| format!(" a{i}=\"1\"")).collect();
+    designs.push((
+        s("an element of 100,000 attributes"),
+        xml.replacen("<openrocket ", &format!("<openrocket{crowded} "), 1)
+            .into_bytes(),
+        vec![],
+    ));
 
     let mut rng = Rng::new(0x0A4C_0001);
     for i in 0..20 {
@@ -975,6 +1037,29 @@ pub fn thrust_files(dir: &Path) -> Vec<Case> {
             false,
         ),
         (
+            s("every point at t = 0"),
+            "eng",
+            format!("{eng_head}0 900\n0 0\n").into_bytes(),
+            false,
+        ),
+        (
+            s("csv every point at t = 2"),
+            "csv",
+            b"time,thrust\n2,900\n2,0\n".to_vec(),
+            false,
+        ),
+        (
+            s("rse element of 100,000 attributes"),
+            "rse",
+            format!(
+                "<engine-database><engine-list><engine{} code=\"K1\"><data>{}</data></engine></engine-list></engine-database>\n",
+                (0..100_000).map(|i| format!(" a{i}=\"1\"")).collect::<String>(),
+                point("0.1", "900")
+            )
+            .into_bytes(),
+            true,
+        ),
+        (
             s("rse negative"),
             "rse",
             rse(&(point("0.1", "-900") + &*point("1", "0"))).into_bytes(),
@@ -1093,6 +1178,23 @@ pub fn flight_logs(dir: &Path) -> Vec<Case> {
             });
         }
     }
+    // Logs that are not regular files: a FIFO blocks whoever opens it, a device never ends.
+    let fifo = dir.join("fifo.csv");
+    replace_with_fifo(&fifo);
+    let zero = dir.join("zero.csv");
+    replace_with_link(&zero, Path::new("/dev/zero"));
+    for log in [fifo, zero] {
+        for args in [
+            vec![s("log"), s("show"), path_arg(&log)],
+            vec![s("compare"), path_arg(&mission), path_arg(&log)],
+        ] {
+            cases.push(Case {
+                name: format!("{} {}", args[0], file_name(&log)),
+                args,
+                expect: Expect::Either(vec![file_name(&log), s("not a regular file")]),
+            });
+        }
+    }
     cases
 }
 
@@ -1120,6 +1222,22 @@ fn tamper(
         located: located.iter().map(|l| (*l).to_owned()).collect(),
         may_succeed,
     }
+}
+
+/// Replaces `path` by a FIFO (`mkfifo`).
+fn replace_with_fifo(path: &Path) {
+    let _ = std::fs::remove_file(path);
+    let made = std::process::Command::new("mkfifo")
+        .arg(path)
+        .status()
+        .expect("mkfifo runs");
+    assert!(made.success(), "mkfifo {}", path.display());
+}
+
+/// Replaces `path` by a symbolic link to `target`.
+fn replace_with_link(path: &Path, target: &Path) {
+    let _ = std::fs::remove_file(path);
+    std::os::unix::fs::symlink(target, path).expect("a symbolic link");
 }
 
 /// Tamperings of a finished study (`files`: its files and bytes): cut, edited, reordered,
@@ -1253,6 +1371,46 @@ pub fn study_tampers(files: &BTreeMap<PathBuf, Vec<u8>>) -> Vec<Tamper> {
             std::fs::create_dir(d.join("samples.csv")).expect("mkdir");
         }),
         tamper("a stale lock", &[], true, set("study.lock", s("12345"))),
+        // Files that are not regular: a FIFO blocks whoever opens it, a device never ends.
+        tamper(
+            "samples.csv a FIFO",
+            &["samples.csv", "not a regular file"],
+            false,
+            |d| replace_with_fifo(&d.join("samples.csv")),
+        ),
+        tamper(
+            "study.json a FIFO",
+            &["study.json", "not a regular file"],
+            false,
+            |d| replace_with_fifo(&d.join("study.json")),
+        ),
+        tamper(
+            "study.lock a FIFO",
+            &["study.lock", "not a regular file"],
+            false,
+            |d| replace_with_fifo(&d.join("study.lock")),
+        ),
+        tamper(
+            "samples.csv a link to /dev/zero",
+            &["samples.csv", "not a regular file"],
+            false,
+            |d| replace_with_link(&d.join("samples.csv"), Path::new("/dev/zero")),
+        ),
+        tamper(
+            "study.json a link to /dev/zero",
+            &["study.json", "not a regular file"],
+            false,
+            |d| replace_with_link(&d.join("study.json"), Path::new("/dev/zero")),
+        ),
+        tamper(
+            "samples.csv of 20 MB without a line end",
+            &["samples.csv", "a line longer than"],
+            false,
+            set(
+                "samples.csv",
+                format!("{}{}", samples, "7".repeat(20 << 20)),
+            ),
+        ),
     ];
     let mut rng = Rng::new(0x57D1_0000);
     for i in 0..6 {

@@ -41,7 +41,7 @@ pub fn early_ending(
             "max_time",
             format!(
                 "the flight reached max_time ({} s) before landing; raise [flight] max_time",
-                settings.max_time
+                crate::error::shown_number(settings.max_time, None)
             ),
         )),
         Termination::StuckOnRail => Some((

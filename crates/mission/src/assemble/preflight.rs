@@ -37,6 +37,7 @@ use karman_propulsion::{Motor, ThrustSource};
 use super::environment::build_environment_checked;
 use super::motor::{build_motor_with, thrust_source};
 use super::rocket::build_rocket;
+use crate::error::shown_number;
 use crate::schema::AtmosphereModel;
 use crate::{Mission, MissionError};
 
@@ -234,9 +235,23 @@ fn check_atmosphere(
                 mission,
                 wind_key(mission, east),
                 format!(
-                    "the {} wind is {value} m/s at {z:.0} m above sea level; no atmosphere has \
+                    "{}the {} wind is {} m/s at {z:.0} m above sea level; no atmosphere has \
                      winds above {ABSURD_WIND} m/s (is the unit right?)",
-                    if east { "east" } else { "north" }
+                    // A weather file's wind: the file named, as it is the file that is wrong.
+                    match (
+                        &mission.spec.environment.atmosphere.file,
+                        mission.spec.environment.atmosphere.model
+                    ) {
+                        (Some(file), model)
+                            if model != AtmosphereModel::Custom
+                                && model != AtmosphereModel::Standard =>
+                        {
+                            format!("{}: ", mission.dir.join(file).display())
+                        }
+                        _ => String::new(),
+                    },
+                    if east { "east" } else { "north" },
+                    shown_number(value, None)
                 ),
             ));
         }
@@ -305,9 +320,11 @@ fn check_layout(
             mission,
             "flight.rail_length",
             format!(
-                "{} m is not longer than the nozzle-to-upper-rail-button distance {needed:.4} m: \
-                 the rocket cannot slide on it",
-                settings.rail_length
+                "{} m is not longer than the nozzle-to-upper-rail-button distance {} m \
+                 (`rocket.rail_buttons.upper_position`, `rocket.motor_position`): the rocket \
+                 cannot slide on it",
+                shown_number(settings.rail_length, None),
+                shown_number(needed, Some(4))
             ),
         ));
     }
@@ -382,7 +399,8 @@ fn check_rail(
         let message = if best_excess <= 0.0 {
             format!(
                 "the rocket is stuck on the rail: its thrust never exceeds its weight along the \
-                 rail (by at best {best_excess:.1} N), so it does not leave the pad"
+                 rail (by at best {} N), so it does not leave the pad",
+                shown_number(best_excess, Some(1))
             )
         } else if s <= 0.0 {
             format!(
