@@ -355,7 +355,14 @@ impl<'a> Document<'a> {
             match value.get_ref() {
                 DeValue::Float(f) => {
                     let number: f64 = f.as_str().replace('_', "").parse().unwrap_or(f64::NAN);
-                    let allowed = number.is_infinite() && number > 0.0 && allow_inf.contains(&path);
+                    // `allow_inf` names keys without the indices of array entries.
+                    let allowed = number.is_infinite() && number > 0.0 && {
+                        let key: Vec<&str> = path
+                            .split('.')
+                            .filter(|s| s.parse::<usize>().is_err())
+                            .collect();
+                        allow_inf.contains(&key.join(".").as_str())
+                    };
                     if !number.is_finite() && !allowed {
                         out.push(Problem {
                             location: doc.location(value.span().start),
@@ -373,9 +380,16 @@ impl<'a> Document<'a> {
                         });
                     }
                 }
+                // An entry of an array of tables (`[[rocket.sensors]]`, `[[stages]]`) is
+                // named by its index, as every other problem names it; a number of a plain
+                // array by its key.
                 DeValue::Array(items) => {
-                    for item in items.iter() {
-                        walk(doc, item, path, allow_inf, out);
+                    for (index, item) in items.iter().enumerate() {
+                        if matches!(item.get_ref(), DeValue::Table(_)) {
+                            walk(doc, item, &format!("{path}.{index}"), allow_inf, out);
+                        } else {
+                            walk(doc, item, path, allow_inf, out);
+                        }
                     }
                 }
                 DeValue::Table(table) => {

@@ -294,7 +294,7 @@ fn bad_sensors_are_clear_errors_of_check() {
             "[[rocket.sensors]]\nkind = \"gyroscope\"\nname = \"w\"\nsampling_rate = nan\nposition = 0\n",
             &[
                 "calisto_sensors.toml:",
-                "rocket.sensors.sampling_rate",
+                "rocket.sensors.0.sampling_rate",
                 "NaN",
             ],
         ),
