@@ -34,6 +34,7 @@
 //! RocketPy adapter `karman.rocketpy.from_rocketpy`) and the type stubs live beside this
 //! crate; its tests are the pytest suite in `tests/`.
 
+mod controller;
 mod convert;
 mod flight;
 mod log;
@@ -93,6 +94,8 @@ fn _karman(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_class::<flight::Flight>()?;
     m.add_class::<study::Study>()?;
     m.add_class::<log::FlightLog>()?;
+    m.add_class::<controller::PyAirBrakes>()?;
+    m.add_class::<controller::PySensorReading>()?;
     m.add_function(wrap_pyfunction!(mission::load, m)?)?;
     m.add_function(wrap_pyfunction!(log::read_log, m)?)?;
     m.add("SERIES", flight::series_names())?;

@@ -22,6 +22,7 @@ use pyo3::exceptions::{PyRuntimeError, PyValueError};
 use pyo3::prelude::*;
 use pyo3::types::{PyDict, PyString};
 
+use crate::controller::PythonController;
 use crate::convert::{from_json, from_toml, plain, to_toml};
 use crate::flight::Flight;
 use crate::log::FlightLog;
@@ -224,13 +225,48 @@ impl Mission {
     /// Flies the mission once (the GIL is released meanwhile); `seed` seeds the parachute
     /// trigger noise. The models are built and checked by the first call and kept for the
     /// next ones until the mission changes. Raises `MissionError` when the models cannot be
-    /// built or flown.
-    #[pyo3(signature = (seed = 0))]
-    fn simulate(&self, py: Python<'_>, seed: u64) -> PyResult<Flight> {
+    /// built or flown. `controller`, a Python function with RocketPy's
+    /// `controller_function(time, sampling_rate, state, state_history, observed_variables,
+    /// air_brakes[, sensors])` signature, drives the air brakes of `[rocket.air_brakes]` in
+    /// place of the mission's Rhai script, called where the script would be; an exception it
+    /// raises ends the flight with `MissionError` holding its traceback, Ctrl-C raises
+    /// `KeyboardInterrupt`.
+    #[pyo3(signature = (seed = 0, controller = None))]
+    fn simulate(
+        &self,
+        py: Python<'_>,
+        seed: u64,
+        controller: Option<Py<PyAny>>,
+    ) -> PyResult<Flight> {
         let mission = &self.inner;
-        let run = py
-            .detach(|| self.prepared()?.fly(mission, seed))
-            .map_err(|e| mission_error(&e))?;
+        let run = match controller {
+            None => py
+                .detach(|| self.prepared()?.fly(mission, seed))
+                .map_err(|e| mission_error(&e))?,
+            Some(function) => {
+                let scalar = mission
+                    .spec
+                    .rocket
+                    .sensors
+                    .iter()
+                    .map(|s| s.kind.as_str() == "barometer")
+                    .collect();
+                let mut controller = PythonController::new(py, function, scalar)?;
+                let prepared = self.prepared().map_err(|e| mission_error(&e))?;
+                let flown =
+                    py.detach(|| prepared.fly_with_controller(mission, seed, &mut controller));
+                match (flown, controller.error.take()) {
+                    (Ok(run), _) => run,
+                    // Ctrl-C stays an interruption, not a flight's failure.
+                    (Err(_), Some(error))
+                        if error.is_instance_of::<pyo3::exceptions::PyKeyboardInterrupt>(py) =>
+                    {
+                        return Err(error);
+                    }
+                    (Err(e), _) => return Err(mission_error(&e)),
+                }
+            }
+        };
         let name = mission
             .spec
             .name

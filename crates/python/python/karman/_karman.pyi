@@ -3,7 +3,7 @@
 from __future__ import annotations
 
 import os
-from typing import Any, Mapping, Sequence
+from typing import Any, Callable, Mapping, Sequence
 
 import numpy as np
 import numpy.typing as npt
@@ -62,10 +62,16 @@ class Mission:
     ) -> dict[str, Any]:
         """The environment, motor and rocket as ``karman inspect --json`` shows them, tables
         as numpy arrays; ``heights`` (m ASL) and ``times`` (s) choose the sample points."""
-    def simulate(self, seed: int = 0) -> Flight:
+    def simulate(
+        self, seed: int = 0, controller: Callable[..., Any] | None = None
+    ) -> Flight:
         """Flies the mission once (GIL released); ``seed`` seeds the parachute trigger
         noise. The first call builds and checks the models; later calls fly them again until
-        the mission changes (``set``)."""
+        the mission changes (``set``). ``controller`` is RocketPy's
+        ``controller_function(time, sampling_rate, state, state_history,
+        observed_variables, air_brakes[, sensors])``: it drives ``[rocket.air_brakes]`` in
+        place of the mission's Rhai script; an exception it raises ends the flight with a
+        ``MissionError`` holding its traceback."""
     def montecarlo(
         self,
         samples: int | None = None,
@@ -95,6 +101,24 @@ class Mission:
         ``out`` writes the mission with the fitted values (a commented copy). Raises
         ``MissionError`` for an input that cannot be fitted, ``LogError`` for a log that
         cannot be compared with the flight."""
+
+class AirBrakes:
+    """The ``air_brakes`` argument of a Python controller (RocketPy's ``AirBrakes``)."""
+    deployment_level: float
+    """The level, 0 shut to 1 open; clipped to [0, 1] when set if ``clamp``."""
+    @property
+    def clamp(self) -> bool: ...
+    @property
+    def reference_area(self) -> float: ...
+    @property
+    def override_rocket_drag(self) -> bool: ...
+
+class SensorReading:
+    """An item of a Python controller's ``sensors``: a sensor's latest reading."""
+    @property
+    def measurement(self) -> float | tuple[float, float, float] | None: ...
+    @property
+    def time(self) -> float | None: ...
 
 class Flight:
     """A flown mission. Summary keys (``apogee_agl_m``, ``out_of_rail_velocity_mps``, ...)
