@@ -3,6 +3,7 @@
 
 use crate::csv::{self, Counts};
 use crate::error::DispersionError;
+use crate::regular::open_regular;
 use crate::sampling::draw;
 use crate::study::Record;
 use std::fs::{File, OpenOptions};
@@ -62,30 +63,6 @@ fn foreign_header(line: &[u8]) -> String {
 /// status, message and numbers, far below this; the bound keeps a file of gigabytes without a
 /// line end (or a link to a device) from being read into memory whole.
 const MAX_ROW_BYTES: u64 = 16 << 20;
-
-/// Bytes `study.json` may have: the record of a study is its inputs and a few numbers, far
-/// below this.
-pub(crate) const MAX_STUDY_BYTES: u64 = 64 << 20;
-
-/// Opens one of a study's files for reading, `Ok(None)` when it does not exist. Only a regular
-/// file (or a link to one) is opened: a FIFO would block the run forever and a device such as
-/// `/dev/zero` never ends, so anything else is an error naming the file.
-pub(crate) fn open_regular(path: &Path) -> Result<Option<File>, DispersionError> {
-    match std::fs::metadata(path) {
-        Err(e) if e.kind() == std::io::ErrorKind::NotFound => return Ok(None),
-        Err(e) => return Err(DispersionError::io(path)(e)),
-        Ok(metadata) if !metadata.is_file() => {
-            return Err(DispersionError::io(path)(std::io::Error::new(
-                std::io::ErrorKind::InvalidInput,
-                "not a regular file (a directory, FIFO, socket or device)",
-            )));
-        }
-        Ok(_) => {}
-    }
-    File::open(path)
-        .map(Some)
-        .map_err(DispersionError::io(path))
-}
 
 /// Scans `samples.csv` of `record`: the header must be the study's and every complete row
 /// must be the next sample of the shard with the inputs the study draws for it and a digest

@@ -51,6 +51,7 @@ mod kml;
 mod merge;
 mod plot;
 mod progress;
+mod regular;
 mod runner;
 pub mod sampling;
 mod stats;

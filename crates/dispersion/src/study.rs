@@ -277,6 +277,10 @@ pub(crate) struct Record {
 
 const FORMAT: &str = "karman-dispersion study";
 
+/// Bytes `study.json` may have: the record of a study is its inputs and a few numbers, far
+/// below this.
+const MAX_STUDY_BYTES: u64 = 64 << 20;
+
 impl Record {
     /// The record of `study`'s `shard`.
     pub fn new(study: &Study, shard: Shard) -> Self {
@@ -329,19 +333,19 @@ impl Record {
             path: path.to_owned(),
             message,
         };
-        let Some(file) = crate::files::open_regular(path)? else {
+        let Some(file) = crate::regular::open_regular(path)? else {
             return Ok(None);
         };
         let mut text = String::new();
         std::io::Read::read_to_string(
-            &mut std::io::Read::take(file, crate::files::MAX_STUDY_BYTES + 1),
+            &mut std::io::Read::take(file, MAX_STUDY_BYTES + 1),
             &mut text,
         )
         .map_err(DispersionError::io(path))?;
-        if text.len() as u64 > crate::files::MAX_STUDY_BYTES {
+        if text.len() as u64 > MAX_STUDY_BYTES {
             return Err(json(format!(
                 "larger than {} bytes: not a study record",
-                crate::files::MAX_STUDY_BYTES
+                MAX_STUDY_BYTES
             )));
         }
         let version: Version = serde_json::from_str(&text).map_err(|e| json(e.to_string()))?;
