@@ -1,14 +1,19 @@
 //! `karman check MISSION [--set PATH=VALUE]...`: load and validate a mission, then build and
 //! check every model its flight needs (thrust and drag curves, soundings, weather grids, the
-//! launch from the rail) exactly as `simulate` does before it integrates, and call the
-//! air-brake controller once as the flight's first call (its run-time errors are the
-//! flight's).
+//! launch from the rail) exactly as `simulate` does before it integrates, call the air-brake
+//! controller once as the flight's first call (its run-time errors are the flight's, located
+//! in the script), and fly the nominal flight (seed 0) as `simulate` flies it: whatever that
+//! flight rejects (a model the integrator cannot carry through, a controller error in a branch
+//! the first call does not take, a rocket that never leaves the rail or never lands before
+//! `max_time`) is check's error too, so that `ok` means the mission flies. A flight takes
+//! milliseconds.
 
 use super::MissionArgs;
 use clap::Args;
+use karman_mission::assemble::flight::{early_ending, simulate_with_seed};
 use karman_mission::assemble::preflight::prepare;
 use karman_mission::assemble::scripts::{compile_controller, first_call};
-use karman_mission::assemble::stages::prepare_staged;
+use karman_mission::assemble::stages::{prepare_staged, simulate_staged};
 use std::io::Write;
 
 /// Arguments of `karman check`.
@@ -16,6 +21,28 @@ use std::io::Write;
 pub struct CheckArgs {
     #[command(flatten)]
     pub mission: MissionArgs,
+}
+
+/// Flies the nominal flight of `mission` (seed 0) as `simulate` does, failing as it fails.
+fn nominal_flight(mission: &karman_mission::Mission) -> anyhow::Result<()> {
+    let file = mission.path.display();
+    if mission.spec.stages.is_empty() {
+        let run = simulate_with_seed(mission, 0)?;
+        if let Some((_, message)) = early_ending(run.summary().termination, &run.settings) {
+            anyhow::bail!("{file}: the nominal flight (seed 0): {message}");
+        }
+    } else {
+        let run = simulate_staged(mission, 0)?;
+        for (i, body) in run.bodies.iter().enumerate() {
+            if let Some((_, message)) = early_ending(run.summary(i).termination, &run.settings) {
+                anyhow::bail!(
+                    "{file}: the nominal flight (seed 0): {}: {message}",
+                    body.name
+                );
+            }
+        }
+    }
+    Ok(())
 }
 
 /// Prints the warnings (and a note when the air-brake controller runs interpreted rather
@@ -36,6 +63,7 @@ pub fn run(args: &CheckArgs) -> anyhow::Result<()> {
         (prepare_staged(&mission, 0)?, compile_controller(&mission)?)
     };
     super::print_warnings(&mission, &warnings);
+    nominal_flight(&mission)?;
     // A controller outside the compiled subset is no error: its calls run in Rhai's
     // interpreter, with the same results, slower.
     if let Some(script) = script
