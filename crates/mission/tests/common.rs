@@ -52,3 +52,25 @@ pub fn calisto_with(overrides: &[(&str, &str)]) -> Option<karman_mission::Missio
         .collect();
     Some(karman_mission::load(&calisto_path()?, &items).expect("Calisto loads with overrides"))
 }
+
+/// An error and its sources, `: `-separated, as every consumer prints it.
+pub fn chain(error: &dyn std::error::Error) -> String {
+    let mut text = error.to_string();
+    let mut source = error.source();
+    while let Some(cause) = source {
+        text.push_str(": ");
+        text.push_str(&cause.to_string());
+        source = cause.source();
+    }
+    text
+}
+
+/// Every stored point of a flight, its time and state, as bits (equal flights, equal bits).
+pub fn point_bits(run: &karman_mission::assemble::flight::FlightRun) -> Vec<u64> {
+    run.flight
+        .points
+        .iter()
+        .flat_map(|p| std::iter::once(p.t).chain(p.state))
+        .map(f64::to_bits)
+        .collect()
+}

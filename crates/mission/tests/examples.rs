@@ -67,16 +67,12 @@ fn the_rust_controller_flies_the_rhai_controller_s_flight() {
     let rust = prepared
         .fly_with_controller(&mission, 0, &mut controller)
         .expect("the Rust controller flies");
-    let bits = |run: &karman_mission::assemble::flight::FlightRun| -> Vec<u64> {
-        run.flight
-            .points
-            .iter()
-            .flat_map(|p| std::iter::once(p.t).chain(p.state))
-            .map(f64::to_bits)
-            .collect()
-    };
     assert!(!rhai.flight.points.is_empty());
-    assert_eq!(bits(&rhai), bits(&rust), "the stored points differ");
+    assert_eq!(
+        crate::common::point_bits(&rhai),
+        crate::common::point_bits(&rust),
+        "the stored points differ"
+    );
     assert_eq!(
         format!("{:?}", rhai.summary()),
         format!("{:?}", rust.summary())
@@ -118,12 +114,7 @@ fn a_failing_rust_controller_ends_the_flight_with_its_message() {
         .fly_with_controller(&mission, 0, &mut Fails)
         .expect_err("the controller fails");
     // The message and its causes, as the CLI prints them.
-    let mut e = error.to_string();
-    let mut source = std::error::Error::source(&error);
-    while let Some(cause) = source {
-        e.push_str(&format!(": {cause}"));
-        source = cause.source();
-    }
+    let e = crate::common::chain(&error);
     assert!(e.contains("rocket.air_brakes.controller"), "{e}");
     assert!(e.contains("lost the IMU") && e.contains("t = 2 s"), "{e}");
 }

@@ -643,16 +643,11 @@ fn camoes_with_its_controller_in_rust_flies_the_rhai_flight() {
     let rust = prepared
         .fly_with_controller(&mission, 0, &mut Replay)
         .expect("Rust flies");
-    let bits = |run: &karman_mission::assemble::flight::FlightRun| -> Vec<u64> {
-        run.flight
-            .points
-            .iter()
-            .flat_map(|p| std::iter::once(p.t).chain(p.state))
-            .map(f64::to_bits)
-            .collect()
-    };
     assert!(rhai.flight.points.len() > 100);
-    assert_eq!(bits(&rhai), bits(&rust));
+    assert_eq!(
+        crate::common::point_bits(&rhai),
+        crate::common::point_bits(&rust)
+    );
     assert_eq!(
         format!("{:?}", rhai.summary()),
         format!("{:?}", rust.summary())

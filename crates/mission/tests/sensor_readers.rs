@@ -266,20 +266,10 @@ fn a_trigger_on_a_sensor_fires_one_reading_after_the_state_trigger() {
 /// The error text of `karman check` (load, then prepare) of `text`.
 fn check_error(text: &str) -> String {
     let path = fixtures().join("calisto_sensors.toml");
-    let chain = |e: &dyn std::error::Error| {
-        let mut text = e.to_string();
-        let mut source = e.source();
-        while let Some(s) = source {
-            text.push_str(": ");
-            text.push_str(&s.to_string());
-            source = s.source();
-        }
-        text
-    };
     match karman_mission::parse(text, &path, &[]) {
-        Err(e) => chain(&e),
+        Err(e) => crate::common::chain(&e),
         Ok(mission) => match prepare(&mission, 0) {
-            Err(e) => chain(&e),
+            Err(e) => crate::common::chain(&e),
             Ok(_) => panic!("accepted:\n{text}"),
         },
     }
@@ -457,19 +447,9 @@ fn check_s_first_call_sees_the_sensors_as_the_flight_s_first_call() {
             .expect("a script");
         let checked = first_call(&mission, &script, &models.rocket, &models.environment);
         let flown = simulate(&mission);
-        let chain = |e: &dyn std::error::Error| {
-            let mut text = e.to_string();
-            let mut source = e.source();
-            while let Some(s) = source {
-                text.push_str(": ");
-                text.push_str(&s.to_string());
-                source = s.source();
-            }
-            text
-        };
         (
-            checked.err().map(|e| chain(&e)),
-            flown.err().map(|e| chain(&e)),
+            checked.err().map(|e| crate::common::chain(&e)),
+            flown.err().map(|e| crate::common::chain(&e)),
         )
     };
     // On the solver's steps the first call (t = 0) comes before the first reading: check and

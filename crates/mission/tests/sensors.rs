@@ -188,19 +188,9 @@ fn error_of(sensors: &str) -> Option<String> {
     let start = text.find("[[rocket.sensors]]").expect("sensors");
     let end = text.find("\n[flight]").expect("flight");
     let text = format!("{}{sensors}\n{}", &text[..start], &text[end..]);
-    let chain = |e: &dyn std::error::Error| {
-        let mut text = e.to_string();
-        let mut source = e.source();
-        while let Some(s) = source {
-            text.push_str(": ");
-            text.push_str(&s.to_string());
-            source = s.source();
-        }
-        text
-    };
     match karman_mission::parse(&text, &path, &[]) {
-        Err(e) => Some(chain(&e)),
-        Ok(mission) => prepare(&mission, 0).err().map(|e| chain(&e)),
+        Err(e) => Some(crate::common::chain(&e)),
+        Ok(mission) => prepare(&mission, 0).err().map(|e| crate::common::chain(&e)),
     }
 }
 

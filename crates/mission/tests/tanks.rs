@@ -115,12 +115,7 @@ fn bad_tank_inputs_name_their_key_and_line() {
         let mission = parse(&text, &path, &[]).expect("parses");
         let error = build_motor(&mission).expect_err("refused");
         // The whole chain, as every consumer prints it (each error says its own part once).
-        let mut message = error.to_string();
-        let mut source = std::error::Error::source(&error);
-        while let Some(cause) = source {
-            message = format!("{message}: {cause}");
-            source = cause.source();
-        }
+        let message = crate::common::chain(&error);
         assert!(
             message.contains("motor.tanks.2.gas.density") && message.contains(reason),
             "{message}"

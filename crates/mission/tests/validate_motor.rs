@@ -219,12 +219,7 @@ fn bad_thrust_file_names_file_line_and_value() {
     let mission =
         karman_mission::parse(&mission_text, calisto, &[]).unwrap_or_else(|e| panic!("{e}"));
     let error = build_motor(&mission).expect_err("malformed thrust file");
-    let mut chain = error.to_string();
-    let mut source = std::error::Error::source(&error);
-    while let Some(cause) = source {
-        chain.push_str(&format!(": {cause}"));
-        source = cause.source();
-    }
+    let chain = crate::common::chain(&error);
     assert!(
         chain.contains("mission.toml:26:10: `motor.thrust`"),
         "{chain}"
