@@ -10,7 +10,7 @@
 //! first). An exception ends the flight with its traceback in the error; Ctrl-C interrupts the
 //! flight at the next call.
 
-use karman_mission::script::{AirBrakeController, AirBrakesControl, ControlInputs};
+use karman_mission::script::{AirBrakeController, AirBrakesControl, ControlInputs, stored_level};
 use pyo3::prelude::*;
 use pyo3::types::{PyList, PyTuple};
 
@@ -33,12 +33,7 @@ impl PyAirBrakes {
 
     #[setter]
     fn set_deployment_level(&mut self, value: f64) {
-        // As `karman_script`'s stored level: clipped when the brakes clamp.
-        self.level = if self.clamp {
-            value.clamp(0.0, 1.0)
-        } else {
-            value
-        };
+        self.level = stored_level(self.clamp, value);
     }
 
     /// Whether written levels are clipped to [0, 1].

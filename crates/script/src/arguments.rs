@@ -89,8 +89,8 @@ impl AirBrakesHandle {
 }
 
 /// The level a write of `value` stores: clipped to `[0, 1]` when the brakes clamp
-/// (docs/physics.md §16.3).
-pub(crate) fn stored_level(clamp: bool, value: f64) -> f64 {
+/// (docs/physics.md §16.3). Every controller's write goes through it, whatever its language.
+pub fn stored_level(clamp: bool, value: f64) -> f64 {
     if clamp { value.clamp(0.0, 1.0) } else { value }
 }
 

@@ -38,6 +38,7 @@ pub mod expression;
 mod native;
 pub mod sandbox;
 
+pub use arguments::stored_level;
 pub use controller::{
     AirBrakesSetup, Controller, ControllerRecord, ControllerScript, ControllerSetup,
     EnvironmentQuery, LevelRecord, ScriptError, SensorSetup,

@@ -15,6 +15,7 @@ use karman_script::{
     EnvironmentQuery, Expression, NativeController, ScriptError, TriggerInputs,
 };
 
+use crate::schema::AirBrakesSpec;
 use crate::{Mission, MissionError};
 
 /// A trigger expression as an engine trigger condition: RocketPy's `trigger(p, h, y,
@@ -218,15 +219,15 @@ impl EnvironmentQuery for ControllerEnvironment {
     }
 }
 
-/// The air brakes of `rocket` as a controller sees them, with the sampling rate of the
-/// mission's `[rocket.air_brakes]`.
+/// The air brakes of `rocket` as a controller sees them, with the mission's
+/// `[rocket.air_brakes]` they were built from.
 ///
 /// # Errors
 /// [`MissionError::Model`] (section `rocket.air_brakes`) when the rocket has no air brakes.
-fn air_brakes_setup(
-    mission: &Mission,
+fn air_brakes_setup<'m>(
+    mission: &'m Mission,
     rocket: &Rocket,
-) -> Result<(AirBrakesSetup, f64), MissionError> {
+) -> Result<(AirBrakesSetup, &'m AirBrakesSpec), MissionError> {
     let (Some(spec), Some(brakes)) = (&mission.spec.rocket.air_brakes, rocket.air_brakes()) else {
         return Err(mission.model_error("rocket.air_brakes", "the rocket has no air brakes"));
     };
@@ -238,7 +239,7 @@ fn air_brakes_setup(
         initial_level: brakes.initial_level(),
         drag_coefficient: Arc::new(move |level, mach| curve.drag_coefficient(level, mach)),
     };
-    Ok((setup, spec.sampling_rate))
+    Ok((setup, spec))
 }
 
 /// A flight's controller for `rocket`'s air brakes, from the compiled `script`.
@@ -252,23 +253,19 @@ pub fn controller(
     rocket: &Rocket,
     environment: Arc<dyn EnvironmentQuery>,
 ) -> Result<Controller, MissionError> {
-    let (air_brakes, sampling_rate) = air_brakes_setup(mission, rocket)?;
-    let spec = mission.spec.rocket.air_brakes.as_ref();
+    let (air_brakes, spec) = air_brakes_setup(mission, rocket)?;
     let setup = ControllerSetup {
-        sampling_rate,
+        sampling_rate: spec.sampling_rate,
         air_brakes,
         burn_start: rocket.burn_start(),
         burn_out: rocket.burn_out(),
         environment,
-        initial_observed_variables: spec.and_then(|s| s.initial_observed_variables.clone()),
+        initial_observed_variables: spec.initial_observed_variables.clone(),
         constants: spec
-            .map(|s| {
-                s.constants
-                    .iter()
-                    .map(|(name, value)| (name.clone(), *value))
-                    .collect()
-            })
-            .unwrap_or_default(),
+            .constants
+            .iter()
+            .map(|(name, value)| (name.clone(), *value))
+            .collect(),
     };
     let sensors = super::sensors::setups(&mission.spec.rocket.sensors);
     Controller::new(script, setup)
@@ -287,11 +284,11 @@ pub fn native_controller<'c>(
     rocket: &Rocket,
     environment: Arc<dyn EnvironmentQuery>,
 ) -> Result<NativeController<'c>, MissionError> {
-    let (setup, sampling_rate) = air_brakes_setup(mission, rocket)?;
+    let (setup, spec) = air_brakes_setup(mission, rocket)?;
     Ok(NativeController::new(
         controller,
         setup,
-        sampling_rate,
+        spec.sampling_rate,
         rocket.burn_out(),
         environment,
         mission.spec.rocket.sensors.len(),
