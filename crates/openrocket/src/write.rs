@@ -1260,6 +1260,18 @@ fn rail_buttons_text(
     );
 }
 
+/// The line of component `c`'s OpenRocket drag-coefficient override (`overridecd`, on the
+/// reference area) under its surface key `key`, appended to `overrides`, if it has one.
+fn drag_override(overrides: &mut String, c: &Component, key: &str) {
+    if let Some(cd) = c
+        .fields
+        .get("overridecd")
+        .and_then(|t| crate::design::number(t))
+    {
+        let _ = writeln!(overrides, "{key} = {}", n(cd));
+    }
+}
+
 /// The nose cone's surface table appended to `surfaces` (its OpenRocket drag override to
 /// `overrides`).
 ///
@@ -1274,13 +1286,7 @@ fn nose_text(
     overrides: &mut String,
 ) -> Result<(), OrkError> {
     let nose_key = key(&nose.name, used);
-    if let Some(cd) = nose
-        .fields
-        .get("overridecd")
-        .and_then(|t| crate::design::number(t))
-    {
-        let _ = writeln!(overrides, "{nose_key} = {}", n(cd));
-    }
+    drag_override(overrides, nose, &nose_key);
     let _ = write!(
         surfaces,
         "[{rocket_key}.surfaces.{nose_key}]\ntype = \"nose\"\nlength = {}\n",
@@ -1463,13 +1469,7 @@ fn attached_text(
                 ));
             }
             let tail_key = key(&b.name, used);
-            if let Some(cd) = b
-                .fields
-                .get("overridecd")
-                .and_then(|t| crate::design::number(t))
-            {
-                let _ = writeln!(overrides, "{tail_key} = {}", n(cd));
-            }
+            drag_override(&mut overrides, b, &tail_key);
             let _ = write!(
                 surfaces,
                 "[{rocket_key}.surfaces.{tail_key}]\ntype = \"tail\"\ntop_radius = {}\nbottom_radius = {}\nlength = {}\nposition = {}\n\n",
