@@ -10,8 +10,7 @@
 
 use super::MissionArgs;
 use clap::Args;
-use karman_mission::assemble::flight::{early_ending, simulate_with_seed};
-use karman_mission::assemble::preflight::prepare;
+use karman_mission::assemble::flight::{PreparedFlight, early_ending};
 use karman_mission::assemble::scripts::{compile_controller, first_call};
 use karman_mission::assemble::stages::{prepare_staged, simulate_staged};
 use std::io::Write;
@@ -23,47 +22,46 @@ pub struct CheckArgs {
     pub mission: MissionArgs,
 }
 
-/// Flies the nominal flight of `mission` (seed 0) as `simulate` does, failing as it fails.
-fn nominal_flight(mission: &karman_mission::Mission) -> anyhow::Result<()> {
-    let file = mission.path.display();
-    if mission.spec.stages.is_empty() {
-        let run = simulate_with_seed(mission, 0)?;
-        if let Some((_, message)) = early_ending(run.summary().termination, &run.settings) {
-            anyhow::bail!("{file}: the nominal flight (seed 0): {message}");
-        }
-    } else {
-        let run = simulate_staged(mission, 0)?;
-        for (i, body) in run.bodies.iter().enumerate() {
-            if let Some((_, message)) = early_ending(run.summary(i).termination, &run.settings) {
-                anyhow::bail!(
-                    "{file}: the nominal flight (seed 0): {}: {message}",
-                    body.name
-                );
-            }
-        }
-    }
-    Ok(())
+/// Check's error for a nominal flight that ended early with `message` (the flight of `body`
+/// in a multi-stage mission).
+fn ended_early(file: &std::path::Path, body: Option<&str>, message: &str) -> anyhow::Error {
+    let body = body.map_or_else(String::new, |b| format!("{b}: "));
+    anyhow::anyhow!(
+        "{}: the nominal flight (seed 0): {body}{message}",
+        file.display()
+    )
 }
 
 /// Prints the warnings (and a note when the air-brake controller runs interpreted rather
-/// than compiled), then "ok" when the mission loads, validates and its models build;
-/// otherwise the error (every problem, each with `file:line:column`) goes back to `main`.
+/// than compiled), then "ok" when the mission loads, validates, its models build and its
+/// nominal flight (seed 0) flies as `simulate` flies it; otherwise the error (every problem,
+/// each with `file:line:column`) goes back to `main`.
 pub fn run(args: &CheckArgs) -> anyhow::Result<()> {
     let mission = args.mission.load()?;
-    let (warnings, script) = if mission.spec.stages.is_empty() {
-        let models = prepare(&mission, 0)?;
-        let script = compile_controller(&mission)?;
+    let script = if mission.spec.stages.is_empty() {
+        // The models built once, as `simulate` builds them, then flown.
+        let prepared = PreparedFlight::new(&mission)?;
         // The controller's first call, made as the flight makes it: its run-time errors
-        // are the flight's.
-        if let Some(script) = &script {
-            first_call(&mission, script, &models.rocket, &models.environment)?;
+        // are the flight's, located in the script.
+        if let Some(script) = prepared.script() {
+            first_call(&mission, script, prepared.rocket(), prepared.environment())?;
         }
-        (models.warnings, script)
+        super::print_warnings(&mission, prepared.warnings());
+        let run = prepared.fly(&mission, 0)?;
+        if let Some((_, message)) = early_ending(run.summary().termination, &run.settings) {
+            return Err(ended_early(&mission.path, None, &message));
+        }
+        prepared.script().cloned()
     } else {
-        (prepare_staged(&mission, 0)?, compile_controller(&mission)?)
+        super::print_warnings(&mission, &prepare_staged(&mission, 0)?);
+        let run = simulate_staged(&mission, 0)?;
+        for (i, body) in run.bodies.iter().enumerate() {
+            if let Some((_, message)) = early_ending(run.summary(i).termination, &run.settings) {
+                return Err(ended_early(&mission.path, Some(&body.name), &message));
+            }
+        }
+        compile_controller(&mission)?
     };
-    super::print_warnings(&mission, &warnings);
-    nominal_flight(&mission)?;
     // A controller outside the compiled subset is no error: its calls run in Rhai's
     // interpreter, with the same results, slower.
     if let Some(script) = script

@@ -147,6 +147,12 @@ impl PreparedFlight {
         &self.rocket
     }
 
+    /// The mission's air-brake controller, compiled, if it has one.
+    #[must_use]
+    pub fn script(&self) -> Option<&ControllerScript> {
+        self.script.as_ref()
+    }
+
     /// Flies the prepared models of `mission` (the mission they were prepared from) with
     /// parachute trigger noise seeded by `seed` (recorded in the flight).
     ///
