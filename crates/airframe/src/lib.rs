@@ -76,6 +76,7 @@ mod mass;
 mod model;
 mod motor;
 mod recovery;
+mod rigid;
 mod rocket;
 pub mod surfaces;
 
@@ -92,6 +93,7 @@ pub use recovery::{
     DEFAULT_CANOPY_DRAG_COEFFICIENT, DEFAULT_POROSITY, DEFAULT_SAMPLING_RATE, Parachute,
     ParachuteSpec, RailButtons,
 };
+pub use rigid::RigidMass;
 pub use rocket::{CoordinateSystem, Rocket, RocketInputs, inertia_components};
 pub use surfaces::{
     Airfoil, AngleUnit, EllipticalFinsSpec, FinAerodynamics, FreeFormFinsSpec, Geometry,

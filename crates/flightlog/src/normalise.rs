@@ -4,7 +4,7 @@
 
 use crate::error::FlightLogError;
 use crate::log::{Event, EventKind, EventSource, FlightLog, Sample, VelocitySource};
-use crate::raw::{AltitudeKind, Raw, Tally};
+use crate::raw::{AltitudeKind, DeviceEvent, Raw, Tally};
 use crate::units::pressure_height;
 use std::cmp::Ordering;
 
@@ -257,43 +257,38 @@ fn channel_at(channel: &[(f64, f64)], cursor: &mut usize, t: f64) -> Option<f64>
     Some(a0 + w * (a1 - a0))
 }
 
-/// Normalises a raw log by the crate's rules.
-pub(crate) fn normalise(mut raw: Raw) -> Result<FlightLog, FlightLogError> {
-    let mut warnings = std::mem::take(&mut raw.warnings);
-    let mut samples = std::mem::take(&mut raw.samples);
-    let mut lines = std::mem::take(&mut raw.lines);
-    clock_order(&mut samples, &mut lines, &mut warnings);
-    if samples.is_empty() {
-        return Err(FlightLogError::NoSamples { file: raw.file });
-    }
-    // Height above ground, in place of the raw altitude value.
+/// Height above ground in place of the raw altitude value: an altitude above sea level less
+/// the ground level (recorded in the metadata and the reported ground elevation), a pressure
+/// turned into a height above the ground's pressure.
+fn height_above_ground(raw: &mut Raw, samples: &mut [Sample]) {
     match raw.altitude {
         AltitudeKind::Agl => {}
         AltitudeKind::Msl => {
-            let ground = ground_level(&samples);
+            let ground = ground_level(samples);
             raw.metadata
                 .insert("ground_elevation_m".into(), format!("{ground:.2}"));
             raw.reported.ground_elevation_m.get_or_insert(ground);
-            for s in &mut samples {
+            for s in samples.iter_mut() {
                 s.altitude_agl_m -= ground;
             }
         }
         AltitudeKind::Pressure => {
-            let ground = ground_level(&samples);
+            let ground = ground_level(samples);
             raw.metadata
                 .insert("ground_pressure_pa".into(), format!("{ground:.1}"));
-            for s in &mut samples {
+            for s in samples.iter_mut() {
                 s.altitude_agl_m = pressure_height(s.altitude_agl_m, ground);
             }
         }
     }
-    drop_glitches(&mut samples, &mut lines, &mut warnings);
-    let t: Vec<f64> = samples.iter().map(|s| s.time_s).collect();
-    let h: Vec<f64> = samples.iter().map(|s| s.altitude_agl_m).collect();
-    // Separate acceleration channel, kept in clock order.
-    let mut channel: Vec<(f64, f64)> = Vec::with_capacity(raw.acceleration_channel.len());
+}
+
+/// A separate acceleration channel, its samples kept in clock order (the others dropped with a
+/// warning), interpolated onto the samples that have no acceleration of their own.
+fn fill_acceleration(raw: &[(f64, f64)], samples: &mut [Sample], warnings: &mut Vec<String>) {
+    let mut channel: Vec<(f64, f64)> = Vec::with_capacity(raw.len());
     let mut channel_dropped = 0;
-    for &(ct, a) in &raw.acceleration_channel {
+    for &(ct, a) in raw {
         if channel.last().is_none_or(|&(lt, _)| ct > lt) {
             channel.push((ct, a));
         } else {
@@ -306,11 +301,88 @@ pub(crate) fn normalise(mut raw: Raw) -> Result<FlightLog, FlightLogError> {
         ));
     }
     let mut cursor = 0;
-    for s in &mut samples {
+    for s in samples.iter_mut() {
         if s.acceleration_mps2.is_none() {
             s.acceleration_mps2 = channel_at(&channel, &mut cursor, s.time_s);
         }
     }
+}
+
+/// The flight's events from liftoff (sample `start`, device time `t_liftoff`): the device's
+/// where it logged them, else derived (burnout at the fastest climb, apogee at the highest
+/// sample, landing at the first sample back under the landing height), in time order.
+fn flight_events(
+    device_events: &[DeviceEvent],
+    t: &[f64],
+    h: &[f64],
+    out: &[Sample],
+    start: usize,
+    t_liftoff: f64,
+    warnings: &mut Vec<String>,
+) -> Vec<Event> {
+    let mut apogee = start;
+    for i in start..h.len() {
+        if h[i] > h[apogee] {
+            apogee = i;
+        }
+    }
+    let device = |kind: EventKind| {
+        device_events
+            .iter()
+            .find(|e| e.kind == kind)
+            .map(|e| Event {
+                kind,
+                time_s: e.time - t_liftoff,
+                source: EventSource::Device,
+            })
+    };
+    let derived = |kind: EventKind, i: usize| Event {
+        kind,
+        time_s: t[i] - t_liftoff,
+        source: EventSource::Derived,
+    };
+    let mut events = vec![derived(EventKind::Launch, start)];
+    let burnout = device(EventKind::Burnout).or_else(|| {
+        let i = (start..=apogee).max_by(|&a, &b| {
+            out[a]
+                .vertical_velocity_mps
+                .total_cmp(&out[b].vertical_velocity_mps)
+        })?;
+        Some(derived(EventKind::Burnout, i))
+    });
+    events.extend(burnout);
+    events.push(derived(EventKind::Apogee, apogee));
+    events.extend(device(EventKind::Drogue));
+    events.extend(device(EventKind::Main));
+    let landing = device(EventKind::Landing).or_else(|| {
+        let i = (apogee..h.len()).find(|&i| h[i] <= LANDING_HEIGHT_M)?;
+        Some(derived(EventKind::Landing, i))
+    });
+    match landing {
+        Some(e) => events.push(e),
+        None => warnings.push(format!(
+            "the log ends before landing (last altitude {:.1} m AGL)",
+            h[h.len() - 1]
+        )),
+    }
+    events.sort_by(|a, b| a.time_s.total_cmp(&b.time_s));
+    events
+}
+
+/// Normalises a raw log by the crate's rules.
+pub(crate) fn normalise(mut raw: Raw) -> Result<FlightLog, FlightLogError> {
+    let mut warnings = std::mem::take(&mut raw.warnings);
+    let mut samples = std::mem::take(&mut raw.samples);
+    let mut lines = std::mem::take(&mut raw.lines);
+    clock_order(&mut samples, &mut lines, &mut warnings);
+    if samples.is_empty() {
+        return Err(FlightLogError::NoSamples { file: raw.file });
+    }
+    height_above_ground(&mut raw, &mut samples);
+    drop_glitches(&mut samples, &mut lines, &mut warnings);
+    let t: Vec<f64> = samples.iter().map(|s| s.time_s).collect();
+    let h: Vec<f64> = samples.iter().map(|s| s.altitude_agl_m).collect();
+    fill_acceleration(&raw.acceleration_channel, &mut samples, &mut warnings);
     let Some((start, crossing)) = liftoff(&t, &h, &samples) else {
         return Err(FlightLogError::NoLiftoff {
             file: raw.file,
@@ -354,53 +426,15 @@ pub(crate) fn normalise(mut raw: Raw) -> Result<FlightLog, FlightLogError> {
     }
     drop(slope);
     let out = samples;
-    // Events.
-    let mut apogee = start;
-    for i in start..h.len() {
-        if h[i] > h[apogee] {
-            apogee = i;
-        }
-    }
-    let device = |kind: EventKind| {
-        raw.device_events
-            .iter()
-            .find(|e| e.kind == kind)
-            .map(|e| Event {
-                kind,
-                time_s: e.time - t_liftoff,
-                source: EventSource::Device,
-            })
-    };
-    let derived = |kind: EventKind, i: usize| Event {
-        kind,
-        time_s: t[i] - t_liftoff,
-        source: EventSource::Derived,
-    };
-    let mut events = vec![derived(EventKind::Launch, start)];
-    let burnout = device(EventKind::Burnout).or_else(|| {
-        let i = (start..=apogee).max_by(|&a, &b| {
-            out[a]
-                .vertical_velocity_mps
-                .total_cmp(&out[b].vertical_velocity_mps)
-        })?;
-        Some(derived(EventKind::Burnout, i))
-    });
-    events.extend(burnout);
-    events.push(derived(EventKind::Apogee, apogee));
-    events.extend(device(EventKind::Drogue));
-    events.extend(device(EventKind::Main));
-    let landing = device(EventKind::Landing).or_else(|| {
-        let i = (apogee..h.len()).find(|&i| h[i] <= LANDING_HEIGHT_M)?;
-        Some(derived(EventKind::Landing, i))
-    });
-    match landing {
-        Some(e) => events.push(e),
-        None => warnings.push(format!(
-            "the log ends before landing (last altitude {:.1} m AGL)",
-            h[h.len() - 1]
-        )),
-    }
-    events.sort_by(|a, b| a.time_s.total_cmp(&b.time_s));
+    let events = flight_events(
+        &raw.device_events,
+        &t,
+        &h,
+        &out,
+        start,
+        t_liftoff,
+        &mut warnings,
+    );
     Ok(FlightLog {
         format: raw.format,
         device: raw.device,

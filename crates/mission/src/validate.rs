@@ -8,8 +8,8 @@ use crate::error::{Problem, ProblemKind};
 use crate::paths;
 use crate::schema::{
     AtmosphereModel, AtmosphereSpec, Curve, DensitySpec, Discretize, MissionSpec, Mode, MotorKind,
-    RocketSpec, SoundingFormat, SurfaceSpec, Sweep, TankGeometryKind, TankKindName, TankSpec,
-    Trigger, WeatherSource,
+    MotorSpec, ParachuteSpec, RocketSpec, SensorSpec, SoundingFormat, SurfaceSpec, Sweep,
+    TankGeometryKind, TankGeometrySpec, TankKindName, TankSpec, Trigger, WeatherSource,
 };
 use karman_airframe::AirBrakesDrag;
 use karman_math::{Extrapolation, Interpolation};
@@ -593,9 +593,19 @@ fn source(c: &mut Checker<'_>, atm: &AtmosphereSpec, what: &str) {
     }
 }
 
+/// `[motor]`: its thrust, mounting and cluster, then the keys its kind needs and refuses, then
+/// the values of those keys.
 fn motor(c: &mut Checker<'_>, spec: &MissionSpec) {
     let m = &spec.motor;
     let what = format!("a {} motor", m.kind);
+    motor_thrust_and_mounting(c, m);
+    motor_kind_keys(c, m, &what);
+    motor_kind_values(c, m, &what);
+}
+
+/// The thrust curve (or constant thrust and its burn time), reshaping, dry mass, nozzle,
+/// cluster and reference pressure of any motor.
+fn motor_thrust_and_mounting(c: &mut Checker<'_>, m: &MotorSpec) {
     match &m.thrust {
         Curve::File(path) => c.file("motor.thrust", path, THRUST_EXTENSIONS),
         Curve::Constant(value) => {
@@ -639,6 +649,11 @@ fn motor(c: &mut Checker<'_>, spec: &MissionSpec) {
     if let Some(p) = m.reference_pressure {
         c.positive("motor.reference_pressure", p);
     }
+}
+
+/// The keys a motor of `m.kind` needs (each named as missing) and those it does not use
+/// (each named as unused), the tanks of a hybrid or liquid motor checked one by one.
+fn motor_kind_keys(c: &mut Checker<'_>, m: &MotorSpec, what: &str) {
     let solid = [
         (
             "motor.grain_number",
@@ -695,32 +710,37 @@ fn motor(c: &mut Checker<'_>, spec: &MissionSpec) {
     match m.kind {
         MotorKind::Hybrid | MotorKind::Liquid => {
             if m.tanks.is_empty() {
-                c.required("motor.tanks", "tanks", None::<&()>, &what);
+                c.required("motor.tanks", "tanks", None::<&()>, what);
             }
             for (index, tank) in m.tanks.iter().enumerate() {
                 tank_checks(c, index, tank);
             }
         }
         MotorKind::Solid | MotorKind::Generic => {
-            c.unused("motor.tanks", m.tanks.first(), &what);
+            c.unused("motor.tanks", m.tanks.first(), what);
         }
     }
     if matches!(m.kind, MotorKind::Generic | MotorKind::Liquid) {
-        c.unused("motor.only_radial_burn", m.only_radial_burn.as_ref(), &what);
+        c.unused("motor.only_radial_burn", m.only_radial_burn.as_ref(), what);
     }
     for (key, name, value) in needed {
-        c.required(key, name, value.as_ref(), &what);
+        c.required(key, name, value.as_ref(), what);
     }
     for (key, _, value) in foreign {
-        c.unused(key, value.as_ref(), &what);
+        c.unused(key, value.as_ref(), what);
     }
+}
+
+/// The values of the kind's own keys: grain and throat sizes of a solid or hybrid motor, the
+/// chamber of a generic one.
+fn motor_kind_values(c: &mut Checker<'_>, m: &MotorSpec, what: &str) {
     match m.kind {
         MotorKind::Solid | MotorKind::Hybrid => {
             c.required(
                 "motor.center_of_dry_mass_position",
                 "center_of_dry_mass_position",
                 m.center_of_dry_mass_position.as_ref(),
-                &what,
+                what,
             );
             if let Some(n) = m.grain_number {
                 c.range(
@@ -755,10 +775,10 @@ fn motor(c: &mut Checker<'_>, spec: &MissionSpec) {
             }
         }
         MotorKind::Liquid => {
-            c.unused("motor.throat_radius", m.throat_radius.as_ref(), &what);
+            c.unused("motor.throat_radius", m.throat_radius.as_ref(), what);
         }
         MotorKind::Generic => {
-            c.unused("motor.throat_radius", m.throat_radius.as_ref(), &what);
+            c.unused("motor.throat_radius", m.throat_radius.as_ref(), what);
             let positives = [
                 ("motor.propellant_initial_mass", m.propellant_initial_mass),
                 ("motor.chamber_radius", m.chamber_radius),
@@ -963,7 +983,14 @@ fn own_points_checks(c: &mut Checker<'_>, index: usize, t: &TankSpec) {
 fn tank_checks(c: &mut Checker<'_>, index: usize, t: &TankSpec) {
     let key = |name: &str| format!("motor.tanks.{index}.{name}");
     let what = format!("a {} tank", t.kind);
-    let g = &t.geometry;
+    tank_geometry(c, &key, &t.geometry);
+    tank_fluids(c, index, t, &key);
+    tank_kind_keys(c, t, &key, &what);
+}
+
+/// The tank's radius (a number or a curve by kind) and height (needed by a cylinder, unused
+/// by the others).
+fn tank_geometry(c: &mut Checker<'_>, key: &dyn Fn(&str) -> String, g: &TankGeometrySpec) {
     match (&g.kind, &g.radius) {
         (TankGeometryKind::Cylindrical | TankGeometryKind::Spherical, Curve::Constant(r)) => {
             c.positive(&key("geometry.radius"), *r);
@@ -1006,6 +1033,10 @@ fn tank_checks(c: &mut Checker<'_>, index: usize, t: &TankSpec) {
             }
         }
     }
+}
+
+/// The tank's flux time, its fluids' densities and its discretisation.
+fn tank_fluids(c: &mut Checker<'_>, index: usize, t: &TankSpec, key: &dyn Fn(&str) -> String) {
     c.range(
         &key("flux_time"),
         t.flux_time.end,
@@ -1043,6 +1074,11 @@ fn tank_checks(c: &mut Checker<'_>, index: usize, t: &TankSpec) {
         Some(Discretize::Flag(false)) => own_points_checks(c, index, t),
         None | Some(Discretize::Flag(true)) => {}
     }
+}
+
+/// The tank's curves, and the mass and flow keys its kind needs (each named as missing) and
+/// does not use (each named as unused).
+fn tank_kind_keys(c: &mut Checker<'_>, t: &TankSpec, key: &dyn Fn(&str) -> String, what: &str) {
     let curves = [
         ("temperature", t.temperature.as_ref()),
         ("pressure", t.pressure.as_ref()),
@@ -1096,7 +1132,7 @@ fn tank_checks(c: &mut Checker<'_>, index: usize, t: &TankSpec) {
                 &key(name),
                 ProblemKind::MissingKey {
                     key: tank_key_name(name),
-                    needed_by: what.clone(),
+                    needed_by: what.to_owned(),
                 },
             );
         }
@@ -1110,7 +1146,7 @@ fn tank_checks(c: &mut Checker<'_>, index: usize, t: &TankSpec) {
             c.report(
                 &key(name),
                 ProblemKind::NotApplicable {
-                    model: what.clone(),
+                    model: what.to_owned(),
                 },
             );
         }
@@ -1160,158 +1196,174 @@ fn rocket(c: &mut Checker<'_>, spec: &MissionSpec) {
     }
     pods(c, r);
     for (name, surface) in &r.surfaces {
-        let key = |k: &str| format!("rocket.surfaces.{name}.{k}");
-        match surface {
-            SurfaceSpec::Nose(s) => {
-                c.positive(&key("length"), s.length);
-                if let Some(b) = s.bluffness {
-                    c.range(
-                        &key("bluffness"),
-                        b,
-                        (0.0..1.0).contains(&b),
-                        "must be in [0, 1)",
-                    );
-                }
-                if let Some(p) = s.power {
-                    c.range(&key("power"), p, p > 0.0 && p <= 1.0, "must be in (0, 1]");
-                }
-                if let Some(radius) = s.base_radius {
-                    c.positive(&key("base_radius"), radius);
-                }
-            }
-            SurfaceSpec::TrapezoidalFins(s) => {
-                c.range(
-                    &key("n"),
-                    f64::from(s.n),
-                    (1..=MAX_FINS).contains(&s.n),
-                    FIN_COUNT,
-                );
-                c.positive(&key("span"), s.span);
-                c.positive(&key("root_chord"), s.root_chord);
-                c.non_negative(&key("tip_chord"), s.tip_chord);
-                if let Some(Sweep::AngleDeg(angle)) = s.sweep {
-                    c.range(
-                        &key("sweep_angle"),
-                        angle,
-                        angle.abs() < 90.0,
-                        "must be within (-90, 90) deg",
-                    );
-                }
-                if let Some(radius) = s.radius {
-                    // 0: fins on no body (a pod's phantom tube).
-                    c.non_negative(&key("radius"), radius);
-                }
-            }
-            SurfaceSpec::EllipticalFins(s) => {
-                c.range(
-                    &key("n"),
-                    f64::from(s.n),
-                    (1..=MAX_FINS).contains(&s.n),
-                    FIN_COUNT,
-                );
-                c.positive(&key("span"), s.span);
-                c.positive(&key("root_chord"), s.root_chord);
-                if let Some(radius) = s.radius {
-                    // 0: fins on no body (a pod's phantom tube).
-                    c.non_negative(&key("radius"), radius);
-                }
-            }
-            SurfaceSpec::FreeFormFins(s) => {
-                c.range(
-                    &key("n"),
-                    f64::from(s.n),
-                    (1..=MAX_FINS).contains(&s.n),
-                    FIN_COUNT,
-                );
-                if s.shape_points.len() < 3 {
-                    c.report(
-                        &key("shape_points"),
-                        ProblemKind::OutOfRange {
-                            value: s.shape_points.len() as f64,
-                            expected: "a fin planform needs at least 3 points",
-                        },
-                    );
-                }
-                if let Some(radius) = s.radius {
-                    // 0: fins on no body (a pod's phantom tube).
-                    c.non_negative(&key("radius"), radius);
-                }
-            }
-            SurfaceSpec::Tail(s) => {
-                c.positive(&key("top_radius"), s.top_radius);
-                // 0: a cone closing to a point (a pod's tail).
-                c.non_negative(&key("bottom_radius"), s.bottom_radius);
-                c.positive(&key("length"), s.length);
-            }
-            SurfaceSpec::TubeFins(s) => {
-                c.range(
-                    &key("n"),
-                    f64::from(s.n),
-                    (1..=MAX_FINS).contains(&s.n),
-                    TUBE_COUNT,
-                );
-                c.positive(&key("length"), s.length);
-                c.positive(&key("outer_radius"), s.outer_radius);
-                c.positive(&key("inner_radius"), s.inner_radius);
-                c.range(
-                    &key("inner_radius"),
-                    s.inner_radius,
-                    s.inner_radius < s.outer_radius,
-                    "must be smaller than outer_radius",
-                );
-                if let Some(radius) = s.radius {
-                    c.positive(&key("radius"), radius);
-                }
-            }
-        }
-        if let Some(airfoil) = surface.airfoil() {
-            c.curve(&key("airfoil"), &airfoil.lift);
-        }
+        surface_checks(c, name, surface);
     }
     for (name, chute) in &r.parachutes {
-        let key = |k: &str| format!("rocket.parachutes.{name}.{k}");
-        c.positive(&key("cd_s"), chute.cd_s);
-        match &chute.trigger {
-            Trigger::HeightAboveGround(h) => c.non_negative(&key("trigger"), *h),
-            Trigger::Launch(delay) | Trigger::Burnout(delay) => {
-                c.non_negative(&key("trigger"), *delay);
+        parachute_checks(c, name, chute, &r.sensors);
+    }
+}
+
+/// One `[rocket.surfaces.NAME]`: the sizes of its kind, its fin count, its airfoil curve.
+fn surface_checks(c: &mut Checker<'_>, name: &str, surface: &SurfaceSpec) {
+    let key = |k: &str| format!("rocket.surfaces.{name}.{k}");
+    match surface {
+        SurfaceSpec::Nose(s) => {
+            c.positive(&key("length"), s.length);
+            if let Some(b) = s.bluffness {
+                c.range(
+                    &key("bluffness"),
+                    b,
+                    (0.0..1.0).contains(&b),
+                    "must be in [0, 1)",
+                );
             }
-            Trigger::Expression(text) => {
-                // The rocket's sensors are readable (`sensors[i]`, `sensors.NAME`).
-                let shapes = crate::assemble::sensors::shapes(&r.sensors);
-                if let Err(source) = karman_script::Expression::parse_with(text, &shapes) {
-                    c.report(
-                        &key("trigger.expression"),
-                        ProblemKind::Expression {
-                            text: text.clone(),
-                            source,
-                        },
-                    );
-                }
+            if let Some(p) = s.power {
+                c.range(&key("power"), p, p > 0.0 && p <= 1.0, "must be in (0, 1]");
             }
-            Trigger::Apogee => {}
-        }
-        c.range(
-            &key("sampling_rate"),
-            chute.sampling_rate,
-            chute.sampling_rate > 0.0 && chute.sampling_rate <= MAX_SAMPLING_RATE,
-            "must be in (0, 10000] Hz",
-        );
-        c.non_negative(&key("lag"), chute.lag);
-        c.non_negative(&key("noise"), chute.noise[1]);
-        for (k, v) in [("radius", chute.radius), ("height", chute.height)] {
-            if let Some(v) = v {
-                c.positive(&key(k), v);
+            if let Some(radius) = s.base_radius {
+                c.positive(&key("base_radius"), radius);
             }
         }
-        if let Some(p) = chute.porosity {
+        SurfaceSpec::TrapezoidalFins(s) => {
             c.range(
-                &key("porosity"),
-                p,
-                (0.0..=1.0).contains(&p),
-                "must be in [0, 1]",
+                &key("n"),
+                f64::from(s.n),
+                (1..=MAX_FINS).contains(&s.n),
+                FIN_COUNT,
             );
+            c.positive(&key("span"), s.span);
+            c.positive(&key("root_chord"), s.root_chord);
+            c.non_negative(&key("tip_chord"), s.tip_chord);
+            if let Some(Sweep::AngleDeg(angle)) = s.sweep {
+                c.range(
+                    &key("sweep_angle"),
+                    angle,
+                    angle.abs() < 90.0,
+                    "must be within (-90, 90) deg",
+                );
+            }
+            if let Some(radius) = s.radius {
+                // 0: fins on no body (a pod's phantom tube).
+                c.non_negative(&key("radius"), radius);
+            }
         }
+        SurfaceSpec::EllipticalFins(s) => {
+            c.range(
+                &key("n"),
+                f64::from(s.n),
+                (1..=MAX_FINS).contains(&s.n),
+                FIN_COUNT,
+            );
+            c.positive(&key("span"), s.span);
+            c.positive(&key("root_chord"), s.root_chord);
+            if let Some(radius) = s.radius {
+                // 0: fins on no body (a pod's phantom tube).
+                c.non_negative(&key("radius"), radius);
+            }
+        }
+        SurfaceSpec::FreeFormFins(s) => {
+            c.range(
+                &key("n"),
+                f64::from(s.n),
+                (1..=MAX_FINS).contains(&s.n),
+                FIN_COUNT,
+            );
+            if s.shape_points.len() < 3 {
+                c.report(
+                    &key("shape_points"),
+                    ProblemKind::OutOfRange {
+                        value: s.shape_points.len() as f64,
+                        expected: "a fin planform needs at least 3 points",
+                    },
+                );
+            }
+            if let Some(radius) = s.radius {
+                // 0: fins on no body (a pod's phantom tube).
+                c.non_negative(&key("radius"), radius);
+            }
+        }
+        SurfaceSpec::Tail(s) => {
+            c.positive(&key("top_radius"), s.top_radius);
+            // 0: a cone closing to a point (a pod's tail).
+            c.non_negative(&key("bottom_radius"), s.bottom_radius);
+            c.positive(&key("length"), s.length);
+        }
+        SurfaceSpec::TubeFins(s) => {
+            c.range(
+                &key("n"),
+                f64::from(s.n),
+                (1..=MAX_FINS).contains(&s.n),
+                TUBE_COUNT,
+            );
+            c.positive(&key("length"), s.length);
+            c.positive(&key("outer_radius"), s.outer_radius);
+            c.positive(&key("inner_radius"), s.inner_radius);
+            c.range(
+                &key("inner_radius"),
+                s.inner_radius,
+                s.inner_radius < s.outer_radius,
+                "must be smaller than outer_radius",
+            );
+            if let Some(radius) = s.radius {
+                c.positive(&key("radius"), radius);
+            }
+        }
+    }
+    if let Some(airfoil) = surface.airfoil() {
+        c.curve(&key("airfoil"), &airfoil.lift);
+    }
+}
+
+/// One `[rocket.parachutes.NAME]`: its drag area, trigger (an expression parsed with the
+/// rocket's sensors readable), sampling rate, lag, noise and canopy sizes.
+fn parachute_checks(
+    c: &mut Checker<'_>,
+    name: &str,
+    chute: &ParachuteSpec,
+    sensors: &[SensorSpec],
+) {
+    let key = |k: &str| format!("rocket.parachutes.{name}.{k}");
+    c.positive(&key("cd_s"), chute.cd_s);
+    match &chute.trigger {
+        Trigger::HeightAboveGround(h) => c.non_negative(&key("trigger"), *h),
+        Trigger::Launch(delay) | Trigger::Burnout(delay) => {
+            c.non_negative(&key("trigger"), *delay);
+        }
+        Trigger::Expression(text) => {
+            // The rocket's sensors are readable (`sensors[i]`, `sensors.NAME`).
+            let shapes = crate::assemble::sensors::shapes(sensors);
+            if let Err(source) = karman_script::Expression::parse_with(text, &shapes) {
+                c.report(
+                    &key("trigger.expression"),
+                    ProblemKind::Expression {
+                        text: text.clone(),
+                        source,
+                    },
+                );
+            }
+        }
+        Trigger::Apogee => {}
+    }
+    c.range(
+        &key("sampling_rate"),
+        chute.sampling_rate,
+        chute.sampling_rate > 0.0 && chute.sampling_rate <= MAX_SAMPLING_RATE,
+        "must be in (0, 10000] Hz",
+    );
+    c.non_negative(&key("lag"), chute.lag);
+    c.non_negative(&key("noise"), chute.noise[1]);
+    for (k, v) in [("radius", chute.radius), ("height", chute.height)] {
+        if let Some(v) = v {
+            c.positive(&key(k), v);
+        }
+    }
+    if let Some(p) = chute.porosity {
+        c.range(
+            &key("porosity"),
+            p,
+            (0.0..=1.0).contains(&p),
+            "must be in [0, 1]",
+        );
     }
 }
 

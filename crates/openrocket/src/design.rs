@@ -263,7 +263,7 @@ impl Component {
         if count == 1 {
             return Ok((1, 0.0));
         }
-        let separation = 2.0 * self.num("outerradius")? * self.num_or("clusterscale", 1.0)?;
+        let separation = 2.0 * self.dim("outerradius")? * self.positive_or("clusterscale", 1.0)?;
         Ok((count, separation * (sum_squares / f64::from(count)).sqrt()))
     }
 
@@ -275,7 +275,7 @@ impl Component {
     /// # Errors
     /// As [`Component::dim`] for `radius`, `thickness` or `fincount`.
     pub fn tube_fin_radii(&self, body_radius: f64) -> Result<(f64, f64), OrkError> {
-        let n = self.dim("fincount")?;
+        let n = self.count_or("fincount", 1.0, 1.0)?;
         let outer = if self
             .text("radius")
             .is_none_or(|t| t.trim().starts_with("auto"))
@@ -304,13 +304,7 @@ impl Component {
     /// [`OrkError::Value`] for a malformed count or offset, [`OrkError::Unsupported`] for a
     /// radius method OpenRocket does not have.
     pub fn pod_placement(&self, parent_radius: f64) -> Result<(u32, f64, f64), OrkError> {
-        let count = self.num_or("instancecount", 1.0)?;
-        if count < 1.0 || count.fract() != 0.0 {
-            return Err(self.value_error(
-                "instancecount",
-                &format!("{count} is not a whole number of pods"),
-            ));
-        }
+        let count = self.count_or("instancecount", 1.0, 1.0)?;
         let mut pod_radius: f64 = 0.0;
         for c in self.children.iter().filter(|c| c.kind.is_body()) {
             for e in ["radius", "aftradius", "foreradius"] {
@@ -357,6 +351,34 @@ impl Component {
         }
     }
 
+    /// A whole count of at least `least` (fins, instances, lines), `default` when absent or
+    /// `auto` (as [`Component::num_or`]).
+    ///
+    /// # Errors
+    /// As [`Component::num`], and for a fraction, a count below `least` or above 10,000.
+    pub fn count_or(&self, element: &str, default: f64, least: f64) -> Result<f64, OrkError> {
+        let v = self.num_or(element, default)?;
+        if v.fract() != 0.0 || v < least || v > 10_000.0 {
+            return Err(self.value_error(
+                element,
+                &format!("{v} is not a whole number from {least} to 10000"),
+            ));
+        }
+        Ok(v)
+    }
+
+    /// A positive number (a drag coefficient, a scale), `default` when absent or `auto`.
+    ///
+    /// # Errors
+    /// As [`Component::num`], and for zero or a negative value.
+    pub fn positive_or(&self, element: &str, default: f64) -> Result<f64, OrkError> {
+        let v = self.num_or(element, default)?;
+        if v <= 0.0 {
+            return Err(self.value_error(element, &format!("{v} must be positive")));
+        }
+        Ok(v)
+    }
+
     /// The text of `element`.
     pub fn text(&self, element: &str) -> Option<&str> {
         self.fields.get(element).map(String::as_str)
@@ -386,10 +408,19 @@ impl Component {
     /// # Errors
     /// [`OrkError::Value`] when there is none.
     pub fn density(&self) -> Result<f64, OrkError> {
-        self.material
+        let density = self
+            .material
             .as_ref()
             .map(|m| m.0)
-            .ok_or_else(|| self.value_error("material", "is missing"))
+            .ok_or_else(|| self.value_error("material", "is missing"))?;
+        if density.is_finite() && density >= 0.0 {
+            Ok(density)
+        } else {
+            Err(self.value_error(
+                "material",
+                &format!("density {density} is not a non-negative number"),
+            ))
+        }
     }
 
     /// This component and every descendant, depth first.

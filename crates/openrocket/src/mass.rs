@@ -14,7 +14,7 @@
 
 use std::f64::consts::PI;
 
-use karman_airframe::Profile;
+use karman_airframe::{Profile, RigidMass};
 
 use crate::OrkError;
 use crate::design::{Component, Kind};
@@ -34,18 +34,27 @@ pub struct MassProps {
 }
 
 impl MassProps {
+    /// The part as the airframe's rigid mass (axisymmetric: both lateral inertias `i_long`).
+    fn rigid(self) -> RigidMass {
+        RigidMass {
+            mass: self.mass,
+            center: self.cg,
+            inertia: [self.i_long, self.i_long, self.i_rot, 0.0, 0.0, 0.0],
+        }
+    }
+
+    /// Two parts as one ([`RigidMass::combined`]: the parallel-axis theorem); nothing when
+    /// the two weigh nothing together.
     pub(super) fn add(self, o: MassProps) -> MassProps {
-        let m = self.mass + o.mass;
-        if m <= 0.0 {
+        if self.mass + o.mass <= 0.0 {
             return MassProps::default();
         }
-        let cg = (self.mass * self.cg + o.mass * o.cg) / m;
-        let shift = |p: MassProps| p.i_long + p.mass * (p.cg - cg).powi(2);
+        let sum = self.rigid().combined(o.rigid());
         MassProps {
-            mass: m,
-            cg,
-            i_long: shift(self) + shift(o),
-            i_rot: self.i_rot + o.i_rot,
+            mass: sum.mass,
+            cg: sum.center,
+            i_long: sum.inertia[0],
+            i_rot: sum.inertia[2],
         }
     }
 
@@ -135,7 +144,7 @@ fn section_volume(c: &Component) -> Result<f64, OrkError> {
 }
 
 fn fins(c: &Component, body_radius: f64) -> Result<MassProps, OrkError> {
-    let n = c.num_or("fincount", 1.0)?;
+    let n = c.count_or("fincount", 1.0, 1.0)?;
     let t = c.dim("thickness")?;
     let rho = c.density()?;
     let outline: Vec<[f64; 2]> = match c.kind {
@@ -174,7 +183,7 @@ fn fins(c: &Component, body_radius: f64) -> Result<MassProps, OrkError> {
     } else {
         (0.0, 0.0)
     };
-    let tab = c.num_or("tabheight", 0.0)? * c.num_or("tablength", 0.0)?;
+    let tab = c.dim_or("tabheight", 0.0)? * c.dim_or("tablength", 0.0)?;
     let m_fin = rho * t * (area * section_volume(c)? + tab);
     let m = n * m_fin;
     let arm = body_radius + cy;
@@ -187,7 +196,7 @@ fn fins(c: &Component, body_radius: f64) -> Result<MassProps, OrkError> {
     };
     // Fillets along the root chord, their centroid a fifth of their radius off the body
     // (OpenRocket's estimate).
-    let r = c.num_or("filletradius", 0.0)?;
+    let r = c.dim_or("filletradius", 0.0)?;
     if r <= 0.0 {
         return Ok(fins);
     }
@@ -258,12 +267,12 @@ fn own(
         Kind::BodyTube | Kind::InnerTube | Kind::TubeCoupler | Kind::LaunchLug => {
             let ro = match c.kind {
                 Kind::BodyTube | Kind::LaunchLug => c.dim("radius")?,
-                _ => c.num_or("outerradius", parent_inner)?,
+                _ => c.dim_or("outerradius", parent_inner)?,
             };
             let t = c.dim("thickness")?;
             let mut p = tube(x, c.length, ro, ro - t, c.density()?);
             if c.kind == Kind::LaunchLug {
-                let n = c.num_or("instancecount", 1.0)?;
+                let n = c.count_or("instancecount", 1.0, 1.0)?;
                 let arm = body_radius + ro;
                 p = p.scaled(p.mass * n);
                 p.i_long += p.mass * arm * arm;
@@ -289,19 +298,19 @@ fn own(
             let rho = c.density()?;
             let mut p = shell(x, c.length, fore, aft, profile(shape, parameter), wall, rho);
             for (end, at) in [("aft", x + c.length), ("fore", x)] {
-                let l = c.num_or(&format!("{end}shoulderlength"), 0.0)?;
+                let l = c.dim_or(&format!("{end}shoulderlength"), 0.0)?;
                 if l <= 0.0 {
                     continue;
                 }
                 let radius_key = format!("{end}shoulderradius");
                 let thickness_key = format!("{end}shoulderthickness");
-                let r = c.num_or(&radius_key, 0.0)?;
+                let r = c.dim_or(&radius_key, 0.0)?;
                 if r < 0.0 {
                     return Err(c.value_error(&radius_key, &format!("{r} must not be negative")));
                 }
                 let ts = match c.text(&thickness_key) {
                     Some("filled") => r,
-                    _ => c.num_or(&thickness_key, 0.0)?,
+                    _ => c.dim_or(&thickness_key, 0.0)?,
                 };
                 if ts < 0.0 {
                     return Err(
@@ -325,7 +334,7 @@ fn own(
             // `n` tubes around the axis at `arm` from it: on the axis as a whole, the ring
             // adding `M arm² / 2` to the transverse and `M arm²` to the roll inertia.
             let (ro, ri) = c.tube_fin_radii(body_radius)?;
-            let n = c.dim("fincount")?;
+            let n = c.count_or("fincount", 1.0, 1.0)?;
             let mut p = tube(x, c.length, ro, ri, c.density()?);
             p = p.scaled(p.mass * n);
             let arm = body_radius + ro;
@@ -334,7 +343,7 @@ fn own(
             p
         }
         Kind::CenteringRing | Kind::Bulkhead | Kind::EngineBlock => {
-            let ro = c.num_or("outerradius", parent_inner)?;
+            let ro = c.dim_or("outerradius", parent_inner)?;
             let ri = match c.kind {
                 Kind::CenteringRing => {
                     let automatic = ring_inner_radius(c, siblings, ro)?;
@@ -343,7 +352,7 @@ fn own(
                 Kind::EngineBlock => ro - c.dim("thickness")?,
                 _ => 0.0,
             };
-            let n = c.num_or("instancecount", 1.0)?;
+            let n = c.count_or("instancecount", 1.0, 1.0)?;
             let p = tube(x, c.length, ro, ri, c.density()?);
             p.scaled(p.mass * n)
         }
@@ -351,13 +360,13 @@ fn own(
             let od = c.dim("outerdiameter")?;
             let id = c.dim("innerdiameter")?;
             let h = c.dim("height")?;
-            let base = c.num_or("baseheight", 0.0)?;
-            let flange = c.num_or("flangeheight", 0.0)?;
-            let n = c.num_or("instancecount", 1.0)?;
+            let base = c.dim_or("baseheight", 0.0)?;
+            let flange = c.dim_or("flangeheight", 0.0)?;
+            let n = c.count_or("instancecount", 1.0, 1.0)?;
             let v =
                 PI * 0.25 * (od * od * (base + flange) + id * id * (h - base - flange).max(0.0));
             let m = n * v * c.density()?;
-            let separation = c.num_or("instanceseparation", 0.0)?;
+            let separation = c.dim_or("instanceseparation", 0.0)?;
             MassProps {
                 mass: m,
                 cg: x + 0.5 * od + 0.5 * (n - 1.0) * separation,
@@ -369,14 +378,14 @@ fn own(
             let m = match c.kind {
                 Kind::Parachute => {
                     let d = c.dim("diameter")?;
-                    let lines = c.num_or("linecount", 0.0)? * c.num_or("linelength", 0.0)?;
+                    let lines = c.count_or("linecount", 0.0, 0.0)? * c.dim_or("linelength", 0.0)?;
                     c.density()? * PI * 0.25 * d * d + lines * c.line_material.unwrap_or(0.0)
                 }
-                Kind::Streamer => c.density()? * c.num("striplength")? * c.num("stripwidth")?,
+                Kind::Streamer => c.density()? * c.dim("striplength")? * c.dim("stripwidth")?,
                 Kind::ShockCord => c.density()? * c.dim("cordlength")?,
                 _ => c.dim("mass")?,
             };
-            let r = c.num_or("packedradius", 0.0)?;
+            let r = c.dim_or("packedradius", 0.0)?;
             let l = c.length;
             MassProps {
                 mass: m,
@@ -460,14 +469,14 @@ fn within(
             (r - c.dim("thickness")?, r)
         }
         Kind::InnerTube | Kind::TubeCoupler => {
-            let r = c.num_or("outerradius", parent_inner)?;
+            let r = c.dim_or("outerradius", parent_inner)?;
             (r - c.dim("thickness")?, body_radius)
         }
         Kind::NoseCone | Kind::Transition => {
-            let r = c.num_or("aftshoulderradius", c.num_or("aftradius", parent_inner)?)?;
+            let r = c.dim_or("aftshoulderradius", c.dim_or("aftradius", parent_inner)?)?;
             let t = match c.text("aftshoulderthickness") {
                 Some("filled") => r,
-                _ => c.num_or("aftshoulderthickness", 0.0)?,
+                _ => c.dim_or("aftshoulderthickness", 0.0)?,
             };
             (r - t, r)
         }

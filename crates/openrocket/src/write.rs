@@ -757,7 +757,7 @@ fn pod_text(
     )?;
     let mut fins = String::new();
     for b in &body {
-        let tube_radius = b.num_or("radius", b.num_or("aftradius", 0.0)?)?;
+        let tube_radius = b.dim_or("radius", b.dim_or("aftradius", 0.0)?)?;
         for c in &b.children {
             if c.kind.is_fins() {
                 let (k, surface, drag) = fin_tables(c, rocket_key, tube_radius, finish, used)?;
@@ -830,7 +830,7 @@ fn fin_tables(
     let name = key(&c.name, used);
     let mut surfaces = String::new();
     let mut fins = String::new();
-    let count = c.num_or("fincount", 1.0)?;
+    let count = c.count_or("fincount", 1.0, 1.0)?;
     let cant = c.num_or("cant", 0.0)?;
     // OpenRocket's fin-set rotation: the first fin's roll position.
     let rotation = c.num_or("rotation", 0.0)?;
@@ -1158,9 +1158,9 @@ fn body_text(
             "power_off_drag = \"estimate\"\npower_on_drag = \"estimate\""
         );
     } else {
-        let front = first.num_or("foreradius", first.num_or("radius", radius)?)?;
+        let front = first.dim_or("foreradius", first.dim_or("radius", radius)?)?;
         let base = match body.last() {
-            Some(b) => b.num_or("aftradius", b.num_or("radius", radius)?)?,
+            Some(b) => b.dim_or("aftradius", b.dim_or("radius", radius)?)?,
             None => radius,
         };
         let drag = spent_stage_drag(front, base, radius);
@@ -1357,8 +1357,8 @@ fn unmodelled_drag_warnings(
     }
     // Radius steps without a transition: the estimate's implied body has none.
     for w in body.windows(2).filter(|w| w[1].kind == Kind::BodyTube) {
-        let aft = w[0].num_or("aftradius", w[0].num_or("radius", 0.0)?)?;
-        let fore = w[1].num_or("foreradius", w[1].num_or("radius", 0.0)?)?;
+        let aft = w[0].dim_or("aftradius", w[0].dim_or("radius", 0.0)?)?;
+        let fore = w[1].dim_or("foreradius", w[1].dim_or("radius", 0.0)?)?;
         if (aft - fore).abs() > 1e-6 {
             warnings.push(format!(
                 "`{}` → `{}`: a step in radius ({aft} m → {fore} m) without a transition; \
@@ -1481,7 +1481,7 @@ fn attached_text(
         }
     }
     for parent in body {
-        let tube_radius = parent.num_or("radius", parent.num_or("aftradius", radius)?)?;
+        let tube_radius = parent.dim_or("radius", parent.dim_or("aftradius", radius)?)?;
         for c in &parent.children {
             match c.kind {
                 Kind::TrapezoidFins | Kind::EllipticalFins | Kind::FreeFormFins => {
@@ -1501,7 +1501,7 @@ fn attached_text(
                         surfaces,
                         "[{rocket_key}.surfaces.{}]\ntype = \"tube_fins\"\nn = {}\nlength = {}\nouter_radius = {}\ninner_radius = {}\nposition = {}\nradius = {}\n\n",
                         key(&c.name, used),
-                        c.dim("fincount")? as u32,
+                        c.count_or("fincount", 1.0, 1.0)? as u32,
                         n(c.length),
                         n(outer),
                         n(inner),
@@ -1587,14 +1587,14 @@ fn recovery_text(
                     c.fields.extend(settings.clone());
                 }
                 let d = c.dim("diameter")?;
-                let cd = c.num_or("cd", 0.8)?;
+                let cd = c.positive_or("cd", 0.8)?;
                 let area = std::f64::consts::PI * 0.25 * d * d;
                 let event = c.text("deployevent").unwrap_or("ejection");
-                let delay = c.num_or("deploydelay", 0.0)?;
+                let delay = c.dim_or("deploydelay", 0.0)?;
                 // OpenRocket's deployment events, each then delayed by `deploydelay` (the lag).
                 let trigger = match event {
                     "apogee" => "\"apogee\"".to_owned(),
-                    "altitude" => n(c.num("deployaltitude")?),
+                    "altitude" => n(c.dim("deployaltitude")?),
                     "launch" => "\"launch + 0\"".to_owned(),
                     "never" => continue,
                     // The motor's ejection charge fires its delay after burn-out.

@@ -316,6 +316,35 @@ fn a_negative_length_names_the_component() {
     );
 }
 
+/// Values OpenRocket could never hold (a negative or fractional fin count, a negative drag
+/// coefficient, deployment delay or density) are errors naming the component and the
+/// element, not a mission written with a count of 0 that `check` then refuses.
+#[test]
+fn impossible_values_name_the_component_and_element() {
+    let xml = simple_xml();
+    let cases = [
+        (
+            "<fincount>3</fincount>",
+            "<fincount>-3</fincount>",
+            "fincount",
+        ),
+        (
+            "<fincount>3</fincount>",
+            "<fincount>2.5</fincount>",
+            "fincount",
+        ),
+        ("<cd>auto</cd>", "<cd>-0.8</cd>", "<cd>"),
+        ("density=\"680.0\"", "density=\"NaN\"", "material"),
+    ];
+    for (from, to, element) in cases {
+        assert!(xml.contains(from), "the fixture holds {from}");
+        let text = xml.replacen(from, to, 1);
+        let e = parse_error_or_import(&text, "impossible.ork");
+        assert!(e.contains(element), "{to}: {e}");
+        assert!(e.contains("impossible.ork"), "{to}: {e}");
+    }
+}
+
 /// The error of reading `xml` as a design, or of importing it.
 fn parse_error_or_import(xml: &str, name: &str) -> String {
     let file = tempdir().join(name);

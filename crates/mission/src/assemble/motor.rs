@@ -15,7 +15,7 @@
 //! rejected there); errors here come from the thrust data (file, line and value) or from
 //! combinations the model rejects, wrapped in [`MissionError::Model`] with section `motor`.
 
-use karman_airframe::MotorProperties;
+use karman_airframe::{MotorProperties, RigidMass};
 use karman_math::{PhysicalConstants, Table1};
 use karman_model::PropellantPart;
 use karman_propulsion::{
@@ -418,7 +418,8 @@ pub fn clustered(
     }
     let n = f64::from(count);
     let arm2 = radius * radius;
-    // n (I(t) + k m(t)) on the union of the two tables' nodes, with I's interpolation and
+    // n (I(t) + k m(t)) on the union of the two tables' nodes (the terms of
+    // `RigidMass::ring` at each instant), with I's interpolation and
     // extrapolation: exact for two linear tables.
     let with_mass = |inertia: &Table1, mass: &Table1, k: f64| {
         let mut xs: Vec<f64> = inertia.xs().iter().chain(mass.xs()).copied().collect();
@@ -430,8 +431,12 @@ pub fn clustered(
             .collect();
         Table1::new(xs, ys, inertia.interpolation(), inertia.extrapolation())
     };
-    let d = motor.dry_inertia;
-    let dry = motor.dry_mass;
+    let dry = RigidMass {
+        mass: motor.dry_mass,
+        center: motor.center_of_dry_mass,
+        inertia: motor.dry_inertia,
+    }
+    .ring(count, radius);
     Ok(MotorProperties {
         thrust: motor.thrust.scaled(n),
         propellant_mass: motor.propellant_mass.scaled(n),
@@ -450,15 +455,8 @@ pub fn clustered(
                 })
             })
             .collect::<Result<_, karman_math::MathError>>()?,
-        dry_mass: n * dry,
-        dry_inertia: [
-            n * (d[0] + 0.5 * dry * arm2),
-            n * (d[1] + 0.5 * dry * arm2),
-            n * (d[2] + dry * arm2),
-            n * d[3],
-            n * d[4],
-            n * d[5],
-        ],
+        dry_mass: dry.mass,
+        dry_inertia: dry.inertia,
         nozzle_radius: cluster_exit_radius(motor.nozzle_radius, count),
         ..motor
     })

@@ -44,7 +44,7 @@
 //!   than each nozzle with its own flow; those are small beside `d_n²` (a few cm² against a
 //!   lever arm of a metre or so).
 
-use karman_airframe::MotorProperties;
+use karman_airframe::{MotorProperties, RigidMass};
 use karman_math::{Extrapolation, Interpolation, MathError, Table1};
 use karman_model::PropellantPart;
 use karman_propulsion::{Motor, ThrustSource};
@@ -411,7 +411,7 @@ pub fn combined(motors: &[PlacedMotor], csys: f64) -> Result<MotorProperties, Co
 
     let exhaust_velocity = common_exhaust_velocity(motors, first);
 
-    let (dry_mass, center_of_dry_mass, dry_inertia) = dry_lump(motors, first, &frame);
+    let dry = dry_lump(motors, first, &frame);
 
     // The aftmost nozzle exit (smallest `csys · z` in rocket coordinates), in `[motor]`'s
     // coordinates; the radius of the total exit area.
@@ -452,9 +452,9 @@ pub fn combined(motors: &[PlacedMotor], csys: f64) -> Result<MotorProperties, Co
         propellant_i11,
         propellant_i33,
         propellant_parts: parts,
-        dry_mass,
-        center_of_dry_mass,
-        dry_inertia,
+        dry_mass: dry.mass,
+        center_of_dry_mass: dry.center,
+        dry_inertia: dry.inertia,
         nozzle_position,
         nozzle_radius,
         coordinate_system_sign: first.properties.coordinate_system_sign,
@@ -586,36 +586,23 @@ fn common_exhaust_velocity(motors: &[PlacedMotor], first: &PlacedMotor) -> f64 {
     }
 }
 
-/// The motors' dry masses at their common centre (in `[motor]`'s coordinates through
-/// `frame`), the lateral inertias moved there by the parallel-axis theorem: `(mass, centre,
-/// inertia)`; `first`'s centre when the total is zero.
+/// The motors' dry masses as one part ([`RigidMass::gathered`]) at their common centre (in
+/// `[motor]`'s coordinates through `frame`); `first`'s centre when the total is zero.
 fn dry_lump(
     motors: &[PlacedMotor],
     first: &PlacedMotor,
     frame: &dyn Fn(&PlacedMotor) -> (f64, f64),
-) -> (f64, f64, [f64; 6]) {
-    let dry_mass: f64 = motors.iter().map(|m| m.properties.dry_mass).sum();
-    let dry_center = |m: &PlacedMotor| {
-        let (a, b) = frame(m);
-        a + b * m.properties.center_of_dry_mass
-    };
-    let center_of_dry_mass = if dry_mass > 0.0 {
-        motors
-            .iter()
-            .map(|m| m.properties.dry_mass * dry_center(m))
-            .sum::<f64>()
-            / dry_mass
-    } else {
-        first.properties.center_of_dry_mass
-    };
-    let mut dry_inertia = [0.0; 6];
-    for m in motors {
-        let d = dry_center(m) - center_of_dry_mass;
-        let steiner = m.properties.dry_mass * d * d;
-        for (i, total) in dry_inertia.iter_mut().enumerate() {
-            let own = m.properties.dry_inertia[i];
-            *total += if i < 2 { own + steiner } else { own };
-        }
-    }
-    (dry_mass, center_of_dry_mass, dry_inertia)
+) -> RigidMass {
+    let parts: Vec<RigidMass> = motors
+        .iter()
+        .map(|m| {
+            let (a, b) = frame(m);
+            RigidMass {
+                mass: m.properties.dry_mass,
+                center: a + b * m.properties.center_of_dry_mass,
+                inertia: m.properties.dry_inertia,
+            }
+        })
+        .collect();
+    RigidMass::gathered(&parts, first.properties.center_of_dry_mass)
 }

@@ -24,7 +24,7 @@
 
 use std::sync::Arc;
 
-use karman_airframe::Rocket;
+use karman_airframe::{RigidMass, Rocket};
 use karman_atmos::Environment;
 use karman_dynamics::flight::{Action, Probe, SampledProcess, StepBounds};
 use karman_dynamics::state::{State, rotation};
@@ -130,62 +130,29 @@ fn top_mission(mission: &Mission) -> Mission {
     top
 }
 
-/// Mass, centre of mass (rocket coordinates) and inertia about it of a rigid part.
-#[derive(Debug, Clone, Copy)]
-struct Lump {
-    mass: f64,
-    center: f64,
-    inertia: [f64; 6],
-}
-
-impl Lump {
-    /// A vehicle at rest before its motor ignites: its dry mass and unburnt propellant.
-    fn unburnt(rocket: &Rocket) -> Lump {
-        let t = rocket.burn_start();
-        let mass = rocket.total_mass(t);
-        let center = rocket.center_of_mass(t);
-        let d = center - rocket.center_of_dry_mass();
-        let mut inertia = rocket.inertia(t);
-        // The inertia is about the centre of dry mass; moved to the centre of mass.
-        inertia[0] -= mass * d * d;
-        inertia[1] -= mass * d * d;
-        Lump {
-            mass,
-            center,
-            inertia,
-        }
-    }
-
-    /// Two parts as one (parallel-axis theorem along the rocket axis).
-    fn with(self, other: Lump) -> Lump {
-        let mass = self.mass + other.mass;
-        let center = (self.mass * self.center + other.mass * other.center) / mass;
-        let (da, db) = (self.center - center, other.center - center);
-        let axial = self.mass * da * da + other.mass * db * db;
-        let mut inertia = [0.0; 6];
-        for (i, value) in inertia.iter_mut().enumerate() {
-            *value = self.inertia[i] + other.inertia[i];
-        }
-        inertia[0] += axial;
-        inertia[1] += axial;
-        Lump {
-            mass,
-            center,
-            inertia,
-        }
-    }
+/// A vehicle at rest before its motor ignites, as one rigid part (rocket coordinates): its
+/// dry mass and unburnt propellant, the inertia (the airframe's about the centre of dry mass)
+/// moved to the centre of mass.
+fn unburnt(rocket: &Rocket) -> RigidMass {
+    let t = rocket.burn_start();
+    RigidMass::with_inertia_about(
+        rocket.total_mass(t),
+        rocket.center_of_mass(t),
+        rocket.inertia(t),
+        rocket.center_of_dry_mass(),
+    )
 }
 
 /// The airframe of the stack whose bottom is lower stage `bottom`, with `above` (the stack
 /// over it, at rest) lumped into its mass.
-fn stack_rocket_spec(mission: &Mission, bottom: usize, above: Lump) -> RocketSpec {
+fn stack_rocket_spec(mission: &Mission, bottom: usize, above: RigidMass) -> RocketSpec {
     let spec = &mission.spec;
     let stage = &spec.stages[bottom];
     let own = &stage.rocket;
     let members: Vec<&RocketSpec> = std::iter::once(&spec.rocket)
         .chain(spec.stages[..=bottom].iter().map(|s| &s.rocket))
         .collect();
-    let lump = above.with(Lump {
+    let lump = above.combined(RigidMass {
         mass: own.mass,
         center: own.center_of_mass_without_motor,
         inertia: own.inertia.0,
@@ -236,7 +203,7 @@ fn stack_rocket_spec(mission: &Mission, bottom: usize, above: Lump) -> RocketSpe
 
 /// The mission of the stack with `count` lower stages (`count ≥ 1`): its bottom stage's motor
 /// and the stack's airframe ([`stack_rocket_spec`]).
-fn stack_mission(mission: &Mission, count: usize, above: Lump) -> Mission {
+fn stack_mission(mission: &Mission, count: usize, above: RigidMass) -> Mission {
     let bottom = count - 1;
     let mut stack = stage_mission(mission, bottom);
     stack.spec.rocket = stack_rocket_spec(mission, bottom, above);
@@ -257,7 +224,7 @@ fn build_stack(
         return Ok((top, rocket));
     }
     let (_, above) = build_stack(mission, thrusts, count - 1, 0.0)?;
-    let stack = stack_mission(mission, count, Lump::unburnt(&above));
+    let stack = stack_mission(mission, count, unburnt(&above));
     let motor = thrusts.motor(&stack).map_err(|e| in_stage(e, count - 1))?;
     let rocket = build_rocket_ignited_at(&stack, &motor, ignition, thrusts)
         .map_err(|e| in_stage(e, count - 1))?;
@@ -760,7 +727,7 @@ fn launch_settings(
         top_mission(mission)
     } else {
         let (_, above) = build_stack(mission, thrusts, count - 1, 0.0)?;
-        stack_mission(mission, count, Lump::unburnt(&above))
+        stack_mission(mission, count, unburnt(&above))
     };
     if ignition == 0.0 {
         let thrust = thrusts.source(&launch)?;
@@ -1064,35 +1031,6 @@ mod tests {
             still
                 .iter()
                 .zip(&state)
-                .all(|(a, b)| a.to_bits() == b.to_bits())
-        );
-    }
-
-    #[test]
-    fn lumps_follow_the_parallel_axis_theorem() {
-        let point = |mass, center| Lump {
-            mass,
-            center,
-            inertia: [0.0; 6],
-        };
-        let two = point(1.0, -1.0).with(point(3.0, 1.0));
-        assert!((two.mass - 4.0).abs() < 1e-15 && (two.center - 0.5).abs() < 1e-15);
-        // 1·1.5² + 3·0.5² about the common centre, nothing about the axis.
-        assert!((two.inertia[0] - 3.0).abs() < 1e-15 && (two.inertia[1] - 3.0).abs() < 1e-15);
-        assert!(two.inertia[2].abs() < 1e-15);
-        // A massless part changes nothing, bit for bit.
-        let body = Lump {
-            mass: 3.55,
-            center: 0.973,
-            inertia: [0.8, 0.8, 0.003, 0.0, 0.0, 0.0],
-        };
-        let same = body.with(point(0.0, 2.0));
-        assert_eq!(same.mass.to_bits(), body.mass.to_bits());
-        assert_eq!(same.center.to_bits(), body.center.to_bits());
-        assert!(
-            same.inertia
-                .iter()
-                .zip(&body.inertia)
                 .all(|(a, b)| a.to_bits() == b.to_bits())
         );
     }
