@@ -59,6 +59,7 @@
 //!         ],
 //!         parachutes: Vec::new(),
 //!         rail_buttons: None,
+//!         eccentricities: Eccentricities::default(),
 //!     },
 //!     motor,
 //! )?;
@@ -94,7 +95,7 @@ pub use recovery::{
     ParachuteSpec, RailButtons,
 };
 pub use rigid::RigidMass;
-pub use rocket::{CoordinateSystem, Rocket, RocketInputs, inertia_components};
+pub use rocket::{CoordinateSystem, Eccentricities, Rocket, RocketInputs, inertia_components};
 pub use surfaces::{
     Airfoil, AngleUnit, EllipticalFinsSpec, FinAerodynamics, FreeFormFinsSpec, Geometry,
     NoseConeSpec, NoseKind, PodPlacement, Surface, SurfaceInput, SurfaceSpec, Sweep, TailSpec,

@@ -71,6 +71,7 @@ impl VehicleModel for Rocket {
                 }
                 controls
             },
+            off_axis: self.off_axis(),
         }
     }
 

@@ -150,7 +150,10 @@ mod tests {
             point(0.0, 1.0).combined(point(0.0, 2.0)),
             RigidMass::default()
         );
-        assert_eq!(RigidMass::gathered(&[point(0.0, 1.0)], 0.25), point(0.0, 0.25));
+        assert_eq!(
+            RigidMass::gathered(&[point(0.0, 1.0)], 0.25),
+            point(0.0, 0.25)
+        );
     }
 
     #[test]

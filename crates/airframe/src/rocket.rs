@@ -11,7 +11,7 @@ use crate::mass::MassModel;
 use crate::motor::{INERTIA_NAMES, MotorProperties};
 use crate::recovery::{Parachute, RailButtons};
 use crate::surfaces::{Geometry, Surface, SurfaceInput};
-use karman_model::MassSample;
+use karman_model::{MassSample, OffAxis};
 
 /// Orientation of the rocket's user axis (RocketPy `coordinate_system_orientation`).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
@@ -81,6 +81,47 @@ pub struct RocketInputs {
     pub parachutes: Vec<Parachute>,
     /// Rail buttons, if any.
     pub rail_buttons: Option<RailButtons>,
+    /// Offsets of the centre of mass, the centre of pressure and the thrust from the axis
+    /// (all zero for an aligned rocket).
+    pub eccentricities: Eccentricities,
+}
+
+/// A rocket's misalignments, RocketPy 1.13's `Rocket.add_cm_eccentricity`,
+/// `add_cp_eccentricity` and `add_thrust_eccentricity` (docs/physics.md §7.8), each `(x, y)` in
+/// metres, `x` along the user axes' x (body x times the coordinate-system sign for the centre of
+/// mass, as RocketPy places surfaces), `y` along body y:
+///
+/// - `center_of_mass`: the centre of dry mass off the geometric axis by `ε`: every surface's
+///   centre of pressure then sits at `(−ε_x csys, −ε_y)` from it (its local stream sees the
+///   rates about the offset centre), and the aerodynamic forces and the thrust act at `−ε`;
+/// - `center_of_pressure`: the aerodynamic forces' line of action at `(x, y)` from the axis;
+/// - `thrust`: the thrust's line of action at `(x, y)` from the axis.
+///
+/// RocketPy's `add_cm_eccentricity` sets the other two to `−ε`; karman adds them (the centre
+/// of pressure at `e_cp − ε`, the thrust at `e_T − ε`), which is the same when only one is
+/// given, and mission checks refuse the centre of mass together with either of the others.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct Eccentricities {
+    /// Centre-of-mass eccentricity `(x, y)`, m.
+    pub center_of_mass: [f64; 2],
+    /// Centre-of-pressure eccentricity `(x, y)`, m.
+    pub center_of_pressure: [f64; 2],
+    /// Thrust eccentricity `(x, y)`, m.
+    pub thrust: [f64; 2],
+}
+
+impl Eccentricities {
+    /// The lines of action the equations of motion use ([`OffAxis`]).
+    #[must_use]
+    pub fn off_axis(&self) -> OffAxis {
+        let [ex, ey] = self.center_of_mass;
+        let [cx, cy] = self.center_of_pressure;
+        let [tx, ty] = self.thrust;
+        OffAxis {
+            cp: [cx - ex, cy - ey],
+            thrust: [tx - ex, ty - ey],
+        }
+    }
 }
 
 /// Number of samples of RocketPy's static-margin spline on `[0, t_b1]`.
@@ -110,6 +151,8 @@ pub struct Rocket {
     static_margin: Option<Table1>,
     warnings: Vec<String>,
     air_brakes: Option<AirBrakes>,
+    /// The forces' lines of action off the axis ([`Eccentricities::off_axis`]).
+    off_axis: OffAxis,
 }
 
 /// How far a fin root may run past the nozzle exit before it is worth a warning, as a
@@ -119,6 +162,12 @@ pub struct Rocket {
 const FIN_OVERHANG_ALLOWED: f64 = 0.1;
 
 impl Rocket {
+    /// The forces' lines of action off the axis (zero for an aligned rocket).
+    #[must_use]
+    pub fn off_axis(&self) -> OffAxis {
+        self.off_axis
+    }
+
     /// Builds the rocket with `motor` at `inputs.motor_position`, inputs in SI.
     ///
     /// # Errors
@@ -170,9 +219,29 @@ impl Rocket {
         )?;
         let cdm = mass.cdm;
 
+        let eccentricities = inputs.eccentricities;
+        for (name, pair) in [
+            ("center_of_mass_eccentricity", eccentricities.center_of_mass),
+            (
+                "center_of_pressure_eccentricity",
+                eccentricities.center_of_pressure,
+            ),
+            ("thrust_eccentricity", eccentricities.thrust),
+        ] {
+            for v in pair {
+                finite(C, name, v)?;
+            }
+        }
         let mut surfaces = Vec::with_capacity(inputs.surfaces.len());
         for input in &inputs.surfaces {
-            let (surface, w) = Surface::build(input, radius, csys, cdm, constants)?;
+            let (mut surface, w) = Surface::build(input, radius, csys, cdm, constants)?;
+            let [ex, ey] = eccentricities.center_of_mass;
+            if ex != 0.0 || ey != 0.0 {
+                // RocketPy's `surfaces_cp_to_cdm`: the surface's origin `(0 − ε_x) csys`,
+                // `0 − ε_y` from the offset centre.
+                surface.cp_body[0] = -ex * csys;
+                surface.cp_body[1] = -ey;
+            }
             warnings.extend(w);
             surfaces.push(surface);
         }
@@ -233,6 +302,7 @@ impl Rocket {
             static_margin: None,
             warnings,
             air_brakes: None,
+            off_axis: eccentricities.off_axis(),
         };
         rocket.check_layout();
         if burn_out > 0.0 {

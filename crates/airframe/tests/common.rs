@@ -211,6 +211,7 @@ pub fn calisto_inputs(dir: &std::path::Path, airfoil: Option<Airfoil>) -> Rocket
             chute("drogue", 1.0, TriggerKind::Apogee),
         ],
         rail_buttons: Some(RailButtons::new(0.0818, -0.6182, 45.0).expect("valid buttons")),
+        eccentricities: Default::default(),
     }
 }
 
@@ -267,6 +268,7 @@ pub fn single_surface(spec: SurfaceSpec, rocket_radius: f64) -> karman_airframe:
         }],
         parachutes: Vec::new(),
         rail_buttons: None,
+        eccentricities: Default::default(),
     };
     let rocket = Rocket::new(inputs, small_motor()).expect("valid rocket");
     rocket.surfaces()[0].clone()

@@ -213,6 +213,7 @@ fn inputs(u: &Units, coordinate_system: CoordinateSystem) -> RocketInputs {
             parachute(u, "drogue", 1.0, TriggerKind::Apogee, false),
         ],
         rail_buttons: Some(RailButtons::new(l(s * 0.0818), l(s * -0.6182), 45.0).expect("valid")),
+        eccentricities: Default::default(),
     }
 }
 

@@ -55,6 +55,7 @@ fn inputs(surfaces: Vec<SurfaceInput>) -> RocketInputs {
         surfaces,
         parachutes: Vec::new(),
         rail_buttons: None,
+        eccentricities: Default::default(),
     }
 }
 

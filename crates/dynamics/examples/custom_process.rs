@@ -102,6 +102,7 @@ impl VehicleModel for Rocket {
             nozzle_gyration: [0.25, 0.25, 0.0005],
             static_margins: [0.0; 2],
             initial_controls: [0.0; MAX_CONTROLS],
+            off_axis: karman_model::OffAxis::default(),
         }
     }
     fn surfaces(&self) -> &[Surface] {

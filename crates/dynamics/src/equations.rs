@@ -16,7 +16,7 @@ use crate::state::{
 };
 use karman_model::{
     Air, AtmosphereModel, BodyFlow, Configuration, Cursor, LocalFlow, MAX_CONTROLS, MassFlowLaw,
-    SurfaceModel, VehicleModel,
+    OffAxis, SurfaceModel, VehicleModel,
 };
 
 use crate::settings::EquationsForm;
@@ -69,6 +69,9 @@ pub struct Equations<'a, A, V> {
     lever_sign: f64,
     /// The mass flow of the form.
     law: MassFlowLaw,
+    /// The forces' lines of action off the axis, when there are any (an aligned rocket adds
+    /// nothing to its moments, bit for bit).
+    off_axis: Option<OffAxis>,
 }
 
 /// The table cursors of the models' lookups, kept by the caller between evaluations so
@@ -186,6 +189,7 @@ impl<'a, A: AtmosphereModel, V: VehicleModel> Equations<'a, A, V> {
             uniform_wind: atmosphere.uniform_wind(),
             lever_sign,
             law,
+            off_axis: Some(setup.off_axis).filter(|o| !o.is_zero()),
         }
     }
 
@@ -361,6 +365,13 @@ impl<'a, A: AtmosphereModel, V: VehicleModel> Equations<'a, A, V> {
                 r[i] += loads.force[i];
                 m[i] += loads.moment[i];
             }
+        }
+        if let Some(o) = &self.off_axis {
+            // The off-axis parts of r × F (karman_model::OffAxis), RocketPy 1.13's order.
+            let ([cx, cy], [tx, ty]) = (o.cp, o.thrust);
+            m[0] += cy * r[2] + ty * net_thrust;
+            m[1] -= cx * r[2] + tx * net_thrust;
+            m[2] += cx * r[1] - cy * r[0];
         }
         (r, m, net_thrust)
     }

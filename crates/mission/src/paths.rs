@@ -683,6 +683,9 @@ fn part_component<'a>(
     }
     match array {
         "rocket.inertia" => rocket.inertia.0.get_mut(index),
+        "rocket.cm_eccentricity" => rocket.cm_eccentricity.as_mut()?.get_mut(index),
+        "rocket.cp_eccentricity" => rocket.cp_eccentricity.as_mut()?.get_mut(index),
+        "rocket.thrust_eccentricity" => rocket.thrust_eccentricity.as_mut()?.get_mut(index),
         "rocket.air_brakes.initial_observed_variables" => rocket
             .air_brakes
             .as_mut()?

@@ -1195,11 +1195,58 @@ fn rocket(c: &mut Checker<'_>, spec: &MissionSpec) {
         drag_estimate(c, d, r);
     }
     pods(c, r);
+    eccentricities(c, spec);
     for (name, surface) in &r.surfaces {
         surface_checks(c, name, surface);
     }
     for (name, chute) in &r.parachutes {
         parachute_checks(c, name, chute, &r.sensors);
+    }
+}
+
+/// `cm_eccentricity`, `cp_eccentricity`, `thrust_eccentricity`: finite offsets within the body
+/// radius, the centre of mass not together with either of the others (RocketPy's
+/// `add_cm_eccentricity` sets both), none on a rocket with stages.
+fn eccentricities(c: &mut Checker<'_>, spec: &MissionSpec) {
+    let r = &spec.rocket;
+    let given = [
+        ("rocket.cm_eccentricity", r.cm_eccentricity),
+        ("rocket.cp_eccentricity", r.cp_eccentricity),
+        ("rocket.thrust_eccentricity", r.thrust_eccentricity),
+    ];
+    for (key, value) in given {
+        let Some([x, y]) = value else { continue };
+        if c.stage.is_some() || !spec.stages.is_empty() {
+            c.report(
+                key,
+                ProblemKind::Unsupported {
+                    what: "an eccentricity on a multi-stage rocket".to_owned(),
+                },
+            );
+            continue;
+        }
+        let offset = x.hypot(y);
+        c.range(
+            key,
+            offset,
+            offset < r.radius,
+            "must lie within the body radius (|[x, y]| < rocket.radius)",
+        );
+    }
+    if r.cm_eccentricity.is_some() {
+        for (key, value) in &given[1..] {
+            if value.is_some() {
+                c.report(
+                    key,
+                    ProblemKind::Schema {
+                        message: "cm_eccentricity already puts the aerodynamic forces and the \
+                                  thrust off the axis (RocketPy's add_cm_eccentricity): give \
+                                  it alone, or cp_eccentricity and thrust_eccentricity"
+                            .to_owned(),
+                    },
+                );
+            }
+        }
     }
 }
 

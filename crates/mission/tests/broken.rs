@@ -211,6 +211,48 @@ fn non_finite_numbers_are_rejected() {
     );
 }
 
+/// Eccentricities: beyond the body radius, a centre of mass given with a centre of pressure
+/// (RocketPy's `add_cm_eccentricity` sets that itself) and a non-finite offset are each an
+/// error at its key; within the radius they load.
+#[test]
+fn eccentricities_are_checked() {
+    let text = edited(&[(
+        "mass = 3.0",
+        "mass = 3.0\ncm_eccentricity = [0.03, 0.03]\ncp_eccentricity = [0.001, 0.0]\n\
+         thrust_eccentricity = [nan, 0.0]",
+    )]);
+    let found = problems(&text, &[]);
+    let keys: Vec<&str> = found.iter().map(|p| p.key.as_str()).collect();
+    assert!(keys.contains(&"rocket.cm_eccentricity"), "{found:?}");
+    assert!(keys.contains(&"rocket.cp_eccentricity"), "{found:?}");
+    assert!(
+        keys.iter()
+            .any(|k| k.starts_with("rocket.thrust_eccentricity")),
+        "{found:?}"
+    );
+    let radius = found
+        .iter()
+        .find(|p| p.key == "rocket.cm_eccentricity")
+        .expect("the radius problem");
+    assert!(
+        radius.kind.to_string().contains("body radius"),
+        "{radius:?}"
+    );
+    assert!(
+        matches!(radius.location, Location::File { line, .. } if line > 1),
+        "located: {radius:?}"
+    );
+    let fine = edited(&[(
+        "mass = 3.0",
+        "mass = 3.0\nthrust_eccentricity = [0.002, -0.001]",
+    )]);
+    let mission = parse(&fine, &fixture("ok.toml"), &[]).unwrap_or_else(|e| panic!("{e}"));
+    assert_eq!(
+        mission.spec.rocket.thrust_eccentricity,
+        Some([0.002, -0.001])
+    );
+}
+
 #[test]
 fn syntax_error_is_located() {
     let text = edited(&[("n = 3", "n = = 3")]);

@@ -202,6 +202,7 @@ fn rocket(u: &Units, c: &PhysicalConstants) -> Rocket {
             parachute("drogue", 1.0, TriggerKind::Apogee),
         ],
         rail_buttons: Some(RailButtons::new(l(0.0818), l(-0.6182), 45.0).expect("valid")),
+        eccentricities: Default::default(),
     };
     Rocket::with_constants(inputs, motor(u, c), c).expect("valid rocket")
 }

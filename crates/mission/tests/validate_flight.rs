@@ -48,6 +48,66 @@ fn validate_further_flights() {
     );
 }
 
+/// The misaligned Calistos of `fixtures/parity` (a thrust, a centre-of-pressure and a
+/// centre-of-mass eccentricity): beyond the summary's parity (`validate_further_flights`), the
+/// roll rate at burn-out within 1 % of RocketPy 1.13's `w3` there, and each flight visibly
+/// moved from the aligned Calisto's (its impact point more than 1 % of the range away, so that
+/// an eccentricity the equations ignored would fail the summary's parity).
+#[test]
+fn validate_eccentric_flights() {
+    let folder = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../../fixtures/parity");
+    let aligned = load_reference(&folder.join("../validation/calisto/mission.toml"));
+    let aligned = &aligned["summary"];
+    let at = |v: &Value, k: &str| v[k].as_f64().expect("a number");
+    let mut failures = Vec::new();
+    for name in [
+        "calisto_thrust_eccentricity",
+        "calisto_cp_eccentricity",
+        "calisto_cm_eccentricity",
+    ] {
+        let path = folder.join(name).join("mission.toml");
+        let reference = load_reference(&path);
+        let nominal = karman_mission::load(&path, &[]).expect("mission loads");
+        let mut quiet = nominal.parachute_noise_off().expect("noise overrides");
+        quiet.push(Override::new("flight.equations", "\"rocketpy_1_13\"").expect("override"));
+        let mission = karman_mission::load(&path, &quiet).expect("mission loads");
+        let run = simulate(&mission).expect("mission flies");
+        let burn_out = run.rocket.burn_out();
+        let point = run
+            .flight
+            .points
+            .iter()
+            .min_by(|a, b| (a.t - burn_out).abs().total_cmp(&(b.t - burn_out).abs()))
+            .expect("points");
+        assert!(
+            (point.t - burn_out).abs() < 1e-9,
+            "{name}: a point at burn-out"
+        );
+        let roll = point.state[12];
+        let theirs = at(&reference, "roll_rate_at_burnout_rad_s");
+        let error = (roll - theirs).abs() / theirs.abs();
+        println!(
+            "{name}: roll rate at burn-out {roll:.6} rad/s vs {theirs:.6} ({:.4} %)",
+            100.0 * error
+        );
+        if error > 0.01 {
+            failures.push(format!(
+                "{name}: roll rate at burn-out off by {:.3} %",
+                100.0 * error
+            ));
+        }
+        let summary = &reference["summary"];
+        let moved = (at(summary, "impact_x_m") - at(aligned, "impact_x_m"))
+            .hypot(at(summary, "impact_y_m") - at(aligned, "impact_y_m"));
+        let range = at(aligned, "impact_x_m").hypot(at(aligned, "impact_y_m"));
+        println!("{name}: impact {moved:.1} m from the aligned flight's ({range:.1} m away)");
+        if moved < IMPACT_FRACTION * range {
+            failures.push(format!("{name}: the eccentricity barely moves the flight"));
+        }
+    }
+    assert!(failures.is_empty(), "{}", failures.join("\n"));
+}
+
 /// Flies each mission as RocketPy 1.13 would (parachute noise zeroed, its equations) and
 /// compares the summary with the `reference.json` beside it; returns the misses.
 fn compare_with_references(missions: &[std::path::PathBuf]) -> Vec<String> {

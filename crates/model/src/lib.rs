@@ -62,7 +62,7 @@ pub use karman_math::Cursor;
 pub use propellant::PropellantPart;
 pub use surface::{Loads, LocalFlow, SurfaceModel};
 pub use vehicle::{
-    BodyFlow, MassFlowLaw, MassSample, ParachuteSpec, RailButtonGeometry, StabilityModel,
+    BodyFlow, MassFlowLaw, MassSample, OffAxis, ParachuteSpec, RailButtonGeometry, StabilityModel,
     TriggerCondition, TriggerKind, VehicleModel, VehicleSetup,
 };
 

@@ -98,6 +98,27 @@ pub struct ParachuteSpec {
     pub added_mass_coefficient: f64,
 }
 
+/// Lines of action off the rocket's axis, body axes (m): the aerodynamic forces applied at
+/// `cp = (x, y)` from the axis (RocketPy 1.13's `Rocket.add_cp_eccentricity`), the thrust at
+/// `thrust = (x, y)` (`Rocket.add_thrust_eccentricity`). Their moments about the centre of dry
+/// mass are the off-axis parts of `r × F` (docs/physics.md §7.7): `M₁ += c_y R₃ + t_y T`,
+/// `M₂ −= c_x R₃ + t_x T`, `M₃ += c_x R₂ − c_y R₁`.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct OffAxis {
+    /// Where the aerodynamic forces act, `(x, y)` from the axis, m.
+    pub cp: [f64; 2],
+    /// Where the thrust acts, `(x, y)` from the axis, m.
+    pub thrust: [f64; 2],
+}
+
+impl OffAxis {
+    /// Whether every offset is zero (the equations then add nothing, bit for bit).
+    #[must_use]
+    pub fn is_zero(&self) -> bool {
+        self.cp.iter().chain(&self.thrust).all(|&v| v == 0.0)
+    }
+}
+
 /// What the engine reads of a vehicle once, when a flight is set up
 /// ([`VehicleModel::setup`]). Times are seconds from the motor-ignition reference `t = 0`,
 /// positions in the rocket's user coordinates unless stated.
@@ -127,6 +148,8 @@ pub struct VehicleSetup {
     pub static_margins: [f64; 2],
     /// The control inputs at launch (e.g. an air brake's initial deployment level).
     pub initial_controls: [f64; MAX_CONTROLS],
+    /// The forces' lines of action off the axis ([`OffAxis`]; zero for an aligned rocket).
+    pub off_axis: OffAxis,
 }
 
 /// Which mass-flow rate [`VehicleModel::mass`] gives (docs/physics.md §6.2, §15.3).

@@ -71,6 +71,31 @@ def test_calisto_translates_to_the_validation_mission(validation):
     }
 
 
+@pytest.mark.parametrize("misalign", ["thrust_and_cp", "cm_after_surfaces"])
+def test_eccentricities_translate_and_fly_as_in_rocketpy(misalign, validation):
+    """RocketPy's eccentricities become karman's keys and fly within the parity bound; a
+    centre-of-mass eccentricity set after the surfaces (RocketPy then leaves them on the axis)
+    is flown as the CP and thrust eccentricities it sets."""
+    env, rocket, kwargs = rocketpy_flights.calisto(validation)
+    if misalign == "thrust_and_cp":
+        rocket.add_thrust_eccentricity(0.002, -0.001)
+        rocket.add_cp_eccentricity(0.01, 0.005)
+        keys = {"thrust_eccentricity": [0.002, -0.001], "cp_eccentricity": [0.01, 0.005]}
+    else:
+        rocket.add_cm_eccentricity(0.003, 0.002)
+        keys = {"thrust_eccentricity": [-0.003, -0.002], "cp_eccentricity": [-0.003, -0.002]}
+    data = mission_dict(env, rocket, **kwargs)["rocket"]
+    assert {k: data[k] for k in keys} == keys and "cm_eccentricity" not in data
+    reference = rocketpy.Flight(rocket=rocket, environment=env, **kwargs)
+    flight = from_rocketpy(env, rocket, **kwargs).simulate()
+    assert relative_error(flight.apogee_agl_m, reference.apogee - env.elevation) < TOLERANCE
+    assert relative_error(flight.apogee_time_s, reference.apogee_time) < TOLERANCE
+    # The apogee's position, before the (noisy) parachutes: within 1 % of its distance.
+    x, y = reference.apogee_x, reference.apogee_y
+    miss = math.hypot(flight.apogee_x_m - x, flight.apogee_y_m - y)
+    assert miss < 0.01 * math.hypot(x, y), (miss, x, y)
+
+
 def test_unsupported_inputs_name_the_attribute(validation):
     env, rocket, kwargs = rocketpy_flights.calisto(validation)
     with pytest.raises(UnsupportedError) as error:

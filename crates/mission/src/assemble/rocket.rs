@@ -6,8 +6,8 @@ use std::sync::Arc;
 
 use karman_airframe::{
     self as airframe, AirBrakes, AirBrakesSpec, Airfoil, AirframeError, CoordinateSystem,
-    DragEstimate, DragGeometry, NoseKind, Parachute, RailButtons, Rocket, RocketInputs,
-    SurfaceInput, TriggerKind,
+    DragEstimate, DragGeometry, Eccentricities, NoseKind, Parachute, RailButtons, Rocket,
+    RocketInputs, SurfaceInput, TriggerKind,
 };
 use karman_script::Expression;
 
@@ -183,6 +183,11 @@ fn build(
         surfaces,
         parachutes,
         rail_buttons,
+        eccentricities: Eccentricities {
+            center_of_mass: spec.cm_eccentricity.unwrap_or_default(),
+            center_of_pressure: spec.cp_eccentricity.unwrap_or_default(),
+            thrust: spec.thrust_eccentricity.unwrap_or_default(),
+        },
     };
     let rocket =
         Rocket::new(inputs, properties).map_err(|e| model(airframe_error_key(spec, &e), e))?;

@@ -198,6 +198,10 @@ fn stack_rocket_spec(mission: &Mission, bottom: usize, above: RigidMass) -> Rock
         pods: members.iter().flat_map(|m| m.pods.clone()).collect(),
         air_brakes: None,
         sensors: Vec::new(),
+        // Checks refuse eccentricities on a rocket with stages.
+        cm_eccentricity: None,
+        cp_eccentricity: None,
+        thrust_eccentricity: None,
     }
 }
 

@@ -588,6 +588,18 @@ pub struct RocketSpec {
     /// `[[rocket.sensors]]`, in file order (docs/physics.md §29).
     #[serde(default, skip_serializing_if = "Vec::is_empty")]
     pub sensors: Vec<SensorSpec>,
+    /// `cm_eccentricity = [x, y]`: the centre of dry mass off the axis, m (RocketPy's
+    /// `add_cm_eccentricity`, docs/physics.md §7.8); optional.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub cm_eccentricity: Option<[f64; 2]>,
+    /// `cp_eccentricity = [x, y]`: the aerodynamic forces' line of action off the axis, m
+    /// (`add_cp_eccentricity`); optional.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub cp_eccentricity: Option<[f64; 2]>,
+    /// `thrust_eccentricity = [x, y]`: the thrust's line of action off the axis, m
+    /// (`add_thrust_eccentricity`); optional.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub thrust_eccentricity: Option<[f64; 2]>,
 }
 
 fn default_true() -> bool {

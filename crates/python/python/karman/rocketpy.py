@@ -396,6 +396,51 @@ def _parachute(chute: Any) -> dict[str, Any]:
     return out
 
 
+def _eccentricities(rocket: Any) -> dict[str, list[float]]:
+    """The rocket's eccentricities as karman's keys.
+
+    RocketPy's ``add_cm_eccentricity(x, y)`` sets the CP and thrust eccentricities to ``(-x,
+    -y)`` and moves the surfaces it places afterwards (``surfaces_cp_to_cdm``): when every
+    surface sits at ``(-x csys, -y)`` and both eccentricities are ``(-x, -y)``, that is
+    karman's ``cm_eccentricity``; when the surfaces were placed before it (not moved), the
+    flight RocketPy flies is that of its CP and thrust eccentricities alone.
+    """
+
+    def pair(kind: str) -> tuple[float, float]:
+        return (
+            _number(getattr(rocket, f"{kind}_eccentricity_x", 0), f"rocket.{kind}_eccentricity_x"),
+            _number(getattr(rocket, f"{kind}_eccentricity_y", 0), f"rocket.{kind}_eccentricity_y"),
+        )
+
+    cm, cp, thrust = pair("cm"), pair("cp"), pair("thrust")
+    out: dict[str, list[float]] = {}
+    csys = getattr(rocket, "_csys", 1)
+    positions = list(getattr(rocket, "surfaces_cp_to_cdm", {}).values())
+    moved = any(cm) and all(
+        abs(p[0] + cm[0] * csys) < 1e-12 and abs(p[1] + cm[1]) < 1e-12 for p in positions
+    )
+    if moved:
+        opposite = (-cm[0], -cm[1])
+        if cp != opposite or thrust != opposite:
+            raise UnsupportedError(
+                "rocket.cp_eccentricity_x",
+                "a centre-of-mass eccentricity with other CP or thrust eccentricities set after"
+                " it (karman takes add_cm_eccentricity alone, or the two others)",
+            )
+        out["cm_eccentricity"] = list(cm)
+        return out
+    if any(abs(p[0]) > 1e-12 or abs(p[1]) > 1e-12 for p in positions):
+        raise UnsupportedError(
+            "rocket.surfaces_cp_to_cdm",
+            "surfaces off the rocket's axis other than by add_cm_eccentricity",
+        )
+    if any(cp):
+        out["cp_eccentricity"] = list(cp)
+    if any(thrust):
+        out["thrust_eccentricity"] = list(thrust)
+    return out
+
+
 def _rocket(rocket: Any) -> dict[str, Any]:
     if type(rocket).__name__ == "PointMassRocket":
         raise UnsupportedError(
@@ -403,16 +448,6 @@ def _rocket(rocket: Any) -> dict[str, Any]:
             "a PointMassRocket (no surfaces or inertia); karman's 3-DOF mode flies a Rocket:"
             ' pass simulation_mode="3 DOF"',
         )
-    for name in (
-        "cm_eccentricity_x",
-        "cm_eccentricity_y",
-        "cp_eccentricity_x",
-        "cp_eccentricity_y",
-        "thrust_eccentricity_x",
-        "thrust_eccentricity_y",
-    ):
-        if getattr(rocket, name, 0):
-            raise UnsupportedError(f"rocket.{name}", "eccentricities are not modelled")
     if getattr(rocket, "air_brakes", None):
         raise UnsupportedError("rocket.air_brakes", "air brakes and controllers")
     if getattr(rocket, "_controllers", None):
@@ -430,6 +465,7 @@ def _rocket(rocket: Any) -> dict[str, Any]:
         "coordinate_system": str(rocket.coordinate_system_orientation),
         "motor_position": _number(rocket.motor_position, "rocket.motor_position"),
     }
+    out.update(_eccentricities(rocket))
     shapes: dict[str, tuple[str, str]] = {}
     for name in ("power_off_drag", "power_on_drag"):
         curve, interpolation, extrapolation = _drag(
