@@ -13,7 +13,7 @@ use karman_model::{AtmosphereModel, Cursor, MassFlowLaw, StabilityModel, Vehicle
 
 use crate::equations::{Cursors, Equations};
 use crate::flight::{Flight, PhaseKind, SolutionPoint, Termination, evaluate};
-use crate::state::{State, norm, rotation};
+use crate::state::{State, mat_t_vec, norm, rotation};
 
 /// One named event of the summary.
 #[derive(Debug, Clone, PartialEq, Serialize)]
@@ -129,6 +129,24 @@ pub struct Sample {
     pub net_thrust: f64,
     /// Total mass, kg (dry mass under canopy).
     pub mass: f64,
+    /// Inertia `(I11, I22, I33)` about the centre of dry mass at the point's time, kg·m²
+    /// (RocketPy's `Rocket.I_11`, `I_22`, `I_33`).
+    pub inertia: [f64; 3],
+    /// Air pressure at the point's height, Pa.
+    pub pressure: f64,
+    /// Air density, kg/m³.
+    pub density: f64,
+    /// Dynamic viscosity of the air, Pa·s.
+    pub dynamic_viscosity: f64,
+    /// Velocity in body axes `Kᵀ v`, m/s.
+    pub velocity_body: [f64; 3],
+    /// Acceleration in body axes `Kᵀ a`, m/s².
+    pub acceleration_body: [f64; 3],
+    /// Free-stream velocity `w − v` in body axes, m/s (RocketPy's
+    /// `stream_velocity_body_frame`).
+    pub stream_body: [f64; 3],
+    /// Unit vector of the rocket's axis in the launch frame (RocketPy's `attitude_vector_*`).
+    pub axis: [f64; 3],
 }
 
 /// Derived quantities of one point; rail points report the loads of the free-flight
@@ -170,17 +188,17 @@ fn sample<A: AtmosphereModel, V: VehicleModel + StabilityModel>(
     let (e0, e1, e2, e3) = (u[6], u[7], u[8], u[9]);
     let a1 = e3.atan2(e0);
     let a2 = (-e2).atan2(-e1);
+    let properties = veh.mass(
+        t,
+        MassFlowLaw::ThrustOverExhaustVelocity,
+        &mut [Cursor::default(); 2],
+    );
     let mass = match kind {
         PhaseKind::Parachute(_) => eq.dry_mass(),
-        _ => {
-            veh.mass(
-                t,
-                MassFlowLaw::ThrustOverExhaustVelocity,
-                &mut [Cursor::default(); 2],
-            )
-            .total_mass
-        }
+        _ => properties.total_mass,
     };
+    let body = |w: [f64; 3]| mat_t_vec(&k, w);
+    let a = [d.u_dot[3], d.u_dot[4], d.u_dot[5]];
     Sample {
         t,
         x: u[0],
@@ -213,6 +231,18 @@ fn sample<A: AtmosphereModel, V: VehicleModel + StabilityModel>(
         moment,
         net_thrust,
         mass,
+        inertia: [
+            properties.inertia[0],
+            properties.inertia[1],
+            properties.inertia[2],
+        ],
+        pressure: atm.pressure(z),
+        density: atm.density(z),
+        dynamic_viscosity: atm.dynamic_viscosity(z),
+        velocity_body: body(v),
+        acceleration_body: body(a),
+        stream_body: body(free),
+        axis,
     }
 }
 

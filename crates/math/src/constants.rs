@@ -115,6 +115,9 @@ pub struct PhysicalConstants {
     pub wgs84_eccentricity_squared: f64,
     /// Earth's rotation rate Ω = 2π / sidereal day (rad/s).
     pub earth_rotation_rate: f64,
+    /// Earth's gravitational parameter GM (m³/s²), WGS-84's, as RocketPy 1.13's
+    /// `Flight.potential_energy` takes it.
+    pub earth_gravitational_parameter: f64,
     /// SAD69 (South American Datum 1969) semi-major axis a (m); NIMA TR8350.2 appendix A.
     pub sad69_semi_major_axis: f64,
     /// SAD69 flattening f (dimensionless); NIMA TR8350.2 appendix A.
@@ -190,6 +193,7 @@ impl PhysicalConstants {
         wgs84_somigliana_k: 1.931_852_652_458e-3,
         wgs84_eccentricity_squared: 6.694_379_990_141e-3,
         earth_rotation_rate: 2.0 * std::f64::consts::PI / 86_164.1,
+        earth_gravitational_parameter: 3.986_004_418e14,
         sad69_semi_major_axis: 6_378_160.0,
         sad69_flattening: 1.0 / 298.25,
         nad83_flattening: 1.0 / 298.257_024_899,
@@ -232,6 +236,8 @@ impl PhysicalConstants {
             wgs84_somigliana_k: self.wgs84_somigliana_k,
             wgs84_eccentricity_squared: self.wgs84_eccentricity_squared,
             earth_rotation_rate: self.earth_rotation_rate / u.time,
+            earth_gravitational_parameter: self.earth_gravitational_parameter
+                * u.factor(3.0, 0.0, -2.0, 0.0),
             sad69_semi_major_axis: self.sad69_semi_major_axis * len,
             sad69_flattening: self.sad69_flattening,
             nad83_flattening: self.nad83_flattening,

@@ -952,6 +952,11 @@ impl StagedRun {
     /// The static margin of body `body` at `t`, of the model flown then, calibers.
     #[must_use]
     pub fn static_margin(&self, body: usize, t: f64) -> f64 {
+        self.rocket_at(body, t).static_margin(t)
+    }
+
+    /// The vehicle body `body` flies at `t`: its segment's.
+    fn rocket_at(&self, body: usize, t: f64) -> &Rocket {
         let segments = &self.bodies[body].segments;
         let at = segments
             .iter()
@@ -959,7 +964,7 @@ impl StagedRun {
             .or(segments.last())
             .copied()
             .unwrap_or(0);
-        self.segments[at].rocket.static_margin(t)
+        &self.segments[at].rocket
     }
 }
 
@@ -976,6 +981,9 @@ impl Track for BodyTrack<'_> {
     }
     fn static_margin(&self, t: f64) -> f64 {
         self.run.static_margin(self.body, t)
+    }
+    fn reference_radius(&self, t: f64) -> f64 {
+        self.run.rocket_at(self.body, t).radius()
     }
 }
 

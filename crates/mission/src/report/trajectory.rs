@@ -6,6 +6,7 @@ use std::fmt::Write as _;
 
 use karman_atmos::Environment;
 use karman_dynamics::Sample;
+use karman_math::PhysicalConstants;
 
 use crate::assemble::flight::FlightRun;
 
@@ -17,6 +18,9 @@ pub trait Track {
     fn environment(&self) -> &Environment;
     /// The static margin at `t` of the model flown then, calibers.
     fn static_margin(&self, t: f64) -> f64;
+    /// The reference radius at `t` of the model flown then, m (the Reynolds number's length
+    /// is its diameter).
+    fn reference_radius(&self, t: f64) -> f64;
 }
 
 impl Track for FlightRun {
@@ -25,6 +29,9 @@ impl Track for FlightRun {
     }
     fn static_margin(&self, t: f64) -> f64 {
         self.rocket.static_margin(t)
+    }
+    fn reference_radius(&self, _: f64) -> f64 {
+        self.rocket.radius()
     }
 }
 
@@ -116,7 +123,88 @@ pub const SERIES: &[Series] = &[
     series("aero_moment_m3", "nm", |_, s| s.moment[2]),
     series("net_thrust", "n", |_, s| s.net_thrust),
     series("mass", "kg", |_, s| s.mass),
+    // RocketPy 1.13's further `Flight` attributes (docs/flight-outputs.md), after the columns
+    // above so that a reader of the earlier columns by position is unaffected.
+    series("vx_body", "mps", |_, s| s.velocity_body[0]),
+    series("vy_body", "mps", |_, s| s.velocity_body[1]),
+    series("vz_body", "mps", |_, s| s.velocity_body[2]),
+    series("ax_body", "mps2", |_, s| s.acceleration_body[0]),
+    series("ay_body", "mps2", |_, s| s.acceleration_body[1]),
+    series("az_body", "mps2", |_, s| s.acceleration_body[2]),
+    series("attitude_vector_x", "", |_, s| s.axis[0]),
+    series("attitude_vector_y", "", |_, s| s.axis[1]),
+    series("attitude_vector_z", "", |_, s| s.axis[2]),
+    series("axial_acceleration", "mps2", |_, s| {
+        s.ax * s.axis[0] + s.ay * s.axis[1] + s.az * s.axis[2]
+    }),
+    series("horizontal_speed", "mps", |_, s| s.vx.hypot(s.vy)),
+    series("partial_angle_of_attack", "deg", |_, s| {
+        // RocketPy: the stream's opposite (the rocket's motion through the air) in the
+        // body's y-z plane, against the axis.
+        (-s.stream_body[1]).atan2(-s.stream_body[2]).to_degrees()
+    }),
+    series("angle_of_sideslip", "deg", |_, s| {
+        (-s.stream_body[0]).atan2(-s.stream_body[2]).to_degrees()
+    }),
+    series("pressure", "pa", |_, s| s.pressure),
+    series("density", "kgpm3", |_, s| s.density),
+    series("dynamic_viscosity", "pas", |_, s| s.dynamic_viscosity),
+    series("reynolds_number", "", |r, s| {
+        s.density * s.free_stream_speed / s.dynamic_viscosity * (2.0 * r.reference_radius(s.t))
+    }),
+    series("total_pressure", "pa", |_, s| {
+        // The isentropic stagnation pressure of air (γ = 1.4), RocketPy's
+        // `p (1 + 0.2 M²)^3.5` at every Mach number.
+        s.pressure * (1.0 + 0.2 * s.mach * s.mach).powf(3.5)
+    }),
+    series("aerodynamic_lift", "n", |_, s| s.force[0].hypot(s.force[1])),
+    series("aerodynamic_drag", "n", |_, s| -s.force[2]),
+    series("aerodynamic_bending_moment", "nm", |_, s| {
+        s.moment[0].hypot(s.moment[1])
+    }),
+    series("aerodynamic_spin_moment", "nm", |_, s| s.moment[2]),
+    series("rotational_energy", "j", |_, s| rotational_energy(s)),
+    series("translational_energy", "j", |_, s| translational_energy(s)),
+    series("kinetic_energy", "j", |_, s| {
+        rotational_energy(s) + translational_energy(s)
+    }),
+    series("potential_energy", "j", |r, s| potential_energy(r, s)),
+    series("total_energy", "j", |r, s| {
+        rotational_energy(s) + translational_energy(s) + potential_energy(r, s)
+    }),
+    series("thrust_power", "w", |_, s| s.net_thrust * s.speed),
+    series("drag_power", "w", |_, s| s.force[2] * s.speed),
+    series("thrust_to_weight", "", |_, s| {
+        // RocketPy's `Rocket.thrust_to_weight`: thrust over the weight at standard gravity.
+        s.net_thrust / (PhysicalConstants::SI.standard_gravity * s.mass)
+    }),
+    series("drift", "m", |_, s| s.x.hypot(s.y)),
+    series("bearing", "deg", |_, s| {
+        // Clockwise from north, in (0°, 360°] as RocketPy writes it (`2π − atan2(−x, y)`).
+        (2.0 * std::f64::consts::PI - (-s.x).atan2(s.y)).to_degrees()
+    }),
 ];
+
+/// `½ (I11 ω1² + I22 ω2² + I33 ω3²)` about the centre of dry mass (RocketPy's
+/// `Flight.rotational_energy`), J.
+fn rotational_energy(s: &Sample) -> f64 {
+    let [i1, i2, i3] = s.inertia;
+    let [w1, w2, w3] = s.omega;
+    0.5 * (i1 * w1 * w1 + i2 * w2 * w2 + i3 * w3 * w3)
+}
+
+/// `½ m |v|²`, J.
+fn translational_energy(s: &Sample) -> f64 {
+    0.5 * s.mass * s.speed * s.speed
+}
+
+/// `GM m (1/(R + z) − 1/R)` with the datum's local radius `R` and the height above sea level
+/// `z` (RocketPy's `Flight.potential_energy`), J.
+fn potential_energy(r: &dyn Track, s: &Sample) -> f64 {
+    let gm = PhysicalConstants::SI.earth_gravitational_parameter;
+    let radius = r.environment().datum_radius();
+    gm * s.mass * (1.0 / (s.z + radius) - 1.0 / radius)
+}
 
 /// The series called `name`.
 #[must_use]
