@@ -54,12 +54,15 @@ mod progress;
 mod regular;
 mod runner;
 pub mod sampling;
+mod sensitivity;
 mod stats;
 mod study;
 mod summary;
 
 pub use csv::{Counts, Row, Status, parse as parse_row};
-pub use distribution::{Distribution, Meaning, Target, Variation, VariedInput};
+pub use distribution::{
+    Distribution, Meaning, TRUNCATION_MIN_SHARE, Target, Variation, VariedInput,
+};
 pub use error::DispersionError;
 pub use kml::offset_to_lat_lon;
 pub use merge::merge;
@@ -67,6 +70,10 @@ pub use progress::ProgressMode;
 pub use runner::{
     MAX_THREADS_PER_CORE, MemoryRun, Outcome, RunOptions, RunReport, WINDOW_PER_THREAD, run,
     run_in_memory, run_until,
+};
+pub use sensitivity::{
+    InputShare, OutputSensitivity, Sensitivity, Skipped, decompose, sensitivity,
+    sensitivity_of_rows,
 };
 pub use stats::{
     Ellipse, Moments, NORMAL_SIGMA_PROBABILITY, Statistics, k_sigma_probability, probability_scale,

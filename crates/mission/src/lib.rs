@@ -26,6 +26,7 @@
 pub mod allocator;
 pub mod assemble;
 mod curves;
+pub mod distributions;
 mod document;
 mod error;
 pub mod montecarlo;
