@@ -66,6 +66,7 @@ pub use distribution::{
 pub use error::DispersionError;
 pub use kml::offset_to_lat_lon;
 pub use merge::merge;
+pub use plot::sensitivity_bars;
 pub use progress::ProgressMode;
 pub use runner::{
     MAX_THREADS_PER_CORE, MemoryRun, Outcome, RunOptions, RunReport, WINDOW_PER_THREAD, run,

@@ -8,6 +8,7 @@ mod inspect;
 mod log;
 mod merge;
 mod montecarlo;
+mod sensitivity;
 mod sil;
 mod simulate;
 mod sweep;
@@ -36,6 +37,10 @@ pub enum Command {
     Montecarlo(montecarlo::MonteCarloArgs),
     /// Join the output directories of the shards of one Monte Carlo study.
     Merge(merge::MergeArgs),
+    /// Which varied input causes the spread of each output of a Monte Carlo study: each
+    /// input's share of the variance and the unexplained part (RocketPy's SensitivityModel,
+    /// a linear regression on the study's samples).
+    Sensitivity(sensitivity::SensitivityArgs),
     /// Fly the mission with one input set to each of several values: a table of summaries
     /// and one SVG per chosen series with the variants overlaid.
     Sweep(sweep::SweepArgs),
@@ -128,6 +133,7 @@ pub fn run(command: Command) -> anyhow::Result<()> {
         Command::Sil(args) => sil::run(&args),
         Command::Montecarlo(args) => montecarlo::run(&args),
         Command::Merge(args) => merge::run(&args),
+        Command::Sensitivity(args) => sensitivity::run(&args),
         Command::Sweep(args) => sweep::run(&args),
         Command::Weather(args) => weather::run(&args),
         Command::Log(args) => log::run(&args),
