@@ -15,4 +15,5 @@ mod sensitivity;
 mod sil;
 mod simulate;
 mod sweep;
+mod until;
 mod weather;

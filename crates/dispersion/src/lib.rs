@@ -43,6 +43,7 @@
 //! - Shardable: [`RunOptions::shard`] `K/N` flies the samples with `index % N == K − 1`;
 //!   [`merge`] joins the shard directories into the files of a single run.
 
+pub mod convergence;
 mod csv;
 mod distribution;
 mod error;

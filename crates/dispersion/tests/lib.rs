@@ -1,6 +1,7 @@
 //! Integration tests of karman-dispersion (one binary; a module per topic).
 
 mod common;
+mod convergence;
 mod determinism;
 mod distributions;
 mod ellipses;
