@@ -204,6 +204,11 @@ class Study:
     @property
     def statistics(self) -> dict[str, dict[str, float] | None]:
         """Statistics of every input and output column."""
+    def sensitivity(self, outputs: list[str] | None = None) -> dict[str, dict[str, Any]]:
+        """RocketPy 1.13's ``SensitivityModel`` (linear regression variance decomposition)
+        on the completed samples: per output, ``inputs`` (names) and the arrays ``share``,
+        ``coefficient``, ``effect_per_std``, ``mean``, ``std`` in their order, the
+        ``unexplained`` share, ``output_mean``, ``output_std`` and ``samples``."""
     @property
     def ellipses(self) -> dict[str, dict[str, Any]]:
         """The ``apogee`` and ``landing`` ellipses with their 1/2/3-sigma contours; a lower
