@@ -14,6 +14,7 @@ mod montecarlo;
 mod sensitivity;
 mod sil;
 mod simulate;
+mod solve;
 mod sweep;
 mod until;
 mod weather;

@@ -34,6 +34,7 @@ mod overrides;
 pub mod paths;
 pub mod report;
 pub mod schema;
+pub mod solve;
 mod validate;
 #[cfg(feature = "fetch")]
 pub mod weather;

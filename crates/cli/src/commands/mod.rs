@@ -11,6 +11,7 @@ mod montecarlo;
 mod sensitivity;
 mod sil;
 mod simulate;
+mod solve;
 mod sweep;
 mod weather;
 
@@ -41,6 +42,10 @@ pub enum Command {
     /// input's share of the variance and the unexplained part (RocketPy's SensitivityModel,
     /// a linear regression on the study's samples).
     Sensitivity(sensitivity::SensitivityArgs),
+    /// Find the value of one input that makes a summary output reach a target
+    /// (`--target apogee_agl_m=3048 --vary rocket.mass`): a bracketing root finder (Brent),
+    /// the flights it took and the `--set` that flies it.
+    Solve(solve::SolveArgs),
     /// Fly the mission with one input set to each of several values: a table of summaries
     /// and one SVG per chosen series with the variants overlaid.
     Sweep(sweep::SweepArgs),
@@ -135,6 +140,7 @@ pub fn run(command: Command) -> anyhow::Result<()> {
         Command::Merge(args) => merge::run(&args),
         Command::Sensitivity(args) => sensitivity::run(&args),
         Command::Sweep(args) => sweep::run(&args),
+        Command::Solve(args) => solve::run(&args),
         Command::Weather(args) => weather::run(&args),
         Command::Log(args) => log::run(&args),
         Command::Compare(args) => compare::run(&args),

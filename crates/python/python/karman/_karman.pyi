@@ -85,6 +85,21 @@ class Mission:
         ``[dispersion]``; ``vary`` replaces ``[dispersion.vary]``; ``out`` writes the CLI's
         files there). The GIL is released; Ctrl-C raises ``KeyboardInterrupt`` between
         samples; ``progress`` shows tqdm's bar when tqdm is installed, else a text line."""
+    def solve(
+        self,
+        target: dict[str, float],
+        vary: str,
+        bounds: tuple[float, float] | None = None,
+        tolerance: float | None = None,
+        max_flights: int | None = None,
+        seed: int = 0,
+    ) -> dict[str, Any]:
+        """The value of the input ``vary`` (``"rocket.mass"``) at which the output of
+        ``target`` (``{"apogee_agl_m": 3048}``) reaches its value, as ``karman solve`` finds it
+        (Brent's bracketing root finder within ``bounds``, default the nominal ∓ 50 %;
+        tolerance 0.01 in the output's units and 30 flights unless told). Returns the dict of
+        ``karman solve --json``; raises ``MissionError`` when no value within the bounds
+        reaches the target."""
     def fit(
         self,
         log: FlightLog,
