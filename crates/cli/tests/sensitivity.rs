@@ -153,6 +153,54 @@ fn validate_sensitivity_equals_rocketpy_on_the_same_samples() {
             chart.display()
         );
     }
+    check_tolerance(&out);
+}
+
+/// `karman tolerance` on the same study: Wilks' 99 %/95 % bounds of the apogee are its 13th
+/// largest and 13th smallest values (`P(B ≤ 1987) = 0.961692322388526 ≥ 0.95 >
+/// P(B ≤ 1986) = 0.9348222763313376` for `B ~ Binomial(2000, 0.99)`, SciPy's `binom.cdf`).
+fn check_tolerance(out: &Path) {
+    let output = karman(&[
+        "tolerance",
+        out.to_str().expect("utf-8"),
+        "--output",
+        "apogee_agl_m",
+        "--json",
+    ]);
+    assert!(
+        output.status.success(),
+        "{}",
+        String::from_utf8_lossy(&output.stderr)
+    );
+    let json: serde_json::Value = serde_json::from_slice(&output.stdout).expect("JSON");
+    let bounds = &json[0];
+    assert_eq!(bounds["rank"], 13);
+    let confidence = bounds["achieved_confidence"].as_f64().expect("confidence");
+    assert!(
+        (confidence - 0.961692322388526).abs() < 1e-12,
+        "{confidence}"
+    );
+    let text = std::fs::read_to_string(out.join("samples.csv")).expect("samples");
+    let mut lines = text.lines();
+    let header: Vec<&str> = lines.next().expect("header").split(',').collect();
+    let column = header
+        .iter()
+        .position(|c| *c == "apogee_agl_m")
+        .expect("column");
+    let mut apogees: Vec<f64> = lines
+        .map(|l| {
+            l.split(',')
+                .nth(column)
+                .expect("cell")
+                .parse()
+                .expect("number")
+        })
+        .collect();
+    apogees.sort_by(f64::total_cmp);
+    let upper = bounds["upper"].as_f64().expect("upper");
+    let lower = bounds["lower"].as_f64().expect("lower");
+    assert_eq!(upper.to_bits(), apogees[2000 - 13].to_bits());
+    assert_eq!(lower.to_bits(), apogees[12].to_bits());
 }
 
 #[test]
@@ -207,6 +255,29 @@ fn bad_sensitivity_requests_are_errors() {
     ]);
     assert!(
         text.contains("5 completed samples") && text.contains("needs at least 8"),
+        "{text}"
+    );
+    // Wilks' bounds need more samples than 12: said, with the number needed.
+    let output = karman(&[
+        "tolerance",
+        out.to_str().expect("utf-8"),
+        "--output",
+        "apogee_agl_m",
+    ]);
+    assert!(output.status.success());
+    let table = String::from_utf8_lossy(&output.stdout);
+    assert!(
+        table.contains("needs at least 299 completed samples"),
+        "{table}"
+    );
+    let text = failure(&[
+        "tolerance",
+        out.to_str().expect("utf-8"),
+        "--coverage",
+        "99",
+    ]);
+    assert!(
+        text.contains("strictly between 0 and 1") && text.contains("got 99"),
         "{text}"
     );
     // 12 completed samples suffice, so the table prints.

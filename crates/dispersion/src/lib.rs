@@ -59,6 +59,7 @@ mod sensitivity;
 mod stats;
 mod study;
 mod summary;
+mod tolerance;
 
 pub use csv::{Counts, Row, Status, parse as parse_row};
 pub use distribution::{
@@ -83,6 +84,9 @@ pub use stats::{
 };
 pub use study::{BodyPoints, DataFile, Points, Shard, Site, Study};
 pub use summary::{Column, Contour, EllipseSummary, Failure, Summary, summarize, summarize_rows};
+pub use tolerance::{
+    ToleranceBounds, bounds_of, samples_needed, tolerance, tolerance_of_rows, wilks_rank,
+};
 
 /// The README's example, compiled and run by `cargo test --doc`.
 #[cfg(doctest)]

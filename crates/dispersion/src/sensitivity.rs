@@ -100,6 +100,12 @@ pub const METHOD: &str = "linear regression variance decomposition (RocketPy 1.1
 /// study's; a named output has too few completed samples, does not vary, or its inputs are
 /// collinear ([`DispersionError::InvalidStudy`] saying which).
 pub fn sensitivity(dir: &Path, outputs: &[String]) -> Result<Sensitivity, DispersionError> {
+    let (study, rows) = read_rows(dir)?;
+    sensitivity_of_rows(&study, &rows, outputs)
+}
+
+/// The study in `dir` and its complete rows, every row checked as a resume checks it.
+pub(crate) fn read_rows(dir: &Path) -> Result<(Study, Vec<Row>), DispersionError> {
     let record =
         Record::read(&dir.join(STUDY_FILE))?.ok_or_else(|| DispersionError::MissingStudy {
             dir: dir.to_owned(),
@@ -113,7 +119,7 @@ pub fn sensitivity(dir: &Path, outputs: &[String]) -> Result<Sensitivity, Disper
     })?;
     // A trailing partial row (an interrupted run) is not part of the scan.
     rows.truncate(usize::try_from(scan.rows).unwrap_or(usize::MAX));
-    sensitivity_of_rows(&study, &rows, outputs)
+    Ok((study, rows))
 }
 
 /// [`sensitivity`] of rows in memory (as [`crate::run_in_memory`] keeps them).

@@ -6,6 +6,7 @@ use std::time::Duration;
 
 use karman_mission::dispersion::{
     Row, RunReport, Status, Study as StudyDefinition, Summary, parse_row, sensitivity_of_rows,
+    tolerance_of_rows,
 };
 use numpy::PyArray1;
 use pyo3::exceptions::{PyOSError, PyRuntimeError};
@@ -240,6 +241,33 @@ impl Study {
             entry.set_item("output_std", output.std)?;
             entry.set_item("samples", output.samples)?;
             dict.set_item(&output.output, entry)?;
+        }
+        Ok(dict)
+    }
+
+    /// Wilks' one-sided tolerance bounds of each output, as `karman tolerance --json`:
+    /// `{output: {"upper", "lower", "rank", "achieved_confidence", "samples",
+    /// "samples_needed", "coverage", "confidence"}}`; `upper` is the value a fraction
+    /// `coverage` of flights stays below with `confidence` (None with too few samples).
+    #[pyo3(signature = (outputs = None, coverage = 0.99, confidence = 0.95))]
+    fn tolerance<'py>(
+        &self,
+        py: Python<'py>,
+        outputs: Option<Vec<String>>,
+        coverage: f64,
+        confidence: f64,
+    ) -> PyResult<Bound<'py, PyDict>> {
+        let bounds = tolerance_of_rows(
+            &self.definition,
+            &self.rows,
+            &outputs.unwrap_or_default(),
+            coverage,
+            confidence,
+        )
+        .map_err(|e| pyo3::exceptions::PyValueError::new_err(e.to_string()))?;
+        let dict = PyDict::new(py);
+        for b in &bounds {
+            dict.set_item(&b.output, plain(py, b)?)?;
         }
         Ok(dict)
     }

@@ -229,3 +229,16 @@ def test_sensitivity_is_rocketpys_sensitivity_model(example):
         assert decomposition["output_std"] == pytest.approx(info["sd"], rel=1e-9)
     with pytest.raises(ValueError, match="not an output"):
         study.sensitivity(["apogee_feet"])
+
+
+def test_wilks_tolerance_bounds_are_order_statistics(example):
+    study = example.montecarlo(samples=100, seed=3, threads=2, progress=False)
+    bounds = study.tolerance(["apogee_agl_m"], coverage=0.95, confidence=0.95)["apogee_agl_m"]
+    # n = 100 >= 93: the second largest and second smallest (Wilks' second order).
+    apogees = np.sort(study.outputs["apogee_agl_m"])
+    assert bounds["rank"] == 2
+    assert bounds["upper"] == apogees[-2] and bounds["lower"] == apogees[1]
+    few = study.tolerance(["apogee_agl_m"])["apogee_agl_m"]
+    assert few["upper"] is None and few["samples_needed"] == 299
+    with pytest.raises(ValueError, match="strictly between 0 and 1"):
+        study.tolerance(coverage=1.5)

@@ -13,6 +13,7 @@ mod sil;
 mod simulate;
 mod solve;
 mod sweep;
+mod tolerance;
 mod weather;
 
 use clap::{Args, Subcommand};
@@ -42,6 +43,9 @@ pub enum Command {
     /// input's share of the variance and the unexplained part (RocketPy's SensitivityModel,
     /// a linear regression on the study's samples).
     Sensitivity(sensitivity::SensitivityArgs),
+    /// Wilks' distribution-free tolerance bounds of a Monte Carlo study's outputs: "99 % of
+    /// flights stay below X with 95 % confidence", from the order statistics of its samples.
+    Tolerance(tolerance::ToleranceArgs),
     /// Find the value of one input that makes a summary output reach a target
     /// (`--target apogee_agl_m=3048 --vary rocket.mass`): a bracketing root finder (Brent),
     /// the flights it took and the `--set` that flies it.
@@ -139,6 +143,7 @@ pub fn run(command: Command) -> anyhow::Result<()> {
         Command::Montecarlo(args) => montecarlo::run(&args),
         Command::Merge(args) => merge::run(&args),
         Command::Sensitivity(args) => sensitivity::run(&args),
+        Command::Tolerance(args) => tolerance::run(&args),
         Command::Sweep(args) => sweep::run(&args),
         Command::Solve(args) => solve::run(&args),
         Command::Weather(args) => weather::run(&args),

@@ -219,6 +219,12 @@ class Study:
     @property
     def statistics(self) -> dict[str, dict[str, float] | None]:
         """Statistics of every input and output column."""
+    def tolerance(
+        self, outputs: list[str] | None = None, coverage: float = 0.99, confidence: float = 0.95
+    ) -> dict[str, dict[str, Any]]:
+        """Wilks' one-sided tolerance bounds per output (``karman tolerance --json``):
+        ``upper`` is the value a fraction ``coverage`` of flights stays below with
+        ``confidence`` (None with too few samples), ``lower`` the one it stays above."""
     def sensitivity(self, outputs: list[str] | None = None) -> dict[str, dict[str, Any]]:
         """RocketPy 1.13's ``SensitivityModel`` (linear regression variance decomposition)
         on the completed samples: per output, ``inputs`` (names) and the arrays ``share``,
