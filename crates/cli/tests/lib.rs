@@ -11,6 +11,7 @@ mod import;
 mod inspect;
 mod log;
 mod montecarlo;
+mod safety;
 mod sensitivity;
 mod sil;
 mod simulate;

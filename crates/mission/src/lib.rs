@@ -33,6 +33,7 @@ pub mod montecarlo;
 mod overrides;
 pub mod paths;
 pub mod report;
+pub mod safety;
 pub mod schema;
 pub mod solve;
 mod validate;

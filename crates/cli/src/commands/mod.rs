@@ -8,6 +8,7 @@ mod inspect;
 mod log;
 mod merge;
 mod montecarlo;
+mod safety;
 mod sensitivity;
 mod sil;
 mod simulate;
@@ -46,6 +47,10 @@ pub enum Command {
     /// Wilks' distribution-free tolerance bounds of a Monte Carlo study's outputs: "99 % of
     /// flights stay below X with 95 % confidence", from the order statistics of its samples.
     Tolerance(tolerance::ToleranceArgs),
+    /// Range-safety report of the nominal flight: rail-exit speed, thrust-to-weight and
+    /// stability, Mach and dynamic pressure, fin flutter margin (NACA TN 4197), landing
+    /// energy, descent rate and drift, each pass / warn / fail against a threshold.
+    Safety(safety::SafetyArgs),
     /// Find the value of one input that makes a summary output reach a target
     /// (`--target apogee_agl_m=3048 --vary rocket.mass`): a bracketing root finder (Brent),
     /// the flights it took and the `--set` that flies it.
@@ -146,6 +151,7 @@ pub fn run(command: Command) -> anyhow::Result<()> {
         Command::Tolerance(args) => tolerance::run(&args),
         Command::Sweep(args) => sweep::run(&args),
         Command::Solve(args) => solve::run(&args),
+        Command::Safety(args) => safety::run(&args),
         Command::Weather(args) => weather::run(&args),
         Command::Log(args) => log::run(&args),
         Command::Compare(args) => compare::run(&args),
