@@ -56,6 +56,7 @@ mod regular;
 mod runner;
 pub mod sampling;
 mod sensitivity;
+mod sobol;
 mod stats;
 mod study;
 mod summary;
@@ -78,6 +79,7 @@ pub use sensitivity::{
     InputShare, OutputSensitivity, Sensitivity, Skipped, decompose, sensitivity,
     sensitivity_of_rows,
 };
+pub use sobol::{SobolIndices, saltelli_design, sobol, sobol_indices};
 pub use stats::{
     Ellipse, Moments, NORMAL_SIGMA_PROBABILITY, Statistics, k_sigma_probability, probability_scale,
     quantile,

@@ -10,4 +10,5 @@ mod lock;
 mod never_panics;
 mod resume;
 mod sigkill;
+mod sobol;
 mod window;
