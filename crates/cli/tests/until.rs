@@ -109,3 +109,38 @@ fn until_names_a_bad_condition() {
     );
     assert!(!out.join("samples.csv").exists());
 }
+
+#[test]
+fn design_sobol_writes_the_indices_of_every_output() {
+    let out = scratch_dir("sobol-example");
+    let text = montecarlo(&out, &["--samples", "12", "--design", "sobol"]);
+    assert!(
+        text.starts_with(
+            "Sobol indices (Saltelli's design): 96 flights (6 inputs + 2) x 12, seed 5"
+        ),
+        "{text}"
+    );
+    let json: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(out.join("sobol.json")).expect("written"))
+            .expect("JSON");
+    let apogee = &json["apogee_agl_m"];
+    assert_eq!(apogee["evaluations"], 96);
+    assert_eq!(apogee["first"].as_array().expect("first").len(), 6);
+    assert_eq!(apogee["total"].as_array().expect("total").len(), 6);
+    assert!(!out.join("samples.csv").exists() && !out.join("study.json").exists());
+    let example = example();
+    let text = failure(&[
+        "montecarlo",
+        example.to_str().expect("utf-8"),
+        "--design",
+        "sobol",
+        "--until",
+        "apogee_agl_m.ci95 < 5",
+        "--out",
+        out.to_str().expect("utf-8"),
+    ]);
+    assert!(
+        text.contains("--design sobol takes neither --until nor --shard"),
+        "{text}"
+    );
+}

@@ -79,7 +79,7 @@ pub use sensitivity::{
     InputShare, OutputSensitivity, Sensitivity, Skipped, decompose, sensitivity,
     sensitivity_of_rows,
 };
-pub use sobol::{SobolIndices, saltelli_design, sobol, sobol_indices};
+pub use sobol::{OutputIndices, SobolIndices, saltelli_design, sobol, sobol_indices, sobol_study};
 pub use stats::{
     Ellipse, Moments, NORMAL_SIGMA_PROBABILITY, Statistics, k_sigma_probability, probability_scale,
     quantile,

@@ -142,3 +142,66 @@ where
     let names: Vec<String> = inputs.iter().map(VariedInput::column).collect();
     sobol_indices(&names, n, &values)
 }
+
+/// An output's name and its indices, or why they cannot be computed.
+pub type OutputIndices = (String, Result<SobolIndices, String>);
+
+/// The Sobol indices of every output of `study` (its inputs and seed; `n` rows per matrix),
+/// its flight function `fly` called on each row of Saltelli's design with the row's number as
+/// the sample index, on `options.threads` workers. An output with a row that has no value (a
+/// failed flight, an output that did not occur) gets the reason instead of its indices.
+///
+/// # Errors
+/// The study's inputs are invalid, `n < 2`, or the thread pool cannot be built.
+pub fn sobol_study<F>(
+    study: &crate::Study,
+    n: u64,
+    options: &crate::RunOptions,
+    fly: F,
+) -> Result<Vec<OutputIndices>, DispersionError>
+where
+    F: Fn(u64, &[f64]) -> Result<crate::Outcome, String> + Sync,
+{
+    study.validate()?;
+    if n < 2 {
+        return Err(DispersionError::InvalidStudy {
+            reason: format!("Saltelli's design needs at least 2 samples per matrix, got {n}"),
+        });
+    }
+    let pool = crate::runner::thread_pool(options)?;
+    let rows = saltelli_design(study.seed, n, &study.inputs);
+    let outcomes: Vec<Result<crate::Outcome, String>> = pool.install(|| {
+        rows.par_iter()
+            .enumerate()
+            .map(|(r, row)| {
+                std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| fly(r as u64, row)))
+                    .unwrap_or_else(|_| Err("the flight panicked".to_owned()))
+            })
+            .collect()
+    });
+    let names: Vec<String> = study.inputs.iter().map(VariedInput::column).collect();
+    Ok(study
+        .outputs
+        .iter()
+        .enumerate()
+        .map(|(k, output)| {
+            let values: Vec<f64> = outcomes
+                .iter()
+                .map(|o| match o {
+                    Ok(outcome) if outcome.status().is_completed() => outcome
+                        .values()
+                        .get(k)
+                        .copied()
+                        .flatten()
+                        .unwrap_or(f64::NAN),
+                    _ => f64::NAN,
+                })
+                .collect();
+            let indices = sobol_indices(&names, n, &values).map_err(|e| match e {
+                DispersionError::InvalidStudy { reason } => reason,
+                other => other.to_string(),
+            });
+            (output.clone(), indices)
+        })
+        .collect())
+}

@@ -51,6 +51,11 @@ pub struct MonteCarloArgs {
     /// written is the study of the samples flown, as `--samples` of that many writes it.
     #[arg(long = "until", value_name = "CONDITION")]
     pub until: Vec<String>,
+    /// The sampling design: `random` (the study) or `sobol` (Saltelli's design of
+    /// (inputs + 2) x N flights, N = --samples; prints the first-order and total Sobol
+    /// indices of every output and writes them to DIR/sobol.json; no study is written).
+    #[arg(long, value_name = "DESIGN", default_value = "random", value_parser = ["random", "sobol"])]
+    pub design: String,
     /// Samples between --until checks (the first check after this many).
     #[arg(long, value_name = "N", default_value_t = dispersion::convergence::DEFAULT_EVERY, requires = "until")]
     pub check_every: u64,
@@ -74,6 +79,12 @@ pub fn run(args: &MonteCarloArgs) -> Result<()> {
             ProgressMode::Auto
         },
     };
+    if args.design == "sobol" {
+        if !args.until.is_empty() || args.shard.is_some() {
+            bail!("--design sobol takes neither --until nor --shard");
+        }
+        return sobol(&study, &options, &args.out);
+    }
     let mut converged = None;
     let report = if args.until.is_empty() {
         dispersion::run(study.study(), &args.out, &options, |index, values| {
@@ -232,5 +243,62 @@ fn print_convergence(
         "  intervals: 95 % normal-approximation confidence half-width of the mean, 1.96 s/sqrt(n); \
          of a landing semi-axis a, 1.96 a/sqrt(2(n-1)) (delta method, normal sample covariance)"
     )?;
+    Ok(())
+}
+
+/// `--design sobol`: Saltelli's design flown, the indices printed and written to
+/// `out/sobol.json`.
+fn sobol(study: &MonteCarlo, options: &RunOptions, out: &std::path::Path) -> Result<()> {
+    let definition = study.study();
+    let n = definition.samples;
+    let started = std::time::Instant::now();
+    let results = dispersion::sobol_study(definition, n, options, |index, values| {
+        study.fly(index, values)
+    })?;
+    let flights = (definition.inputs.len() as u64 + 2) * n;
+    let mut stdout = std::io::stdout().lock();
+    writeln!(
+        stdout,
+        "Sobol indices (Saltelli's design): {flights} flights ({} inputs + 2) x {n}, seed {}, {:.1} s",
+        definition.inputs.len(),
+        definition.seed,
+        started.elapsed().as_secs_f64()
+    )?;
+    let width = definition
+        .inputs
+        .iter()
+        .map(|i| i.column().len())
+        .fold(28, usize::max);
+    let mut json = serde_json::Map::new();
+    for (output, indices) in &results {
+        match indices {
+            Ok(s) => {
+                writeln!(stdout, "{output}:")?;
+                writeln!(
+                    stdout,
+                    "  {:<width$} {:>10} {:>10}",
+                    "input", "first", "total"
+                )?;
+                for (i, name) in s.inputs.iter().enumerate() {
+                    writeln!(
+                        stdout,
+                        "  {name:<width$} {:>10.4} {:>10.4}",
+                        s.first[i], s.total[i]
+                    )?;
+                }
+                json.insert(output.clone(), serde_json::to_value(s)?);
+            }
+            Err(reason) => {
+                writeln!(stdout, "{output}: not computed: {reason}")?;
+                json.insert(output.clone(), serde_json::json!({ "error": reason }));
+            }
+        }
+    }
+    std::fs::create_dir_all(out)?;
+    let path = out.join("sobol.json");
+    let mut text = serde_json::to_string_pretty(&json)?;
+    text.push('\n');
+    dispersion::files::write_atomic(&path, text.as_bytes())?;
+    writeln!(stdout, "written to {}", path.display())?;
     Ok(())
 }
