@@ -137,6 +137,10 @@ pub const TRUNCATION_MIN_SHARE: f64 = 1e-3;
 /// the same on every machine).
 const TRUNCATION_CHECK_DRAWS: u32 = 20_000;
 
+/// The seed of the fixed stream [`Distribution::validate`] checks a truncation's share on
+/// (the bytes of "truncate").
+const TRUNCATION_CHECK_SEED: u64 = 0x7472_756e_6361_7465;
+
 /// Draws a truncated distribution tries before giving up with NaN. With a share of at least
 /// [`TRUNCATION_MIN_SHARE`] kept, giving up has a probability below `(1 − 1e-3)^1e6 ≈ e^−1000`.
 const TRUNCATION_MAX_ATTEMPTS: u32 = 1_000_000;
@@ -388,9 +392,8 @@ fn truncation_problem(inner: &Distribution, low: Option<f64>, high: Option<f64>)
         }
     }
     // The share kept, estimated from a fixed stream of the untruncated distribution.
-    let mut rng = <rand_chacha::ChaCha8Rng as rand::SeedableRng>::seed_from_u64(
-        crate::sampling::fnv1a64(b"truncation check"),
-    );
+    let mut rng =
+        <rand_chacha::ChaCha8Rng as rand::SeedableRng>::seed_from_u64(TRUNCATION_CHECK_SEED);
     let kept = (0..TRUNCATION_CHECK_DRAWS)
         .filter(|_| within(inner.sample(&mut rng), low, high))
         .count();
