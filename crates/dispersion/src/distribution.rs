@@ -145,6 +145,9 @@ const TRUNCATION_CHECK_SEED: u64 = 0x7472_756e_6361_7465;
 /// [`TRUNCATION_MIN_SHARE`] kept, giving up has a probability below `(1 − 1e-3)^1e6 ≈ e^−1000`.
 const TRUNCATION_MAX_ATTEMPTS: u32 = 1_000_000;
 
+/// The largest binomial trial count accepted: 2^53, every count up to it exact in a float.
+const MAX_TRIALS: u64 = 1 << 53;
+
 /// The largest Poisson rate accepted: NumPy's `poisson` refuses rates above about
 /// `9.2e18` (its 64-bit integer range); 1e18 stays within every sampler's range.
 const POISSON_MAX_LAM: f64 = 1e18;
@@ -278,6 +281,11 @@ impl Distribution {
             Distribution::Binomial { p, .. } if !(0.0..=1.0).contains(p) => {
                 Some(format!("binomial needs 0 <= p <= 1, got p = {p}"))
             }
+            // rand_distr's sampler needs n·p within the 64-bit integers (it asserts so): every
+            // count up to 2^53 is exact in a float and far within.
+            Distribution::Binomial { n, .. } if *n > MAX_TRIALS => Some(format!(
+                "binomial needs n <= 2^53 ({MAX_TRIALS}), got n = {n}"
+            )),
             Distribution::Chisquare { df } if *df <= 0.0 => {
                 Some(format!("chisquare needs df > 0, got df = {df}"))
             }
