@@ -47,17 +47,162 @@ pub enum Distribution {
     },
     /// Each value with equal probability (at least one value).
     Choice(Vec<f64>),
+    /// Exponential, density `exp(−x/β)/β` on `x ≥ 0` (NumPy's `exponential(scale)`, `β >= 0`).
+    Exponential {
+        /// The scale `β` (the mean).
+        scale: f64,
+    },
+    /// Gamma, density `x^(k−1) exp(−x/θ) / (Γ(k) θ^k)` (NumPy's `gamma(shape, scale)`,
+    /// `k > 0`, `θ > 0`).
+    Gamma {
+        /// The shape `k`.
+        shape: f64,
+        /// The scale `θ`.
+        scale: f64,
+    },
+    /// Gumbel (largest extreme value), CDF `exp(−exp(−(x−μ)/β))` (NumPy's
+    /// `gumbel(loc, scale)`, `β >= 0`).
+    Gumbel {
+        /// The mode `μ`.
+        loc: f64,
+        /// The scale `β`.
+        scale: f64,
+    },
+    /// Laplace (double exponential), density `exp(−|x−μ|/λ) / (2λ)` (NumPy's
+    /// `laplace(loc, scale)`, `λ >= 0`).
+    Laplace {
+        /// The centre `μ`.
+        loc: f64,
+        /// The scale `λ`.
+        scale: f64,
+    },
+    /// Logistic, CDF `1 / (1 + exp(−(x−μ)/s))` (NumPy's `logistic(loc, scale)`, `s >= 0`).
+    Logistic {
+        /// The centre `μ`.
+        loc: f64,
+        /// The scale `s`.
+        scale: f64,
+    },
+    /// Poisson, `P(k) = λ^k e^(−λ) / k!` on the integers `k ≥ 0` (NumPy's `poisson(lam)`,
+    /// `0 <= λ <= 1e18`).
+    Poisson {
+        /// The rate `λ` (the mean).
+        lam: f64,
+    },
+    /// Wald (inverse Gaussian), density `sqrt(λ / (2π x³)) exp(−λ (x−μ)² / (2 μ² x))` on
+    /// `x > 0` (NumPy's `wald(mean, scale)`, `μ > 0`, `λ > 0`).
+    Wald {
+        /// The mean `μ`.
+        mean: f64,
+        /// The scale (shape) `λ`.
+        scale: f64,
+    },
+    /// Binomial, the number of successes in `n` trials of probability `p` (NumPy's
+    /// `binomial(n, p)`, `0 <= p <= 1`).
+    Binomial {
+        /// The number of trials.
+        n: u64,
+        /// The probability of success of each trial.
+        p: f64,
+    },
+    /// Chi-square with `k` degrees of freedom, the gamma of shape `k/2` and scale 2 (NumPy's
+    /// `chisquare(df)`, `k > 0`).
+    Chisquare {
+        /// The degrees of freedom `k`.
+        df: f64,
+    },
+    /// `distribution` restricted to `[low, high]` (either bound may be absent): the density
+    /// of the inner distribution renormalised on the bounds, drawn by rejection (a draw out
+    /// of the bounds is drawn again from the same stream, so the draws stay a function of the
+    /// stream alone). The bounds must keep at least [`TRUNCATION_MIN_SHARE`] of the inner
+    /// distribution.
+    Truncated {
+        /// The distribution that is truncated.
+        distribution: Box<Distribution>,
+        /// The lower bound (inclusive).
+        #[serde(default, skip_serializing_if = "Option::is_none")]
+        low: Option<f64>,
+        /// The upper bound (inclusive).
+        #[serde(default, skip_serializing_if = "Option::is_none")]
+        high: Option<f64>,
+    },
+}
+
+/// The least share of its inner distribution a truncation must keep: below it the rejection
+/// sampling would cost more than a flight, and the bounds are almost surely a mistake.
+pub const TRUNCATION_MIN_SHARE: f64 = 1e-3;
+
+/// Draws of the untruncated distribution that [`Distribution::validate`] counts inside a
+/// truncation's bounds to check [`TRUNCATION_MIN_SHARE`] (a fixed stream, so the check is
+/// the same on every machine).
+const TRUNCATION_CHECK_DRAWS: u32 = 20_000;
+
+/// The seed of the fixed stream [`Distribution::validate`] checks a truncation's share on
+/// (the bytes of "truncate").
+const TRUNCATION_CHECK_SEED: u64 = 0x7472_756e_6361_7465;
+
+/// Draws a truncated distribution tries before giving up with NaN. With a share of at least
+/// [`TRUNCATION_MIN_SHARE`] kept, giving up has a probability below `(1 − 1e-3)^1e6 ≈ e^−1000`.
+const TRUNCATION_MAX_ATTEMPTS: u32 = 1_000_000;
+
+/// The largest binomial trial count accepted: 2^53, every count up to it exact in a float.
+const MAX_TRIALS: u64 = 1 << 53;
+
+/// The largest Poisson rate accepted: NumPy's `poisson` refuses rates above about
+/// `9.2e18` (its 64-bit integer range); 1e18 stays within every sampler's range.
+const POISSON_MAX_LAM: f64 = 1e18;
+
+/// A uniform number in the open interval (0, 1), for the inverse-CDF draws whose logarithm
+/// must stay finite.
+fn open01<R: Rng + ?Sized>(rng: &mut R) -> f64 {
+    rand_distr::Open01.sample(rng)
 }
 
 impl Distribution {
+    /// Its name as the mission file writes it (`normal`, `gamma`, ...).
+    pub fn name(&self) -> &'static str {
+        match self {
+            Distribution::Normal { .. } => "normal",
+            Distribution::Uniform { .. } => "uniform",
+            Distribution::Triangular { .. } => "triangular",
+            Distribution::Lognormal { .. } => "lognormal",
+            Distribution::Choice(_) => "choice",
+            Distribution::Exponential { .. } => "exponential",
+            Distribution::Gamma { .. } => "gamma",
+            Distribution::Gumbel { .. } => "gumbel",
+            Distribution::Laplace { .. } => "laplace",
+            Distribution::Logistic { .. } => "logistic",
+            Distribution::Poisson { .. } => "poisson",
+            Distribution::Wald { .. } => "wald",
+            Distribution::Binomial { .. } => "binomial",
+            Distribution::Chisquare { .. } => "chisquare",
+            Distribution::Truncated { .. } => "truncated",
+        }
+    }
+
+    /// Whether every draw is an integer (a Poisson, a binomial, a `choice` of integers, or a
+    /// truncation of one): such a distribution fits an integer input.
+    pub fn is_integral(&self) -> bool {
+        match self {
+            Distribution::Poisson { .. } | Distribution::Binomial { .. } => true,
+            Distribution::Choice(values) => values.iter().all(|v| v.fract().abs() <= 0.0),
+            Distribution::Truncated { distribution, .. } => distribution.is_integral(),
+            _ => false,
+        }
+    }
+
     /// Checks the parameters; `input` names the varied input in the error.
     pub fn validate(&self, input: &str) -> Result<(), DispersionError> {
-        let invalid = |reason: &str| {
+        self.problem().map_or(Ok(()), |reason| {
             Err(DispersionError::InvalidDistribution {
                 input: input.to_owned(),
-                reason: reason.to_owned(),
+                reason,
             })
-        };
+        })
+    }
+
+    /// What is wrong with the parameters, if anything (the text names each bad value).
+    fn problem(&self) -> Option<String> {
         let finite = match self {
             Distribution::Normal { mean, std } => [*mean, *std].iter().all(|v| v.is_finite()),
             Distribution::Uniform { low, high } => low.is_finite() && high.is_finite(),
@@ -66,36 +211,95 @@ impl Distribution {
             }
             Distribution::Lognormal { mu, sigma } => mu.is_finite() && sigma.is_finite(),
             Distribution::Choice(values) => values.iter().all(|v| v.is_finite()),
+            Distribution::Exponential { scale } => scale.is_finite(),
+            Distribution::Poisson { lam } => lam.is_finite(),
+            Distribution::Chisquare { df } => df.is_finite(),
+            Distribution::Binomial { p, .. } => p.is_finite(),
+            Distribution::Gamma { shape: a, scale: b }
+            | Distribution::Gumbel { loc: a, scale: b }
+            | Distribution::Laplace { loc: a, scale: b }
+            | Distribution::Logistic { loc: a, scale: b }
+            | Distribution::Wald { mean: a, scale: b } => a.is_finite() && b.is_finite(),
+            Distribution::Truncated { low, high, .. } => {
+                low.is_none_or(f64::is_finite) && high.is_none_or(f64::is_finite)
+            }
         };
         if !finite {
-            return invalid("distribution parameters must be finite numbers");
+            return Some(match self {
+                Distribution::Truncated { low, high, .. } => format!(
+                    "truncated needs finite bounds (leave a bound out for none), got low = {}, high = {}",
+                    bound_text(*low),
+                    bound_text(*high)
+                ),
+                _ => "distribution parameters must be finite numbers".to_owned(),
+            });
         }
         match self {
-            Distribution::Normal { std, .. } if *std < 0.0 => invalid(&format!(
-                "normal needs a standard deviation >= 0, got {std}"
-            )),
+            Distribution::Normal { std, .. } if *std < 0.0 => {
+                Some(format!("normal needs a standard deviation >= 0, got {std}"))
+            }
             Distribution::Uniform { low, high } if low > high => {
-                invalid(&format!("uniform needs low <= high, got [{low}, {high}]"))
+                Some(format!("uniform needs low <= high, got [{low}, {high}]"))
             }
             Distribution::Triangular { low, mode, high }
                 if !(low <= mode && mode <= high && low < high) =>
             {
-                invalid(&format!(
+                Some(format!(
                     "triangular needs low <= mode <= high and low < high, got [{low}, {mode}, {high}]"
                 ))
             }
             Distribution::Lognormal { sigma, .. } if *sigma < 0.0 => {
-                invalid(&format!("lognormal needs sigma >= 0, got {sigma}"))
+                Some(format!("lognormal needs sigma >= 0, got {sigma}"))
             }
             Distribution::Choice(values) if values.is_empty() => {
-                invalid("choice needs at least one value")
+                Some("choice needs at least one value".to_owned())
             }
-            _ => Ok(()),
+            Distribution::Exponential { scale } if *scale < 0.0 => {
+                Some(format!("exponential needs scale >= 0, got scale = {scale}"))
+            }
+            Distribution::Gamma { shape, scale } if !(*shape > 0.0 && *scale > 0.0) => {
+                Some(format!(
+                    "gamma needs shape > 0 and scale > 0, got shape = {shape}, scale = {scale}"
+                ))
+            }
+            Distribution::Gumbel { scale, .. }
+            | Distribution::Laplace { scale, .. }
+            | Distribution::Logistic { scale, .. }
+                if *scale < 0.0 =>
+            {
+                Some(format!(
+                    "{} needs scale >= 0, got scale = {scale}",
+                    self.name()
+                ))
+            }
+            Distribution::Poisson { lam } if !(0.0..=POISSON_MAX_LAM).contains(lam) => Some(
+                format!("poisson needs 0 <= lam <= {POISSON_MAX_LAM:e}, got lam = {lam}"),
+            ),
+            Distribution::Wald { mean, scale } if !(*mean > 0.0 && *scale > 0.0) => Some(format!(
+                "wald needs mean > 0 and scale > 0, got mean = {mean}, scale = {scale}"
+            )),
+            Distribution::Binomial { p, .. } if !(0.0..=1.0).contains(p) => {
+                Some(format!("binomial needs 0 <= p <= 1, got p = {p}"))
+            }
+            // rand_distr's sampler needs n·p within the 64-bit integers (it asserts so): every
+            // count up to 2^53 is exact in a float and far within.
+            Distribution::Binomial { n, .. } if *n > MAX_TRIALS => Some(format!(
+                "binomial needs n <= 2^53 ({MAX_TRIALS}), got n = {n}"
+            )),
+            Distribution::Chisquare { df } if *df <= 0.0 => {
+                Some(format!("chisquare needs df > 0, got df = {df}"))
+            }
+            Distribution::Truncated {
+                distribution,
+                low,
+                high,
+            } => truncation_problem(distribution, *low, *high),
+            _ => None,
         }
     }
 
     /// One draw. The distribution must have passed [`Distribution::validate`]; a degenerate
-    /// case (`std = 0`, `low = high`) returns its single value.
+    /// case (`std = 0`, `low = high`, a zero scale) returns its single value.
     pub fn sample<R: Rng + ?Sized>(&self, rng: &mut R) -> f64 {
         match self {
             Distribution::Normal { mean, std } => {
@@ -118,8 +322,101 @@ impl Distribution {
                 let pick = rng.random_range(0..values.len().max(1));
                 values.get(pick).copied().unwrap_or(f64::NAN)
             }
+            // β·E with E a standard exponential (rand_distr's ziggurat `Exp1`).
+            Distribution::Exponential { scale } => {
+                let e: f64 = rand_distr::Exp1.sample(rng);
+                scale * e
+            }
+            // Marsaglia & Tsang (2000), as rand_distr implements it.
+            Distribution::Gamma { shape, scale } => {
+                rand_distr::Gamma::new(*shape, *scale).map_or(f64::NAN, |gamma| gamma.sample(rng))
+            }
+            // Inverse CDF: x = μ − β ln(−ln U), U uniform on (0, 1).
+            Distribution::Gumbel { loc, scale } => loc - scale * (-open01(rng).ln()).ln(),
+            // Inverse CDF with V = U − ½ on (−½, ½): x = μ − λ sgn(V) ln(1 − 2|V|).
+            Distribution::Laplace { loc, scale } => {
+                let v = open01(rng) - 0.5;
+                loc - scale * v.signum() * (1.0 - 2.0 * v.abs()).ln()
+            }
+            // Inverse CDF: x = μ + s ln(U / (1 − U)).
+            Distribution::Logistic { loc, scale } => {
+                let u = open01(rng);
+                loc + scale * (u / (1.0 - u)).ln()
+            }
+            Distribution::Poisson { lam } => {
+                if *lam <= 0.0 {
+                    0.0
+                } else {
+                    rand_distr::Poisson::new(*lam).map_or(f64::NAN, |poisson| poisson.sample(rng))
+                }
+            }
+            // Michael, Schucany & Haas (1976), as rand_distr's `InverseGaussian`.
+            Distribution::Wald { mean, scale } => rand_distr::InverseGaussian::new(*mean, *scale)
+                .map_or(f64::NAN, |wald| wald.sample(rng)),
+            Distribution::Binomial { n, p } => rand_distr::Binomial::new(*n, *p)
+                .map_or(f64::NAN, |binomial| binomial.sample(rng) as f64),
+            Distribution::Chisquare { df } => rand_distr::ChiSquared::new(*df)
+                .map_or(f64::NAN, |chi_square| chi_square.sample(rng)),
+            Distribution::Truncated {
+                distribution,
+                low,
+                high,
+            } => {
+                for _ in 0..TRUNCATION_MAX_ATTEMPTS {
+                    let x = distribution.sample(rng);
+                    if within(x, *low, *high) {
+                        return x;
+                    }
+                }
+                f64::NAN
+            }
         }
     }
+}
+
+/// Whether `x` lies within the inclusive bounds (an absent bound is no bound).
+fn within(x: f64, low: Option<f64>, high: Option<f64>) -> bool {
+    low.is_none_or(|low| x >= low) && high.is_none_or(|high| x <= high)
+}
+
+fn bound_text(bound: Option<f64>) -> String {
+    bound.map_or_else(|| "none".to_owned(), |b| b.to_string())
+}
+
+/// What is wrong with a truncation: its inner distribution, reversed or absent bounds, or
+/// bounds that keep less than [`TRUNCATION_MIN_SHARE`] of it.
+fn truncation_problem(inner: &Distribution, low: Option<f64>, high: Option<f64>) -> Option<String> {
+    if let Some(reason) = inner.problem() {
+        return Some(format!("truncated {}: {reason}", inner.name()));
+    }
+    if low.is_none() && high.is_none() {
+        return Some("truncated needs a `low` or a `high` bound (or both)".to_owned());
+    }
+    if let (Some(low), Some(high)) = (low, high) {
+        if low > high {
+            return Some(format!(
+                "truncated needs low <= high, got low = {low}, high = {high}"
+            ));
+        }
+    }
+    // The share kept, estimated from a fixed stream of the untruncated distribution.
+    let mut rng =
+        <rand_chacha::ChaCha8Rng as rand::SeedableRng>::seed_from_u64(TRUNCATION_CHECK_SEED);
+    let kept = (0..TRUNCATION_CHECK_DRAWS)
+        .filter(|_| within(inner.sample(&mut rng), low, high))
+        .count();
+    let share = kept as f64 / f64::from(TRUNCATION_CHECK_DRAWS);
+    if share < TRUNCATION_MIN_SHARE {
+        return Some(format!(
+            "truncated {}: the bounds low = {}, high = {} keep {kept} of {TRUNCATION_CHECK_DRAWS} \
+             draws of the distribution, less than the {} % required; widen them",
+            inner.name(),
+            bound_text(low),
+            bound_text(high),
+            TRUNCATION_MIN_SHARE * 100.0
+        ));
+    }
+    None
 }
 
 /// How an input varies: the distribution and how a draw combines with the nominal value.
@@ -321,7 +618,11 @@ impl VariedInput {
                     misfit("an integer input takes a `choice` of integers")
                 }
             }
-            (Target::Integer(_), _) => misfit("an integer input only takes `choice = [...]`"),
+            (Target::Integer(_), Variation::Value(d)) if d.is_integral() => Ok(()),
+            (Target::Integer(_), _) => misfit(
+                "an integer input only takes `choice = [...]` of integers, `poisson` or \
+                 `binomial` (or a truncation of one)",
+            ),
             (
                 Target::Number(nominal),
                 Variation::Std(_) | Variation::Factor(_) | Variation::Offset(_),

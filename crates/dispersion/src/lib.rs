@@ -43,6 +43,7 @@
 //! - Shardable: [`RunOptions::shard`] `K/N` flies the samples with `index % N == K − 1`;
 //!   [`merge`] joins the shard directories into the files of a single run.
 
+pub mod convergence;
 mod csv;
 mod distribution;
 mod error;
@@ -54,26 +55,40 @@ mod progress;
 mod regular;
 mod runner;
 pub mod sampling;
+mod sensitivity;
+mod sobol;
 mod stats;
 mod study;
 mod summary;
+mod tolerance;
 
 pub use csv::{Counts, Row, Status, parse as parse_row};
-pub use distribution::{Distribution, Meaning, Target, Variation, VariedInput};
+pub use distribution::{
+    Distribution, Meaning, TRUNCATION_MIN_SHARE, Target, Variation, VariedInput,
+};
 pub use error::DispersionError;
 pub use kml::offset_to_lat_lon;
 pub use merge::merge;
+pub use plot::sensitivity_bars;
 pub use progress::ProgressMode;
 pub use runner::{
     MAX_THREADS_PER_CORE, MemoryRun, Outcome, RunOptions, RunReport, WINDOW_PER_THREAD, run,
     run_in_memory, run_until,
 };
+pub use sensitivity::{
+    InputShare, OutputSensitivity, Sensitivity, Skipped, decompose, sensitivity,
+    sensitivity_of_rows,
+};
+pub use sobol::{OutputIndices, SobolIndices, saltelli_design, sobol, sobol_indices, sobol_study};
 pub use stats::{
     Ellipse, Moments, NORMAL_SIGMA_PROBABILITY, Statistics, k_sigma_probability, probability_scale,
     quantile,
 };
 pub use study::{BodyPoints, DataFile, Points, Shard, Site, Study};
 pub use summary::{Column, Contour, EllipseSummary, Failure, Summary, summarize, summarize_rows};
+pub use tolerance::{
+    ToleranceBounds, bounds_of, samples_needed, tolerance, tolerance_of_rows, wilks_rank,
+};
 
 /// The README's example, compiled and run by `cargo test --doc`.
 #[cfg(doctest)]

@@ -178,3 +178,71 @@ fn draw_histogram(svg: &mut String, title: &str, name: &str, sorted: &[f64]) -> 
     root.present()?;
     Ok(())
 }
+
+/// Draws the variance shares of one output as horizontal bars, largest first: each input in
+/// blue and the unexplained part in red (RocketPy's `SensitivityModel` bar plot colours),
+/// each bar labelled with its name and percentage.
+pub fn sensitivity_bars(
+    path: &Path,
+    sensitivity: &crate::sensitivity::OutputSensitivity,
+) -> Result<(), DispersionError> {
+    let mut svg = String::new();
+    draw_sensitivity(&mut svg, sensitivity).map_err(failed(path))?;
+    crate::files::write_atomic(path, svg.as_bytes())
+}
+
+fn draw_sensitivity(
+    svg: &mut String,
+    sensitivity: &crate::sensitivity::OutputSensitivity,
+) -> PlotResult {
+    let mut bars: Vec<(String, f64, RGBColor)> = sensitivity
+        .inputs
+        .iter()
+        .map(|i| (i.input.clone(), 100.0 * i.share, BLUE))
+        .collect();
+    bars.push((
+        "unexplained (linear approximation error)".to_owned(),
+        100.0 * sensitivity.unexplained,
+        RED,
+    ));
+    bars.sort_by(|a, b| b.1.total_cmp(&a.1));
+    let count = bars.len();
+    let height = 120 + 40 * u32::try_from(count).unwrap_or(u32::MAX / 64).min(200);
+    let root = SVGBackend::with_string(svg, (900, height)).into_drawing_area();
+    root.fill(&WHITE)?;
+    let mut chart = ChartBuilder::on(&root)
+        .caption(
+            format!(
+                "Sensitivity of {} ({} samples)",
+                sensitivity.output, sensitivity.samples
+            ),
+            ("sans-serif", 22),
+        )
+        .margin(15)
+        .x_label_area_size(45)
+        .y_label_area_size(10)
+        .build_cartesian_2d(0.0..100.0, -0.5..(count as f64 - 0.5))?;
+    chart
+        .configure_mesh()
+        .x_desc("share of the variance (%)")
+        .disable_y_mesh()
+        .y_labels(0)
+        .draw()?;
+    // Largest at the top: bar k at y = count − 1 − k.
+    let y = |k: usize| (count - 1 - k) as f64;
+    chart.draw_series(bars.iter().enumerate().map(|(k, (_, share, colour))| {
+        Rectangle::new(
+            [(0.0, y(k) - 0.35), (share.clamp(0.0, 100.0), y(k) + 0.35)],
+            colour.mix(0.6).filled(),
+        )
+    }))?;
+    chart.draw_series(bars.iter().enumerate().map(|(k, (name, share, _))| {
+        Text::new(
+            format!("{name}: {share:.2} %"),
+            (1.0, y(k) + 0.1),
+            ("sans-serif", 15).into_font(),
+        )
+    }))?;
+    root.present()?;
+    Ok(())
+}

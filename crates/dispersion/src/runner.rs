@@ -368,7 +368,7 @@ where
 
 /// The worker pool of `options.threads` (0 or absent: one thread per core), refused beyond
 /// [`MAX_THREADS_PER_CORE`] per core.
-fn thread_pool(options: &RunOptions) -> Result<rayon::ThreadPool, DispersionError> {
+pub(crate) fn thread_pool(options: &RunOptions) -> Result<rayon::ThreadPool, DispersionError> {
     let requested = options.threads.unwrap_or(0);
     let cores = std::thread::available_parallelism().map_or(1, std::num::NonZeroUsize::get);
     if requested > MAX_THREADS_PER_CORE * cores {
@@ -564,6 +564,30 @@ fn changed_cells(study: &Study, kept: &str, again: &str) -> String {
     } else {
         format!("; flown again, it differs in: {}", changed.join(", "))
     }
+}
+
+/// The rows of samples `range` of the whole `study`, flown on `pool` (as a run flies them:
+/// a panic or an error is a failed sample), in index order.
+pub(crate) fn fly_rows<F>(
+    pool: &rayon::ThreadPool,
+    study: &Study,
+    range: std::ops::Range<u64>,
+    fly: &F,
+) -> Vec<Row>
+where
+    F: Fn(u64, &[f64]) -> Result<Outcome, String> + Sync,
+{
+    use rayon::prelude::*;
+    let outputs = study.outputs.len();
+    pool.install(|| {
+        range
+            .into_par_iter()
+            .map(|position| {
+                let f = fly_sample(study, Shard::WHOLE, fly, position);
+                Row::of(f.index, f.inputs, f.status, f.values, outputs)
+            })
+            .collect()
+    })
 }
 
 /// Flies the sample at `position` of `shard` and formats its row.

@@ -1,6 +1,7 @@
 //! Integration tests of karman-dispersion (one binary; a module per topic).
 
 mod common;
+mod convergence;
 mod determinism;
 mod distributions;
 mod ellipses;
@@ -9,4 +10,5 @@ mod lock;
 mod never_panics;
 mod resume;
 mod sigkill;
+mod sobol;
 mod window;

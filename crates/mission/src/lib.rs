@@ -26,13 +26,16 @@
 pub mod allocator;
 pub mod assemble;
 mod curves;
+pub mod distributions;
 mod document;
 mod error;
 pub mod montecarlo;
 mod overrides;
 pub mod paths;
 pub mod report;
+pub mod safety;
 pub mod schema;
+pub mod solve;
 mod validate;
 #[cfg(feature = "fetch")]
 pub mod weather;

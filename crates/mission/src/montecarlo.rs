@@ -48,6 +48,7 @@ use crate::assemble::rocket::{EstimateScaling, build_rocket_scaled};
 use crate::assemble::scripts::{ControllerEnvironment, compile_controller};
 use crate::assemble::sensors::{self, EnvironmentSurroundings};
 use crate::assemble::{stage_view, stages};
+use crate::distributions::plain;
 use crate::paths::{self, DerivedKnob, Input};
 use crate::schema::{AirBrakesCurve, Curve, Distribution, MissionSpec};
 use crate::{Mission, MissionError, validate};
@@ -55,8 +56,8 @@ use karman_airframe::{AirBrakesDrag, Rocket};
 use karman_atmos::Environment;
 use karman_dispersion::sampling::flight_seed;
 use karman_dispersion::{
-    BodyPoints, DataFile, DispersionError, Distribution as Draw, Meaning, Outcome, Points, Site,
-    Study, Target, Variation, VariedInput,
+    BodyPoints, DataFile, DispersionError, Meaning, Outcome, Points, Site, Study, Target,
+    Variation, VariedInput,
 };
 use karman_dynamics::{Flight, Sample, Summary};
 use karman_propulsion::Motor;
@@ -227,38 +228,10 @@ fn dispersion_error(mission: &Mission, e: DispersionError) -> MissionError {
     mission.model_error("dispersion", e)
 }
 
-/// The plain distribution of a `[dispersion.vary]` entry (`std` inside `factor` is a normal
-/// around 1, inside `offset` around 0).
-fn plain(distribution: &Distribution, centre: f64) -> Option<Draw> {
-    Some(match distribution {
-        Distribution::Std(std) => Draw::Normal {
-            mean: centre,
-            std: *std,
-        },
-        Distribution::Normal([mean, std]) => Draw::Normal {
-            mean: *mean,
-            std: *std,
-        },
-        Distribution::Uniform([low, high]) => Draw::Uniform {
-            low: *low,
-            high: *high,
-        },
-        Distribution::Triangular([low, mode, high]) => Draw::Triangular {
-            low: *low,
-            mode: *mode,
-            high: *high,
-        },
-        Distribution::Lognormal([mu, sigma]) => Draw::Lognormal {
-            mu: *mu,
-            sigma: *sigma,
-        },
-        Distribution::Choice(values) => Draw::Choice(values.clone()),
-        Distribution::Factor(_) | Distribution::Offset(_) => return None,
-    })
-}
-
-fn variation(distribution: &Distribution) -> Option<Variation> {
-    Some(match distribution {
+/// The variation of a `[dispersion.vary]` entry (`std` inside `factor` is a normal around 1,
+/// inside `offset` around 0); the error says what is wrong with it.
+fn variation(distribution: &Distribution) -> Result<Variation, String> {
+    Ok(match distribution {
         Distribution::Std(std) => Variation::Std(*std),
         Distribution::Factor(inner) => Variation::Factor(plain(inner, 1.0)?),
         Distribution::Offset(inner) => Variation::Offset(plain(inner, 0.0)?),
@@ -306,11 +279,8 @@ impl MonteCarlo {
         let mut reach = Reach::default();
         for (path, distribution) in table.map(|d| d.vary.iter()).into_iter().flatten() {
             let input = paths::resolve(spec, path).map_err(|e| invalid(e.to_string()))?;
-            let variation = variation(distribution).ok_or_else(|| {
-                invalid(format!(
-                    "`{path}`: `factor` and `offset` take a plain distribution"
-                ))
-            })?;
+            let variation =
+                variation(distribution).map_err(|reason| invalid(format!("`{path}`: {reason}")))?;
             reach.add(path);
             let (target, apply) = match input {
                 Input::Number { value, integer } => {

@@ -978,8 +978,11 @@ pub fn check_distribution(input: &Input<'_>, distribution: &Distribution) -> Res
             }
             well_formed(distribution)
         }
+        (Input::Number { integer: true, .. }, _) if crate::distributions::is_integral(distribution) => {
+            well_formed(distribution)
+        }
         (Input::Number { integer: true, .. }, _) => {
-            Err("an integer input only takes `choice`".to_owned())
+            Err("an integer input only takes `choice`, `poisson` or `binomial` (or a truncation of one)".to_owned())
         }
         _ => well_formed(distribution),
     }
@@ -996,6 +999,9 @@ fn well_formed(distribution: &Distribution) -> Result<(), String> {
         Distribution::Factor(inner) | Distribution::Offset(inner) => {
             return well_formed(inner);
         }
+        // The named and truncated distributions: their parameters by NumPy's names, checked
+        // as the dispersion crate checks them (the message names each value).
+        _ => return crate::distributions::problem(distribution).map_or(Ok(()), Err),
     };
     if ok {
         Ok(())

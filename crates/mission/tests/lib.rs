@@ -4,6 +4,7 @@ mod allocation;
 mod broken;
 mod common;
 mod dimensions_flight;
+mod distributions;
 mod drag_estimate;
 mod examples;
 mod extra_motors;

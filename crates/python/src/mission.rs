@@ -451,6 +451,53 @@ impl Mission {
         plain(py, &value)
     }
 
+    /// The value of the input `vary` (a dotted path, `"rocket.mass"`) at which the summary
+    /// output `target` (`{"apogee_agl_m": 3048}`, one output) reaches its value within
+    /// `tolerance` (the output's units), as `karman solve` finds it: Brent's bracketing root
+    /// finder within `bounds` (`(low, high)`, default the nominal value ∓ 50 %), at most
+    /// `max_flights` flights, each seeded with `seed`. Returns the dict of
+    /// `karman solve --json` (`input`, `value`, `nominal`, `output`, `target`, `achieved`,
+    /// `bounds`, `flights`, `trials`, `method`). The GIL is released. Raises `MissionError`
+    /// for a target no value within the bounds reaches, reversed bounds, an unknown output or
+    /// input, a failed flight, or no convergence within the budget.
+    #[pyo3(signature = (target, vary, bounds = None, tolerance = None, max_flights = None, seed = 0))]
+    #[allow(clippy::too_many_arguments)]
+    fn solve<'py>(
+        &self,
+        py: Python<'py>,
+        target: &Bound<'py, PyDict>,
+        vary: String,
+        bounds: Option<(f64, f64)>,
+        tolerance: Option<f64>,
+        max_flights: Option<usize>,
+        seed: u64,
+    ) -> PyResult<Bound<'py, PyAny>> {
+        if target.len() != 1 {
+            return Err(PyValueError::new_err(format!(
+                "target takes one output and its value, e.g. {{\"apogee_agl_m\": 3048}}; got {} entries",
+                target.len()
+            )));
+        }
+        let Some((output, value)) = target.iter().next() else {
+            return Err(PyValueError::new_err("target is empty"));
+        };
+        let output: String = output.extract()?;
+        let value: f64 = value.extract()?;
+        let defaults = karman_mission::solve::SolveOptions::new(vary, output, value);
+        let options = karman_mission::solve::SolveOptions {
+            bounds: bounds.map(|(low, high)| [low, high]),
+            tolerance: tolerance.unwrap_or(defaults.tolerance),
+            max_flights: max_flights.unwrap_or(defaults.max_flights),
+            seed,
+            ..defaults
+        };
+        let mission = &self.inner;
+        let solution = py
+            .detach(|| karman_mission::solve::solve(mission, &options))
+            .map_err(|e| mission_error(&e))?;
+        plain(py, &solution)
+    }
+
     fn __repr__(&self) -> String {
         match &self.inner.spec.name {
             Some(name) => format!(

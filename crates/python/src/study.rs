@@ -5,7 +5,8 @@ use std::path::{Path, PathBuf};
 use std::time::Duration;
 
 use karman_mission::dispersion::{
-    Row, RunReport, Status, Study as StudyDefinition, Summary, parse_row,
+    Row, RunReport, Status, Study as StudyDefinition, Summary, parse_row, sensitivity_of_rows,
+    tolerance_of_rows,
 };
 use numpy::PyArray1;
 use pyo3::exceptions::{PyOSError, PyRuntimeError};
@@ -29,6 +30,9 @@ pub struct Study {
     elapsed: Duration,
     flown: u64,
     out: Option<PathBuf>,
+    /// The study and its rows, for `sensitivity`.
+    definition: StudyDefinition,
+    rows: Vec<Row>,
 }
 
 impl Study {
@@ -45,7 +49,7 @@ impl Study {
         let mut inputs: Vec<Vec<f64>> = vec![Vec::with_capacity(rows.len()); n_in];
         let mut outputs: Vec<Vec<f64>> = vec![Vec::with_capacity(rows.len()); n_out];
         let mut failures = Vec::new();
-        for row in rows {
+        for row in &rows {
             index.push(row.index);
             for (column, value) in inputs.iter_mut().zip(&row.inputs) {
                 column.push(*value);
@@ -53,12 +57,12 @@ impl Study {
             for (column, value) in outputs.iter_mut().zip(&row.outputs) {
                 column.push(value.unwrap_or(f64::NAN));
             }
-            match row.status {
+            match &row.status {
                 Status::Completed => {}
                 Status::Ended { kind, message } => {
                     failures.push((row.index, format!("{kind}: {message}")));
                 }
-                Status::Failed(error) => failures.push((row.index, error)),
+                Status::Failed(error) => failures.push((row.index, error.clone())),
             }
         }
         let summary = report
@@ -81,6 +85,8 @@ impl Study {
             elapsed: report.elapsed,
             flown: report.flown,
             out,
+            definition: study.clone(),
+            rows,
         })
     }
 
@@ -192,6 +198,76 @@ impl Study {
                 _ => ellipse.name.clone(),
             };
             dict.set_item(key, from_json(py, &value)?)?;
+        }
+        Ok(dict)
+    }
+
+    /// Which varied input causes the spread of each output: RocketPy 1.13's
+    /// `SensitivityModel` (linear regression variance decomposition) on the completed
+    /// samples, as `karman sensitivity` computes it. `outputs` names the outputs (default:
+    /// every output that varies). Returns `{output: {"inputs": [names], "share",
+    /// "coefficient", "effect_per_std", "mean", "std": arrays in the order of "inputs",
+    /// "unexplained": float, "output_mean", "output_std": float, "samples": int}}`.
+    #[pyo3(signature = (outputs = None))]
+    fn sensitivity<'py>(
+        &self,
+        py: Python<'py>,
+        outputs: Option<Vec<String>>,
+    ) -> PyResult<Bound<'py, PyDict>> {
+        let result =
+            sensitivity_of_rows(&self.definition, &self.rows, &outputs.unwrap_or_default())
+                .map_err(|e| pyo3::exceptions::PyValueError::new_err(e.to_string()))?;
+        let dict = PyDict::new(py);
+        for output in &result.outputs {
+            let entry = PyDict::new(py);
+            let names: Vec<&str> = output.inputs.iter().map(|i| i.input.as_str()).collect();
+            entry.set_item("inputs", names)?;
+            let column = |f: fn(&karman_mission::dispersion::InputShare) -> f64| {
+                output.inputs.iter().map(f).collect::<Vec<f64>>()
+            };
+            entry.set_item("share", PyArray1::from_vec(py, column(|i| i.share)))?;
+            entry.set_item(
+                "coefficient",
+                PyArray1::from_vec(py, column(|i| i.coefficient)),
+            )?;
+            entry.set_item(
+                "effect_per_std",
+                PyArray1::from_vec(py, column(|i| i.effect_per_std)),
+            )?;
+            entry.set_item("mean", PyArray1::from_vec(py, column(|i| i.mean)))?;
+            entry.set_item("std", PyArray1::from_vec(py, column(|i| i.std)))?;
+            entry.set_item("unexplained", output.unexplained)?;
+            entry.set_item("output_mean", output.mean)?;
+            entry.set_item("output_std", output.std)?;
+            entry.set_item("samples", output.samples)?;
+            dict.set_item(&output.output, entry)?;
+        }
+        Ok(dict)
+    }
+
+    /// Wilks' one-sided tolerance bounds of each output, as `karman tolerance --json`:
+    /// `{output: {"upper", "lower", "rank", "achieved_confidence", "samples",
+    /// "samples_needed", "coverage", "confidence"}}`; `upper` is the value a fraction
+    /// `coverage` of flights stays below with `confidence` (None with too few samples).
+    #[pyo3(signature = (outputs = None, coverage = 0.99, confidence = 0.95))]
+    fn tolerance<'py>(
+        &self,
+        py: Python<'py>,
+        outputs: Option<Vec<String>>,
+        coverage: f64,
+        confidence: f64,
+    ) -> PyResult<Bound<'py, PyDict>> {
+        let bounds = tolerance_of_rows(
+            &self.definition,
+            &self.rows,
+            &outputs.unwrap_or_default(),
+            coverage,
+            confidence,
+        )
+        .map_err(|e| pyo3::exceptions::PyValueError::new_err(e.to_string()))?;
+        let dict = PyDict::new(py);
+        for b in &bounds {
+            dict.set_item(&b.output, plain(py, b)?)?;
         }
         Ok(dict)
     }

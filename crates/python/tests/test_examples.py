@@ -56,3 +56,18 @@ def test_monte_carlo(tmp_path, samples):
     assert "landing ellipse" in out and "3 sigma" in out
     if has_matplotlib():
         assert (tmp_path / "ellipses.png").is_file()
+
+
+def test_apogee_by_mass(tmp_path):
+    out = run("apogee_by_mass.py", tmp_path)
+    lines = [l for l in out.splitlines() if l.startswith("target apogee")]
+    assert len(lines) == 3
+    for line in lines:
+        target = float(line.split()[2])
+        achieved = float(line.split("(apogee ")[1].split()[0])
+        assert abs(achieved - target) <= 0.05
+    # A lower target needs a heavier rocket.
+    masses = [float(l.split("mass ")[1].split()[0]) for l in lines]
+    assert masses == sorted(masses, reverse=True)
+    if has_matplotlib():
+        assert (tmp_path / "apogee_by_mass.png").is_file()

@@ -123,3 +123,16 @@ def test_a_self_referencing_or_deep_dict_is_an_exception_not_a_crash(example):
         example.set("rocket.mass", cycle)
     # An ordinary mission still converts.
     assert karman.Mission.from_dict(example.to_dict(), path=EXAMPLE).to_toml() == example.to_toml()
+
+
+def test_solve_finds_the_mass_for_a_target_apogee(example):
+    nominal = example.simulate().apogee_agl_m
+    target = round(nominal - 100.0)
+    result = example.solve({"apogee_agl_m": target}, "rocket.mass")
+    assert abs(result["achieved"] - target) <= 0.01
+    assert result["value"] > result["nominal"]
+    assert result["flights"] == len(result["trials"]) <= 12
+    with pytest.raises(karman.MissionError, match="no value of rocket.mass within"):
+        example.solve({"apogee_agl_m": 1e6}, "rocket.mass")
+    with pytest.raises(karman.MissionError, match="LO < HI"):
+        example.solve({"apogee_agl_m": target}, "rocket.mass", bounds=(3.0, 2.0))

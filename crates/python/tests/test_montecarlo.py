@@ -201,3 +201,44 @@ def test_plot_ellipses_when_matplotlib_is_installed(example, tmp_path):
     study = example.montecarlo(samples=30, seed=5, progress=False)
     study.plot_ellipses(path=str(tmp_path / "ellipses.png"))
     assert (tmp_path / "ellipses.png").stat().st_size > 0
+
+
+def test_sensitivity_is_rocketpys_sensitivity_model(example):
+    """`Study.sensitivity` against RocketPy 1.13's SensitivityModel fitted on the same
+    arrays (the completed samples' inputs and output)."""
+    study = example.montecarlo(samples=60, seed=11, threads=2, progress=False)
+    result = study.sensitivity(["apogee_agl_m", "impact_x_m"])
+    assert set(result) == {"apogee_agl_m", "impact_x_m"}
+    names = list(study.inputs)
+    for output, decomposition in result.items():
+        assert decomposition["inputs"] == names
+        assert decomposition["samples"] == 60
+        share = decomposition["share"]
+        assert share.dtype == np.float64 and share.shape == (len(names),)
+        assert share.sum() + decomposition["unexplained"] == pytest.approx(1, abs=1e-12)
+    sensitivity = pytest.importorskip("rocketpy.sensitivity")
+    pytest.importorskip("statsmodels")
+    x = np.column_stack([study.inputs[n] for n in names])
+    for output, decomposition in result.items():
+        model = sensitivity.SensitivityModel(names, [output])
+        model.fit(x, study.outputs[output])
+        info = model.target_variables_info[output]
+        expected = [info["sensitivity"][n] for n in names]
+        assert decomposition["share"] == pytest.approx(expected, abs=1e-9)
+        assert decomposition["unexplained"] == pytest.approx(info["LAE"], abs=1e-9)
+        assert decomposition["output_std"] == pytest.approx(info["sd"], rel=1e-9)
+    with pytest.raises(ValueError, match="not an output"):
+        study.sensitivity(["apogee_feet"])
+
+
+def test_wilks_tolerance_bounds_are_order_statistics(example):
+    study = example.montecarlo(samples=100, seed=3, threads=2, progress=False)
+    bounds = study.tolerance(["apogee_agl_m"], coverage=0.95, confidence=0.95)["apogee_agl_m"]
+    # n = 100 >= 93: the second largest and second smallest (Wilks' second order).
+    apogees = np.sort(study.outputs["apogee_agl_m"])
+    assert bounds["rank"] == 2
+    assert bounds["upper"] == apogees[-2] and bounds["lower"] == apogees[1]
+    few = study.tolerance(["apogee_agl_m"])["apogee_agl_m"]
+    assert few["upper"] is None and few["samples_needed"] == 299
+    with pytest.raises(ValueError, match="strictly between 0 and 1"):
+        study.tolerance(coverage=1.5)

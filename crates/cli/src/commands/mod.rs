@@ -8,9 +8,13 @@ mod inspect;
 mod log;
 mod merge;
 mod montecarlo;
+mod safety;
+mod sensitivity;
 mod sil;
 mod simulate;
+mod solve;
 mod sweep;
+mod tolerance;
 mod weather;
 
 use clap::{Args, Subcommand};
@@ -36,6 +40,21 @@ pub enum Command {
     Montecarlo(montecarlo::MonteCarloArgs),
     /// Join the output directories of the shards of one Monte Carlo study.
     Merge(merge::MergeArgs),
+    /// Which varied input causes the spread of each output of a Monte Carlo study: each
+    /// input's share of the variance and the unexplained part (RocketPy's SensitivityModel,
+    /// a linear regression on the study's samples).
+    Sensitivity(sensitivity::SensitivityArgs),
+    /// Wilks' distribution-free tolerance bounds of a Monte Carlo study's outputs: "99 % of
+    /// flights stay below X with 95 % confidence", from the order statistics of its samples.
+    Tolerance(tolerance::ToleranceArgs),
+    /// Range-safety report of the nominal flight: rail-exit speed, thrust-to-weight and
+    /// stability, Mach and dynamic pressure, fin flutter margin (NACA TN 4197), landing
+    /// energy, descent rate and drift, each pass / warn / fail against a threshold.
+    Safety(safety::SafetyArgs),
+    /// Find the value of one input that makes a summary output reach a target
+    /// (`--target apogee_agl_m=3048 --vary rocket.mass`): a bracketing root finder (Brent),
+    /// the flights it took and the `--set` that flies it.
+    Solve(solve::SolveArgs),
     /// Fly the mission with one input set to each of several values: a table of summaries
     /// and one SVG per chosen series with the variants overlaid.
     Sweep(sweep::SweepArgs),
@@ -128,7 +147,11 @@ pub fn run(command: Command) -> anyhow::Result<()> {
         Command::Sil(args) => sil::run(&args),
         Command::Montecarlo(args) => montecarlo::run(&args),
         Command::Merge(args) => merge::run(&args),
+        Command::Sensitivity(args) => sensitivity::run(&args),
+        Command::Tolerance(args) => tolerance::run(&args),
         Command::Sweep(args) => sweep::run(&args),
+        Command::Solve(args) => solve::run(&args),
+        Command::Safety(args) => safety::run(&args),
         Command::Weather(args) => weather::run(&args),
         Command::Log(args) => log::run(&args),
         Command::Compare(args) => compare::run(&args),

@@ -44,6 +44,21 @@ pub struct MonteCarloArgs {
     /// No progress output on stderr.
     #[arg(long)]
     pub quiet: bool,
+    /// Stop once a condition holds, `QUANTITY.ci95 < VALUE` (repeatable: all must hold):
+    /// QUANTITY an output (`apogee_agl_m`: the 95 % confidence half-width of its mean) or
+    /// `landing.semi_major` / `landing.semi_minor` (of the 95.45 % landing ellipse's
+    /// semi-axis); checked every --check-every samples, the sample count the cap. The study
+    /// written is the study of the samples flown, as `--samples` of that many writes it.
+    #[arg(long = "until", value_name = "CONDITION")]
+    pub until: Vec<String>,
+    /// The sampling design: `random` (the study) or `sobol` (Saltelli's design of
+    /// (inputs + 2) x N flights, N = --samples; prints the first-order and total Sobol
+    /// indices of every output and writes them to DIR/sobol.json; no study is written).
+    #[arg(long, value_name = "DESIGN", default_value = "random", value_parser = ["random", "sobol"])]
+    pub design: String,
+    /// Samples between --until checks (the first check after this many).
+    #[arg(long, value_name = "N", default_value_t = dispersion::convergence::DEFAULT_EVERY, requires = "until")]
+    pub check_every: u64,
 }
 
 /// Runs (or resumes) the study and prints what it did.
@@ -64,9 +79,36 @@ pub fn run(args: &MonteCarloArgs) -> Result<()> {
             ProgressMode::Auto
         },
     };
-    let report = dispersion::run(study.study(), &args.out, &options, |index, values| {
-        study.fly(index, values)
-    })?;
+    if args.design == "sobol" {
+        if !args.until.is_empty() || args.shard.is_some() {
+            bail!("--design sobol takes neither --until nor --shard");
+        }
+        return sobol(&study, &options, &args.out);
+    }
+    let mut converged = None;
+    let report = if args.until.is_empty() {
+        dispersion::run(study.study(), &args.out, &options, |index, values| {
+            study.fly(index, values)
+        })?
+    } else {
+        let until = dispersion::convergence::Until {
+            conditions: args
+                .until
+                .iter()
+                .map(|text| dispersion::convergence::Condition::parse(text, study.study()))
+                .collect::<Result<_, _>>()?,
+            every: args.check_every,
+        };
+        let (report, stopped) = dispersion::convergence::run_converging(
+            study.study(),
+            &args.out,
+            &options,
+            &until,
+            |index, values| study.fly(index, values),
+        )?;
+        converged = Some((until, stopped));
+        report
+    };
     let mut out = std::io::stdout().lock();
     writeln!(
         out,
@@ -94,6 +136,9 @@ pub fn run(args: &MonteCarloArgs) -> Result<()> {
         study.study().seed,
         args.out.display()
     )?;
+    if let Some((until, stopped)) = &converged {
+        print_convergence(&mut out, until, stopped, study.study().samples)?;
+    }
     if report.counts.completed == 0 {
         bail!(
             "no sample of shard {} completed its flight ({}); see samples.csv in {}",
@@ -160,5 +205,100 @@ pub fn print_summary(out: &mut impl Write, summary: &Summary) -> Result<()> {
             )?;
         }
     }
+    Ok(())
+}
+
+/// What `--until` did: the samples flown, why it stopped, each condition's half-width.
+fn print_convergence(
+    out: &mut impl Write,
+    until: &dispersion::convergence::Until,
+    stopped: &dispersion::convergence::Converged,
+    cap: u64,
+) -> Result<()> {
+    if stopped.met {
+        writeln!(
+            out,
+            "--until: every condition held at {} samples ({} checks, every {} samples; cap {cap})",
+            stopped.samples, stopped.checks, until.every
+        )?;
+    } else {
+        writeln!(
+            out,
+            "--until: the cap of {cap} samples was reached before every condition held ({} checks, every {} samples)",
+            stopped.checks, until.every
+        )?;
+    }
+    for (condition, width) in until.conditions.iter().zip(&stopped.widths) {
+        let value = width.map_or_else(|| "too few values".to_owned(), |w| format!("{w:.6}"));
+        let holds = width.is_some_and(|w| w < condition.threshold);
+        writeln!(
+            out,
+            "  {}: {value} ({})",
+            condition.text,
+            if holds { "holds" } else { "does not hold" }
+        )?;
+    }
+    writeln!(
+        out,
+        "  intervals: 95 % normal-approximation confidence half-width of the mean, 1.96 s/sqrt(n); \
+         of a landing semi-axis a, 1.96 a/sqrt(2(n-1)) (delta method, normal sample covariance)"
+    )?;
+    Ok(())
+}
+
+/// `--design sobol`: Saltelli's design flown, the indices printed and written to
+/// `out/sobol.json`.
+fn sobol(study: &MonteCarlo, options: &RunOptions, out: &std::path::Path) -> Result<()> {
+    let definition = study.study();
+    let n = definition.samples;
+    let started = std::time::Instant::now();
+    let results = dispersion::sobol_study(definition, n, options, |index, values| {
+        study.fly(index, values)
+    })?;
+    let flights = (definition.inputs.len() as u64 + 2) * n;
+    let mut stdout = std::io::stdout().lock();
+    writeln!(
+        stdout,
+        "Sobol indices (Saltelli's design): {flights} flights ({} inputs + 2) x {n}, seed {}, {:.1} s",
+        definition.inputs.len(),
+        definition.seed,
+        started.elapsed().as_secs_f64()
+    )?;
+    let width = definition
+        .inputs
+        .iter()
+        .map(|i| i.column().len())
+        .fold(28, usize::max);
+    let mut json = serde_json::Map::new();
+    for (output, indices) in &results {
+        match indices {
+            Ok(s) => {
+                writeln!(stdout, "{output}:")?;
+                writeln!(
+                    stdout,
+                    "  {:<width$} {:>10} {:>10}",
+                    "input", "first", "total"
+                )?;
+                for (i, name) in s.inputs.iter().enumerate() {
+                    writeln!(
+                        stdout,
+                        "  {name:<width$} {:>10.4} {:>10.4}",
+                        s.first[i], s.total[i]
+                    )?;
+                }
+                json.insert(output.clone(), serde_json::to_value(s)?);
+            }
+            Err(reason) => {
+                writeln!(stdout, "{output}: not computed: {reason}")?;
+                json.insert(output.clone(), serde_json::json!({ "error": reason }));
+            }
+        }
+    }
+    std::fs::create_dir_all(out)?;
+    let path = out.join("sobol.json");
+    let mut text = serde_json::to_string_pretty(&json)?;
+    text.push('\n');
+    dispersion::files::write_atomic(&path, text.as_bytes())?;
+    writeln!(stdout, "written to {}", path.display())?;
     Ok(())
 }

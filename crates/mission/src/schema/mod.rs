@@ -838,4 +838,50 @@ pub enum Distribution {
     Factor(Box<Distribution>),
     /// Add a draw of this distribution to the nominal value (number or curve).
     Offset(Box<Distribution>),
+    /// NumPy's `exponential(scale)`.
+    Exponential(Parameters),
+    /// NumPy's `gamma(shape, scale)`.
+    Gamma(Parameters),
+    /// NumPy's `gumbel(loc, scale)`.
+    Gumbel(Parameters),
+    /// NumPy's `laplace(loc, scale)`.
+    Laplace(Parameters),
+    /// NumPy's `logistic(loc, scale)`.
+    Logistic(Parameters),
+    /// NumPy's `poisson(lam)`.
+    Poisson(Parameters),
+    /// NumPy's `wald(mean, scale)`.
+    Wald(Parameters),
+    /// NumPy's `binomial(n, p)`.
+    Binomial(Parameters),
+    /// NumPy's `chisquare(df)`.
+    Chisquare(Parameters),
+    /// A distribution restricted to `[low, high]` (`crate::distributions`).
+    Truncated(Box<Truncated>),
+}
+
+/// The parameters of a named distribution (`crate::distributions`): a table by NumPy's
+/// names (`{ shape = 2, scale = 0.5 }`) or an array in NumPy's positional order (`[2, 0.5]`).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(untagged)]
+pub enum Parameters {
+    /// By name, in the file's order.
+    Named(IndexMap<String, f64>),
+    /// In NumPy's positional order.
+    Positional(Vec<f64>),
+}
+
+/// `{ truncated = { distribution = { ... }, low = L, high = H } }`: either bound may be left
+/// out.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Truncated {
+    /// The distribution that is truncated.
+    pub distribution: Distribution,
+    /// The lower bound (inclusive).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub low: Option<f64>,
+    /// The upper bound (inclusive).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub high: Option<f64>,
 }

@@ -85,6 +85,21 @@ class Mission:
         ``[dispersion]``; ``vary`` replaces ``[dispersion.vary]``; ``out`` writes the CLI's
         files there). The GIL is released; Ctrl-C raises ``KeyboardInterrupt`` between
         samples; ``progress`` shows tqdm's bar when tqdm is installed, else a text line."""
+    def solve(
+        self,
+        target: dict[str, float],
+        vary: str,
+        bounds: tuple[float, float] | None = None,
+        tolerance: float | None = None,
+        max_flights: int | None = None,
+        seed: int = 0,
+    ) -> dict[str, Any]:
+        """The value of the input ``vary`` (``"rocket.mass"``) at which the output of
+        ``target`` (``{"apogee_agl_m": 3048}``) reaches its value, as ``karman solve`` finds it
+        (Brent's bracketing root finder within ``bounds``, default the nominal ∓ 50 %;
+        tolerance 0.01 in the output's units and 30 flights unless told). Returns the dict of
+        ``karman solve --json``; raises ``MissionError`` when no value within the bounds
+        reaches the target."""
     def fit(
         self,
         log: FlightLog,
@@ -204,6 +219,17 @@ class Study:
     @property
     def statistics(self) -> dict[str, dict[str, float] | None]:
         """Statistics of every input and output column."""
+    def tolerance(
+        self, outputs: list[str] | None = None, coverage: float = 0.99, confidence: float = 0.95
+    ) -> dict[str, dict[str, Any]]:
+        """Wilks' one-sided tolerance bounds per output (``karman tolerance --json``):
+        ``upper`` is the value a fraction ``coverage`` of flights stays below with
+        ``confidence`` (None with too few samples), ``lower`` the one it stays above."""
+    def sensitivity(self, outputs: list[str] | None = None) -> dict[str, dict[str, Any]]:
+        """RocketPy 1.13's ``SensitivityModel`` (linear regression variance decomposition)
+        on the completed samples: per output, ``inputs`` (names) and the arrays ``share``,
+        ``coefficient``, ``effect_per_std``, ``mean``, ``std`` in their order, the
+        ``unexplained`` share, ``output_mean``, ``output_std`` and ``samples``."""
     @property
     def ellipses(self) -> dict[str, dict[str, Any]]:
         """The ``apogee`` and ``landing`` ellipses with their 1/2/3-sigma contours; a lower
