@@ -11,7 +11,7 @@ use crate::mass::MassModel;
 use crate::motor::{INERTIA_NAMES, MotorProperties};
 use crate::recovery::{Parachute, RailButtons};
 use crate::surfaces::{Geometry, Surface, SurfaceInput};
-use karman_model::{MassSample, OffAxis};
+use karman_model::{MassSample, OffAxis, TriggerKind};
 
 /// Orientation of the rocket's user axis (RocketPy `coordinate_system_orientation`).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
@@ -711,6 +711,16 @@ impl Rocket {
     #[must_use]
     pub fn parachutes(&self) -> &[Parachute] {
         &self.parachutes
+    }
+
+    /// The rocket with the parachute called `name` fired by `trigger` instead (a trigger
+    /// written in a host language, such as a Python function); `None` when the rocket has no
+    /// parachute of that name.
+    #[must_use]
+    pub fn with_parachute_trigger(mut self, name: &str, trigger: TriggerKind) -> Option<Self> {
+        let parachute = self.parachutes.iter_mut().find(|p| p.name == name)?;
+        parachute.trigger = trigger;
+        Some(self)
     }
 
     /// The rocket with `air_brakes` (RocketPy's `add_air_brakes`; docs/physics.md §16).

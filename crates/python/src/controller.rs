@@ -61,10 +61,10 @@ pub struct PySensorReading {
     /// The measurement: a float (barometer) or a tuple of three floats; `None` before the
     /// sensor's first reading.
     #[pyo3(get)]
-    measurement: Py<PyAny>,
+    pub(crate) measurement: Py<PyAny>,
     /// When it was taken, s (`None` before the first reading).
     #[pyo3(get)]
-    time: Option<f64>,
+    pub(crate) time: Option<f64>,
 }
 
 /// A Python callable as the flight's air-brake controller.

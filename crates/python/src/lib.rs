@@ -40,6 +40,7 @@ mod flight;
 mod log;
 mod mission;
 mod study;
+mod trigger;
 
 use pyo3::create_exception;
 use pyo3::exceptions::PyValueError;

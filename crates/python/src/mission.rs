@@ -7,7 +7,7 @@ use std::time::Duration;
 
 use karman_fit::{FitError, FitOptions, fit_json, write_fitted};
 use karman_mission::assemble::environment::build_environment;
-use karman_mission::assemble::flight::PreparedFlight;
+use karman_mission::assemble::flight::{FlightRun, PreparedFlight};
 use karman_mission::assemble::motor::build_motor;
 use karman_mission::assemble::rocket::build_rocket;
 use karman_mission::dispersion::{
@@ -27,7 +27,9 @@ use crate::convert::{from_json, from_toml, plain, to_toml};
 use crate::flight::Flight;
 use crate::log::FlightLog;
 use crate::study::Study;
+use crate::trigger::PythonTrigger;
 use crate::{log_error, mission_error};
+use karman_mission::model::TriggerCondition;
 
 /// The file name missions built from text or data are given in messages when no `path` is
 /// passed (relative data paths then resolve against the working directory).
@@ -91,6 +93,42 @@ impl Mission {
     /// The validated mission.
     pub fn inner(&self) -> &karman_mission::Mission {
         &self.inner
+    }
+
+    /// Flies `prepared` once with the GIL released, its air brakes driven by `controller`
+    /// when one is given (`simulate`).
+    fn fly_prepared(
+        &self,
+        py: Python<'_>,
+        prepared: &PreparedFlight,
+        seed: u64,
+        controller: Option<Py<PyAny>>,
+    ) -> PyResult<FlightRun> {
+        let mission = &self.inner;
+        let Some(function) = controller else {
+            return py
+                .detach(|| prepared.fly(mission, seed))
+                .map_err(|e| mission_error(&e));
+        };
+        let scalar = mission
+            .spec
+            .rocket
+            .sensors
+            .iter()
+            .map(|s| s.kind.as_str() == "barometer")
+            .collect();
+        let mut controller = PythonController::new(py, function, scalar)?;
+        let flown = py.detach(|| prepared.fly_with_controller(mission, seed, &mut controller));
+        match (flown, controller.error.take()) {
+            (Ok(run), _) => Ok(run),
+            // Ctrl-C stays an interruption, not a flight's failure.
+            (Err(_), Some(error))
+                if error.is_instance_of::<pyo3::exceptions::PyKeyboardInterrupt>(py) =>
+            {
+                Err(error)
+            }
+            (Err(e), _) => Err(mission_error(&e)),
+        }
     }
 }
 
@@ -230,43 +268,50 @@ impl Mission {
     /// air_brakes[, sensors])` signature, drives the air brakes of `[rocket.air_brakes]` in
     /// place of the mission's Rhai script, called where the script would be; an exception it
     /// raises ends the flight with `MissionError` holding its traceback, Ctrl-C raises
-    /// `KeyboardInterrupt`.
-    #[pyo3(signature = (seed = 0, controller = None))]
+    /// `KeyboardInterrupt`. `triggers` (`{"main": function}`) fires the named parachutes by
+    /// Python functions with RocketPy's `trigger(p, h, y[, sensors])` signature instead of
+    /// their mission triggers: called at each of the parachute's sampling instants (ascent
+    /// included), a true result fires it; an exception it raises stops its calls and is raised
+    /// when the flight returns.
+    #[pyo3(signature = (seed = 0, controller = None, triggers = None))]
     fn simulate(
         &self,
         py: Python<'_>,
         seed: u64,
         controller: Option<Py<PyAny>>,
+        triggers: Option<&Bound<'_, PyDict>>,
     ) -> PyResult<Flight> {
         let mission = &self.inner;
-        let run = match controller {
-            None => py
-                .detach(|| self.prepared()?.fly(mission, seed))
-                .map_err(|e| mission_error(&e))?,
-            Some(function) => {
-                let scalar = mission
-                    .spec
-                    .rocket
-                    .sensors
-                    .iter()
-                    .map(|s| s.kind.as_str() == "barometer")
-                    .collect();
-                let mut controller = PythonController::new(py, function, scalar)?;
-                let prepared = self.prepared().map_err(|e| mission_error(&e))?;
-                let flown =
-                    py.detach(|| prepared.fly_with_controller(mission, seed, &mut controller));
-                match (flown, controller.error.take()) {
-                    (Ok(run), _) => run,
-                    // Ctrl-C stays an interruption, not a flight's failure.
-                    (Err(_), Some(error))
-                        if error.is_instance_of::<pyo3::exceptions::PyKeyboardInterrupt>(py) =>
-                    {
-                        return Err(error);
-                    }
-                    (Err(e), _) => return Err(mission_error(&e)),
-                }
+        let mut prepared = self.prepared().map_err(|e| mission_error(&e))?;
+        let mut python_triggers = Vec::new();
+        if let Some(triggers) = triggers {
+            let sensors = &mission.spec.rocket.sensors;
+            for (name, function) in triggers.iter() {
+                let name: String = name.extract().map_err(|_| {
+                    pyo3::exceptions::PyTypeError::new_err("triggers: keys are parachute names")
+                })?;
+                python_triggers.push((
+                    name.clone(),
+                    PythonTrigger::new(py, &name, function.unbind(), sensors)?,
+                ));
             }
-        };
+            let conditions = python_triggers
+                .iter()
+                .map(|(name, t)| (name.clone(), Arc::clone(t) as Arc<dyn TriggerCondition>))
+                .collect();
+            prepared = Arc::new(
+                prepared
+                    .with_triggers(mission, conditions)
+                    .map_err(|e| mission_error(&e))?,
+            );
+        }
+        let run = self.fly_prepared(py, &prepared, seed, controller);
+        for (_, trigger) in &python_triggers {
+            if let Some(error) = trigger.take_error() {
+                return Err(error);
+            }
+        }
+        let run = run?;
         let name = mission
             .spec
             .name

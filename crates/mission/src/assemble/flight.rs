@@ -11,6 +11,7 @@ use std::sync::Arc;
 use karman_airframe::Rocket;
 use karman_atmos::Environment;
 use karman_dynamics::{AtmosphereModel, Flight, FlightSettings, Sample, Summary, Termination};
+use karman_model::{TriggerCondition, TriggerKind};
 use karman_propulsion::Motor;
 use karman_script::{AirBrakeController, ControllerRecord, ControllerScript, EnvironmentQuery};
 use karman_sensors::{Sensor, Surroundings};
@@ -126,6 +127,49 @@ impl PreparedFlight {
             settings,
             warnings,
             script: compile_controller(mission)?,
+        })
+    }
+
+    /// The prepared flight with the parachutes named in `triggers` fired by the given
+    /// conditions instead of their mission triggers (RocketPy's callable `trigger(p, h, y[,
+    /// sensors])`, written in a host language: the Python package's `Mission.simulate(triggers=…)`).
+    ///
+    /// # Errors
+    /// [`MissionError::Model`] at `rocket.parachutes` naming a parachute the mission does not
+    /// have.
+    pub fn with_triggers(
+        &self,
+        mission: &Mission,
+        triggers: Vec<(String, Arc<dyn TriggerCondition>)>,
+    ) -> Result<Self, MissionError> {
+        let mut rocket = (*self.rocket).clone();
+        for (name, condition) in triggers {
+            rocket = rocket
+                .with_parachute_trigger(&name, TriggerKind::Custom(condition))
+                .ok_or_else(|| {
+                    let known: Vec<&str> = mission
+                        .spec
+                        .rocket
+                        .parachutes
+                        .keys()
+                        .map(String::as_str)
+                        .collect();
+                    mission.model_error(
+                        "rocket.parachutes",
+                        format!(
+                            "no parachute {name:?} to trigger (the rocket's: {})",
+                            if known.is_empty() {
+                                "none".to_owned()
+                            } else {
+                                known.join(", ")
+                            }
+                        ),
+                    )
+                })?;
+        }
+        Ok(PreparedFlight {
+            rocket: Arc::new(rocket),
+            ..self.clone()
         })
     }
 
