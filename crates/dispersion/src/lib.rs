@@ -66,7 +66,7 @@ pub use merge::merge;
 pub use progress::ProgressMode;
 pub use runner::{
     MAX_THREADS_PER_CORE, MemoryRun, Outcome, RunOptions, RunReport, WINDOW_PER_THREAD, run,
-    run_in_memory, run_until,
+    run_in_memory, run_until, sample_lines, samples_header,
 };
 pub use stats::{
     Ellipse, Moments, NORMAL_SIGMA_PROBABILITY, Statistics, k_sigma_probability, probability_scale,
