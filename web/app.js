@@ -103,6 +103,8 @@ function listFiles() {
 
 async function addFiles(list) {
   const notes = [];
+  const designs = [];
+  const warnings = [];
   for (const file of list) {
     if (file.size > MAX_FILE_BYTES) {
       notes.push(`${file.name}: ${file.size} bytes, larger than the 64 MiB a file may have; not read`);
@@ -123,15 +125,30 @@ async function addFiles(list) {
       }
       $("mission").value = text;
       $("mission-name").value = file.name;
+    } else if (/\.ork$/i.test(file.name)) {
+      designs.push([file.name, bytes]);
     } else {
       files.set(file.name, bytes);
     }
   }
   listFiles();
+  // An OpenRocket design, once its motor files are in: imported as `karman import` does.
+  for (const [name, bytes] of designs) {
+    await ready;
+    try {
+      const imported = JSON.parse(karman.import_ork(name, bytes, fileSet()));
+      $("mission").value = imported.mission;
+      $("mission-name").value = name.replace(/\.ork$/i, ".toml");
+      warnings.push(...imported.warnings.map((w) => `${name}: warning: ${w}`));
+    } catch (e) {
+      notes.push(failure(e).message);
+    }
+  }
   if (notes.length) {
     showProblems({ message: notes.join("\n"), problems: notes.map((m) => ({ line: null, column: null, key: "", message: m })) });
     setStatus("some files were not read", "warning");
   } else {
+    showWarnings(warnings);
     setStatus(`${list.length} file(s) read`);
   }
 }

@@ -219,7 +219,19 @@ pub fn test(root: &Path) -> Result<()> {
     let site = build(root)?;
     // The figures the page must match: the CLI's, the release build (its flight time too).
     crate::cargo(root, &["build", "--release", "--package", "karman"])?;
+    crate::cargo(
+        root,
+        &[
+            "build",
+            "--release",
+            "--package",
+            "karman-web",
+            "--example",
+            "fly_timing",
+        ],
+    )?;
     let karman = crate::target_dir(root).join("release/karman");
+    let timer = crate::target_dir(root).join("release/examples/fly_timing");
     let tests = root.join("web/test");
     if !tests.join("node_modules/playwright-core").is_dir() {
         run("npm", &["ci", "--no-audit", "--no-fund"], &tests)?;
@@ -230,6 +242,7 @@ pub fn test(root: &Path) -> Result<()> {
         .arg(tests.join("browser.mjs"))
         .env("KARMAN_SITE", &site)
         .env("KARMAN_CLI", &karman)
+        .env("KARMAN_TIMER", &timer)
         .env("KARMAN_ROOT", root)
         .env("KARMAN_SCREENSHOTS", &shots)
         .env("KARMAN_CHROMIUM", chromium)

@@ -120,8 +120,11 @@ impl FileSet {
     }
 }
 
-/// With a set installed on this thread, `Some` of what it holds at `path`; else `None`.
-pub(crate) fn installed_read(path: &Path) -> Option<io::Result<Vec<u8>>> {
+/// With a set installed on this thread, `Some` of what it holds at `path` (an
+/// [`io::ErrorKind::NotFound`] error when nothing); with none, `None`: the caller reads the
+/// file system as it would have. For readers that cannot go through
+/// [`read_data_file`](crate::read_data_file) (a text read whole, without its checks).
+pub fn installed_read(path: &Path) -> Option<io::Result<Vec<u8>>> {
     INSTALLED.with(|slot| slot.borrow().as_ref().map(|set| set.read(path)))
 }
 

@@ -17,6 +17,7 @@
 //!   (`summary.json`, `trajectory.csv`, `flight.kml`) and the series of the page's plots.
 //! - [`Study`]: the `[dispersion]` study of a mission: the header of `samples.csv` and the
 //!   lines of any range of its samples.
+//! - [`import_ork`]: `karman import` of an OpenRocket design.
 //!
 //! Every error is a JSON text (a JavaScript exception on the page, [`Failure`]): the whole
 //! message as the command line prints it and each located problem with its file, line,
@@ -419,6 +420,32 @@ impl Study {
             .map_err(|e| Failure::plain(chain(&e)))
         })
     }
+}
+
+/// `karman import` of the OpenRocket design `bytes` (a `.ork`, named `name` in messages),
+/// its motor found by designation among the `.eng` files of `files`. Returns a JSON object:
+/// `mission` (the mission's text, its thrust file named as in `files`) and `warnings`.
+///
+/// # Errors
+/// The [`Failure`] JSON text of the import (the file and component it names).
+#[wasm_bindgen]
+pub fn import_ork(name: &str, bytes: &[u8], files: &Files) -> Result<String, String> {
+    within(files, || {
+        let motors = files
+            .set
+            .names()
+            .filter(|n| n.extension().is_some_and(|e| e.eq_ignore_ascii_case("eng")))
+            .map(Path::to_path_buf)
+            .collect();
+        let options = karman_openrocket::ImportOptions {
+            simulation: None,
+            motors,
+            output_dir: None,
+        };
+        let imported = karman_openrocket::import_bytes(Path::new(name), bytes, &options)
+            .map_err(|e| Failure::plain(chain(&e)))?;
+        Ok(json!({ "mission": imported.mission, "warnings": imported.warnings }).to_string())
+    })
 }
 
 /// The README's example, compiled and run by `cargo test --doc`.
