@@ -243,7 +243,13 @@ try {
     const nativeMs = parseFloat(execFileSync(timer, [calisto, "20"], { encoding: "utf8" }));
     console.log(`timing: Calisto flight ${pageMs.toFixed(2)} ms in the page, ${nativeMs.toFixed(2)} ms native (karman_web::fly, release; fastest of 5 and of 20), ratio ${(pageMs / nativeMs).toFixed(2)} (the issue asks at most 3)`);
   } else {
-    console.log(`timing: Calisto flight ${pageMs.toFixed(2)} ms in the page (no KARMAN_TIMER: no native time)`);
+    let processMs = Infinity;
+    for (let i = 0; i < 20; i++) {
+      const t0 = process.hrtime.bigint();
+      karman(["simulate", calisto, "--json"]);
+      processMs = Math.min(processMs, Number(process.hrtime.bigint() - t0) / 1e6);
+    }
+    console.log(`timing: Calisto flight ${pageMs.toFixed(2)} ms in the page, ${processMs.toFixed(2)} ms for the whole native \`karman simulate --json\` process (release; start-up and output included: \`cargo xtask web-test --native-timing\` times the page's own call natively)`);
   }
   await shot("calisto");
 

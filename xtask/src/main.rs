@@ -55,10 +55,10 @@ fn run() -> Result<()> {
         Some("bench") => bench::run(&root, &args[1..]),
         Some("docs") => guide::build(&root),
         Some("web") => web::build(&root).map(drop),
-        Some("web-test") => web::test(&root),
+        Some("web-test") => web::test(&root, args.iter().any(|a| a == "--native-timing")),
         _ => {
             eprintln!(
-                "usage: cargo xtask <ci|validate [--data DIR]|validate --openrocket DIR|bench [FILTER]|docs|tidy|web|web-test>"
+                "usage: cargo xtask <ci|validate [--data DIR]|validate --openrocket DIR|bench [FILTER]|docs|tidy|web|web-test [--native-timing]>"
             );
             bail!("unknown or missing command {:?}", args.first())
         }
@@ -201,7 +201,7 @@ fn ci(root: &Path) -> Result<()> {
             }),
         ),
         // The browser page against the CLI (skipped without Chromium unless `CI` is set).
-        ("web", Box::new(|| web::test(root))),
+        ("web", Box::new(|| web::test(root, false))),
     ];
     let started = std::time::Instant::now();
     let total = steps.len();

@@ -6,7 +6,8 @@
 //! The build: `cargo build -p karman-web --target wasm32-unknown-unknown --release`, then the
 //! `wasm-bindgen` of the very version Cargo.lock holds (`--target no-modules`: plain scripts,
 //! which a page opened from disk may load where modules may not), installed into
-//! `target/web/tools` with `cargo install` when no such program is there. The module itself is
+//! `target/web/tools` with `cargo install` when no such program is there (nor on the PATH, nor
+//! named by `KARMAN_WASM_BINDGEN`). The module itself is
 //! written as a script too (`karman_wasm.js`, its bytes in base64), so the page needs no
 //! `fetch`, which a page opened from disk is refused.
 //!
@@ -53,8 +54,15 @@ fn wasm_bindgen(root: &Path, version: &str) -> Result<PathBuf> {
     let tools = crate::target_dir(root).join("web/tools");
     let program = tools.join("bin/wasm-bindgen");
     let wanted = format!("wasm-bindgen {version}");
-    if version_of(&program).as_deref() == Some(wanted.as_str()) {
-        return Ok(program);
+    // `KARMAN_WASM_BINDGEN`, or one on the PATH, of that version saves the install.
+    let given = std::env::var_os("KARMAN_WASM_BINDGEN").map(PathBuf::from);
+    for candidate in given
+        .into_iter()
+        .chain([PathBuf::from("wasm-bindgen"), program.clone()])
+    {
+        if version_of(&candidate).as_deref() == Some(wanted.as_str()) {
+            return Ok(candidate);
+        }
     }
     let tools_text = tools.display().to_string();
     let install = |locked: bool| {
@@ -190,8 +198,10 @@ fn run(program: &str, args: &[&str], dir: &Path) -> Result<()> {
 }
 
 /// The browser test: the page built, the CLI it is compared with built, Chromium and
-/// playwright-core made available, then `node web/test/browser.mjs`.
-pub fn test(root: &Path) -> Result<()> {
+/// playwright-core made available, then `node web/test/browser.mjs`; with `native_timing`
+/// (`web-test --native-timing`) the Calisto flight's native time is that of the page's own
+/// call (`karman_web::fly`, the `fly_timing` example), else of the `karman simulate` process.
+pub fn test(root: &Path, native_timing: bool) -> Result<()> {
     let chromium = Path::new("/usr/bin/chromium");
     if !chromium.exists() {
         if !in_ci() {
@@ -218,31 +228,41 @@ pub fn test(root: &Path) -> Result<()> {
     }
     let site = build(root)?;
     // The figures the page must match: the CLI's, the release build (its flight time too).
+    // (In `ci` the validation step has built it already.)
     crate::cargo(root, &["build", "--release", "--package", "karman"])?;
-    crate::cargo(
-        root,
-        &[
-            "build",
-            "--release",
-            "--package",
-            "karman-web",
-            "--example",
-            "fly_timing",
-        ],
-    )?;
     let karman = crate::target_dir(root).join("release/karman");
-    let timer = crate::target_dir(root).join("release/examples/fly_timing");
+    // The native time of the page's very call: a build of its own (minutes), so only when
+    // asked; otherwise the test times the whole `karman simulate` process.
+    let timer = if native_timing {
+        crate::cargo(
+            root,
+            &[
+                "build",
+                "--release",
+                "--package",
+                "karman-web",
+                "--example",
+                "fly_timing",
+            ],
+        )?;
+        Some(crate::target_dir(root).join("release/examples/fly_timing"))
+    } else {
+        None
+    };
     let tests = root.join("web/test");
     if !tests.join("node_modules/playwright-core").is_dir() {
         run("npm", &["ci", "--no-audit", "--no-fund"], &tests)?;
     }
     let shots = crate::target_dir(root).join("web/screenshots");
     std::fs::create_dir_all(&shots)?;
-    let status = crate::child_command("node")
+    let mut node = crate::child_command("node");
+    if let Some(timer) = &timer {
+        node.env("KARMAN_TIMER", timer);
+    }
+    let status = node
         .arg(tests.join("browser.mjs"))
         .env("KARMAN_SITE", &site)
         .env("KARMAN_CLI", &karman)
-        .env("KARMAN_TIMER", &timer)
         .env("KARMAN_ROOT", root)
         .env("KARMAN_SCREENSHOTS", &shots)
         .env("KARMAN_CHROMIUM", chromium)
