@@ -286,6 +286,12 @@ try {
   compareCsv("samples.csv", cliSamples, samples, 9, 1e-3, ["digest"]);
   expect((await page.locator("#mc-plot circle").count()) > 150, "the landing points are drawn");
   await shot("montecarlo");
+  // 7. The page opened from disk (file://): it loads and flies there too.
+  await page.goto("file://" + join(site, "index.html"));
+  await page.waitForFunction(() => typeof wasm_bindgen.Files === "function" && document.readyState === "complete");
+  await load(example, exampleFiles);
+  expect((await flyAndWait()) === "flown", "opened from disk, the page flies the example");
+  await shot("from-disk");
 } catch (e) {
   console.log(`FAILED: ${e.stack || e}`);
   failures.push(String(e));

@@ -188,6 +188,8 @@ fn run(program: &str, args: &[&str], dir: &Path) -> Result<()> {
     eprintln!("xtask: {program} {}", args.join(" "));
     let status = crate::child_command(program)
         .args(args)
+        // apt without questions (CI has no terminal).
+        .env("DEBIAN_FRONTEND", "noninteractive")
         .current_dir(dir)
         .status()
         .with_context(|| format!("could not run {program}"))?;
