@@ -7,7 +7,7 @@ const MAX_FILE_BYTES = 64 * 1024 * 1024;
 const MAX_MISSION_BYTES = 4 * 1024 * 1024;
 const $ = (id) => document.getElementById(id);
 const files = new Map(); // name -> Uint8Array
-const outputs = { summary: null, trajectory: null, kml: null, samples: null };
+const outputs = { summary: null, trajectory: null, kml: null, samples: null, studySummary: null };
 let karman = null; // the wasm_bindgen namespace once initialised
 
 function wasmBytes() {
@@ -273,6 +273,7 @@ $("download-summary").addEventListener("click", () => download("summary.json", o
 $("download-trajectory").addEventListener("click", () => download("trajectory.csv", outputs.trajectory, "text/csv"));
 $("download-kml").addEventListener("click", () => download("flight.kml", outputs.kml, "application/vnd.google-earth.kml+xml"));
 $("mc-download").addEventListener("click", () => download("samples.csv", outputs.samples, "text/csv"));
+$("mc-download-summary").addEventListener("click", () => download("summary.json", outputs.studySummary, "application/json"));
 
 // ---------------------------------------------------------------------------- Monte Carlo
 
@@ -345,6 +346,7 @@ async function montecarlo() {
   $("mc-run").disabled = true;
   $("mc-stop").disabled = false;
   $("mc-download").disabled = true;
+  $("mc-download-summary").disabled = true;
   const started = performance.now();
   const report = (first, lines, count) => {
     pieces.set(first, lines);
@@ -371,11 +373,22 @@ async function montecarlo() {
     const csv = header + [...pieces.keys()].sort((a, b) => a - b).map((k) => pieces.get(k)).join("");
     outputs.samples = csv;
     const points = landings(csv);
-    $("mc-plot").innerHTML = landingChart(`Landing points (${points.length} of ${total})`, points);
+    outputs.studySummary = study.summary(csv);
+    // The landing ellipses holding 68 %, 95 % and 99.7 % of a normal spread (summary.json's
+    // `probability` contours), as `karman montecarlo` draws them.
+    const ellipses = [];
+    for (const e of JSON.parse(outputs.studySummary).ellipses || []) {
+      if (e.name !== "landing") { continue; }
+      for (const c of e.probability) {
+        ellipses.push({ label: `${e.body ? e.body + " " : ""}${(100 * c.normal_probability).toFixed(1)} %`, points: ellipsePoints(e.center_m, c.semi_major_m, c.semi_minor_m, e.orientation_deg) });
+      }
+    }
+    $("mc-plot").innerHTML = landingChart(`Landing points (${points.length} of ${total}) and ellipses`, points, ellipses);
     const seconds = (performance.now() - started) / 1000;
     $("mc-status").textContent = `${total} samples in ${seconds.toFixed(1)} s on ${location.protocol === "file:" ? "this page" : workers + " workers"}`;
     $("mc-status").dataset.done = "1";
     $("mc-download").disabled = false;
+    $("mc-download-summary").disabled = false;
   } catch (e) {
     for (const w of running) { w.terminate(); }
     showProblems(failure(e));

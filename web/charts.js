@@ -102,13 +102,31 @@ function trackChart(title, x, y) {
   return f.svg + pad(f) + polyline(x, y, f.sx, f.sy, COLOURS[0]) + "</svg>";
 }
 
-function landingChart(title, points) {
-  const xs = points.map((p) => p[0]), ys = points.map((p) => p[1]);
+// The boundary of an ellipse: centre, semi-axes and the major axis's direction (degrees
+// counter-clockwise from east).
+function ellipsePoints([cx, cy], a, b, degrees) {
+  const phi = (degrees * Math.PI) / 180;
+  const out = [];
+  for (let i = 0; i <= 72; i++) {
+    const t = (2 * Math.PI * i) / 72;
+    const [u, v] = [a * Math.cos(t), b * Math.sin(t)];
+    out.push([cx + u * Math.cos(phi) - v * Math.sin(phi), cy + u * Math.sin(phi) + v * Math.cos(phi)]);
+  }
+  return out;
+}
+
+// points: [[x, y]]; ellipses: [{points: [[x, y]], label}] drawn over them.
+function landingChart(title, points, ellipses = []) {
+  const outline = ellipses.flatMap((e) => e.points);
+  const xs = points.concat(outline).map((p) => p[0]), ys = points.concat(outline).map((p) => p[1]);
   const [xr, yr] = planRanges(xs, ys);
   const f = frame(title, "east of the pad (m)", "north of the pad (m)", xr, yr);
   let svg = f.svg + pad(f);
   for (const [x, y] of points) {
     svg += `<circle cx="${f.sx(x).toFixed(1)}" cy="${f.sy(y).toFixed(1)}" r="2" fill="${COLOURS[1]}" fill-opacity="0.6"/>`;
   }
+  ellipses.forEach((e, i) => {
+    svg += polyline(e.points.map((p) => p[0]), e.points.map((p) => p[1]), f.sx, f.sy, COLOURS[0]).replace("<polyline", `<polyline class="ellipse" data-label="${escapeXml(e.label)}"`);
+  });
   return svg + "</svg>";
 }

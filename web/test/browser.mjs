@@ -285,6 +285,14 @@ try {
   // integrates the last-bit differences longest); the digest covers them all.
   compareCsv("samples.csv", cliSamples, samples, 9, 1e-3, ["digest"]);
   expect((await page.locator("#mc-plot circle").count()) > 150, "the landing points are drawn");
+  expect((await page.locator("#mc-plot polyline.ellipse").count()) === 3, "... with the three landing ellipses");
+  const studySummary = JSON.parse(await download("#mc-download-summary"));
+  const cliSummary = JSON.parse(readFileSync(join(mcOut, "summary.json"), "utf8"));
+  const numbersAside = (j) => JSON.stringify(j, (k, v) => (typeof v === "number" ? 0 : v));
+  expect(numbersAside(studySummary) === numbersAside(cliSummary), "the page's study summary.json has the keys and texts of the CLI's");
+  const landing = (j) => j.ellipses.find((e) => e.name === "landing");
+  const centre = relative(landing(studySummary).center_m[0], landing(cliSummary).center_m[0]);
+  expect(centre < 1e-3, `the landing ellipse's centre: page ${landing(studySummary).center_m}, CLI ${landing(cliSummary).center_m} (relative ${centre.toExponential(2)})`);
   await shot("montecarlo");
   // 7. The page opened from disk (file://): it loads and flies there too.
   await page.goto("file://" + join(site, "index.html"));

@@ -405,6 +405,26 @@ impl Study {
         dispersion::samples_header(self.study.study())
     }
 
+    /// The `summary.json` of the study whose `samples.csv` is `csv` (the header and every
+    /// row, joined in index order): the statistics and the apogee and landing ellipses
+    /// `karman montecarlo` writes.
+    ///
+    /// # Errors
+    /// The [`Failure`] JSON text of a line that is not a row of this study (its line number).
+    pub fn summary(&self, csv: &str) -> Result<String, String> {
+        let study = self.study.study();
+        let mut rows = Vec::new();
+        for (number, line) in csv.lines().enumerate().skip(1) {
+            let row = dispersion::parse_row(line, study.inputs.len(), study.outputs.len())
+                .map_err(|e| {
+                    Failure::plain(format!("samples.csv:{}: {e}", number + 1)).to_json()
+                })?;
+            rows.push(row);
+        }
+        let summary = dispersion::summarize_rows(study, &rows);
+        serde_json::to_string_pretty(&summary).map_err(|e| Failure::from(e).to_json())
+    }
+
     /// The lines of `samples.csv` of the samples `first..end` (an index beyond the study has
     /// none), flown on this thread: those `karman montecarlo` writes, byte for byte.
     ///
