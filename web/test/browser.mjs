@@ -200,6 +200,7 @@ try {
   const cliError = karmanFails(["check", join(typoDir, "typo.toml")]);
   await page.fill("#mission-name", "typo.toml");
   await page.fill("#mission", typo);
+  await page.evaluate(() => { document.getElementById("errors").replaceChildren(); });
   await page.click("#check");
   await page.waitForSelector("#errors li.error");
   const first = page.locator("#errors li.error", { hasText: "motor_positon" }).first();
@@ -215,8 +216,9 @@ try {
   // 3. Bad input: a binary mission, a missing data file; the page stays usable.
   const binary = join(scratch, "binary.toml");
   writeFileSync(binary, Buffer.from([0x6e, 0x61, 0x6d, 0x65, 0xff, 0xfe, 0x00, 0x01]));
+  await page.evaluate(() => { document.getElementById("status").textContent = ""; });
   await page.locator("#file-input").setInputFiles([binary]);
-  await page.waitForSelector("#errors li.error");
+  await page.waitForFunction(() => document.getElementById("status").textContent === "some files were not read");
   expect((await page.textContent("#errors")).includes("binary.toml: not a UTF-8 text file"), "a binary mission: a clear message");
   await page.fill("#mission-name", "example.toml");
   await page.fill("#mission", text.replace('thrust = "example_K1960.eng"', 'thrust = "missing_K1960.eng"'));

@@ -255,7 +255,12 @@ pub fn test(root: &Path, native_timing: bool) -> Result<()> {
     if !tests.join("node_modules/playwright-core").is_dir() {
         run("npm", &["ci", "--no-audit", "--no-fund"], &tests)?;
     }
+    // This run's screenshots and downloads only.
     let shots = crate::target_dir(root).join("web/screenshots");
+    if shots.exists() {
+        std::fs::remove_dir_all(&shots)
+            .with_context(|| format!("cannot clear {}", shots.display()))?;
+    }
     std::fs::create_dir_all(&shots)?;
     let mut node = crate::child_command("node");
     if let Some(timer) = &timer {
