@@ -220,6 +220,12 @@ try {
   await page.locator("#file-input").setInputFiles([binary]);
   await page.waitForFunction(() => document.getElementById("status").textContent === "some files were not read");
   expect((await page.textContent("#errors")).includes("binary.toml: not a UTF-8 text file"), "a binary mission: a clear message");
+  const huge = join(scratch, "huge.csv");
+  writeFileSync(huge, Buffer.alloc(65 * 1024 * 1024, 0x31));
+  await page.evaluate(() => { document.getElementById("status").textContent = ""; });
+  await page.locator("#file-input").setInputFiles([huge]);
+  await page.waitForFunction(() => document.getElementById("status").textContent === "some files were not read");
+  expect((await page.textContent("#errors")).includes("huge.csv: 68157440 bytes, larger than the 64 MiB a file may have; not read"), "a huge file: refused unread, with a clear message");
   await page.fill("#mission-name", "example.toml");
   await page.fill("#mission", text.replace('thrust = "example_K1960.eng"', 'thrust = "missing_K1960.eng"'));
   expect((await flyAndWait()) === "the flight failed", "a mission naming a file not given: the flight fails");
