@@ -280,6 +280,7 @@ try {
   // 6. A 200-sample Monte Carlo study in workers: the CLI's samples.csv, byte for byte.
   await load(example, exampleFiles);
   await page.fill("#mc-samples", "200");
+  await page.fill("#mc-workers", "3"); // an uneven split: 67, 67 and 66 samples
   const t0 = Date.now();
   await page.click("#mc-run");
   await page.waitForSelector("#mc-status[data-done]", { timeout: 600000 });
@@ -307,6 +308,14 @@ try {
   await page.waitForFunction(() => typeof wasm_bindgen.Files === "function" && document.readyState === "complete");
   await load(example, exampleFiles);
   expect((await flyAndWait()) === "flown", "opened from disk, the page flies the example");
+  // There workers cannot start: the page flies the study itself, slice by slice, and must
+  // write the very bytes its workers wrote (another split of the same samples).
+  await page.fill("#mc-samples", "200");
+  await page.fill("#mc-workers", "");
+  await page.click("#mc-run");
+  await page.waitForSelector("#mc-status[data-done]", { timeout: 600000 });
+  const onPage = await download("#mc-download");
+  expect(onPage === samples, `opened from disk, the study flown on the page is the workers' samples.csv byte for byte (${await page.textContent("#mc-status")})`);
   await shot("from-disk");
 } catch (e) {
   console.log(`FAILED: ${e.stack || e}`);
