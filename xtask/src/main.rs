@@ -16,6 +16,9 @@
 //!   ARCHITECTURE.md, read from `cargo metadata`; every `docs/physics.md §N.M` citation
 //!   naming a section of that file; no circle between the sibling modules of the folders
 //!   `modules.rs` lists).
+//! - `web`: the browser page (crates/web as WebAssembly, and `web/`) into `target/web/site`;
+//!   `web-test`: that page driven by headless Chromium and compared with the CLI (`web.rs`),
+//!   a step of `ci`.
 
 mod bench;
 mod guide;
@@ -23,6 +26,7 @@ mod modules;
 mod python;
 mod tidy;
 mod validate;
+mod web;
 
 use std::path::{Path, PathBuf};
 use std::process::{Command, ExitCode};
@@ -50,9 +54,11 @@ fn run() -> Result<()> {
         Some("validate") => validate::run(&root, &args[1..]),
         Some("bench") => bench::run(&root, &args[1..]),
         Some("docs") => guide::build(&root),
+        Some("web") => web::build(&root).map(drop),
+        Some("web-test") => web::test(&root, args.iter().any(|a| a == "--native-timing")),
         _ => {
             eprintln!(
-                "usage: cargo xtask <ci|validate [--data DIR]|validate --openrocket DIR|bench [FILTER]|docs|tidy>"
+                "usage: cargo xtask <ci|validate [--data DIR]|validate --openrocket DIR|bench [FILTER]|docs|tidy|web|web-test [--native-timing]>"
             );
             bail!("unknown or missing command {:?}", args.first())
         }
@@ -194,6 +200,8 @@ fn ci(root: &Path) -> Result<()> {
                 }
             }),
         ),
+        // The browser page against the CLI (skipped without Chromium unless `CI` is set).
+        ("web", Box::new(|| web::test(root, false))),
     ];
     let started = std::time::Instant::now();
     let total = steps.len();

@@ -20,7 +20,7 @@ pub const ALLOWED: &[(&str, &[&str])] = &[
     ("karman-sensors", &["karman-math"]),
     (
         "karman-openrocket",
-        &["karman-airframe", "karman-propulsion"],
+        &["karman-math", "karman-airframe", "karman-propulsion"],
     ),
     (
         "karman-mission",
@@ -52,6 +52,7 @@ pub const ALLOWED: &[(&str, &[&str])] = &[
         "karman-python",
         &["karman-mission", "karman-flightlog", "karman-fit"],
     ),
+    ("karman-web", &["karman-mission", "karman-openrocket"]),
     ("karman-validation", &[]),
     (
         "xtask",

@@ -387,6 +387,7 @@ impl DirLock {
 }
 
 /// Takes `file`'s lock; `Locked` when another run holds it.
+#[cfg(not(target_arch = "wasm32"))]
 fn try_lock(file: &File, dir: &Path, path: &Path) -> Result<(), DispersionError> {
     match fs4::FileExt::try_lock(file) {
         Ok(()) => Ok(()),
@@ -395,6 +396,13 @@ fn try_lock(file: &File, dir: &Path, path: &Path) -> Result<(), DispersionError>
         }),
         Err(fs4::TryLockError::Error(e)) => Err(DispersionError::io(path)(e)),
     }
+}
+
+/// WebAssembly in a browser has no files to lock (nor any output directory: the page flies
+/// samples with [`crate::sample_lines`]).
+#[cfg(target_arch = "wasm32")]
+fn try_lock(_file: &File, _dir: &Path, _path: &Path) -> Result<(), DispersionError> {
+    Ok(())
 }
 
 /// Locks the output directory `dir` ([`DirLock`]: the directory itself on Unix, and its

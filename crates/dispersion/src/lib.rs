@@ -73,7 +73,7 @@ pub use plot::sensitivity_bars;
 pub use progress::ProgressMode;
 pub use runner::{
     MAX_THREADS_PER_CORE, MemoryRun, Outcome, RunOptions, RunReport, WINDOW_PER_THREAD, run,
-    run_in_memory, run_until,
+    run_in_memory, run_until, sample_lines, samples_header,
 };
 pub use sensitivity::{
     InputShare, OutputSensitivity, Sensitivity, Skipped, decompose, sensitivity,

@@ -366,6 +366,37 @@ where
     })
 }
 
+/// The header line of `samples.csv` of `study`, newline included.
+pub fn samples_header(study: &Study) -> String {
+    csv::header(&study.columns())
+}
+
+/// The lines of `samples.csv` of the samples `indices` of `study` (an index at or beyond
+/// `study.samples` has none), flown one after another on the calling thread: no pool, no
+/// clock, no file, for a program without threads (the browser page, each of whose workers
+/// flies a slice). They are the lines [`run`] writes for those samples, byte for byte, so the
+/// slices joined in index order after [`samples_header`] make a whole run's `samples.csv`.
+///
+/// # Errors
+/// [`DispersionError`] of a study that does not [validate](Study::validate).
+pub fn sample_lines<F>(
+    study: &Study,
+    indices: std::ops::Range<u64>,
+    fly: F,
+) -> Result<String, DispersionError>
+where
+    F: Fn(u64, &[f64]) -> Result<Outcome, String> + Sync,
+{
+    study.validate()?;
+    let key = Record::new(study, Shard::WHOLE).fingerprint;
+    let outputs = study.outputs.len();
+    let mut text = String::new();
+    for index in indices.start..indices.end.min(study.samples) {
+        text.push_str(&fly_sample(study, Shard::WHOLE, &fly, index).line(&key, outputs));
+    }
+    Ok(text)
+}
+
 /// The worker pool of `options.threads` (0 or absent: one thread per core), refused beyond
 /// [`MAX_THREADS_PER_CORE`] per core.
 pub(crate) fn thread_pool(options: &RunOptions) -> Result<rayon::ThreadPool, DispersionError> {

@@ -191,3 +191,21 @@ fn a_study_in_memory_is_the_study_written_to_a_directory() {
     let error = run_in_memory(&study, &options(1, shard), &never, fly).expect_err("a shard");
     assert!(error.to_string().contains("whole study"), "{error}");
 }
+
+#[test]
+fn slices_flown_apart_join_into_the_samples_file_of_a_run() {
+    let study = study(150);
+    let tmp = tempfile::tempdir().expect("temporary directory");
+    run(&study, tmp.path(), &options(2, Shard::WHOLE), fly).expect("run");
+    let written = std::fs::read_to_string(tmp.path().join("samples.csv")).expect("samples.csv");
+    // Uneven slices, the last one reaching past the end of the study.
+    let mut joined = karman_dispersion::samples_header(&study);
+    for (first, end) in [(0, 7), (7, 64), (64, 200)] {
+        joined.push_str(&karman_dispersion::sample_lines(&study, first..end, fly).expect("slice"));
+    }
+    assert_eq!(joined, written);
+    assert_eq!(
+        karman_dispersion::sample_lines(&study, 150..160, fly).expect("past the end"),
+        ""
+    );
+}

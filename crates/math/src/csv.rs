@@ -138,12 +138,16 @@ pub fn parse_curve_rows(text: &str, origin: &Path) -> Result<CurveRows, CsvError
 
 /// Reads the whole of a data file, refusing anything but a regular file (a directory, a FIFO
 /// or a device) before opening it: opening a FIFO for reading waits for a writer, and a
-/// device may never end.
+/// device may never end. With a [`FileSet`](crate::files::FileSet) installed on the thread,
+/// the file is the set's and the file system is not read.
 ///
 /// # Errors
 /// The I/O error; [`std::io::ErrorKind::InvalidInput`] for a file that is not regular.
 pub fn read_data_file(path: impl AsRef<Path>) -> std::io::Result<Vec<u8>> {
     let path = path.as_ref();
+    if let Some(given) = crate::files::installed_read(path) {
+        return given;
+    }
     let kind = std::fs::metadata(path)?.file_type();
     if !kind.is_file() {
         let what = if kind.is_dir() {

@@ -27,6 +27,8 @@
 //! - [`text`]: user text and numbers as error messages quote them (cut to one line).
 //! - [`csv`]: numeric columns and `[x, y]` curves from text files, with errors that name the
 //!   file, line, column and text ([`CsvError`]).
+//! - [`files`]: data files given as bytes ([`files::FileSet`]), read instead of the file
+//!   system while installed on a thread (a browser page has no file system).
 //!
 //! Linear algebra (the Vandermonde solve of polynomial interpolation, the thin-plate spline) uses `nalgebra`'s LU
 //! decomposition with partial pivoting. All quantities are SI `f64`.
@@ -58,6 +60,7 @@ pub mod constants;
 pub mod csv;
 pub mod dimensions;
 mod error;
+pub mod files;
 mod function;
 pub mod geodesy;
 mod grid;

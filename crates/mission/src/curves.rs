@@ -95,7 +95,7 @@ pub(crate) fn check(
     extrapolation: Extrapolation,
 ) -> Result<(), ProblemKind> {
     if let Some(path) = curve.file_path(mission_dir) {
-        if let Err(source) = std::fs::metadata(&path) {
+        if let Err(source) = karman_math::files::check_data_file(&path) {
             return Err(ProblemKind::File { path, source });
         }
     }

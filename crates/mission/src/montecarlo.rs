@@ -771,7 +771,7 @@ pub fn data_fingerprint(mission: &Mission) -> Result<Vec<DataFile>, MissionError
     }];
     for (key, path) in spec.data_files() {
         let resolved = mission.dir.join(&path);
-        let bytes = std::fs::read(&resolved).map_err(|e| {
+        let bytes = karman_math::read_data_file(&resolved).map_err(|e| {
             mission.model_error(&key, format!("cannot read {}: {e}", resolved.display()))
         })?;
         data.push(DataFile {

@@ -157,7 +157,7 @@ impl Checker<'_> {
             return;
         }
         let resolved = self.dir.join(path);
-        if let Err(source) = std::fs::metadata(&resolved) {
+        if let Err(source) = karman_math::files::check_data_file(&resolved) {
             self.report(
                 key,
                 ProblemKind::File {

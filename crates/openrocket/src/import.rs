@@ -216,3 +216,22 @@ pub fn import(file: &Path, options: &ImportOptions) -> Result<Imported, OrkError
     let design = Design::parse(file, &text)?;
     crate::write::mission(file, &design, options)
 }
+
+/// [`import`] of a design given as `bytes` (what `file`, which names it in messages, holds),
+/// for a program without files (the browser page): its motor files are then found among
+/// `options.motors` through an installed `karman_math::files::FileSet`.
+///
+/// # Errors
+/// As [`import`]; [`OrkError::Container`] for more than [`MAX_DOCUMENT_BYTES`].
+pub fn import_bytes(
+    file: &Path,
+    bytes: &[u8],
+    options: &ImportOptions,
+) -> Result<Imported, OrkError> {
+    if bytes.len() as u64 > MAX_DOCUMENT_BYTES {
+        return Err(too_large(file, "the file"));
+    }
+    let text = document_text(file, bytes)?;
+    let design = Design::parse(file, &text)?;
+    crate::write::mission(file, &design, options)
+}

@@ -81,7 +81,8 @@ pub use design::{
     Component, Design, Kind, MAX_COMPONENT_DEPTH, MotorRef, SeparationRef, Simulation,
 };
 pub use import::{
-    ImportOptions, Imported, MAX_DOCUMENT_BYTES, OrkError, document_text, import, read_document,
+    ImportOptions, Imported, MAX_DOCUMENT_BYTES, OrkError, document_text, import, import_bytes,
+    read_document,
 };
 pub use stored::{
     Ascent, RodExit, StoredFlight, design_folders, each_imported_simulation, stage_count,

@@ -101,7 +101,10 @@ impl EngHeader {
 }
 
 fn eng_header(path: &Path) -> Option<EngHeader> {
-    let text = std::fs::read_to_string(path).ok()?;
+    let text = match karman_math::files::installed_read(path) {
+        Some(bytes) => String::from_utf8(bytes.ok()?).ok()?,
+        None => std::fs::read_to_string(path).ok()?,
+    };
     let line = text
         .lines()
         .map(str::trim)
