@@ -32,15 +32,13 @@
 use crate::assemble::flight::simulate_with_seed;
 use crate::schema::SurfaceSpec;
 use crate::{Mission, MissionError};
+use karman_dynamics::Sample;
+use karman_math::PhysicalConstants;
 use serde::Serialize;
 
-/// The ratio of specific heats of air.
-const GAMMA: f64 = 1.4;
 /// NACA TN 4197's location of the section's centre of mass aft of the quarter chord, as a
 /// fraction of the chord (`ε`).
 const EPSILON: f64 = 0.25;
-/// Standard gravity, m/s² (the weight of the thrust-to-weight ratio).
-const STANDARD_GRAVITY: f64 = 9.806_65;
 /// The band on the passing side of a threshold, as a fraction of it, that is a warning.
 const WARN_BAND: f64 = 0.10;
 
@@ -178,7 +176,9 @@ pub fn flutter_speed(
     let aspect = span * span / area;
     let taper = tip_chord / root_chord;
     let t_over_c = thickness / root_chord;
-    let denominator = (24.0 * EPSILON * GAMMA / std::f64::consts::PI) * aspect.powi(3)
+    let denominator = (24.0 * EPSILON * PhysicalConstants::SI.heat_capacity_ratio
+        / std::f64::consts::PI)
+        * aspect.powi(3)
         / (t_over_c.powi(3) * (aspect + 2.0))
         * 0.5
         * (taper + 1.0)
@@ -199,6 +199,73 @@ fn at_time(times: &[f64], series: &[f64], t: f64) -> Option<f64> {
         (Some(_), None) => series.last().copied(),
         (None, None) => None,
     }
+}
+
+/// The flutter margin of each trapezoidal fin set: the least flutter speed over airspeed on
+/// the points before apogee (NACA TN 4197), not assessed without the fins' material.
+fn flutter_checks(
+    mission: &Mission,
+    samples: &[Sample],
+    apogee: Option<f64>,
+    fins: Option<FinMaterial>,
+    rules: &SafetyRules,
+) -> Vec<Check> {
+    let mut checks = Vec::new();
+    for (name, surface) in &mission.spec.rocket.surfaces {
+        let SurfaceSpec::TrapezoidalFins(fin) = surface else {
+            continue;
+        };
+        let key = format!("flutter_margin.{name}");
+        let Some(material) = fins else {
+            checks.push(Check {
+                verdict: Verdict::None,
+                note: "not assessed: give the fins' shear modulus and thickness \
+                       (--shear-modulus, --fin-thickness)"
+                    .to_owned(),
+                ..check(&key, None, rules.min_flutter_margin, true, "")
+            });
+            continue;
+        };
+        // The least V_f / V over the points before apogee, and where.
+        let mut least: Option<(f64, f64, f64)> = None;
+        for s in samples.iter().filter(|s| {
+            apogee.is_none_or(|t| s.t <= t) && s.mach > 1e-3 && s.free_stream_speed > 0.0
+        }) {
+            let sound = s.free_stream_speed / s.mach;
+            let pressure = 2.0 * s.dynamic_pressure
+                / (PhysicalConstants::SI.heat_capacity_ratio * s.mach * s.mach);
+            let vf = flutter_speed(
+                fin.root_chord,
+                fin.tip_chord,
+                fin.span,
+                material.thickness_m,
+                material.shear_modulus_pa,
+                pressure,
+                sound,
+            );
+            let margin = vf / s.free_stream_speed;
+            if margin.is_finite() && least.is_none_or(|(m, _, _)| margin < m) {
+                least = Some((margin, vf, s.t));
+            }
+        }
+        let note = least.map_or_else(
+            || "no point of the ascent to assess".to_owned(),
+            |(_, vf, t)| {
+                format!(
+                    "least flutter speed / airspeed of fins `{name}` before apogee (NACA TN \
+                     4197): flutter speed {vf:.1} m/s at t = {t:.3} s"
+                )
+            },
+        );
+        checks.push(check(
+            &key,
+            least.map(|(m, _, _)| m),
+            rules.min_flutter_margin,
+            true,
+            &note,
+        ));
+    }
+    checks
 }
 
 /// Flies `mission` (seed `seed`) and reports its figures against `rules`; `fins` gives the
@@ -253,7 +320,7 @@ pub fn safety(
                     &samples.iter().map(|s| s.mass).collect::<Vec<_>>(),
                     t,
                 )?;
-                Some(thrust / (mass * STANDARD_GRAVITY))
+                Some(thrust / (mass * PhysicalConstants::SI.standard_gravity))
             }),
             rules.min_thrust_to_weight,
             true,
@@ -292,59 +359,7 @@ pub fn safety(
         Some(summary.max_dynamic_pressure_pa),
         "largest dynamic pressure",
     ));
-    for (name, surface) in &mission.spec.rocket.surfaces {
-        let SurfaceSpec::TrapezoidalFins(fin) = surface else {
-            continue;
-        };
-        let key = format!("flutter_margin.{name}");
-        let Some(material) = fins else {
-            checks.push(Check {
-                verdict: Verdict::None,
-                note: "not assessed: give the fins' shear modulus and thickness \
-                       (--shear-modulus, --fin-thickness)"
-                    .to_owned(),
-                ..check(&key, None, rules.min_flutter_margin, true, "")
-            });
-            continue;
-        };
-        // The least V_f / V over the points before apogee, and where.
-        let mut least: Option<(f64, f64, f64)> = None;
-        for s in samples.iter().filter(|s| {
-            apogee.is_none_or(|t| s.t <= t) && s.mach > 1e-3 && s.free_stream_speed > 0.0
-        }) {
-            let sound = s.free_stream_speed / s.mach;
-            let pressure = 2.0 * s.dynamic_pressure / (GAMMA * s.mach * s.mach);
-            let vf = flutter_speed(
-                fin.root_chord,
-                fin.tip_chord,
-                fin.span,
-                material.thickness_m,
-                material.shear_modulus_pa,
-                pressure,
-                sound,
-            );
-            let margin = vf / s.free_stream_speed;
-            if margin.is_finite() && least.is_none_or(|(m, _, _)| margin < m) {
-                least = Some((margin, vf, s.t));
-            }
-        }
-        let note = least.map_or_else(
-            || "no point of the ascent to assess".to_owned(),
-            |(_, vf, t)| {
-                format!(
-                    "least flutter speed / airspeed of fins `{name}` before apogee (NACA TN \
-                     4197): flutter speed {vf:.1} m/s at t = {t:.3} s"
-                )
-            },
-        );
-        checks.push(check(
-            &key,
-            least.map(|(m, _, _)| m),
-            rules.min_flutter_margin,
-            true,
-            &note,
-        ));
-    }
+    checks.extend(flutter_checks(mission, &samples, apogee, fins, rules));
     let landing_mass = samples.last().map(|s| s.mass);
     let impact = summary.impact_velocity_mps;
     checks.push(check(

@@ -154,13 +154,9 @@ pub struct Solution {
 pub const METHOD: &str = "Brent's bracketing root finder (Brent 1973, ch. 4): inverse quadratic \
     interpolation or secant steps inside the bracket, bisection otherwise; one flight per step";
 
-/// Finds the value of `options.vary` within the bounds at which `options.output` equals
-/// `options.target` within `options.tolerance`.
-///
-/// # Errors
-/// [`SolveError`]: the request, the mission's models, a failed trial flight, a target outside
-/// the outputs at the bounds, or no convergence within the flight budget.
-pub fn solve(mission: &Mission, options: &SolveOptions) -> Result<Solution, SolveError> {
+/// The request's own checks: a finite target, a positive tolerance, room for the two
+/// bounds, and `--vary` naming one real number of the mission.
+fn check_request(mission: &Mission, options: &SolveOptions) -> Result<(), SolveError> {
     let invalid = |reason: String| SolveError::Invalid(reason);
     if !(options.target.is_finite()) {
         return Err(invalid(format!(
@@ -203,6 +199,16 @@ pub fn solve(mission: &Mission, options: &SolveOptions) -> Result<Solution, Solv
         }
         Ok(crate::paths::Input::Number { .. } | crate::paths::Input::Knob(_)) => {}
     }
+    Ok(())
+}
+
+/// The one-sample study that flies each trial value of `--vary`: the study, the input's
+/// nominal value and the column of `--target`'s output.
+fn trial_study(
+    mission: &Mission,
+    options: &SolveOptions,
+) -> Result<(MonteCarlo, f64, usize), SolveError> {
+    let invalid = |reason: String| SolveError::Invalid(reason);
     let mut trial = mission.clone();
     trial.spec.dispersion = Some(DispersionSpec {
         samples: 1,
@@ -231,6 +237,19 @@ pub fn solve(mission: &Mission, options: &SolveOptions) -> Result<Solution, Solv
                 definition.outputs.join(", ")
             ))
         })?;
+    Ok((study, nominal, column))
+}
+
+/// Finds the value of `options.vary` within the bounds at which `options.output` equals
+/// `options.target` within `options.tolerance`.
+///
+/// # Errors
+/// [`SolveError`]: the request, the mission's models, a failed trial flight, a target outside
+/// the outputs at the bounds, or no convergence within the flight budget.
+pub fn solve(mission: &Mission, options: &SolveOptions) -> Result<Solution, SolveError> {
+    check_request(mission, options)?;
+    let (study, nominal, column) = trial_study(mission, options)?;
+    let invalid = |reason: String| SolveError::Invalid(reason);
     let [low, high] = options.bounds.unwrap_or(if nominal.abs() > 0.0 {
         let spread = 0.5 * nominal.abs();
         [nominal - spread, nominal + spread]

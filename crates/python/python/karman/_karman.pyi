@@ -63,7 +63,10 @@ class Mission:
         """The environment, motor and rocket as ``karman inspect --json`` shows them, tables
         as numpy arrays; ``heights`` (m ASL) and ``times`` (s) choose the sample points."""
     def simulate(
-        self, seed: int = 0, controller: Callable[..., Any] | None = None
+        self,
+        seed: int = 0,
+        controller: Callable[..., Any] | None = None,
+        triggers: Mapping[str, Callable[..., Any]] | None = None,
     ) -> Flight:
         """Flies the mission once (GIL released); ``seed`` seeds the parachute trigger
         noise. The first call builds and checks the models; later calls fly them again until
@@ -71,7 +74,10 @@ class Mission:
         ``controller_function(time, sampling_rate, state, state_history,
         observed_variables, air_brakes[, sensors])``: it drives ``[rocket.air_brakes]`` in
         place of the mission's Rhai script; an exception it raises ends the flight with a
-        ``MissionError`` holding its traceback."""
+        ``MissionError`` holding its traceback. ``triggers`` (``{"main": f}``) fires the named
+        parachutes by RocketPy's ``trigger(p, h, y[, sensors])`` instead of their mission
+        triggers, called at each sampling instant (ascent included); an exception it raises
+        is raised when the flight returns."""
     def montecarlo(
         self,
         samples: int | None = None,
