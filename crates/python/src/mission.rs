@@ -45,6 +45,8 @@ pub struct Mission {
     overrides: Vec<Override>,
     inner: karman_mission::Mission,
     prepared: OnceLock<Arc<PreparedFlight>>,
+    /// Parachute triggers written in Python (`set_trigger`), by parachute name.
+    triggers: Vec<(String, Arc<Py<PyAny>>)>,
 }
 
 /// The overrides of a `{path: value}` dict, values given as Python data.
@@ -77,6 +79,7 @@ impl Mission {
             overrides,
             inner,
             prepared: OnceLock::new(),
+            triggers: Vec::new(),
         })
     }
 
@@ -178,7 +181,36 @@ impl Mission {
     fn set(&mut self, path: &str, value: &Bound<'_, PyAny>) -> PyResult<()> {
         let mut overrides = self.overrides.clone();
         overrides.push(override_of(path, value)?);
+        let triggers = std::mem::take(&mut self.triggers);
         *self = Mission::parse(self.text.clone(), &self.inner.path, overrides)?;
+        self.triggers = triggers;
+        Ok(())
+    }
+
+    /// Fires the parachute `name` by `function`, RocketPy's `trigger(p, h, y[, sensors])`
+    /// written in Python, in every later `simulate` (as its `triggers` argument does; that
+    /// argument wins for the names it gives). The mission's own trigger stays in its TOML.
+    /// `None` removes the function. Raises `MissionError` for a parachute the mission does
+    /// not have, `TypeError` for a function that is not RocketPy's trigger.
+    fn set_trigger(
+        &mut self,
+        py: Python<'_>,
+        name: &str,
+        function: Option<Py<PyAny>>,
+    ) -> PyResult<()> {
+        if !self.inner.spec.rocket.parachutes.contains_key(name) {
+            let error = self.inner.model_error(
+                "rocket.parachutes",
+                format!("no parachute {name:?} to trigger"),
+            );
+            return Err(mission_error(&error));
+        }
+        self.triggers.retain(|(n, _)| n != name);
+        if let Some(function) = function {
+            let sensors = &self.inner.spec.rocket.sensors;
+            PythonTrigger::new(py, name, function.clone_ref(py), sensors)?;
+            self.triggers.push((name.to_owned(), Arc::new(function)));
+        }
         Ok(())
     }
 
@@ -283,17 +315,24 @@ impl Mission {
     ) -> PyResult<Flight> {
         let mission = &self.inner;
         let mut prepared = self.prepared().map_err(|e| mission_error(&e))?;
+        let mut functions: Vec<(String, Py<PyAny>)> = self
+            .triggers
+            .iter()
+            .map(|(name, f)| (name.clone(), f.clone_ref(py)))
+            .collect();
+        for (name, function) in triggers.into_iter().flat_map(|d| d.iter()) {
+            let name: String = name.extract().map_err(|_| {
+                pyo3::exceptions::PyTypeError::new_err("triggers: keys are parachute names")
+            })?;
+            functions.retain(|(n, _)| *n != name);
+            functions.push((name, function.unbind()));
+        }
         let mut python_triggers = Vec::new();
-        if let Some(triggers) = triggers {
+        if !functions.is_empty() {
             let sensors = &mission.spec.rocket.sensors;
-            for (name, function) in triggers.iter() {
-                let name: String = name.extract().map_err(|_| {
-                    pyo3::exceptions::PyTypeError::new_err("triggers: keys are parachute names")
-                })?;
-                python_triggers.push((
-                    name.clone(),
-                    PythonTrigger::new(py, &name, function.unbind(), sensors)?,
-                ));
+            for (name, function) in functions {
+                let trigger = PythonTrigger::new(py, &name, function, sensors)?;
+                python_triggers.push((name, trigger));
             }
             let conditions = python_triggers
                 .iter()

@@ -106,10 +106,40 @@ def test_unsupported_inputs_name_the_attribute(validation):
     with pytest.raises(UnsupportedError, match="flight.initial_speed"):
         from_rocketpy(env, rocket, initial_speed=3, **kwargs)
 
-    rocket.add_parachute("custom", cd_s=1.0, trigger=lambda p, h, y: y[5] < 0)
+    rocket.add_parachute("custom", cd_s=1.0, trigger="apogee")
+    rocket.parachutes[-1].trigger = "burnout"  # no RocketPy trigger: a string but "apogee"
     with pytest.raises(UnsupportedError) as error:
         from_rocketpy(env, rocket, **kwargs)
     assert error.value.attribute == "rocket.parachutes.custom.trigger"
+
+
+def test_a_python_trigger_flies_as_rocketpys(validation):
+    """A RocketPy parachute with a Python trigger: translated with the function itself, it
+    flies as the mission with the same condition as an expression, bit for bit, and its
+    apogee and main deployment as RocketPy's Flight (the deployment within the trigger
+    noise: the two programs draw their own)."""
+    env, rocket, kwargs = rocketpy_flights.calisto(validation)
+    main = next(p for p in rocket.parachutes if p.name == "main")
+    main.trigger = lambda p, h, y: y[5] < 0.0 and h < 800.0
+    data = mission_dict(env, rocket, **kwargs)
+    assert data["rocket"]["parachutes"]["main"]["trigger"] == {"expression": "false"}
+    by_function = from_rocketpy(env, rocket, **kwargs).simulate(seed=2)
+    mission = from_rocketpy(env, rocket, **kwargs)
+    mission.set("rocket.parachutes.main.trigger", {"expression": "vz < 0.0 && h < 800.0"})
+    mission.set_trigger("main", None)
+    by_expression = mission.simulate(seed=2)
+    assert by_function.to_dict() != {} and "parachute:main" in [
+        e["name"] for e in by_function.events
+    ]
+    reference = rocketpy.Flight(rocket=rocket, environment=env, **kwargs)
+    assert relative_error(by_function.apogee_agl_m, reference.apogee - env.elevation) < TOLERANCE
+    deployed = next(t for t, p in reference.parachute_events if p.name == "main")
+    ours = next(e["time_s"] for e in by_function.events if e["name"] == "parachute:main")
+    assert abs(ours - deployed) < 1.0, (ours, deployed)
+    # The expression flies the function's flight bit for bit; an argument replaces it again.
+    same = mission.simulate(seed=2, triggers={"main": lambda p, h, y: y[5] < 0.0 and h < 800.0})
+    assert same.to_dict() == by_function.to_dict()
+    assert by_expression.to_dict() == by_function.to_dict()
 
 
 def test_callable_curves_and_gravity_are_named(validation):

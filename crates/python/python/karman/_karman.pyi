@@ -62,6 +62,10 @@ class Mission:
     ) -> dict[str, Any]:
         """The environment, motor and rocket as ``karman inspect --json`` shows them, tables
         as numpy arrays; ``heights`` (m ASL) and ``times`` (s) choose the sample points."""
+    def set_trigger(self, name: str, function: Callable[..., Any] | None) -> None:
+        """Fires parachute ``name`` by RocketPy's ``trigger(p, h, y[, sensors])`` written in
+        Python in every later ``simulate`` (its ``triggers`` argument wins for the names it
+        gives); the mission's TOML keeps its own trigger. ``None`` removes the function."""
     def simulate(
         self,
         seed: int = 0,

@@ -26,9 +26,14 @@ What the adapter reads (attributes of RocketPy 1.13's objects):
   ``terminate_on_apogee``, tolerances and ``simulation_mode`` (``"3 DOF"`` with the rocket's
   ``weathercock_coeff`` attribute, which RocketPy's 3-DOF equations read).
 
-Anything else that would change the flight — callables (a thrust, drag, trigger or gravity
-given as Python code), hybrid/liquid motors, air brakes, eccentricities, non-default solver
-options — raises :class:`UnsupportedError` naming the attribute.
+A parachute trigger given as a Python function (RocketPy's ``trigger(p, h, y[, sensors])``) is
+flown as it is: the mission holds the function (``Mission.set_trigger``) and its TOML a
+trigger that never fires on its own (``{ expression = "false" }``). Eccentricities become
+``cm_eccentricity``, ``cp_eccentricity`` and ``thrust_eccentricity``.
+
+Anything else that would change the flight — callables (a thrust, drag or gravity given as
+Python code), hybrid/liquid motors, air brakes, non-default solver options — raises
+:class:`UnsupportedError` naming the attribute.
 """
 
 from __future__ import annotations
@@ -380,8 +385,12 @@ def _parachute(chute: Any) -> dict[str, Any]:
         trigger_value: Any = "apogee"
     elif isinstance(trigger, (int, float, np.number)) and not isinstance(trigger, bool):
         trigger_value = _number(trigger, f"{at}.trigger")
+    elif callable(trigger):
+        # A Python trigger: from_rocketpy hands the function itself to the mission
+        # (Mission.set_trigger); the mission's own trigger is one that never fires.
+        trigger_value = {"expression": "false"}
     else:
-        raise UnsupportedError(f"{at}.trigger", "a Python callable trigger cannot be translated")
+        raise UnsupportedError(f"{at}.trigger", f"{trigger!r} is not a trigger")
     out = {
         "cd_s": _number(chute.cd_s, f"{at}.cd_s"),
         "trigger": trigger_value,
@@ -588,4 +597,8 @@ def from_rocketpy(environment: Any, rocket: Any, **flight_kwargs: Any) -> Missio
 
     Raises :class:`UnsupportedError` naming the first attribute that cannot be translated.
     """
-    return Mission.from_dict(mission_dict(environment, rocket, **flight_kwargs))
+    mission = Mission.from_dict(mission_dict(environment, rocket, **flight_kwargs))
+    for chute in rocket.parachutes:
+        if callable(chute.trigger):
+            mission.set_trigger(chute.name, chute.trigger)
+    return mission
