@@ -9,36 +9,15 @@ use std::fs::File;
 use std::io::{BufRead, BufReader, BufWriter, Write as _};
 use std::path::{Path, PathBuf};
 
-/// Merges the complete shard directories `dirs` (every shard `K/N` of one study exactly
-/// once, in any order) into `out`: `study.json` and `samples.csv` byte-identical to those of
-/// an unsharded run, then the summary, KML and plots. Rows are streamed, so memory does not
-/// grow with the number of samples. The shards must be of one study, data fingerprint
-/// included (a shard flown on another weather file is refused, naming it); a shard still
-/// being written (its lock held) and an `out` another run writes are refused.
-pub fn merge(out: &Path, dirs: &[PathBuf]) -> Result<Summary, DispersionError> {
+/// The shards of a merge, in shard order: each one's study record and directory; the whole
+/// study's record; the shard count.
+type Shards<'a> = (Vec<(Record, &'a PathBuf)>, Record, u64);
+
+/// The study record of each shard directory, checked to be shards of one study with every
+/// shard number given once, in shard order; with the whole study's record and the shard
+/// count.
+fn shard_records(dirs: &[PathBuf]) -> Result<Shards<'_>, DispersionError> {
     let fail = |reason: String| Err(DispersionError::Merge { reason });
-    // A mistyped shard is said to be missing as a folder, not as the study.json it lacks.
-    for dir in dirs {
-        if !dir.exists() {
-            return fail(format!("{}: the folder does not exist", dir.display()));
-        }
-        if !dir.is_dir() {
-            return fail(format!(
-                "{}: not a folder (a shard's output directory, `montecarlo --out DIR`)",
-                dir.display()
-            ));
-        }
-    }
-    // Each shard directory locked once (one given twice is reported below).
-    let mut locks = Vec::with_capacity(dirs.len());
-    let mut locked: Vec<PathBuf> = Vec::with_capacity(dirs.len());
-    for dir in dirs {
-        let canonical = dir.canonicalize().unwrap_or_else(|_| dir.clone());
-        if !locked.contains(&canonical) {
-            locks.push(files::lock(dir, false)?);
-            locked.push(canonical);
-        }
-    }
     let mut shards: Vec<(Record, &PathBuf)> = Vec::with_capacity(dirs.len());
     for dir in dirs {
         let record = Record::read(&dir.join(STUDY_FILE))?
@@ -89,6 +68,40 @@ pub fn merge(out: &Path, dirs: &[PathBuf]) -> Result<Summary, DispersionError> {
             }
         }
     }
+    Ok((shards, whole, count))
+}
+
+/// Merges the complete shard directories `dirs` (every shard `K/N` of one study exactly
+/// once, in any order) into `out`: `study.json` and `samples.csv` byte-identical to those of
+/// an unsharded run, then the summary, KML and plots. Rows are streamed, so memory does not
+/// grow with the number of samples. The shards must be of one study, data fingerprint
+/// included (a shard flown on another weather file is refused, naming it); a shard still
+/// being written (its lock held) and an `out` another run writes are refused.
+pub fn merge(out: &Path, dirs: &[PathBuf]) -> Result<Summary, DispersionError> {
+    let fail = |reason: String| Err(DispersionError::Merge { reason });
+    // A mistyped shard is said to be missing as a folder, not as the study.json it lacks.
+    for dir in dirs {
+        if !dir.exists() {
+            return fail(format!("{}: the folder does not exist", dir.display()));
+        }
+        if !dir.is_dir() {
+            return fail(format!(
+                "{}: not a folder (a shard's output directory, `montecarlo --out DIR`)",
+                dir.display()
+            ));
+        }
+    }
+    // Each shard directory locked once (one given twice is reported below).
+    let mut locks = Vec::with_capacity(dirs.len());
+    let mut locked: Vec<PathBuf> = Vec::with_capacity(dirs.len());
+    for dir in dirs {
+        let canonical = dir.canonicalize().unwrap_or_else(|_| dir.clone());
+        if !locked.contains(&canonical) {
+            locks.push(files::lock(dir, false)?);
+            locked.push(canonical);
+        }
+    }
+    let (shards, whole, count) = shard_records(dirs)?;
     let mut readers = Vec::with_capacity(shards.len());
     for (record, dir) in &shards {
         let path = dir.join(SAMPLES_FILE);

@@ -239,6 +239,97 @@ fn variation(distribution: &Distribution) -> Result<Variation, String> {
     })
 }
 
+/// What a varied input is in a study (its nominal target) and how a sample applies a drawn
+/// value to it: a number or integer, each component of an array, a drag curve (points, a
+/// file, rows of a table or the geometric estimate) or a derived knob (its nominal read from
+/// the motor of its stage).
+fn input_target(
+    mission: &Mission,
+    path: &str,
+    input: Input<'_>,
+    motor: &Motor,
+    stage_reshapes: &[Option<[f64; 2]>],
+) -> Result<(Target, Apply), MissionError> {
+    let spec = &mission.spec;
+    let invalid =
+        |reason: String| dispersion_error(mission, DispersionError::InvalidStudy { reason });
+    Ok(match input {
+        Input::Number { value, integer } => {
+            let target = if integer {
+                Target::Integer(value as i64)
+            } else {
+                Target::Number(value)
+            };
+            let apply = Apply::Number {
+                path: path.to_owned(),
+                nominal: value,
+            };
+            (target, apply)
+        }
+        Input::Array(values) => {
+            let components = values
+                .iter()
+                .enumerate()
+                .map(|(i, v)| (format!("{path}.{i}"), *v))
+                .collect();
+            (Target::Array(values), Apply::Array { components })
+        }
+        Input::Curve(curve) if curve.is_estimate() => {
+            if !spec.stages.is_empty() {
+                return Err(invalid(format!(
+                    "`{path}`: the estimated drag of a multi-stage rocket takes no \
+                     `factor` or `offset` yet; give the curve as points or a file"
+                )));
+            }
+            let power_on = path == "rocket.power_on_drag";
+            (Target::Curve, Apply::Estimate { power_on })
+        }
+        Input::Curve(curve) => {
+            let points = curve
+                .points(&mission.dir)
+                .map_err(|e| invalid(format!("`{path}`: {e}")))?;
+            let apply = Apply::Curve {
+                path: path.to_owned(),
+                points,
+            };
+            (Target::Curve, apply)
+        }
+        Input::Table(curve) => {
+            let rows = match curve
+                .to_drag(&mission.dir)
+                .map_err(|e| invalid(format!("`{path}`: {e}")))?
+            {
+                AirBrakesDrag::Table(rows) => rows,
+                AirBrakesDrag::Constant(cd) => vec![[0.0, 0.0, cd]],
+            };
+            (Target::Curve, Apply::Rows { rows })
+        }
+        Input::Knob(knob) => {
+            let stage = paths::stage_path(path).map(|(index, _)| index);
+            let [burn, impulse] = match stage {
+                None => [motor.burn_out(), motor.total_impulse()],
+                Some(index) => stage_reshapes
+                    .get(index)
+                    .copied()
+                    .flatten()
+                    .ok_or_else(|| invalid(format!("`{path}`: the stage has no motor")))?,
+            };
+            let nominal = match knob {
+                DerivedKnob::TotalImpulse => impulse,
+                DerivedKnob::BurnTime => burn,
+                DerivedKnob::WindFactor => 1.0,
+                DerivedKnob::WindDirectionOffset => 0.0,
+            };
+            let apply = Apply::Knob {
+                knob,
+                nominal,
+                stage,
+            };
+            (Target::Number(nominal), apply)
+        }
+    })
+}
+
 impl MonteCarlo {
     /// The study of `mission`'s `[dispersion]` table (samples and seed overridable). The
     /// nominal motor and environment are built once here.
@@ -282,81 +373,7 @@ impl MonteCarlo {
             let variation =
                 variation(distribution).map_err(|reason| invalid(format!("`{path}`: {reason}")))?;
             reach.add(path);
-            let (target, apply) = match input {
-                Input::Number { value, integer } => {
-                    let target = if integer {
-                        Target::Integer(value as i64)
-                    } else {
-                        Target::Number(value)
-                    };
-                    let apply = Apply::Number {
-                        path: path.clone(),
-                        nominal: value,
-                    };
-                    (target, apply)
-                }
-                Input::Array(values) => {
-                    let components = values
-                        .iter()
-                        .enumerate()
-                        .map(|(i, v)| (format!("{path}.{i}"), *v))
-                        .collect();
-                    (Target::Array(values), Apply::Array { components })
-                }
-                Input::Curve(curve) if curve.is_estimate() => {
-                    if !spec.stages.is_empty() {
-                        return Err(invalid(format!(
-                            "`{path}`: the estimated drag of a multi-stage rocket takes no \
-                             `factor` or `offset` yet; give the curve as points or a file"
-                        )));
-                    }
-                    let power_on = path == "rocket.power_on_drag";
-                    (Target::Curve, Apply::Estimate { power_on })
-                }
-                Input::Curve(curve) => {
-                    let points = curve
-                        .points(&mission.dir)
-                        .map_err(|e| invalid(format!("`{path}`: {e}")))?;
-                    let apply = Apply::Curve {
-                        path: path.clone(),
-                        points,
-                    };
-                    (Target::Curve, apply)
-                }
-                Input::Table(curve) => {
-                    let rows = match curve
-                        .to_drag(&mission.dir)
-                        .map_err(|e| invalid(format!("`{path}`: {e}")))?
-                    {
-                        AirBrakesDrag::Table(rows) => rows,
-                        AirBrakesDrag::Constant(cd) => vec![[0.0, 0.0, cd]],
-                    };
-                    (Target::Curve, Apply::Rows { rows })
-                }
-                Input::Knob(knob) => {
-                    let stage = paths::stage_path(path).map(|(index, _)| index);
-                    let [burn, impulse] = match stage {
-                        None => [motor.burn_out(), motor.total_impulse()],
-                        Some(index) => stage_reshapes
-                            .get(index)
-                            .copied()
-                            .flatten()
-                            .ok_or_else(|| invalid(format!("`{path}`: the stage has no motor")))?,
-                    };
-                    let nominal = match knob {
-                        DerivedKnob::TotalImpulse => impulse,
-                        DerivedKnob::BurnTime => burn,
-                        DerivedKnob::WindFactor => 1.0,
-                        DerivedKnob::WindDirectionOffset => 0.0,
-                    };
-                    let apply = Apply::Knob {
-                        knob,
-                        nominal,
-                        stage,
-                    };
-                    (Target::Number(nominal), apply)
-                }
-            };
+            let (target, apply) = input_target(mission, path, input, &motor, &stage_reshapes)?;
             inputs.push(VariedInput::new(path.clone(), target, variation));
             applies.push(apply);
         }

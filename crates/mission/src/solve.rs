@@ -240,15 +240,9 @@ fn trial_study(
     Ok((study, nominal, column))
 }
 
-/// Finds the value of `options.vary` within the bounds at which `options.output` equals
-/// `options.target` within `options.tolerance`.
-///
-/// # Errors
-/// [`SolveError`]: the request, the mission's models, a failed trial flight, a target outside
-/// the outputs at the bounds, or no convergence within the flight budget.
-pub fn solve(mission: &Mission, options: &SolveOptions) -> Result<Solution, SolveError> {
-    check_request(mission, options)?;
-    let (study, nominal, column) = trial_study(mission, options)?;
+/// The bracket searched: `--bounds`, else half the nominal value either side of it (±1 about
+/// a nominal of zero).
+fn search_bounds(options: &SolveOptions, nominal: f64) -> Result<[f64; 2], SolveError> {
     let invalid = |reason: String| SolveError::Invalid(reason);
     let [low, high] = options.bounds.unwrap_or(if nominal.abs() > 0.0 {
         let spread = 0.5 * nominal.abs();
@@ -261,6 +255,19 @@ pub fn solve(mission: &Mission, options: &SolveOptions) -> Result<Solution, Solv
             "--bounds must be two finite numbers LO,HI with LO < HI, got {low},{high}"
         )));
     }
+    Ok([low, high])
+}
+
+/// Finds the value of `options.vary` within the bounds at which `options.output` equals
+/// `options.target` within `options.tolerance`.
+///
+/// # Errors
+/// [`SolveError`]: the request, the mission's models, a failed trial flight, a target outside
+/// the outputs at the bounds, or no convergence within the flight budget.
+pub fn solve(mission: &Mission, options: &SolveOptions) -> Result<Solution, SolveError> {
+    check_request(mission, options)?;
+    let (study, nominal, column) = trial_study(mission, options)?;
+    let [low, high] = search_bounds(options, nominal)?;
     let mut trials: Vec<[f64; 2]> = Vec::new();
     let output_at = |x: f64, trials: &mut Vec<[f64; 2]>| -> Result<f64, SolveError> {
         let flight = |reason: String| SolveError::Flight {
