@@ -323,6 +323,11 @@ fn samples_that_reach_max_time_are_marked_counted_and_fail_the_study() {
     assert_eq!(output.status.code(), Some(1), "no sample landed: {text}");
     assert!(!text.contains("panicked"), "{text}");
     assert!(text.contains("no sample of shard 1/1 completed"), "{text}");
+    // The error itself says why, from the first sample.
+    assert!(
+        text.contains("sample 0 max_time: the flight reached max_time (5 s)"),
+        "{text}"
+    );
     let stdout = String::from_utf8_lossy(&output.stdout);
     assert!(
         stdout.contains("0 completed, 12 ended early (max_time 12), 0 failed"),

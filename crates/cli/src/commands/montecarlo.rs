@@ -140,8 +140,16 @@ pub fn run(args: &MonteCarloArgs) -> Result<()> {
         print_convergence(&mut out, until, stopped, study.study().samples)?;
     }
     if report.counts.completed == 0 {
+        // The first failure's reason in the error itself (a study whose every sample fails
+        // usually fails for one reason: a drawn value out of range, a mission the draws break).
+        let first = report
+            .summary
+            .as_ref()
+            .and_then(|s| s.failures.first())
+            .map(|f| format!("; sample {} {}: {}", f.index, f.status, f.error))
+            .unwrap_or_default();
         bail!(
-            "no sample of shard {} completed its flight ({}); see samples.csv in {}",
+            "no sample of shard {} completed its flight ({}){first}; see samples.csv in {}",
             report.shard,
             report.counts,
             args.out.display()
