@@ -298,6 +298,36 @@ pub fn missions(dir: &Path) -> Vec<Case> {
         let text = replace_line(&base, key, line);
         push(&format!("value {line}"), text.into_bytes(), Some(full));
     }
+    // Eccentricities: beyond the body, non-finite, the wrong shape, the centre of mass with
+    // another, absurdly large; each refused at its key.
+    let eccentricities: &[(&str, &str)] = &[
+        (
+            "thrust_eccentricity = [1.0, 0.0]",
+            "rocket.thrust_eccentricity",
+        ),
+        ("cp_eccentricity = [nan, 0.0]", "rocket.cp_eccentricity"),
+        (
+            "cm_eccentricity = [1e300, -1e300]",
+            "rocket.cm_eccentricity",
+        ),
+        (
+            "thrust_eccentricity = [0.001]",
+            "rocket.thrust_eccentricity",
+        ),
+        ("cp_eccentricity = \"off\"", "rocket.cp_eccentricity"),
+        (
+            "cm_eccentricity = [0.001, 0.0]\ncp_eccentricity = [0.001, 0.0]",
+            "rocket.cp_eccentricity",
+        ),
+    ];
+    for (line, key) in eccentricities {
+        let text = replace_line(&base, "mass", &format!("mass = 2.6\n{line}"));
+        push(
+            &format!("eccentricity {line}"),
+            text.into_bytes(),
+            Some(key),
+        );
+    }
     let huge = "9".repeat(100_000);
     push(
         "100,000-digit mass",
