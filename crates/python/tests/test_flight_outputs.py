@@ -157,3 +157,36 @@ def test_thrust_to_weight_is_rocketpys(flights):
     theirs = np.array([reference.rocket.thrust_to_weight(x) for x in t[burn]])
     error = np.max(np.abs(ours["thrust_to_weight"][burn] - theirs)) / np.max(theirs)
     assert error < TOLERANCE, error
+
+
+def test_rail_button_forces_are_rocketpys(validation):
+    """RocketPy's rail-button normal and shear forces on the rail (`Flight.rail_button1_normal_force`
+    …) of the Calisto in a 6 m/s east, −4 m/s north wind (a custom atmosphere, translated by
+    the RocketPy adapter; without wind the forces are round-off), at karman's rail points,
+    within 0.1 % of their largest magnitude; zero off the rail."""
+    from karman.rocketpy import from_rocketpy
+
+    env, rocket, kwargs = rocketpy_flights.calisto(validation)
+    env.set_atmospheric_model(
+        type="custom_atmosphere", wind_u=[(0, 6.0), (5000, 6.0)], wind_v=[(0, -4.0), (5000, -4.0)]
+    )
+    reference = rocketpy.Flight(rocket=rocket, environment=env, **kwargs)
+    ours = from_rocketpy(env, rocket, **kwargs).simulate()
+    apogee = reference.apogee - env.elevation
+    assert abs(ours.apogee_agl_m / apogee - 1) < TOLERANCE, (ours.apogee_agl_m, apogee)
+    t = ours.t
+    rail = t <= reference.out_of_rail_time
+    assert rail.sum() > 5
+    for series in (
+        "rail_button1_normal_force",
+        "rail_button1_shear_force",
+        "rail_button2_normal_force",
+        "rail_button2_shear_force",
+    ):
+        theirs = np.array([getattr(reference, series)(x) for x in t[rail]])
+        scale = np.max(np.abs(theirs))
+        assert scale > 1.0, (series, scale)
+        error = np.max(np.abs(ours[series][rail] - theirs)) / scale
+        print(f"{series:28s} {error:.2e} of {scale:.4g} N")
+        assert error < TOLERANCE, (series, error)
+        assert (ours[series][t > ours.out_of_rail_time_s] == 0.0).all(), series

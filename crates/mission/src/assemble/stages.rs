@@ -42,7 +42,7 @@ use super::preflight::{MAX_KNOT_STOPS, checked_models, flight_settings, prepare}
 use super::rocket::build_rocket_ignited_at;
 use super::scripts::{AfterTime, ExpressionTrigger};
 use super::stage_view::{TOP_STAGE, in_stage, stage_mission, stage_name};
-use crate::report::trajectory::Track;
+use crate::report::trajectory::{RailArms, Track};
 use crate::schema::{DragEstimateSpec, Inertia, RocketSpec, Trigger};
 use crate::{Mission, MissionError};
 
@@ -984,6 +984,13 @@ impl Track for BodyTrack<'_> {
     }
     fn reference_radius(&self, t: f64) -> f64 {
         self.run.rocket_at(self.body, t).radius()
+    }
+    fn rail(&self) -> Option<RailArms> {
+        // The launch stack leaves the rail in the first segment, which the top body's path
+        // starts with; the lower bodies separate in flight.
+        let first = *self.run.bodies[self.body].segments.first()?;
+        let segment = &self.run.segments[first];
+        RailArms::of(&segment.rocket, segment.flight.rail_exit?.0)
     }
 }
 

@@ -21,6 +21,38 @@ pub trait Track {
     /// The reference radius at `t` of the model flown then, m (the Reynolds number's length
     /// is its diameter).
     fn reference_radius(&self, t: f64) -> f64;
+    /// The rail buttons of the body that left the rail, with its rail-exit time; `None` for
+    /// a body that never was on the rail or a rocket without buttons.
+    fn rail(&self) -> Option<RailArms>;
+}
+
+/// The rail buttons' lever arms from the centre of dry mass along the body axis, `D1` (upper
+/// button) and `D2` (lower), m; their roll angle, rad; the rail-exit time, s.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct RailArms {
+    /// `(z_upper − z_CDM) csys`, m.
+    pub upper: f64,
+    /// `(z_lower − z_CDM) csys`, m.
+    pub lower: f64,
+    /// The buttons' angular position, rad.
+    pub angle: f64,
+    /// The rail-exit time, s.
+    pub exit_time: f64,
+}
+
+impl RailArms {
+    /// The arms of `rocket`'s buttons, off the rail at `exit_time`.
+    #[must_use]
+    pub fn of(rocket: &karman_airframe::Rocket, exit_time: f64) -> Option<Self> {
+        let b = rocket.rail_buttons()?;
+        let (cdm, csys) = (rocket.center_of_dry_mass(), rocket.csys());
+        Some(RailArms {
+            upper: (b.upper_position - cdm) * csys,
+            lower: (b.lower_position - cdm) * csys,
+            angle: b.angular_position_rad,
+            exit_time,
+        })
+    }
 }
 
 impl Track for FlightRun {
@@ -32,6 +64,9 @@ impl Track for FlightRun {
     }
     fn reference_radius(&self, _: f64) -> f64 {
         self.rocket.radius()
+    }
+    fn rail(&self) -> Option<RailArms> {
+        RailArms::of(&self.rocket, self.flight.rail_exit?.0)
     }
 }
 
@@ -178,6 +213,18 @@ pub const SERIES: &[Series] = &[
         // RocketPy's `Rocket.thrust_to_weight`: thrust over the weight at standard gravity.
         s.net_thrust / (PhysicalConstants::SI.standard_gravity * s.mass)
     }),
+    series("rail_button1_normal_force", "n", |r, s| {
+        rail_button_forces(r, s)[0]
+    }),
+    series("rail_button1_shear_force", "n", |r, s| {
+        rail_button_forces(r, s)[1]
+    }),
+    series("rail_button2_normal_force", "n", |r, s| {
+        rail_button_forces(r, s)[2]
+    }),
+    series("rail_button2_shear_force", "n", |r, s| {
+        rail_button_forces(r, s)[3]
+    }),
     series("drift", "m", |_, s| s.x.hypot(s.y)),
     series("bearing", "deg", |_, s| {
         // Clockwise from north, in (0°, 360°] as RocketPy writes it (`2π − atan2(−x, y)`).
@@ -191,6 +238,31 @@ fn rotational_energy(s: &Sample) -> f64 {
     let [i1, i2, i3] = s.inertia;
     let [w1, w2, w3] = s.omega;
     0.5 * (i1 * w1 * w1 + i2 * w2 * w2 + i3 * w3 * w3)
+}
+
+/// The forces on the rail buttons while the rocket is on the rail (RocketPy 1.13's
+/// `Flight.rail_button1_normal_force` …): the transverse aerodynamic loads `(R1, R2)` and
+/// moments `(M1, M2)` about the centre of dry mass shared by the two buttons as a beam on two
+/// supports at `D1` (upper) and `D2` (lower) from it, `F1 = (R1 D2 − M2, R2 D2 + M1)/(D1 + D2)`,
+/// `F2 = (R1 D1 + M2, R2 D1 − M1)/(D1 + D2)`, each resolved along the buttons' angular position
+/// φ into normal `F·(cos φ, sin φ)` and shear `F·(−sin φ, cos φ)`: `[normal 1, shear 1,
+/// normal 2, shear 2]`, N; zero off the rail and without buttons.
+fn rail_button_forces(r: &dyn Track, s: &Sample) -> [f64; 4] {
+    let Some(arms) = r.rail().filter(|a| s.t <= a.exit_time) else {
+        return [0.0; 4];
+    };
+    let ([r1, r2, _], [m1, m2, _]) = (s.force, s.moment);
+    let (d1, d2) = (arms.upper, arms.lower);
+    let span = d1 + d2;
+    let upper = [(r1 * d2 - m2) / span, (r2 * d2 + m1) / span];
+    let lower = [(r1 * d1 + m2) / span, (r2 * d1 - m1) / span];
+    let (sin, cos) = arms.angle.sin_cos();
+    [
+        upper[0] * cos + upper[1] * sin,
+        -upper[0] * sin + upper[1] * cos,
+        lower[0] * cos + lower[1] * sin,
+        -lower[0] * sin + lower[1] * cos,
+    ]
 }
 
 /// `½ m |v|²`, J.

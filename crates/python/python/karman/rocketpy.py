@@ -211,10 +211,17 @@ def _atmosphere(env: Any) -> dict[str, Any]:
         return {"model": "standard"}
     if kind == "custom_atmosphere":
         atmosphere: dict[str, Any] = {"model": "custom"}
-        for name in ("pressure", "temperature", "wind_u", "wind_v"):
+        # RocketPy 1.13 keeps the custom winds as `wind_velocity_x` (east, karman's `wind_u`)
+        # and `wind_velocity_y` (north, `wind_v`).
+        for key, name in (
+            ("pressure", "pressure"),
+            ("temperature", "temperature"),
+            ("wind_u", "wind_velocity_x"),
+            ("wind_v", "wind_velocity_y"),
+        ):
             function = getattr(env, name)
             attribute = f"environment.{name}"
-            atmosphere[name] = _function_curve(function, attribute)
+            atmosphere[key] = _function_curve(function, attribute)
         return atmosphere
     file = getattr(env, "atmospheric_model_file", None)
     if kind in ("wyoming_sounding", "NOAARucSounding"):
