@@ -254,6 +254,10 @@ fn rail_button_forces(r: &dyn Track, s: &Sample) -> [f64; 4] {
     let ([r1, r2, _], [m1, m2, _]) = (s.force, s.moment);
     let (d1, d2) = (arms.upper, arms.lower);
     let span = d1 + d2;
+    if !(span.abs() > 0.0 && span.is_finite()) {
+        // Buttons placed symmetrically about the centre of dry mass: no beam to share.
+        return [0.0; 4];
+    }
     let upper = [(r1 * d2 - m2) / span, (r2 * d2 + m1) / span];
     let lower = [(r1 * d1 + m2) / span, (r2 * d1 - m1) / span];
     let (sin, cos) = arms.angle.sin_cos();
