@@ -136,21 +136,7 @@ pub fn sensitivity_of_rows(
     if names.is_empty() {
         return Err(invalid("the study varies no input".to_owned()));
     }
-    let wanted: Vec<usize> = if outputs.is_empty() {
-        (0..study.outputs.len()).collect()
-    } else {
-        outputs
-            .iter()
-            .map(|name| {
-                study.outputs.iter().position(|o| o == name).ok_or_else(|| {
-                    invalid(format!(
-                        "`{name}` is not an output of the study (its outputs: {})",
-                        study.outputs.join(", ")
-                    ))
-                })
-            })
-            .collect::<Result<_, _>>()?
-    };
+    let wanted = study.output_columns(outputs)?;
     let mut result = Sensitivity {
         method: METHOD.to_owned(),
         outputs: Vec::new(),

@@ -93,6 +93,31 @@ pub struct Study {
 }
 
 impl Study {
+    /// The columns of the outputs called `names` among [`Study::outputs`], in the order given;
+    /// every output when `names` is empty.
+    ///
+    /// # Errors
+    /// [`DispersionError::InvalidStudy`] naming a name that is not an output, with the study's
+    /// outputs.
+    pub fn output_columns(&self, names: &[String]) -> Result<Vec<usize>, DispersionError> {
+        if names.is_empty() {
+            return Ok((0..self.outputs.len()).collect());
+        }
+        names
+            .iter()
+            .map(|name| {
+                self.outputs.iter().position(|o| o == name).ok_or_else(|| {
+                    DispersionError::InvalidStudy {
+                        reason: format!(
+                            "`{name}` is not an output of the study (its outputs: {})",
+                            self.outputs.join(", ")
+                        ),
+                    }
+                })
+            })
+            .collect()
+    }
+
     /// A study with no points, no site and no context.
     pub fn new(seed: u64, samples: u64, inputs: Vec<VariedInput>, outputs: Vec<String>) -> Self {
         Study {

@@ -124,21 +124,7 @@ pub fn tolerance_of_rows(
             )));
         }
     }
-    let wanted: Vec<usize> = if outputs.is_empty() {
-        (0..study.outputs.len()).collect()
-    } else {
-        outputs
-            .iter()
-            .map(|name| {
-                study.outputs.iter().position(|o| o == name).ok_or_else(|| {
-                    invalid(format!(
-                        "`{name}` is not an output of the study (its outputs: {})",
-                        study.outputs.join(", ")
-                    ))
-                })
-            })
-            .collect::<Result<_, _>>()?
-    };
+    let wanted = study.output_columns(outputs)?;
     Ok(wanted
         .into_iter()
         .map(|k| {

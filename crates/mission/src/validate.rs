@@ -1250,6 +1250,18 @@ fn eccentricities(c: &mut Checker<'_>, spec: &MissionSpec) {
     }
 }
 
+/// A fin or tube count `n` of `1..=MAX_FINS`, refused with `expected` otherwise.
+fn fin_count(c: &mut Checker<'_>, key: &str, n: u32, expected: &'static str) {
+    c.range(key, f64::from(n), (1..=MAX_FINS).contains(&n), expected);
+}
+
+/// A fin set's optional body radius: not negative (0: fins on no body, a pod's phantom tube).
+fn fin_body_radius(c: &mut Checker<'_>, key: &str, radius: Option<f64>) {
+    if let Some(radius) = radius {
+        c.non_negative(key, radius);
+    }
+}
+
 /// One `[rocket.surfaces.NAME]`: the sizes of its kind, its fin count, its airfoil curve.
 fn surface_checks(c: &mut Checker<'_>, name: &str, surface: &SurfaceSpec) {
     let key = |k: &str| format!("rocket.surfaces.{name}.{k}");
@@ -1272,12 +1284,7 @@ fn surface_checks(c: &mut Checker<'_>, name: &str, surface: &SurfaceSpec) {
             }
         }
         SurfaceSpec::TrapezoidalFins(s) => {
-            c.range(
-                &key("n"),
-                f64::from(s.n),
-                (1..=MAX_FINS).contains(&s.n),
-                FIN_COUNT,
-            );
+            fin_count(c, &key("n"), s.n, FIN_COUNT);
             c.positive(&key("span"), s.span);
             c.positive(&key("root_chord"), s.root_chord);
             c.non_negative(&key("tip_chord"), s.tip_chord);
@@ -1289,32 +1296,16 @@ fn surface_checks(c: &mut Checker<'_>, name: &str, surface: &SurfaceSpec) {
                     "must be within (-90, 90) deg",
                 );
             }
-            if let Some(radius) = s.radius {
-                // 0: fins on no body (a pod's phantom tube).
-                c.non_negative(&key("radius"), radius);
-            }
+            fin_body_radius(c, &key("radius"), s.radius);
         }
         SurfaceSpec::EllipticalFins(s) => {
-            c.range(
-                &key("n"),
-                f64::from(s.n),
-                (1..=MAX_FINS).contains(&s.n),
-                FIN_COUNT,
-            );
+            fin_count(c, &key("n"), s.n, FIN_COUNT);
             c.positive(&key("span"), s.span);
             c.positive(&key("root_chord"), s.root_chord);
-            if let Some(radius) = s.radius {
-                // 0: fins on no body (a pod's phantom tube).
-                c.non_negative(&key("radius"), radius);
-            }
+            fin_body_radius(c, &key("radius"), s.radius);
         }
         SurfaceSpec::FreeFormFins(s) => {
-            c.range(
-                &key("n"),
-                f64::from(s.n),
-                (1..=MAX_FINS).contains(&s.n),
-                FIN_COUNT,
-            );
+            fin_count(c, &key("n"), s.n, FIN_COUNT);
             if s.shape_points.len() < 3 {
                 c.report(
                     &key("shape_points"),
@@ -1324,10 +1315,7 @@ fn surface_checks(c: &mut Checker<'_>, name: &str, surface: &SurfaceSpec) {
                     },
                 );
             }
-            if let Some(radius) = s.radius {
-                // 0: fins on no body (a pod's phantom tube).
-                c.non_negative(&key("radius"), radius);
-            }
+            fin_body_radius(c, &key("radius"), s.radius);
         }
         SurfaceSpec::Tail(s) => {
             c.positive(&key("top_radius"), s.top_radius);
@@ -1336,12 +1324,7 @@ fn surface_checks(c: &mut Checker<'_>, name: &str, surface: &SurfaceSpec) {
             c.positive(&key("length"), s.length);
         }
         SurfaceSpec::TubeFins(s) => {
-            c.range(
-                &key("n"),
-                f64::from(s.n),
-                (1..=MAX_FINS).contains(&s.n),
-                TUBE_COUNT,
-            );
+            fin_count(c, &key("n"), s.n, TUBE_COUNT);
             c.positive(&key("length"), s.length);
             c.positive(&key("outer_radius"), s.outer_radius);
             c.positive(&key("inner_radius"), s.inner_radius);
